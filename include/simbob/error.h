@@ -1,0 +1,55 @@
+// Errors as values with a place. Nothing in lib/ exits or aborts; the CLI maps
+// an ErrorKind to an exit status (sysexits.h).
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace simbob {
+
+/// Where something came from: a file and a 1-based line (0 = unknown line).
+struct SourceLoc {
+  std::string file;
+  int line = 0;
+};
+
+/// What went wrong, coarse enough for the CLI to choose an exit status.
+enum class ErrorKind {
+  InvalidInput,   ///< the scene or a data file is wrong (EX_DATAERR 65)
+  MissingInput,   ///< an input file does not exist or cannot be read (EX_NOINPUT 66)
+  CannotCreate,   ///< an output file cannot be created (EX_CANTCREAT 73)
+  IoError,        ///< writing an output failed (EX_IOERR 74)
+  Diverged,       ///< the simulation produced a non-finite or runaway state (exit 1)
+  Internal,       ///< a bug in simbob (EX_SOFTWARE 70)
+};
+
+struct Error {
+  ErrorKind kind = ErrorKind::InvalidInput;
+  SourceLoc loc;
+  std::string message;
+
+  /// One line: "file:line: message" (or "file: message" when the line is unknown).
+  std::string str() const;
+};
+
+/// Collects errors and warnings so one pass can report every problem.
+class Diagnostics {
+ public:
+  void error(SourceLoc loc, std::string message, ErrorKind kind = ErrorKind::InvalidInput) {
+    errors_.push_back({kind, std::move(loc), std::move(message)});
+  }
+  void warning(SourceLoc loc, std::string message) {
+    warnings_.push_back({ErrorKind::InvalidInput, std::move(loc), std::move(message)});
+  }
+  bool ok() const { return errors_.empty(); }
+  const std::vector<Error>& errors() const { return errors_; }
+  const std::vector<Error>& warnings() const { return warnings_; }
+  void clear() { errors_.clear(); warnings_.clear(); }
+
+ private:
+  std::vector<Error> errors_;
+  std::vector<Error> warnings_;
+};
+
+}  // namespace simbob

@@ -1,0 +1,96 @@
+// The compiled model: plain data, every reference resolved, every value validated.
+// The compile step (lib/scene/compile.cpp) produces it from the component graph; the physics
+// layer (lib/physics) is the only consumer that talks to ODE. Nothing here includes ODE.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "simbob/error.h"
+
+namespace simbob {
+
+using Vec3 = std::array<double, 3>;
+/// Unit quaternion, w x y z.
+using Quat = std::array<double, 4>;
+/// Row-major 3x3.
+using Mat3 = std::array<double, 9>;
+
+struct Transform {
+  Vec3 p{0, 0, 0};
+  Quat q{1, 0, 0, 0};
+};
+
+/// Contact properties of one material (guide 6.7.1, combined per 7.1).
+struct MaterialDef {
+  std::string key;                ///< fully qualified key ("" for the default material)
+  double friction = 0.5;          ///< Coulomb coefficient mu (dimensionless)
+  double bounceness = 0.0;        ///< restitution in [0,1]
+  double min_bounce_vel = 0.1;    ///< m/s; slower impacts do not bounce
+};
+
+/// A mobile rigid body. Static bodies have no entry: their geoms are world geoms.
+struct BodyDef {
+  std::string key;           ///< fully qualified key, written to the trajectory
+  SourceLoc loc;
+  Transform pose;            ///< initial pose, global (m, unit quaternion)
+  Vec3 lin_vel{0, 0, 0};     ///< m/s, global
+  Vec3 ang_vel{0, 0, 0};     ///< rad/s, global
+  double mass = 1.0;         ///< kg, > 0
+  Mat3 inertia{1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< kg m^2 about the body origin, body frame
+};
+
+enum class GeomShape : uint8_t {
+  Box,       ///< size = full extents along local x, y, z (m)
+  Sphere,    ///< size[0] = radius (m)
+  Cylinder,  ///< size[0] = radius, size[1] = length along local Z (m)
+  Capsule,   ///< size[0] = radius, size[1] = length of the cylindrical part along local Z (m)
+  Plane,     ///< static only: plane = (nx, ny, nz, d), points p with n.p = d, n unit
+};
+
+struct GeomDef {
+  std::string key;          ///< qualified key of the owning body (for messages)
+  GeomShape shape = GeomShape::Box;
+  int body = -1;            ///< index into Model::bodies; -1 = static (world) geom
+  Transform offset;         ///< relative to the body frame, or global when body == -1
+  Vec3 size{0, 0, 0};       ///< see GeomShape
+  std::array<double, 4> plane{0, 1, 0, 0};  ///< Plane only, global
+  int material = 0;         ///< index into Model::materials
+  bool sensor = false;      ///< detects contacts but creates no contact joints
+};
+
+enum class JointKind : uint8_t { BallSocket, Hinge, Slider, Fixed };
+
+struct JointDef {
+  std::string key;          ///< fully qualified key
+  SourceLoc loc;
+  JointKind kind = JointKind::BallSocket;
+  int body1 = -1;           ///< parent body index, -1 = the static world
+  int body2 = -1;           ///< child body index, -1 = the static world (not both -1)
+  Vec3 anchor{0, 0, 0};     ///< global, m (BallSocket, Hinge)
+  Vec3 axis{0, 0, 1};       ///< global unit vector (Hinge, Slider)
+};
+
+/// World and solver settings (SceneSettings in the scene file).
+struct SolverSettings {
+  Vec3 gravity{0, -9.81, 0};  ///< m/s^2
+  double max_time_step = 0.001;  ///< s, the step size (MaxTimeStep; --dt overrides)
+  double min_time_step = 1e-6;   ///< s, a requested time this close counts as reached
+  double erp = 0.2;              ///< error reduction parameter
+  double cfm = 1e-5;             ///< constraint force mixing
+  int iterations = 20;           ///< QuickStep iterations
+  int max_contacts = 4;          ///< contact points per colliding geom pair
+  bool quickstep = true;         ///< false: dWorldStep (exact LCP)
+};
+
+struct Model {
+  SolverSettings settings;
+  std::vector<MaterialDef> materials;  ///< [0] is the default material
+  std::vector<BodyDef> bodies;         ///< mobile bodies, document order
+  std::vector<GeomDef> geoms;          ///< document order
+  std::vector<JointDef> joints;        ///< document order
+};
+
+}  // namespace simbob

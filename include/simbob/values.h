@@ -1,0 +1,146 @@
+// Basic value types of the scene format and their string conversions (user guide 4.3).
+// Parsing and writing are exact inverses for every value a parser accepts:
+// write(parse(s)) may normalise the spelling, but parse(write(v)) == v bit for bit.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+namespace simbob {
+
+using Triple = std::array<double, 3>;
+
+/// Four elements; the 4th scales the others (0 = a direction that cannot be normalised).
+struct Vector4 {
+  std::array<double, 4> v{0, 0, 0, 1};
+  bool operator==(const Vector4& o) const { return v == o.v; }
+};
+
+/// Orientation as a unit quaternion, element order w x y z (as ODE).
+struct Quaternion {
+  std::array<double, 4> q{1, 0, 0, 0};
+  bool operator==(const Quaternion& o) const { return q == o.q; }
+};
+
+/// Position (m) and Euler angles (degrees). Kept as written so files round-trip exactly.
+/// Convention: R = Rz(c) * Ry(b) * Rx(a): rotate about global X, then global Y, then global Z.
+struct Pose {
+  Triple pos{0, 0, 0};
+  Triple euler_deg{0, 0, 0};
+  bool operator==(const Pose& o) const { return pos == o.pos && euler_deg == o.euler_deg; }
+};
+
+/// Row-major 4x4 matrix.
+struct Matrix4 {
+  std::array<double, 16> m{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  bool operator==(const Matrix4& o) const { return m == o.m; }
+};
+
+/// Two opposite corners.
+struct Cuboid {
+  Triple a{0, 0, 0};
+  Triple b{0, 0, 0};
+  bool operator==(const Cuboid& o) const { return a == o.a && b == o.b; }
+};
+
+/// RGBA in [0,1]; valid == false is the guide's "invalid" (unspecified) colour.
+struct Color {
+  std::array<double, 4> rgba{0, 0, 0, 1};
+  bool valid = true;
+  bool operator==(const Color& o) const { return valid == o.valid && (!valid || rgba == o.rgba); }
+};
+
+/// One key of an enum or bitmask table. Several keys may share a value (aliases); the first
+/// one listed is the spelling used when writing.
+struct EnumKey {
+  const char* name;
+  uint32_t value;
+};
+
+struct EnumTable {
+  const char* name;  ///< e.g. "ColorMode"
+  std::vector<EnumKey> keys;
+};
+
+struct EnumValue {
+  uint32_t value = 0;
+  bool operator==(const EnumValue& o) const { return value == o.value; }
+};
+
+struct BitmaskValue {
+  uint32_t bits = 0;
+  bool operator==(const BitmaskValue& o) const { return bits == o.bits; }
+};
+
+enum class ValueType {
+  Bool,
+  Int,      ///< a number that must be integral (stored as int64)
+  Number,   ///< double
+  String,
+  Triple,
+  Vector,
+  Quaternion,
+  Pose,
+  Matrix,
+  Cuboid,
+  Color,
+  Enum,
+  Bitmask,
+};
+
+using Value = std::variant<bool, int64_t, double, std::string, Triple, Vector4, Quaternion, Pose,
+                           Matrix4, Cuboid, Color, EnumValue, BitmaskValue>;
+
+/// Name used in messages and `simbob types`: "Bool", "Number", "Triple", ...
+const char* valueTypeName(ValueType t);
+
+/// Options that change what a parse accepts.
+struct ParseOptions {
+  bool allow_infinite = false;  ///< accept "Infinite" / "-Infinite" for numbers (drive limits)
+};
+
+/// Result of a parse: a value, or a message saying what is wrong (no file/line: the caller adds it).
+struct ParseResult {
+  std::optional<Value> value;
+  std::string error;
+  explicit operator bool() const { return value.has_value(); }
+};
+
+/// Parse `text` as a value of type `t`. `table` is required for Enum and Bitmask.
+/// NaN is always rejected; infinities only with allow_infinite.
+ParseResult parseValue(ValueType t, std::string_view text, const EnumTable* table = nullptr,
+                       ParseOptions opts = {});
+
+/// Write `v` (which must hold the alternative for `t`) in its canonical string form.
+std::string formatValue(ValueType t, const Value& v, const EnumTable* table = nullptr);
+
+// --- building blocks, exposed for tests and for other readers (CSV, INI) ---
+
+/// Shortest round-trip decimal form of a double (std::to_chars), "Infinite"/"-Infinite" for
+/// infinities. Never locale-dependent.
+std::string formatNumber(double d);
+
+/// Append the shortest round-trip form of d to out (no allocation beyond out's growth).
+void appendNumber(std::string& out, double d);
+
+/// Strict number: optional sign, digits, '.', exponent. Whole text must be consumed.
+std::optional<double> parseNumber(std::string_view text, bool allow_infinite = false);
+
+/// A numerical value list: numbers separated by any of " \t,;\\()" (guide 4.3).
+/// Returns std::nullopt and sets *error on a malformed element.
+std::optional<std::vector<double>> parseNumberList(std::string_view text, std::string* error,
+                                                   bool allow_infinite = false);
+
+/// String escapes of 4.3: "\t" tab, "\n" newline, "\x" -> x for any other x.
+std::string unescapeString(std::string_view text);
+std::string escapeString(std::string_view text);
+
+/// Case-insensitive ASCII comparison.
+bool equalsIgnoreCase(std::string_view a, std::string_view b);
+
+}  // namespace simbob

@@ -10,6 +10,9 @@
 
 namespace simbob {
 
+/// "ODE <configuration>" of the linked ODE (precision and build options), for run summaries.
+std::string physicsVersion();
+
 /// State of one mobile body, global frame.
 struct BodyState {
   Transform pose;

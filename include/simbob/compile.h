@@ -1,0 +1,25 @@
+// The compile step: component graph -> Model. Resolves frames (global/local poses), joints of
+// constructions, imports, clones, inertia, materials and settings; validates everything ODE
+// would otherwise abort on. No ODE here.
+#pragma once
+
+#include "simbob/graph.h"
+#include "simbob/model.h"
+
+namespace simbob {
+
+/// Fill *model from scene. Returns false (with messages in diag) if the scene is invalid.
+bool compileScene(const Scene& scene, Model* model, Diagnostics& diag);
+
+/// Volume (m^3) and inertia per unit density (m^5, about the body origin, body frame) of one
+/// placeable geom; planes have none.
+struct MassProps {
+  double volume = 0;
+  Mat3 inertia{0, 0, 0, 0, 0, 0, 0, 0, 0};
+};
+MassProps geomMassProps(const GeomDef& g);
+
+/// Whether a symmetric 3x3 matrix is positive definite (Cholesky).
+bool isPositiveDefinite(const Mat3& m);
+
+}  // namespace simbob

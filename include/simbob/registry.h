@@ -1,0 +1,148 @@
+// The registry: the one list of component types, their families and parameter tables.
+// The parser, the writers, `simbob types` and error messages all read it; adding a type is one
+// `add` call in the file of its family (lib/components/<family>.cpp).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "simbob/values.h"
+
+namespace simbob {
+
+/// ComponentBaseTypes of the guide (chapter 2), plus Struct for plain parameter groups
+/// (SceneSettings, fog settings, global settings) that have no type element or Key.
+enum class Family : uint8_t {
+  Body,
+  GlobalSim,
+  Model,
+  Skin,
+  Geom,
+  Joint,
+  Material,
+  Pose,
+  Motion,
+  Inertia,
+  Periphery,
+  Controller,
+  Camera,
+  Struct,
+};
+
+/// "BodyComponent", "GeomComponent", ... as the guide names them.
+const char* familyName(Family f);
+
+enum class ParamKind : uint8_t {
+  Value,      ///< a basic value: <Name Value="..."/>
+  Component,  ///< one component: <Name><Type Key="..">..</Type></Name>, or Ref / Macro
+  List,       ///< any number of components
+  Struct,     ///< a group of parameters without type or key: <Name><Member Value=".."/></Name>
+};
+
+/// Range checks for numbers (applied to Number and Int values, and to every element of
+/// Triple-like values when noted).
+enum class Range : uint8_t {
+  Any,
+  Positive,     ///< > 0
+  NonNegative,  ///< >= 0
+  Unit,         ///< [0, 1]
+};
+
+struct ParamSpec {
+  std::string name;
+  ParamKind kind = ParamKind::Value;
+  ValueType type = ValueType::Number;  ///< Value params
+  const EnumTable* table = nullptr;    ///< Enum / Bitmask params
+  Value default_value;                 ///< Value params
+  Range range = Range::Any;
+  bool allow_infinite = false;
+  std::vector<Family> families;        ///< Component / List: accepted families
+  std::string default_type;            ///< Component: type created when absent ("" = stays empty)
+  std::string struct_type;             ///< Struct: the Struct type describing the members
+  std::string unit;                    ///< "m", "kg", "deg", "s", ... ("" = none)
+  std::string doc;                     ///< one line for `simbob types`
+};
+
+struct TypeSpec {
+  TypeSpec() = default;
+  TypeSpec(std::string n, Family f, int k, std::vector<ParamSpec> ps, std::vector<std::string> al,
+           std::string d, bool finished = false, std::string import = "")
+      : name(std::move(n)), family(f), kind(k), params(std::move(ps)), aliases(std::move(al)),
+        doc(std::move(d)), finished_here(finished), import_root(std::move(import)) {}
+
+  std::string name;                 ///< "RCSphereGeom"
+  Family family = Family::Struct;
+  int kind = 0;                     ///< family-specific enum value used by the compile step
+  std::vector<ParamSpec> params;    ///< family (inherited) parameters first, then the type's own
+  std::vector<std::string> aliases; ///< other accepted spellings ("RCMoelMatchGeom")
+  std::string doc;
+  bool finished_here = false;       ///< marked * (never finished) in the guide, finished in simbob
+  std::string import_root;          ///< non-empty: parameter File names an XML file with this root
+                                    ///< element ("Body", "Joint", "RefList") read into the scene
+
+  /// Index of the parameter called `name` (exact case), or -1.
+  int paramIndex(std::string_view name) const;
+  /// Same, ignoring ASCII case (INI keys are case-insensitive).
+  int paramIndexIgnoreCase(std::string_view name) const;
+};
+
+/// A Macro creates a component of a fixed type with some parameters set ("NoGeom").
+struct MacroSpec {
+  std::string name;
+  Family family;
+  std::string type;
+  std::vector<std::pair<std::string, std::string>> params;  ///< name -> value text
+  std::string doc;
+};
+
+class Registry {
+ public:
+  /// Parameters every type of `family` inherits from its ComponentBaseType; call before add().
+  void setFamilyParams(Family family, std::vector<ParamSpec> params);
+  /// Register a type; the family's parameters are put in front of spec.params.
+  void add(TypeSpec spec);
+  void addMacro(MacroSpec macro);
+
+  /// By name or alias, exact case; nullptr if unknown.
+  const TypeSpec* find(std::string_view name) const;
+  /// By name or alias ignoring case (INI).
+  const TypeSpec* findIgnoreCase(std::string_view name) const;
+  const MacroSpec* findMacro(std::string_view name) const;
+
+  /// Registration order (stable: the order of `simbob types`).
+  const std::vector<TypeSpec>& types() const { return types_; }
+  const std::vector<MacroSpec>& macros() const { return macros_; }
+
+  /// The closest registered type name within a small edit distance, or "".
+  std::string suggestType(std::string_view name) const;
+
+ private:
+  std::vector<TypeSpec> types_;
+  std::vector<MacroSpec> macros_;
+  std::map<Family, std::vector<ParamSpec>> family_params_;
+  std::map<std::string, size_t, std::less<>> by_name_;  // names and aliases -> index
+};
+
+/// The built-in types; built once on first use (explicit registration, no static initialisers).
+const Registry& builtinRegistry();
+
+/// Registers every built-in family; each family file defines one of these.
+void registerBuiltins(Registry& r);
+
+/// Closest candidate to `word` within edit distance 2 (case-insensitive), or "".
+std::string didYouMean(std::string_view word, const std::vector<std::string>& candidates);
+
+// --- helpers for the parameter tables in lib/components/*.cpp ---
+ParamSpec valueParam(std::string name, ValueType type, Value def, std::string unit,
+                     std::string doc, Range range = Range::Any);
+ParamSpec enumParam(std::string name, ValueType type, const EnumTable* table, uint32_t def,
+                    std::string doc);
+ParamSpec componentParam(std::string name, std::vector<Family> families,
+                         std::string default_type, std::string doc);
+ParamSpec listParam(std::string name, std::vector<Family> families, std::string doc);
+ParamSpec structParam(std::string name, std::string struct_type, std::string doc);
+
+}  // namespace simbob

@@ -1,0 +1,23 @@
+// The one list of built-in families. Order here is the order of `simbob types`.
+#include "components/families.h"
+
+namespace simbob {
+
+void registerBuiltins(Registry& r) {
+  registerSettings(r);
+  registerPoses(r);
+  registerMotions(r);
+  registerMaterials(r);
+  registerInertias(r);
+  registerGeoms(r);
+  registerSkins(r);
+  registerModels(r);
+  registerBodies(r);
+  registerJoints(r);
+  registerGlobals(r);
+  registerPeripheries(r);
+  registerControllers(r);
+  registerCameras(r);
+}
+
+}  // namespace simbob

@@ -1,0 +1,247 @@
+// Component accessors and the scene writers (XML 4.2, INI 4.1), both driven by the same walk
+// over the registry's parameter tables.
+#include "simbob/graph.h"
+
+#include <pugixml.hpp>
+#include <sstream>
+
+namespace simbob {
+
+namespace {
+const Slot& missingSlot() {
+  static const Slot s;
+  return s;
+}
+}  // namespace
+
+const Slot& Component::slot(std::string_view param) const {
+  int i = type->paramIndex(param);
+  return i < 0 ? missingSlot() : slots[static_cast<size_t>(i)];
+}
+Slot& Component::slot(std::string_view param) {
+  int i = type->paramIndex(param);
+  return slots.at(static_cast<size_t>(i));
+}
+double Component::number(std::string_view p) const { return std::get<double>(slot(p).value); }
+int64_t Component::integer(std::string_view p) const { return std::get<int64_t>(slot(p).value); }
+bool Component::boolean(std::string_view p) const { return std::get<bool>(slot(p).value); }
+const std::string& Component::string(std::string_view p) const { return std::get<std::string>(slot(p).value); }
+const Triple& Component::triple(std::string_view p) const { return std::get<Triple>(slot(p).value); }
+const Pose& Component::pose(std::string_view p) const { return std::get<Pose>(slot(p).value); }
+const Matrix4& Component::matrix(std::string_view p) const { return std::get<Matrix4>(slot(p).value); }
+uint32_t Component::enumValue(std::string_view p) const {
+  const Value& v = slot(p).value;
+  if (auto* e = std::get_if<EnumValue>(&v)) return e->value;
+  return std::get<BitmaskValue>(v).bits;
+}
+const Link& Component::link(std::string_view p) const { return slot(p).link; }
+const std::vector<Link>& Component::list(std::string_view p) const { return slot(p).list; }
+
+namespace {
+
+std::string itemName(const std::string& list_name) {
+  const std::string suffix = "List";
+  if (list_name.size() > suffix.size() &&
+      list_name.compare(list_name.size() - suffix.size(), suffix.size(), suffix) == 0)
+    return list_name.substr(0, list_name.size() - suffix.size());
+  return list_name;
+}
+
+/// What a writer must do; the walk below decides what to write.
+class Emitter {
+ public:
+  virtual ~Emitter() = default;
+  virtual void value(const std::string& name, const std::string& text) = 0;
+  virtual void reference(const std::string& name, const char* attr, const std::string& target) = 0;
+  virtual void beginComponent(const std::string& name, const std::string& type, const std::string* key) = 0;
+  virtual void beginStruct(const std::string& name) = 0;
+  virtual void beginList(const std::string& name, size_t count) = 0;
+  virtual void listItem(size_t i, const std::string& type, const std::string* key) = 0;
+  virtual void listReference(size_t i, const char* attr, const std::string& target) = 0;
+  virtual void end() = 0;
+};
+
+class Walker {
+ public:
+  Walker(const Scene& s, Emitter& e, bool fill) : scene_(s), em_(e), fill_(fill) {}
+
+  void body(int ci) {
+    const Component& c = scene_.at(ci);
+    for (size_t pi = 0; pi < c.slots.size(); ++pi) {
+      const ParamSpec& p = c.type->params[pi];
+      const Slot& s = c.slots[pi];
+      if (!s.set && !fill_) continue;
+      switch (p.kind) {
+        case ParamKind::Value:
+          em_.value(p.name, formatValue(p.type, s.value, p.table));
+          break;
+        case ParamKind::Component:
+          if (s.link.isRef()) {
+            em_.reference(p.name, "Ref", s.link.ref);
+          } else if (!s.link.macro.empty()) {
+            em_.reference(p.name, "Macro", s.link.macro);
+          } else if (s.link.comp >= 0) {
+            const Component& child = scene_.at(s.link.comp);
+            em_.beginComponent(p.name, child.type->name, child.has_key ? &child.key : nullptr);
+            body(s.link.comp);
+            em_.end();
+          }
+          break;
+        case ParamKind::Struct:
+          if (s.link.comp >= 0) {
+            em_.beginStruct(p.name);
+            body(s.link.comp);
+            em_.end();
+          }
+          break;
+        case ParamKind::List:
+          em_.beginList(p.name, s.list.size());
+          for (size_t i = 0; i < s.list.size(); ++i) {
+            const Link& l = s.list[i];
+            if (l.isRef()) {
+              em_.listReference(i, "Ref", l.ref);
+            } else if (!l.macro.empty()) {
+              em_.listReference(i, "Macro", l.macro);
+            } else if (l.comp >= 0) {
+              const Component& child = scene_.at(l.comp);
+              em_.listItem(i, child.type->name, child.has_key ? &child.key : nullptr);
+              body(l.comp);
+              em_.end();
+            }
+          }
+          em_.end();
+          break;
+      }
+    }
+  }
+
+ private:
+  const Scene& scene_;
+  Emitter& em_;
+  bool fill_;
+};
+
+class XmlEmitter : public Emitter {
+ public:
+  explicit XmlEmitter(pugi::xml_node root) { stack_.push_back({root, ""}); }
+  void value(const std::string& name, const std::string& text) override {
+    top().append_child(name.c_str()).append_attribute("Value") = text.c_str();
+  }
+  void reference(const std::string& name, const char* attr, const std::string& target) override {
+    top().append_child(name.c_str()).append_attribute(attr) = target.c_str();
+  }
+  void beginComponent(const std::string& name, const std::string& type, const std::string* key) override {
+    pugi::xml_node t = top().append_child(name.c_str()).append_child(type.c_str());
+    if (key) t.append_attribute("Key") = key->c_str();
+    stack_.push_back({t, ""});
+  }
+  void beginStruct(const std::string& name) override { stack_.push_back({top().append_child(name.c_str()), ""}); }
+  void beginList(const std::string& name, size_t) override {
+    stack_.push_back({top().append_child(name.c_str()), itemName(name)});
+  }
+  void listItem(size_t, const std::string& type, const std::string* key) override {
+    pugi::xml_node t = top().append_child(type.c_str());
+    if (key) t.append_attribute("Key") = key->c_str();
+    stack_.push_back({t, ""});
+  }
+  void listReference(size_t, const char* attr, const std::string& target) override {
+    // A Ref in a list needs a wrapper element: the list's item name ("Component" in ComponentList).
+    top().append_child(stack_.back().item.c_str()).append_attribute(attr) = target.c_str();
+  }
+  void end() override { stack_.pop_back(); }
+
+ private:
+  struct Open {
+    pugi::xml_node node;
+    std::string item;  // lists: the wrapper name of Ref items
+  };
+  pugi::xml_node top() { return stack_.back().node; }
+  std::vector<Open> stack_;
+};
+
+std::string iniQuote(const std::string& v) {
+  bool quote = v.empty() || v.front() == '"' || v.back() == '"' || v.front() == ' ' || v.back() == ' ' ||
+               v.front() == '\t' || v.back() == '\t';
+  return quote ? "\"" + v + "\"" : v;
+}
+
+class IniEmitter : public Emitter {
+ public:
+  explicit IniEmitter(std::string& out) : out_(out) {}
+  void value(const std::string& name, const std::string& text) override { line(name, text); }
+  void reference(const std::string& name, const char* attr, const std::string& target) override {
+    line(name + "." + attr, target);
+  }
+  void beginComponent(const std::string& name, const std::string& type, const std::string* key) override {
+    push(name, "");
+    line("Type", type);
+    if (key) line("Key", *key);
+  }
+  void beginStruct(const std::string& name) override { push(name, ""); }
+  void beginList(const std::string& name, size_t count) override {
+    std::string base = itemName(name);
+    line(base + "Count", std::to_string(count));
+    // Items are <prefix>.<base><i>: the list itself adds no prefix level.
+    stack_.push_back({prefix(), base});
+  }
+  void listItem(size_t i, const std::string& type, const std::string* key) override {
+    if (stack_.size() == 1) out_ += "\n";  // a blank line between top-level items
+    push(stack_.back().item + std::to_string(i), "");
+    line("Type", type);
+    if (key) line("Key", *key);
+  }
+  void listReference(size_t i, const char* attr, const std::string& target) override {
+    line(stack_.back().item + std::to_string(i) + "." + attr, target);
+  }
+  void end() override { stack_.pop_back(); }
+
+ private:
+  struct Open {
+    std::string prefix;
+    std::string item;
+  };
+  std::string prefix() const { return stack_.empty() ? std::string() : stack_.back().prefix; }
+  void push(const std::string& name, const std::string& item) {
+    std::string base = prefix();
+    stack_.push_back({base.empty() ? name : base + "." + name, item});
+  }
+  void line(const std::string& name, const std::string& v) {
+    std::string base = prefix();
+    out_ += base.empty() ? name : base + "." + name;
+    out_ += " = ";
+    out_ += iniQuote(v);
+    out_ += "\n";
+  }
+  std::string& out_;
+  std::vector<Open> stack_;
+};
+
+}  // namespace
+
+std::string writeScene(const Scene& scene, Format format, bool fill_defaults) {
+  int root = -1;
+  for (size_t i = 0; i < scene.comps.size(); ++i)
+    if (scene.comps[i].parent < 0 && scene.comps[i].type->name == "Simulation") {
+      root = static_cast<int>(i);
+      break;
+    }
+  if (root < 0) return {};
+  if (format == Format::Xml) {
+    pugi::xml_document doc;
+    pugi::xml_node decl = doc.append_child(pugi::node_declaration);
+    decl.append_attribute("version") = "1.0";
+    decl.append_attribute("encoding") = "UTF-8";
+    pugi::xml_node sim = doc.append_child("Simulation");
+    XmlEmitter em(sim);
+    Walker(scene, em, fill_defaults).body(root);
+    std::ostringstream os;
+    doc.save(os, "  ", pugi::format_default, pugi::encoding_utf8);
+    return os.str();
+  }
+  std::string out;
+  IniEmitter em(out);
+  Walker(scene, em, fill_defaults).body(root);
+  return out;
+}
+
+}  // namespace simbob

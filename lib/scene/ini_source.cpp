@@ -1,0 +1,256 @@
+// INI format (guide 4.1) as a Source: case-insensitive dotted keys, sections as key prefixes,
+// lists as NameCount + Name0.., components as X.Type / X.Key (and X.Ref / X.Macro).
+#include <algorithm>
+#include <cctype>
+
+#include "scene/source.h"
+#include "simbob/values.h"
+
+namespace simbob {
+
+struct IniNode {
+  std::string name;   // as written
+  std::string lname;  // lower case, for matching
+  int line = 0;
+  bool has_value = false;
+  std::string value;
+  std::vector<IniNode> children;  // first-appearance order
+
+  IniNode* child(const std::string& lower) {
+    for (auto& c : children)
+      if (c.lname == lower) return &c;
+    return nullptr;
+  }
+};
+
+struct IniDoc {
+  IniNode root;
+};
+
+namespace {
+
+std::string lower(std::string s) {
+  for (char& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return s;
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  return s;
+}
+
+// "ComponentList" -> "Component"; a list's items and count take the name without "List".
+std::string itemBase(const std::string& list_name) {
+  const std::string suffix = "List";
+  if (list_name.size() > suffix.size() &&
+      list_name.compare(list_name.size() - suffix.size(), suffix.size(), suffix) == 0)
+    return list_name.substr(0, list_name.size() - suffix.size());
+  return list_name;
+}
+
+class IniSource : public Source {
+ public:
+  IniSource(IniNode* node, std::vector<std::string> pre_read) : node_(node), read_(std::move(pre_read)) {}
+
+  int line() const override { return node_->line; }
+  bool ignoresCase() const override { return true; }
+
+  SourceValue value(const std::string& name) override {
+    SourceValue v;
+    IniNode* c = take(name);
+    if (!c) return v;
+    v.present = true;
+    v.line = c->line;
+    if (!c->has_value || !c->children.empty())
+      v.error = "parameter '" + name + "' is a value: write '" + name + " = ...'";
+    v.text = c->value;
+    return v;
+  }
+
+  SourceLink component(const std::string& name) override {
+    IniNode* c = take(name);
+    if (!c) return {};
+    return linkFrom(c, name);
+  }
+
+  std::vector<SourceLink> list(const std::string& name, bool* present, int* line) override {
+    std::vector<SourceLink> items;
+    const std::string base = itemBase(name);
+    IniNode* count = take(base + "Count");
+    *present = count != nullptr;
+    if (!count) return items;
+    *line = count->line;
+    auto n = parseNumber(trim(count->value));
+    if (!count->has_value || !n || *n < 0 || *n != static_cast<double>(static_cast<int64_t>(*n)) || *n > 1e7) {
+      SourceLink bad;
+      bad.present = true;
+      bad.line = count->line;
+      bad.error = base + "Count must be a whole number >= 0, got '" + count->value + "'";
+      items.push_back(std::move(bad));
+      return items;
+    }
+    for (int64_t i = 0; i < static_cast<int64_t>(*n); ++i) {
+      std::string item = base + std::to_string(i);
+      IniNode* c = take(item);
+      if (!c) {
+        SourceLink missing;
+        missing.present = true;
+        missing.line = count->line;
+        missing.error = base + "Count is " + count->value + " but " + item + " is missing";
+        items.push_back(std::move(missing));
+        continue;
+      }
+      items.push_back(linkFrom(c, item));
+    }
+    return items;
+  }
+
+  std::unique_ptr<Source> structure(const std::string& name, int* line) override {
+    IniNode* c = take(name);
+    if (!c) return nullptr;
+    *line = c->line;
+    return std::make_unique<IniSource>(c, std::vector<std::string>{});
+  }
+
+  std::vector<std::pair<std::string, int>> unread() const override {
+    std::vector<std::pair<std::string, int>> out;
+    for (const auto& c : node_->children)
+      if (std::find(read_.begin(), read_.end(), c.lname) == read_.end()) out.emplace_back(c.name, c.line);
+    return out;
+  }
+
+ private:
+  IniNode* take(const std::string& name) {
+    std::string ln = lower(name);
+    IniNode* c = node_->child(ln);
+    if (c && std::find(read_.begin(), read_.end(), ln) == read_.end()) {
+      read_.push_back(ln);
+      return c;
+    }
+    return nullptr;
+  }
+
+  SourceLink linkFrom(IniNode* c, const std::string& name) {
+    SourceLink l;
+    l.present = true;
+    l.line = c->line;
+    if (c->has_value) {
+      l.error = "'" + name + "' is a component: write " + name + ".Type = ..., " + name + ".Ref = ... or " +
+                name + ".Macro = ...";
+      return l;
+    }
+    IniNode* type = c->child("type");
+    IniNode* key = c->child("key");
+    IniNode* ref = c->child("ref");
+    IniNode* macro = c->child("macro");
+    if (ref) l.ref = ref->value;
+    if (macro) l.macro = macro->value;
+    if (type) {
+      l.type = type->value;
+      l.line = type->line;
+    }
+    if (key) {
+      l.key = key->value;
+      l.has_key = true;
+    }
+    int kinds = (type ? 1 : 0) + (ref ? 1 : 0) + (macro ? 1 : 0);
+    if (kinds != 1) {
+      l.error = "'" + name + "' needs exactly one of " + name + ".Type, " + name + ".Ref, " + name + ".Macro";
+      return l;
+    }
+    if ((ref && ref->value.empty())) l.error = "'" + name + "': empty Ref";
+    if (type) {
+      l.body = std::make_unique<IniSource>(c, std::vector<std::string>{"type", "key"});
+    } else if (c->children.size() > 1) {
+      l.error = "'" + name + "' with Ref or Macro takes no other entries";
+    }
+    return l;
+  }
+
+  IniNode* node_;
+  std::vector<std::string> read_;
+};
+
+}  // namespace
+
+std::shared_ptr<IniDoc> parseIni(const std::string& text, std::string* error, int* error_line) {
+  auto doc = std::make_shared<IniDoc>();
+  doc->root.line = 1;
+  std::string section;
+  size_t pos = 0;
+  int line_no = 0;
+  while (pos <= text.size()) {
+    size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    std::string_view line = trim(std::string_view(text).substr(pos, end - pos));
+    ++line_no;
+    pos = end + 1;
+    if (line.empty() || line.front() == ';' || line.front() == '#') {
+      if (end == text.size()) break;
+      continue;
+    }
+    if (line.front() == '[') {
+      if (line.back() != ']' || line.size() < 3) {
+        *error = "malformed section header '" + std::string(line) + "'";
+        *error_line = line_no;
+        return nullptr;
+      }
+      section = std::string(trim(line.substr(1, line.size() - 2)));
+      if (end == text.size()) break;
+      continue;
+    }
+    size_t eq = line.find('=');
+    if (eq == std::string_view::npos) {
+      *error = "expected 'key = value', got '" + std::string(line) + "'";
+      *error_line = line_no;
+      return nullptr;
+    }
+    std::string key(trim(line.substr(0, eq)));
+    std::string_view value = trim(line.substr(eq + 1));
+    if (value.size() >= 2 && value.front() == '"' && value.back() == '"') value = value.substr(1, value.size() - 2);
+    if (key.empty()) {
+      *error = "empty key before '='";
+      *error_line = line_no;
+      return nullptr;
+    }
+    std::string full = section.empty() ? key : section + "." + key;
+    IniNode* node = &doc->root;
+    size_t start = 0;
+    while (true) {
+      size_t dot = full.find('.', start);
+      std::string part = full.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+      if (part.empty()) {
+        *error = "empty name in key '" + full + "'";
+        *error_line = line_no;
+        return nullptr;
+      }
+      std::string lp = lower(part);
+      IniNode* next = node->child(lp);
+      if (!next) {
+        node->children.push_back(IniNode{part, lp, line_no, false, "", {}});
+        next = &node->children.back();
+      }
+      node = next;
+      if (dot == std::string::npos) break;
+      start = dot + 1;
+    }
+    if (node->has_value) {
+      *error = "key '" + full + "' assigned twice (first on line " + std::to_string(node->line) + ")";
+      *error_line = line_no;
+      return nullptr;
+    }
+    node->has_value = true;
+    node->value = std::string(value);
+    node->line = line_no;
+    if (end == text.size()) break;
+  }
+  return doc;
+}
+
+std::unique_ptr<Source> iniRoot(const std::shared_ptr<IniDoc>& doc) {
+  // The IniSource points into doc; the caller keeps doc alive while reading.
+  return std::make_unique<IniSource>(&doc->root, std::vector<std::string>{});
+}
+
+}  // namespace simbob

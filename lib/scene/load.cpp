@@ -1,0 +1,548 @@
+// Builds the component graph from a Source, driven only by the registry's parameter tables:
+// no type-specific code here. Then reads imports, resolves Refs and checks for cycles.
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "scene/source.h"
+#include "simbob/graph.h"
+
+namespace simbob {
+
+namespace {
+
+constexpr int kMaxImportDepth = 16;
+constexpr int kMaxNesting = 200;
+
+bool readFile(const std::string& path, std::string* out, std::string* error) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    *error = "is a directory";
+    return false;
+  }
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) {
+    *error = std::strerror(errno);
+    return false;
+  }
+  out->clear();
+  char buf[65536];
+  size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) out->append(buf, n);
+  bool bad = std::ferror(f) != 0;
+  std::fclose(f);
+  if (bad) *error = "read error";
+  return !bad;
+}
+
+uint64_t fnv1a(uint64_t h, const std::string& bytes) {
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+std::string hex64(uint64_t v) {
+  static const char* digits = "0123456789abcdef";
+  std::string s(16, '0');
+  for (int i = 15; i >= 0; --i, v >>= 4) s[static_cast<size_t>(i)] = digits[v & 15];
+  return s;
+}
+
+bool familyAccepted(const ParamSpec& p, Family f) {
+  return std::find(p.families.begin(), p.families.end(), f) != p.families.end();
+}
+
+std::string familiesText(const ParamSpec& p) {
+  std::string s;
+  for (size_t i = 0; i < p.families.size(); ++i) {
+    if (i) s += i + 1 == p.families.size() ? " or " : ", ";
+    s += familyName(p.families[i]);
+  }
+  return s;
+}
+
+const char* rangeText(Range r) {
+  switch (r) {
+    case Range::Any: return "";
+    case Range::Positive: return "must be > 0";
+    case Range::NonNegative: return "must be >= 0";
+    case Range::Unit: return "must be in [0, 1]";
+  }
+  return "";
+}
+
+bool inRange(Range r, double v) {
+  switch (r) {
+    case Range::Any: return true;
+    case Range::Positive: return v > 0;
+    case Range::NonNegative: return v >= 0;
+    case Range::Unit: return v >= 0 && v <= 1;
+  }
+  return true;
+}
+
+class Builder {
+ public:
+  Builder(const Registry& reg, Scene& scene, Diagnostics& diag) : reg_(reg), scene_(scene), diag_(diag) {}
+
+  // Build one component of type t from src; returns its index.
+  int build(const TypeSpec* t, Source* src, std::string key, bool has_key, int parent,
+            const std::string& parent_qkey, SourceLoc loc, bool register_key = true) {
+    if (++depth_ > kMaxNesting) {
+      --depth_;
+      diag_.error(loc, "components nested deeper than " + std::to_string(kMaxNesting) + " levels");
+      return -1;
+    }
+    int index = static_cast<int>(scene_.comps.size());
+    {
+      Component c;
+      c.type = t;
+      c.key = std::move(key);
+      c.has_key = has_key;
+      c.qkey = parent_qkey.empty() ? c.key : (c.key.empty() ? parent_qkey : parent_qkey + "." + c.key);
+      c.parent = parent;
+      c.loc = loc;
+      c.slots.resize(t->params.size());
+      scene_.comps.push_back(std::move(c));
+    }
+    if (register_key && t->family != Family::Struct) registerKey(index);
+    const std::string qkey = scene_.at(index).qkey;
+    const std::string what = t->name + (qkey.empty() ? std::string() : " '" + qkey + "'");
+
+    for (size_t pi = 0; pi < t->params.size(); ++pi) {
+      const ParamSpec& p = t->params[pi];
+      Slot slot;
+      slot.loc = loc;
+      switch (p.kind) {
+        case ParamKind::Value: {
+          slot.value = p.default_value;
+          SourceValue v = src ? src->value(p.name) : SourceValue{};
+          if (v.present) {
+            slot.loc = {loc.file, v.line};
+            if (!v.error.empty()) {
+              diag_.error(slot.loc, what + ": " + v.error);
+            } else if (parseInto(p, v.text, &slot.value, slot.loc, what)) {
+              slot.set = true;
+            }
+          }
+          break;
+        }
+        case ParamKind::Component: {
+          SourceLink l = src ? src->component(p.name) : SourceLink{};
+          if (l.present) {
+            slot.set = true;
+            slot.loc = {loc.file, l.line};
+            slot.link = makeLink(l, p, p.name, index, qkey, loc.file, what);
+          } else if (!p.default_type.empty()) {
+            slot.link.comp = makeDefault(p.default_type, p.name, index, qkey, loc);
+          }
+          break;
+        }
+        case ParamKind::Struct: {
+          int line = loc.line;
+          std::unique_ptr<Source> s = src ? src->structure(p.name, &line) : nullptr;
+          const TypeSpec* st = reg_.find(p.struct_type);
+          slot.set = s != nullptr;
+          slot.loc = {loc.file, line};
+          slot.link.comp = build(st, s.get(), p.name, false, index, qkey, slot.loc);
+          break;
+        }
+        case ParamKind::List: {
+          bool present = false;
+          int line = loc.line;
+          std::vector<SourceLink> items = src ? src->list(p.name, &present, &line) : std::vector<SourceLink>{};
+          slot.set = present;
+          slot.loc = {loc.file, line};
+          for (auto& item : items) {
+            std::string default_key = item.type;
+            slot.list.push_back(makeLink(item, p, default_key, index, qkey, loc.file, what));
+          }
+          break;
+        }
+      }
+      scene_.at(index).slots[pi] = std::move(slot);
+    }
+
+    if (src) {
+      for (const auto& [name, line] : src->unread()) {
+        std::vector<std::string> names;
+        for (const auto& p : t->params) names.push_back(p.name);
+        std::string near = didYouMean(name, names);
+        bool duplicate = t->paramIndex(name) >= 0 || (src->ignoresCase() && t->paramIndexIgnoreCase(name) >= 0);
+        if (duplicate)
+          diag_.error({loc.file, line}, what + ": parameter '" + name + "' given twice");
+        else
+          diag_.error({loc.file, line}, what + ": parameter '" + name + "' unknown" +
+                                            (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+      }
+    }
+    if (!t->import_root.empty()) readImport(index, loc);
+    --depth_;
+    return index;
+  }
+
+  void readImport(int index, const SourceLoc& loc) {
+    const Component& c = scene_.at(index);
+    const TypeSpec* t = c.type;
+    const Slot& file_slot = c.slot("File");
+    std::string file = std::get<std::string>(file_slot.value);
+    std::string what = t->name + " '" + c.qkey + "'";
+    SourceLoc at = file_slot.set ? file_slot.loc : loc;
+    if (file.empty()) {
+      diag_.error(at, what + ": parameter 'File' is required");
+      return;
+    }
+    std::filesystem::path p(file);
+    if (p.is_relative()) p = std::filesystem::path(loc.file).parent_path() / p;
+    std::string path = p.lexically_normal().string();
+    if (import_stack_.size() >= kMaxImportDepth) {
+      diag_.error(at, what + ": imports nested deeper than " + std::to_string(kMaxImportDepth) + " files");
+      return;
+    }
+    std::error_code ec;
+    std::string canon = std::filesystem::weakly_canonical(path, ec).string();
+    if (ec) canon = path;
+    if (std::find(import_stack_.begin(), import_stack_.end(), canon) != import_stack_.end()) {
+      std::string chain;
+      for (const auto& f : import_stack_) chain += f + " -> ";
+      diag_.error(at, what + ": cyclic import: " + chain + canon);
+      return;
+    }
+    std::string text, err;
+    if (!readFile(path, &text, &err)) {
+      diag_.error(at, what + ": cannot read import '" + path + "': " + err, ErrorKind::MissingInput);
+      return;
+    }
+    addFile(path, text);
+    int err_line = 0;
+    std::shared_ptr<XmlDoc> doc = parseXml(text, reg_, &err, &err_line);
+    if (!doc) {
+      diag_.error({path, err_line}, err);
+      return;
+    }
+    std::string root_name;
+    std::unique_ptr<Source> root = xmlRoot(doc, &root_name);
+    if (root_name != t->import_root) {
+      diag_.error({path, root->line()}, "root element is <" + root_name + ">, expected <" + t->import_root +
+                                           "> (imported by " + loc.file + ":" + std::to_string(loc.line) + ")");
+      return;
+    }
+    import_stack_.push_back(canon);
+    std::unique_ptr<Source> docsrc = xmlDocument(doc);
+    // The imported components hang below the importing one: <import key>.<their key>.
+    ParamSpec holder;
+    holder.name = t->import_root;
+    holder.kind = t->import_root == "RefList" ? ParamKind::List : ParamKind::Component;
+    std::vector<int> roots;
+    if (holder.kind == ParamKind::List) {
+      holder.families = {Family::Material, Family::Skin, Family::Model, Family::Pose, Family::Geom,
+                         Family::Inertia, Family::Motion};
+      bool present = false;
+      int line = 0;
+      for (auto& item : docsrc->list(t->import_root, &present, &line)) {
+        Link l = makeLink(item, holder, item.type, index, scene_.at(index).qkey, path, "<RefList>");
+        if (l.isRef()) diag_.error(l.loc, "<RefList> items must be components, not Refs");
+        if (l.comp >= 0) roots.push_back(l.comp);
+      }
+    } else {
+      holder.families = {t->family == Family::Joint ? Family::Joint : Family::Body};
+      SourceLink item = docsrc->component(t->import_root);
+      Link l = makeLink(item, holder, item.type, index, scene_.at(index).qkey, path, "<" + t->import_root + ">");
+      if (l.isRef()) diag_.error(l.loc, "<" + t->import_root + "> must hold a component, not a Ref");
+      if (l.comp >= 0) roots.push_back(l.comp);
+    }
+    import_stack_.pop_back();
+    scene_.at(index).imported = roots;
+  }
+
+  void addFile(const std::string& path, const std::string& text) {
+    scene_.files.push_back(path);
+    hash_ = fnv1a(hash_, text);
+    scene_.content_hash = hex64(hash_);
+  }
+
+  void pushFile(const std::string& canon) { import_stack_.push_back(canon); }
+
+ private:
+  bool parseInto(const ParamSpec& p, const std::string& text, Value* out, const SourceLoc& loc,
+                 const std::string& what) {
+    ParseOptions opts;
+    opts.allow_infinite = p.allow_infinite;
+    ParseResult r = parseValue(p.type, text, p.table, opts);
+    if (!r) {
+      diag_.error(loc, what + ": parameter '" + p.name + "': " + r.error);
+      return false;
+    }
+    if (p.range != Range::Any) {
+      double v = 0;
+      if (auto* d = std::get_if<double>(&*r.value)) v = *d;
+      if (auto* i = std::get_if<int64_t>(&*r.value)) v = static_cast<double>(*i);
+      if (!inRange(p.range, v)) {
+        diag_.error(loc, what + ": parameter '" + p.name + "' " + rangeText(p.range) + ", got '" + text + "'");
+        return false;
+      }
+    }
+    *out = std::move(*r.value);
+    return true;
+  }
+
+  void registerKey(int index) {
+    const Component& c = scene_.at(index);
+    auto [it, inserted] = scene_.by_qkey.emplace(c.qkey, index);
+    if (!inserted) {
+      const Component& first = scene_.at(it->second);
+      diag_.error(c.loc, c.type->name + ": duplicate key '" + c.qkey + "' (first used at " + first.loc.file + ":" +
+                             std::to_string(first.loc.line) + "); give it a different Key");
+    }
+  }
+
+  int makeDefault(const std::string& type, const std::string& key, int parent, const std::string& parent_qkey,
+                  const SourceLoc& loc) {
+    const TypeSpec* t = reg_.find(type);
+    return build(t, nullptr, key, false, parent, parent_qkey, loc);
+  }
+
+  Link makeLink(SourceLink& l, const ParamSpec& p, const std::string& default_key, int parent,
+                const std::string& parent_qkey, const std::string& file, const std::string& what) {
+    Link link;
+    link.loc = {file, l.line};
+    if (!l.error.empty()) {
+      diag_.error(link.loc, what + ": " + l.error);
+      return link;
+    }
+    if (!l.ref.empty()) {
+      link.ref = l.ref;
+      return link;
+    }
+    if (!l.macro.empty()) {
+      link.macro = l.macro;
+      const MacroSpec* m = reg_.findMacro(l.macro);
+      if (!m) {
+        std::vector<std::string> names;
+        for (const auto& mm : reg_.macros()) names.push_back(mm.name);
+        std::string near = didYouMean(l.macro, names);
+        diag_.error(link.loc, what + ": unknown Macro '" + l.macro + "'" +
+                                  (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+        return link;
+      }
+      if (!familyAccepted(p, m->family)) {
+        diag_.error(link.loc, what + ": Macro '" + m->name + "' makes a " + familyName(m->family) + ", parameter '" +
+                                  p.name + "' needs a " + familiesText(p));
+        return link;
+      }
+      link.comp = build(reg_.find(m->type), nullptr, default_key, false, parent, parent_qkey, link.loc);
+      return link;
+    }
+    const TypeSpec* t = reg_.find(l.type);
+    if (!t && l.body && l.body->ignoresCase()) t = reg_.findIgnoreCase(l.type);
+    if (!t || t->family == Family::Struct) {
+      std::string near = reg_.suggestType(l.type);
+      diag_.error(link.loc, what + ": unknown component type '" + l.type + "'" +
+                                (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+      return link;
+    }
+    if (!familyAccepted(p, t->family)) {
+      diag_.error(link.loc, what + ": parameter '" + p.name + "' needs a " + familiesText(p) + ", got " + t->name +
+                                " (a " + familyName(t->family) + ")");
+      return link;
+    }
+    std::string key = l.has_key ? l.key : default_key;
+    if (l.has_key && (key.empty() || key.find('.') != std::string::npos)) {
+      diag_.error(link.loc, t->name + ": Key '" + key + "' must be non-empty and contain no '.'");
+      key = default_key;
+    }
+    link.comp = build(t, l.body.get(), key, l.has_key, parent, parent_qkey, link.loc);
+    return link;
+  }
+
+  const Registry& reg_;
+  Scene& scene_;
+  Diagnostics& diag_;
+  std::vector<std::string> import_stack_;
+  uint64_t hash_ = 1469598103934665603ull;
+  int depth_ = 0;
+};
+
+// Refs that connect rather than contain (a joint's Body, a drive's Joint, a camera's Body...):
+// following them is not a containment cycle.
+bool isConnection(Family target) {
+  return target == Family::Body || target == Family::Joint || target == Family::Periphery ||
+         target == Family::Controller;
+}
+
+void resolveRefs(Scene& scene, Diagnostics& diag) {
+  std::vector<std::string> keys;
+  for (const auto& [k, i] : scene.by_qkey) keys.push_back(k);
+  for (size_t ci = 0; ci < scene.comps.size(); ++ci) {
+    Component& c = scene.comps[ci];
+    for (size_t pi = 0; pi < c.slots.size(); ++pi) {
+      const ParamSpec& p = c.type->params[pi];
+      auto resolve = [&](Link& l) {
+        if (!l.isRef()) return;
+        auto it = scene.by_qkey.find(l.ref);
+        if (it == scene.by_qkey.end()) {
+          std::string near = didYouMean(l.ref, keys);
+          diag.error(l.loc, c.type->name + " '" + c.qkey + "': Ref '" + l.ref + "' names no component" +
+                                (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+          return;
+        }
+        const Component& target = scene.at(it->second);
+        if (!familyAccepted(p, target.type->family)) {
+          diag.error(l.loc, c.type->name + " '" + c.qkey + "': Ref '" + l.ref + "' names a " + target.type->name +
+                                ", parameter '" + p.name + "' needs a " + familiesText(p));
+          return;
+        }
+        l.comp = it->second;
+      };
+      resolve(c.slots[pi].link);
+      for (auto& l : c.slots[pi].list) resolve(l);
+    }
+  }
+}
+
+// Containment must be a tree or DAG: a Ref that leads back to a component that contains it
+// would make the compile step recurse forever.
+void checkCycles(const Scene& scene, Diagnostics& diag) {
+  enum State : uint8_t { White, Grey, Black };
+  std::vector<State> state(scene.comps.size(), White);
+  struct Frame {
+    int comp;
+    size_t slot;
+    size_t item;
+  };
+  for (size_t start = 0; start < scene.comps.size(); ++start) {
+    if (state[start] != White) continue;
+    std::vector<Frame> stack{{static_cast<int>(start), 0, 0}};
+    state[start] = Grey;
+    while (!stack.empty()) {
+      Frame& f = stack.back();
+      const Component& c = scene.at(f.comp);
+      const Link* next = nullptr;
+      while (!next && f.slot < c.slots.size()) {
+        const Slot& s = c.slots[f.slot];
+        const std::vector<Link>* items = nullptr;
+        if (c.type->params[f.slot].kind == ParamKind::List) items = &s.list;
+        if (items) {
+          if (f.item < items->size()) next = &(*items)[f.item++];
+          else { ++f.slot; f.item = 0; }
+        } else {
+          if (f.item == 0) { next = &s.link; f.item = 1; }
+          else { ++f.slot; f.item = 0; }
+        }
+        if (next && (next->comp < 0 || (next->isRef() && isConnection(scene.at(next->comp).type->family))))
+          next = nullptr;
+      }
+      if (!next) {
+        state[static_cast<size_t>(f.comp)] = Black;
+        stack.pop_back();
+        continue;
+      }
+      auto target = static_cast<size_t>(next->comp);
+      if (state[target] == Grey) {
+        diag.error(next->loc, c.type->name + " '" + c.qkey + "': cyclic Ref '" + next->ref + "' (it contains " +
+                                  c.qkey + ")");
+        state[target] = Black;  // report each cycle once
+        continue;
+      }
+      if (state[target] == White) {
+        state[target] = Grey;
+        stack.push_back({next->comp, 0, 0});
+      }
+    }
+  }
+}
+
+bool loadFromText(const std::string& text, const std::string& name, Format format, const Registry& reg,
+                  Scene* scene, Diagnostics& diag) {
+  *scene = Scene{};
+  scene->path = name;
+  Builder b(reg, *scene, diag);
+  b.addFile(name, text);
+  std::error_code ec;
+  std::string canon = std::filesystem::weakly_canonical(name, ec).string();
+  b.pushFile(ec ? name : canon);
+  std::string err;
+  int err_line = 0;
+  std::unique_ptr<Source> root;
+  std::shared_ptr<XmlDoc> xml;
+  std::shared_ptr<IniDoc> ini;
+  if (format == Format::Xml) {
+    xml = parseXml(text, reg, &err, &err_line);
+    if (!xml) {
+      diag.error({name, err_line}, err);
+      return false;
+    }
+    std::string root_name;
+    root = xmlRoot(xml, &root_name);
+    if (root_name != "Simulation") {
+      diag.error({name, root->line()}, "root element is <" + root_name + ">, expected <Simulation>");
+      return false;
+    }
+  } else {
+    ini = parseIni(text, &err, &err_line);
+    if (!ini) {
+      diag.error({name, err_line}, err);
+      return false;
+    }
+    root = iniRoot(ini);
+  }
+  int top = b.build(reg.find("Simulation"), root.get(), "", false, -1, "", {name, root->line()});
+  const Component& sim = scene->at(top);
+  scene->settings = sim.slot("SceneSettings").link.comp;
+  scene->cameras = sim.slot("CameraList").list;
+  scene->components = sim.slot("ComponentList").list;
+  if (!diag.ok()) return false;
+  resolveRefs(*scene, diag);
+  if (!diag.ok()) return false;
+  checkCycles(*scene, diag);
+  // The lists above were copied before Refs were resolved.
+  scene->cameras = sim.slot("CameraList").list;
+  scene->components = sim.slot("ComponentList").list;
+  return diag.ok();
+}
+
+}  // namespace
+
+bool loadSceneFromText(const std::string& text, const std::string& name, Format format, const Registry& reg,
+                       Scene* scene, Diagnostics& diag) {
+  return loadFromText(text, name, format, reg, scene, diag);
+}
+
+bool loadScene(const std::string& path, const Registry& reg, Scene* scene, Diagnostics& diag) {
+  std::string text, err;
+  if (!readFile(path, &text, &err)) {
+    diag.error({path, 0}, "cannot read scene: " + err, ErrorKind::MissingInput);
+    return false;
+  }
+  bool ini = path.size() >= 4 && equalsIgnoreCase(std::string_view(path).substr(path.size() - 4), ".ini");
+  return loadFromText(text, path, ini ? Format::Ini : Format::Xml, reg, scene, diag);
+}
+
+bool loadStructIni(const std::string& path, const Registry& reg, const std::string& struct_type, Scene* holder,
+                   int* comp, Diagnostics& diag) {
+  std::string text, err;
+  if (!readFile(path, &text, &err)) {
+    diag.error({path, 0}, "cannot read settings: " + err, ErrorKind::MissingInput);
+    return false;
+  }
+  int err_line = 0;
+  std::shared_ptr<IniDoc> ini = parseIni(text, &err, &err_line);
+  if (!ini) {
+    diag.error({path, err_line}, err);
+    return false;
+  }
+  *holder = Scene{};
+  holder->path = path;
+  Builder b(reg, *holder, diag);
+  std::unique_ptr<Source> root = iniRoot(ini);
+  *comp = b.build(reg.find(struct_type), root.get(), "", false, -1, "", {path, 1});
+  return diag.ok();
+}
+
+}  // namespace simbob

@@ -1,0 +1,179 @@
+#include "simbob/registry.h"
+
+#include <algorithm>
+#include <cctype>
+
+namespace simbob {
+
+const char* familyName(Family f) {
+  switch (f) {
+    case Family::Body: return "BodyComponent";
+    case Family::GlobalSim: return "GlobalSimComponent";
+    case Family::Model: return "ModelComponent";
+    case Family::Skin: return "SkinComponent";
+    case Family::Geom: return "GeomComponent";
+    case Family::Joint: return "JointComponent";
+    case Family::Material: return "MaterialComponent";
+    case Family::Pose: return "PoseComponent";
+    case Family::Motion: return "MotionComponent";
+    case Family::Inertia: return "InertiaComponent";
+    case Family::Periphery: return "PeripheryComponent";
+    case Family::Controller: return "ControllerComponent";
+    case Family::Camera: return "CameraComponent";
+    case Family::Struct: return "Struct";
+  }
+  return "?";
+}
+
+int TypeSpec::paramIndex(std::string_view n) const {
+  for (size_t i = 0; i < params.size(); ++i)
+    if (params[i].name == n) return static_cast<int>(i);
+  return -1;
+}
+
+int TypeSpec::paramIndexIgnoreCase(std::string_view n) const {
+  for (size_t i = 0; i < params.size(); ++i)
+    if (equalsIgnoreCase(params[i].name, n)) return static_cast<int>(i);
+  return -1;
+}
+
+void Registry::setFamilyParams(Family family, std::vector<ParamSpec> params) {
+  family_params_[family] = std::move(params);
+}
+
+void Registry::add(TypeSpec spec) {
+  auto it = family_params_.find(spec.family);
+  if (it != family_params_.end())
+    spec.params.insert(spec.params.begin(), it->second.begin(), it->second.end());
+  size_t index = types_.size();
+  by_name_[spec.name] = index;
+  for (const auto& a : spec.aliases) by_name_[a] = index;
+  types_.push_back(std::move(spec));
+}
+
+void Registry::addMacro(MacroSpec macro) { macros_.push_back(std::move(macro)); }
+
+const TypeSpec* Registry::find(std::string_view name) const {
+  auto it = by_name_.find(name);
+  return it == by_name_.end() ? nullptr : &types_[it->second];
+}
+
+const TypeSpec* Registry::findIgnoreCase(std::string_view name) const {
+  if (const TypeSpec* t = find(name)) return t;
+  for (const auto& [n, index] : by_name_)
+    if (equalsIgnoreCase(n, name)) return &types_[index];
+  return nullptr;
+}
+
+const MacroSpec* Registry::findMacro(std::string_view name) const {
+  for (const auto& m : macros_)
+    if (equalsIgnoreCase(m.name, name)) return &m;
+  return nullptr;
+}
+
+std::string Registry::suggestType(std::string_view name) const {
+  std::vector<std::string> names;
+  for (const auto& [n, index] : by_name_) names.push_back(n);
+  return didYouMean(name, names);
+}
+
+namespace {
+size_t editDistance(std::string_view a, std::string_view b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diag = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      size_t up = row[j];
+      bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                  std::tolower(static_cast<unsigned char>(b[j - 1]));
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (same ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+}  // namespace
+
+std::string didYouMean(std::string_view word, const std::vector<std::string>& candidates) {
+  std::string best;
+  size_t best_d = 3;  // suggest only within edit distance 2
+  for (const auto& c : candidates) {
+    size_t d = editDistance(word, c);
+    if (d < best_d) {
+      best_d = d;
+      best = c;
+    }
+  }
+  return best;
+}
+
+ParamSpec valueParam(std::string name, ValueType type, Value def, std::string unit,
+                     std::string doc, Range range) {
+  ParamSpec p;
+  p.name = std::move(name);
+  p.kind = ParamKind::Value;
+  p.type = type;
+  p.default_value = std::move(def);
+  p.unit = std::move(unit);
+  p.doc = std::move(doc);
+  p.range = range;
+  return p;
+}
+
+ParamSpec enumParam(std::string name, ValueType type, const EnumTable* table, uint32_t def,
+                    std::string doc) {
+  ParamSpec p;
+  p.name = std::move(name);
+  p.kind = ParamKind::Value;
+  p.type = type;
+  p.table = table;
+  if (type == ValueType::Bitmask)
+    p.default_value = BitmaskValue{def};
+  else
+    p.default_value = EnumValue{def};
+  p.doc = std::move(doc);
+  return p;
+}
+
+ParamSpec componentParam(std::string name, std::vector<Family> families, std::string default_type,
+                         std::string doc) {
+  ParamSpec p;
+  p.name = std::move(name);
+  p.kind = ParamKind::Component;
+  p.families = std::move(families);
+  p.default_type = std::move(default_type);
+  p.doc = std::move(doc);
+  return p;
+}
+
+ParamSpec listParam(std::string name, std::vector<Family> families, std::string doc) {
+  ParamSpec p;
+  p.name = std::move(name);
+  p.kind = ParamKind::List;
+  p.families = std::move(families);
+  p.doc = std::move(doc);
+  return p;
+}
+
+ParamSpec structParam(std::string name, std::string struct_type, std::string doc) {
+  ParamSpec p;
+  p.name = std::move(name);
+  p.kind = ParamKind::Struct;
+  p.struct_type = std::move(struct_type);
+  p.default_type = p.struct_type;
+  p.doc = std::move(doc);
+  return p;
+}
+
+const Registry& builtinRegistry() {
+  static const Registry reg = [] {
+    Registry r;
+    registerBuiltins(r);
+    return r;
+  }();
+  return reg;
+}
+
+}  // namespace simbob

@@ -1,0 +1,67 @@
+// A format-neutral view of a component's parameters in a source file, so that one builder,
+// driven by the registry's parameter tables, reads both XML (4.2) and INI (4.1).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "simbob/error.h"
+
+namespace simbob {
+
+class Source;
+
+/// What a component-valued entry says: an inline type element, a Ref, or a Macro.
+struct SourceLink {
+  bool present = false;
+  int line = 0;
+  std::string type;               ///< inline component's type name
+  std::string key;
+  bool has_key = false;
+  std::string ref;
+  std::string macro;
+  std::unique_ptr<Source> body;   ///< inline component's parameters
+  std::string error;              ///< malformed entry (e.g. two type elements)
+};
+
+struct SourceValue {
+  bool present = false;
+  int line = 0;
+  std::string text;
+  std::string error;              ///< e.g. element without Value attribute
+};
+
+/// Parameters of one component or struct in a file. Each accessor marks what it read, so that
+/// unread entries can be reported as unknown parameters.
+class Source {
+ public:
+  virtual ~Source() = default;
+  virtual int line() const = 0;
+  virtual SourceValue value(const std::string& name) = 0;
+  virtual SourceLink component(const std::string& name) = 0;
+  /// Items of a list parameter; `present` tells whether the list was written at all.
+  virtual std::vector<SourceLink> list(const std::string& name, bool* present, int* line) = 0;
+  virtual std::unique_ptr<Source> structure(const std::string& name, int* line) = 0;
+  /// Entries never read: (name, line).
+  virtual std::vector<std::pair<std::string, int>> unread() const = 0;
+  /// Whether parameter names match case-insensitively (INI) or exactly (XML).
+  virtual bool ignoresCase() const = 0;
+};
+
+class Registry;
+
+/// Parse XML text; the registry tells type elements from wrapper elements in lists.
+struct XmlDoc;
+std::shared_ptr<XmlDoc> parseXml(const std::string& text, const Registry& reg, std::string* error,
+                                 int* error_line);
+std::unique_ptr<Source> xmlRoot(const std::shared_ptr<XmlDoc>& doc, std::string* root_name);
+/// The document node itself, whose one parameter is the root element: imports read
+/// component("Body") / component("Joint") / list("RefList") from it.
+std::unique_ptr<Source> xmlDocument(const std::shared_ptr<XmlDoc>& doc);
+
+struct IniDoc;
+std::shared_ptr<IniDoc> parseIni(const std::string& text, std::string* error, int* error_line);
+std::unique_ptr<Source> iniRoot(const std::shared_ptr<IniDoc>& doc);
+
+}  // namespace simbob

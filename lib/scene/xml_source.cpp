@@ -1,0 +1,216 @@
+// XML format (guide 4.2) as a Source: <Name Value=".."/>, type elements with Key, Ref, Macro.
+#include <algorithm>
+#include <pugixml.hpp>
+
+#include "scene/source.h"
+#include "simbob/registry.h"
+
+namespace simbob {
+
+struct XmlDoc {
+  pugi::xml_document doc;
+  std::string text;
+  std::vector<size_t> newlines;  // offsets of '\n', for offset -> line
+  const Registry* reg = nullptr;
+
+  int lineOf(const pugi::xml_node& n) const {
+    auto off = static_cast<size_t>(n.offset_debug());
+    return static_cast<int>(std::upper_bound(newlines.begin(), newlines.end(), off) - newlines.begin()) + 1;
+  }
+};
+
+namespace {
+
+bool isElement(const pugi::xml_node& n) { return n.type() == pugi::node_element; }
+
+class XmlSource : public Source {
+ public:
+  XmlSource(std::shared_ptr<XmlDoc> doc, pugi::xml_node node) : doc_(std::move(doc)), node_(node) {}
+
+  int line() const override { return doc_->lineOf(node_); }
+  bool ignoresCase() const override { return false; }
+
+  SourceValue value(const std::string& name) override {
+    SourceValue v;
+    pugi::xml_node c = take(name);
+    if (!c) return v;
+    v.present = true;
+    v.line = doc_->lineOf(c);
+    pugi::xml_attribute a = c.attribute("Value");
+    if (!a) {
+      v.error = "parameter '" + name + "' needs a Value attribute";
+      return v;
+    }
+    v.text = a.value();
+    for (pugi::xml_attribute other : c.attributes())
+      if (std::string(other.name()) != "Value")
+        v.error = "parameter '" + name + "': unknown attribute '" + other.name() + "'";
+    if (v.error.empty() && firstElement(c))
+      v.error = "parameter '" + name + "' is a value and takes no child elements";
+    return v;
+  }
+
+  SourceLink component(const std::string& name) override {
+    pugi::xml_node c = take(name);
+    if (!c) return {};
+    return linkFrom(c, true);
+  }
+
+  std::vector<SourceLink> list(const std::string& name, bool* present, int* line) override {
+    std::vector<SourceLink> items;
+    pugi::xml_node c = take(name);
+    *present = bool(c);
+    if (!c) return items;
+    *line = doc_->lineOf(c);
+    for (pugi::xml_node item : c.children()) {
+      if (!isElement(item)) continue;
+      if (doc_->reg->find(item.name())) {
+        items.push_back(typeElement(item));
+      } else {
+        items.push_back(linkFrom(item, false));
+      }
+    }
+    return items;
+  }
+
+  std::unique_ptr<Source> structure(const std::string& name, int* line) override {
+    pugi::xml_node c = take(name);
+    if (!c) return nullptr;
+    *line = doc_->lineOf(c);
+    return std::make_unique<XmlSource>(doc_, c);
+  }
+
+  std::vector<std::pair<std::string, int>> unread() const override {
+    std::vector<std::pair<std::string, int>> out;
+    for (pugi::xml_node c : node_.children())
+      if (isElement(c) && std::find(read_.begin(), read_.end(), c) == read_.end())
+        out.emplace_back(c.name(), doc_->lineOf(c));
+    return out;
+  }
+
+  SourceLink typeElement(pugi::xml_node t) {
+    SourceLink l;
+    l.present = true;
+    l.line = doc_->lineOf(t);
+    l.type = t.name();
+    for (pugi::xml_attribute a : t.attributes()) {
+      std::string an = a.name();
+      if (an == "Key") {
+        l.key = a.value();
+        l.has_key = true;
+      } else {
+        l.error = std::string(t.name()) + ": unknown attribute '" + an + "' (a type element takes only Key)";
+      }
+    }
+    l.body = std::make_unique<XmlSource>(doc_, t);
+    return l;
+  }
+
+ private:
+  static pugi::xml_node firstElement(pugi::xml_node n) {
+    for (pugi::xml_node c : n.children())
+      if (isElement(c)) return c;
+    return {};
+  }
+
+  // The first not-yet-read child element called `name`; a second one stays unread and is
+  // reported as a duplicate by the builder.
+  pugi::xml_node take(const std::string& name) {
+    for (pugi::xml_node c : node_.children()) {
+      if (isElement(c) && name == c.name() && std::find(read_.begin(), read_.end(), c) == read_.end()) {
+        read_.push_back(c);
+        return c;
+      }
+    }
+    return {};
+  }
+
+  // An element standing for a component: Ref or Macro attribute, or exactly one type element.
+  SourceLink linkFrom(pugi::xml_node c, bool is_param) {
+    SourceLink l;
+    l.present = true;
+    l.line = doc_->lineOf(c);
+    for (pugi::xml_attribute a : c.attributes()) {
+      std::string an = a.name();
+      if (an == "Ref") l.ref = a.value();
+      else if (an == "Macro") l.macro = a.value();
+      else l.error = std::string("<") + c.name() + ">: unknown attribute '" + an + "'";
+    }
+    std::vector<pugi::xml_node> kids;
+    for (pugi::xml_node k : c.children())
+      if (isElement(k)) kids.push_back(k);
+    if (!l.error.empty()) return l;
+    if (!l.ref.empty() || !l.macro.empty()) {
+      if (!l.ref.empty() && !l.macro.empty())
+        l.error = std::string("<") + c.name() + "> has both Ref and Macro";
+      else if (!kids.empty())
+        l.error = std::string("<") + c.name() + "> with Ref or Macro takes no child elements";
+      else if (c.attribute("Ref") && l.ref.empty())
+        l.error = std::string("<") + c.name() + ">: empty Ref";
+      return l;
+    }
+    if (c.attribute("Ref")) {
+      l.error = std::string("<") + c.name() + ">: empty Ref";
+      return l;
+    }
+    if (kids.size() != 1) {
+      if (kids.empty() && !is_param && doc_->reg->suggestType(c.name()).size())
+        l.error = std::string("unknown component type '") + c.name() + "' (did you mean '" +
+                  doc_->reg->suggestType(c.name()) + "'?)";
+      else if (kids.empty() && !is_param)
+        l.error = std::string("unknown component type '") + c.name() + "'";
+      else
+        l.error = std::string("<") + c.name() + "> must hold exactly one component element, a Ref or a Macro";
+      return l;
+    }
+    SourceLink inner = typeElement(kids[0]);
+    if (!doc_->reg->find(kids[0].name())) {
+      std::string s = doc_->reg->suggestType(kids[0].name());
+      inner.error = std::string("unknown component type '") + kids[0].name() + "'" +
+                    (s.empty() ? "" : " (did you mean '" + s + "'?)");
+    }
+    return inner;
+  }
+
+  std::shared_ptr<XmlDoc> doc_;
+  pugi::xml_node node_;
+  std::vector<pugi::xml_node> read_;
+};
+
+}  // namespace
+
+std::shared_ptr<XmlDoc> parseXml(const std::string& text, const Registry& reg, std::string* error,
+                                 int* error_line) {
+  auto d = std::make_shared<XmlDoc>();
+  d->text = text;
+  d->reg = &reg;
+  for (size_t i = 0; i < d->text.size(); ++i)
+    if (d->text[i] == '\n') d->newlines.push_back(i);
+  pugi::xml_parse_result res =
+      d->doc.load_buffer(d->text.data(), d->text.size(), pugi::parse_default, pugi::encoding_utf8);
+  if (!res) {
+    auto off = static_cast<size_t>(std::max<ptrdiff_t>(0, res.offset));
+    *error_line = static_cast<int>(std::upper_bound(d->newlines.begin(), d->newlines.end(), off) -
+                                   d->newlines.begin()) + 1;
+    *error = std::string("malformed XML: ") + res.description();
+    return nullptr;
+  }
+  if (!d->doc.document_element()) {
+    *error_line = 1;
+    *error = "empty XML document";
+    return nullptr;
+  }
+  return d;
+}
+
+std::unique_ptr<Source> xmlRoot(const std::shared_ptr<XmlDoc>& doc, std::string* root_name) {
+  pugi::xml_node root = doc->doc.document_element();
+  *root_name = root.name();
+  return std::make_unique<XmlSource>(doc, root);
+}
+
+std::unique_ptr<Source> xmlDocument(const std::shared_ptr<XmlDoc>& doc) {
+  return std::make_unique<XmlSource>(doc, doc->doc);
+}
+
+}  // namespace simbob

@@ -79,7 +79,7 @@ struct SolverSettings {
   double max_time_step = 0.001;  ///< s, the step size (MaxTimeStep; --dt overrides)
   double min_time_step = 1e-6;   ///< s, a requested time this close counts as reached
   double erp = 0.2;              ///< error reduction parameter
-  double cfm = 1e-5;             ///< constraint force mixing
+  double cfm = 1e-10;            ///< constraint force mixing (ODE's double-precision default)
   int iterations = 20;           ///< QuickStep iterations
   int max_contacts = 4;          ///< contact points per colliding geom pair
   bool quickstep = true;         ///< false: dWorldStep (exact LCP)

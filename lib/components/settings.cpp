@@ -25,7 +25,7 @@ void registerSettings(Registry& r) {
           enumParam("Solver", ValueType::Enum, &kSolver, 0, "QuickStep (iterative) or Step (exact LCP)"),
           integer("SolverIterations", 20, "QuickStep iterations per step", Range::Positive),
           number("ERP", 0.2, "", "error reduction parameter of joints and contacts", Range::Unit),
-          number("CFM", 1e-5, "", "constraint force mixing (softness)", Range::NonNegative),
+          number("CFM", 1e-10, "", "constraint force mixing (softness)", Range::NonNegative),
           integer("MaxContacts", 4, "contact points per colliding pair of geoms", Range::Positive),
           valueParam("LightPos", ValueType::Vector, Vector4{{10, 10, 10, 1}}, "m", "light position"),
           color("LightColor", rgba(1, 1, 1), "light colour"),

@@ -3,11 +3,10 @@
 #pragma once
 
 #include <cstddef>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "simbob/trajectory.h"
 
@@ -25,11 +24,11 @@ struct CompareOptions {
 /// Results for one body present in both trajectories. Times are the golden file's.
 struct BodyDiff {
   std::string body;
-  size_t compared = 0;        ///< shared samples where both have a row
-  double max_pos_err = 0;     ///< m
-  double max_pos_time = 0;    ///< time of the first occurrence of max_pos_err (if compared > 0)
-  double max_rot_err = 0;     ///< rad
-  double max_rot_time = 0;    ///< time of the first occurrence of max_rot_err (if compared > 0)
+  size_t compared = 0;      ///< shared samples where both have a row
+  double max_pos_err = 0;   ///< m
+  double max_pos_time = 0;  ///< time of the first occurrence of max_pos_err (if compared > 0)
+  double max_rot_err = 0;   ///< rad
+  double max_rot_time = 0;  ///< time of the first occurrence of max_rot_err (if compared > 0)
   std::optional<double> first_exceed_time;  ///< earliest time a tolerance was exceeded
   double first_exceed_pos_err = 0;          ///< position error at first_exceed_time
   double first_exceed_rot_err = 0;          ///< rotation error at first_exceed_time

@@ -89,10 +89,10 @@ class TrajectoryWriter {
 /// A trajectory in memory. Storage is per body: poses[b] holds kPoseSize doubles per sample and
 /// present[b][s] says whether a row existed for body b at sample s.
 struct Trajectory {
-  std::vector<std::string> bodies;             ///< in order of first appearance
-  std::vector<double> times;                   ///< distinct sample times, increasing
-  std::vector<std::vector<double>> poses;      ///< [body] -> kPoseSize * times.size()
-  std::vector<std::vector<uint8_t>> present;   ///< [body] -> times.size() flags
+  std::vector<std::string> bodies;            ///< in order of first appearance
+  std::vector<double> times;                  ///< distinct sample times, increasing
+  std::vector<std::vector<double>> poses;     ///< [body] -> kPoseSize * times.size()
+  std::vector<std::vector<uint8_t>> present;  ///< [body] -> times.size() flags
 
   size_t sampleCount() const { return times.size(); }
   size_t bodyCount() const { return bodies.size(); }

@@ -1,0 +1,473 @@
+#include "simbob/trajectory.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <optional>
+#include <string_view>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
+
+#include "simbob/values.h"
+
+namespace simbob {
+
+namespace {
+
+/// Buffered bytes that trigger a write; large enough to amortise syscalls.
+constexpr size_t kFlushBytes = size_t{1} << 20;
+
+constexpr size_t kFieldCount = 9;
+constexpr const char* kColumnNames[kFieldCount] = {"time", "body", "x",  "y", "z",
+                                                   "qw",   "qx",   "qy", "qz"};
+
+bool needsQuoting(std::string_view key) {
+  return key.find_first_of(",\"\r\n") != std::string_view::npos;
+}
+
+std::string encodeKey(std::string_view key) {
+  if (!needsQuoting(key)) return std::string(key);
+  std::string out = "\"";
+  for (char c : key) {
+    if (c == '"') out += '"';  // CSV escapes a quote by doubling it
+    out += c;
+  }
+  out += '"';
+  return out;
+}
+
+Error makeError(ErrorKind kind, const std::string& file, int line, std::string message) {
+  Error e;
+  e.kind = kind;
+  e.loc.file = file;
+  e.loc.line = line;
+  e.message = std::move(message);
+  return e;
+}
+
+void setError(Error* err, Error e) {
+  if (err) *err = std::move(e);
+}
+
+/// Writes all of [data, data+size), retrying on EINTR and partial writes.
+/// Returns 0 on success, else an errno value (ENOSPC when write() made no progress).
+int writeAll(int fd, const char* data, size_t size) {
+  while (size > 0) {
+    ssize_t n = ::write(fd, data, size);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return errno;
+    }
+    if (n == 0) return ENOSPC;
+    data += n;
+    size -= static_cast<size_t>(n);
+  }
+  return 0;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// TrajectoryWriter
+
+std::unique_ptr<TrajectoryWriter> TrajectoryWriter::open(const std::string& final_path,
+                                                         std::vector<std::string> body_keys,
+                                                         Error* err) {
+  std::unordered_set<std::string> seen;
+  for (const std::string& key : body_keys) {
+    if (key.empty()) {
+      setError(err, makeError(ErrorKind::Internal, final_path, 0, "empty body key"));
+      return nullptr;
+    }
+    if (!seen.insert(key).second) {
+      setError(err,
+               makeError(ErrorKind::Internal, final_path, 0, "duplicate body key '" + key + "'"));
+      return nullptr;
+    }
+  }
+
+  std::unique_ptr<TrajectoryWriter> w(new TrajectoryWriter());
+  w->final_path_ = final_path;
+  w->temp_path_ = final_path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
+  w->fd_ = ::open(w->temp_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (w->fd_ < 0) {
+    int e = errno;
+    w->done_ = true;  // nothing to clean up
+    setError(err,
+             makeError(ErrorKind::CannotCreate, final_path, 0,
+                       "cannot create temporary file " + w->temp_path_ + ": " + std::strerror(e)));
+    return nullptr;
+  }
+  w->keys_ = std::move(body_keys);
+  w->encoded_keys_.reserve(w->keys_.size());
+  for (const std::string& key : w->keys_) w->encoded_keys_.push_back(encodeKey(key));
+  w->buf_.reserve(kFlushBytes + 4096);
+  w->buf_ += kTrajectoryHeader;
+  w->buf_ += '\n';
+  return w;
+}
+
+TrajectoryWriter::~TrajectoryWriter() { abandon(); }
+
+bool TrajectoryWriter::addSample(double time, const double* poses) {
+  if (done_ || failed_) return false;
+  // The time text is the same for every body of the sample: format it once.
+  time_text_.clear();
+  appendNumber(time_text_, time);
+  const size_t n = encoded_keys_.size();
+  for (size_t b = 0; b < n; ++b) {
+    buf_ += time_text_;
+    buf_ += ',';
+    buf_ += encoded_keys_[b];
+    const double* p = poses + b * kPoseSize;
+    for (size_t k = 0; k < kPoseSize; ++k) {
+      buf_ += ',';
+      appendNumber(buf_, p[k]);
+    }
+    buf_ += '\n';
+  }
+  if (buf_.size() >= kFlushBytes) return flush();
+  return true;
+}
+
+bool TrajectoryWriter::flush() {
+  if (failed_) return false;
+  if (buf_.empty()) return true;
+  int e = writeAll(fd_, buf_.data(), buf_.size());
+  if (e != 0) {
+    failed_ = true;
+    failed_errno_ = e;
+    return false;
+  }
+  flushed_ += buf_.size();
+  buf_.clear();
+  return true;
+}
+
+void TrajectoryWriter::closeFd() {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+}
+
+bool TrajectoryWriter::finish(const std::string& target, Error* err) {
+  if (done_) {
+    setError(err,
+             makeError(ErrorKind::Internal, final_path_, 0, "trajectory writer already closed"));
+    return false;
+  }
+  flush();
+  if (!failed_) {
+    // close() can report a deferred write error (e.g. NFS, quota): it counts as a failed write.
+    int rc = ::close(fd_);
+    fd_ = -1;
+    if (rc != 0 && errno != EINTR) {
+      failed_ = true;
+      failed_errno_ = errno;
+    }
+  }
+  if (failed_) {
+    abandon();
+    setError(err, makeError(ErrorKind::IoError, final_path_, 0,
+                            std::string("write failed: ") + std::strerror(failed_errno_)));
+    return false;
+  }
+  if (std::rename(temp_path_.c_str(), target.c_str()) != 0) {
+    int e = errno;
+    abandon();
+    setError(err,
+             makeError(ErrorKind::CannotCreate, target, 0,
+                       "cannot rename " + temp_path_ + " to " + target + ": " + std::strerror(e)));
+    return false;
+  }
+  done_ = true;
+  return true;
+}
+
+bool TrajectoryWriter::commit(Error* err) { return finish(final_path_, err); }
+
+bool TrajectoryWriter::keepPartial(const std::string& partial_path, Error* err) {
+  return finish(partial_path, err);
+}
+
+void TrajectoryWriter::abandon() {
+  if (done_) return;
+  closeFd();
+  ::unlink(temp_path_.c_str());
+  buf_.clear();
+  done_ = true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Trajectory
+
+size_t Trajectory::addBody(std::string key) {
+  bodies.push_back(std::move(key));
+  poses.emplace_back();
+  present.emplace_back();
+  return bodies.size() - 1;
+}
+
+void Trajectory::setPose(size_t s, size_t b, const double* pose7) {
+  std::vector<double>& column = poses[b];
+  std::vector<uint8_t>& flags = present[b];
+  if (flags.size() <= s) {
+    // Grows to times.size() rather than s+1 so appending samples stays amortised O(1).
+    size_t n = times.size() > s ? times.size() : s + 1;
+    flags.resize(n, 0);
+    column.resize(n * kPoseSize, 0.0);
+  }
+  std::copy(pose7, pose7 + kPoseSize, column.begin() + static_cast<std::ptrdiff_t>(s * kPoseSize));
+  flags[s] = 1;
+}
+
+void Trajectory::finalize() {
+  for (size_t b = 0; b < bodies.size(); ++b) {
+    present[b].resize(times.size(), 0);
+    poses[b].resize(times.size() * kPoseSize, 0.0);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// readTrajectory
+
+namespace {
+
+/// Reads a whole file. Returns 0 or an errno value; *what says which step failed.
+int slurp(const std::string& path, std::string* out, const char** what) {
+  *what = "cannot open";
+  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return errno;
+  *what = "cannot read";
+  struct stat st;
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) out->reserve(static_cast<size_t>(st.st_size));
+  char chunk[1 << 16];
+  for (;;) {
+    ssize_t n = ::read(fd, chunk, sizeof chunk);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      int e = errno;
+      ::close(fd);
+      return e;
+    }
+    if (n == 0) break;
+    out->append(chunk, static_cast<size_t>(n));
+  }
+  ::close(fd);
+  return 0;
+}
+
+bool looksLikeNan(std::string_view f) {
+  if (!f.empty() && (f[0] == '-' || f[0] == '+')) f.remove_prefix(1);
+  return f.size() == 3 && (f[0] == 'n' || f[0] == 'N') && (f[1] == 'a' || f[1] == 'A') &&
+         (f[2] == 'n' || f[2] == 'N');
+}
+
+/// Field text for messages: bounded, so a garbage line does not flood the terminal.
+std::string quoteForMessage(std::string_view f) {
+  constexpr size_t kMax = 60;
+  std::string out = "'";
+  if (f.size() > kMax) {
+    out.append(f.substr(0, kMax));
+    out += "...";
+  } else {
+    out.append(f);
+  }
+  out += "'";
+  return out;
+}
+
+class CsvParser {
+ public:
+  CsvParser(const std::string& path, std::string_view text)
+      : path_(path), p_(text.data()), end_(text.data() + text.size()) {}
+
+  bool run(Trajectory* out, Error* err);
+
+ private:
+  bool fail(Error* err, int line, std::string message) {
+    setError(err, makeError(ErrorKind::InvalidInput, path_, line, std::move(message)));
+    return false;
+  }
+  /// Parses one record starting at p_; fields beyond kFieldCount are only counted.
+  bool parseRecord(Error* err);
+
+  const std::string& path_;
+  const char* p_;
+  const char* end_;
+  int line_ = 1;         ///< line of p_
+  int record_line_ = 1;  ///< line where the current record started
+  std::array<std::string_view, kFieldCount> fields_;
+  std::array<std::string, kFieldCount> unquoted_;  ///< storage for quoted fields
+  size_t field_count_ = 0;
+};
+
+bool CsvParser::parseRecord(Error* err) {
+  record_line_ = line_;
+  field_count_ = 0;
+  for (;;) {
+    std::string_view f;
+    if (p_ < end_ && *p_ == '"') {
+      ++p_;
+      std::string& s = unquoted_[field_count_ < kFieldCount ? field_count_ : kFieldCount - 1];
+      s.clear();
+      for (;;) {
+        if (p_ == end_) return fail(err, record_line_, "unterminated quoted field");
+        char c = *p_++;
+        if (c == '"') {
+          if (p_ < end_ && *p_ == '"') {
+            s += '"';
+            ++p_;
+            continue;
+          }
+          break;
+        }
+        if (c == '\n') ++line_;
+        s += c;
+      }
+      if (p_ < end_ && *p_ == '\r' && (p_ + 1 == end_ || p_[1] == '\n')) ++p_;
+      if (p_ < end_ && *p_ != ',' && *p_ != '\n')
+        return fail(err, record_line_, "unexpected character after closing quote");
+      f = s;
+    } else {
+      const char* b = p_;
+      while (p_ < end_ && *p_ != ',' && *p_ != '\n') {
+        if (*p_ == '"') return fail(err, record_line_, "unexpected '\"' in unquoted field");
+        ++p_;
+      }
+      f = std::string_view(b, static_cast<size_t>(p_ - b));
+      if (!f.empty() && f.back() == '\r' && (p_ == end_ || *p_ == '\n')) f.remove_suffix(1);
+    }
+    if (field_count_ < kFieldCount) fields_[field_count_] = f;
+    ++field_count_;
+    if (p_ == end_) return true;
+    if (*p_ == ',') {
+      ++p_;
+      continue;
+    }
+    ++p_;  // '\n'
+    ++line_;
+    return true;
+  }
+}
+
+bool CsvParser::run(Trajectory* out, Error* err) {
+  // A UTF-8 byte order mark (added by some editors) is not part of the header.
+  if (end_ - p_ >= 3 && std::memcmp(p_, "\xEF\xBB\xBF", 3) == 0) p_ += 3;
+  if (p_ == end_)
+    return fail(err, 0, std::string("empty file, expected header ") + kTrajectoryHeader);
+
+  // Header: the whole first line, compared verbatim.
+  const char* nl = static_cast<const char*>(std::memchr(p_, '\n', static_cast<size_t>(end_ - p_)));
+  const char* line_end = nl ? nl : end_;
+  std::string_view header(p_, static_cast<size_t>(line_end - p_));
+  if (!header.empty() && header.back() == '\r') header.remove_suffix(1);
+  if (header != kTrajectoryHeader)
+    return fail(err, 1,
+                std::string("expected header '") + kTrajectoryHeader + "', found " +
+                    quoteForMessage(header));
+  p_ = nl ? nl + 1 : end_;
+  line_ = 2;
+
+  Trajectory& t = *out;
+  t = Trajectory();
+  std::unordered_map<std::string, size_t> index;
+  std::string key;
+  size_t last_body = 0;
+  double pose[kPoseSize];
+
+  while (p_ < end_) {
+    // Blank lines (e.g. a trailing one added by an editor) carry no row.
+    if (*p_ == '\n' || (*p_ == '\r' && p_ + 1 < end_ && p_[1] == '\n')) {
+      p_ += (*p_ == '\n') ? 1 : 2;
+      ++line_;
+      continue;
+    }
+    if (!parseRecord(err)) return false;
+    const int line = record_line_;
+    if (field_count_ != kFieldCount)
+      return fail(err, line,
+                  "expected " + std::to_string(kFieldCount) + " fields, found " +
+                      std::to_string(field_count_));
+
+    double values[kFieldCount] = {};
+    for (size_t i = 0; i < kFieldCount; ++i) {
+      if (i == 1) continue;
+      std::string_view f = fields_[i];
+      if (looksLikeNan(f)) return fail(err, line, std::string("NaN in column ") + kColumnNames[i]);
+      std::optional<double> v = parseNumber(f);
+      if (!v)
+        return fail(err, line,
+                    "bad number " + quoteForMessage(f) + " in column " + kColumnNames[i]);
+      values[i] = *v;
+    }
+    for (size_t k = 0; k < kPoseSize; ++k) pose[k] = values[2 + k];
+    const double time = values[0];
+    std::string_view body = fields_[1];
+    if (body.empty()) return fail(err, line, "empty body key");
+
+    if (t.times.empty() || time != t.times.back()) {
+      if (!t.times.empty() && time < t.times.back()) {
+        std::string msg = "time ";
+        appendNumber(msg, time);
+        msg += " is before the previous time ";
+        appendNumber(msg, t.times.back());
+        return fail(err, line, std::move(msg));
+      }
+      t.times.push_back(time);
+    }
+    const size_t s = t.times.size() - 1;
+
+    // Rows usually cycle through the bodies in the same order: try the next one first.
+    size_t b = t.bodies.size();
+    const size_t guess = last_body + 1 < t.bodies.size() ? last_body + 1 : 0;
+    if (guess < t.bodies.size() && t.bodies[guess] == body) {
+      b = guess;
+    } else {
+      key.assign(body.data(), body.size());
+      auto it = index.find(key);
+      if (it != index.end()) {
+        b = it->second;
+      } else {
+        b = t.addBody(key);
+        index.emplace(key, b);
+      }
+    }
+    last_body = b;
+
+    if (t.pose(s, b) != nullptr) {
+      std::string msg = "duplicate row for body " + quoteForMessage(body) + " at time ";
+      appendNumber(msg, time);
+      return fail(err, line, std::move(msg));
+    }
+    t.setPose(s, b, pose);
+  }
+  t.finalize();
+  return true;
+}
+
+}  // namespace
+
+bool readTrajectory(const std::string& path, Trajectory* out, Error* err) {
+  std::string text;
+  const char* what = nullptr;
+  int e = slurp(path, &text, &what);
+  if (e != 0) {
+    setError(err, makeError(ErrorKind::MissingInput, path, 0,
+                            std::string(what) + ": " + std::strerror(e)));
+    return false;
+  }
+  Trajectory t;
+  CsvParser parser(path, text);
+  if (!parser.run(&t, err)) return false;
+  *out = std::move(t);
+  return true;
+}
+
+}  // namespace simbob

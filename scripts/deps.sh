@@ -11,6 +11,7 @@ SIMBOB_PACKAGES=(
   libcli11-dev          # command line
   nlohmann-json3-dev    # run summaries and reports
   libosmesa6-dev libpng-dev  # off-screen rendering (Record)
+  libcairo2-dev         # trajectory plots (PNG, SVG)
   catch2                # unit tests
   python3               # test helpers
 )

@@ -21,6 +21,8 @@ struct RunOptions {
   double runaway_limit = 1e6;      ///< |position| in m or |velocity| in m/s, rad/s beyond which a run diverged
   /// Called about every 1% of the run with the simulated time reached.
   std::function<void(double)> progress;
+  /// Called with every sample: time and kPoseSize doubles per body (x y z qw qx qy qz).
+  std::function<void(double, const double*)> on_sample;
   /// Set asynchronously (SIGINT/SIGTERM) to stop at the next step.
   const volatile std::sig_atomic_t* stop = nullptr;
 };

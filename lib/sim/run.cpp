@@ -46,6 +46,7 @@ RunResult runModel(const Model& model, const RunOptions& opts, TrajectoryWriter*
       p[6] = s.pose.q[3];
     }
     if (writer) writer->addSample(toSeconds(clock.now()), poses.data());
+    if (opts.on_sample) opts.on_sample(toSeconds(clock.now()), poses.data());
     ++res.samples;
   };
 

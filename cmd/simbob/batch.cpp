@@ -1,0 +1,358 @@
+// simbob batch: many scenes on N worker processes, each a `simbob run` of its own. ODE keeps
+// process-wide state (its random generator among it), so scenes never share a process; a
+// crashing scene takes down only its worker.
+#include <fcntl.h>
+#include <glob.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli.h"
+#include "commands.h"
+#include "simbob/compare.h"
+#include "simbob/trajectory.h"
+#include "simbob/values.h"
+
+namespace simbob::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Job {
+  std::string scene;
+  std::vector<std::string> args;  // extra `simbob run` arguments from the manifest
+  std::string out;
+  std::string log;
+  SourceLoc loc;                  // manifest line, if any
+  // Results.
+  pid_t pid = -1;
+  std::string status = "pending";  // ok, failed, diverged, crashed, interrupted
+  int exit_code = -1;
+  double wall = 0;
+  std::chrono::steady_clock::time_point started;
+  std::string error;               // first error line of the worker
+  std::string golden_status;       // pass, mismatch, no-golden, unreadable ("" without --golden)
+  double max_pos = 0, max_rot = 0;
+  std::string divergence;
+};
+
+std::vector<std::string> splitArgs(const std::string& line, std::string* err) {
+  std::vector<std::string> out;
+  std::string cur;
+  bool in_quotes = false, have = false;
+  for (char c : line) {
+    if (c == '"') {
+      in_quotes = !in_quotes;
+      have = true;
+    } else if (!in_quotes && (c == ' ' || c == '\t' || c == '\r')) {
+      if (have) out.push_back(cur);
+      cur.clear();
+      have = false;
+    } else {
+      cur += c;
+      have = true;
+    }
+  }
+  if (in_quotes) *err = "unterminated quote";
+  if (have) out.push_back(cur);
+  return out;
+}
+
+std::vector<std::string> expandGlob(const std::string& pattern) {
+  glob_t g{};
+  std::vector<std::string> out;
+  if (glob(pattern.c_str(), 0, nullptr, &g) == 0)
+    for (size_t i = 0; i < g.gl_pathc; ++i) out.emplace_back(g.gl_pathv[i]);  // glob sorts
+  globfree(&g);
+  if (out.empty()) out.push_back(pattern);  // a plain path: let the worker report it if missing
+  return out;
+}
+
+std::string firstErrorLine(const std::string& log_path) {
+  std::ifstream in(log_path);
+  std::string line, last;
+  while (std::getline(in, line)) {
+    if (line.find(": error: ") != std::string::npos) return line;
+    if (!line.empty()) last = line;
+  }
+  return last;
+}
+
+std::string fixed(double v, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+std::string sci(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+pid_t startWorker(const Job& j, const BatchArgs& a) {
+  std::vector<std::string> args = {"simbob", "run", j.scene, "--quiet", "--out", j.out};
+  args.emplace_back("--duration");
+  args.push_back(formatNumber(a.duration));
+  if (a.dt > 0) {
+    args.emplace_back("--dt");
+    args.push_back(formatNumber(a.dt));
+  }
+  args.emplace_back("--sample-interval");
+  args.push_back(formatNumber(a.sample_interval));
+  args.emplace_back("--batch-child");
+  // Manifest options come last: CLI11 keeps the last value of a repeated option.
+  args.insert(args.end(), j.args.begin(), j.args.end());
+  pid_t pid = fork();
+  if (pid != 0) return pid;
+  // Child: output to the scene's log, then become `simbob run`.
+  int fd = open(j.log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd >= 0) {
+    dup2(fd, 1);
+    dup2(fd, 2);
+    close(fd);
+  }
+  std::vector<char*> argv;
+  for (auto& s : args) argv.push_back(s.data());
+  argv.push_back(nullptr);
+  execv("/proc/self/exe", argv.data());
+  std::fprintf(stderr, "simbob: error: cannot start worker: %s\n", std::strerror(errno));
+  _exit(kExitSoftware);
+}
+
+void finish(Job& j, int wstatus, const BatchArgs& a) {
+  j.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - j.started).count();
+  if (WIFSIGNALED(wstatus)) {
+    j.status = "crashed";
+    j.error = std::string("worker killed by signal ") + std::to_string(WTERMSIG(wstatus)) + " (" +
+              strsignal(WTERMSIG(wstatus)) + ")";
+    return;
+  }
+  j.exit_code = WEXITSTATUS(wstatus);
+  switch (j.exit_code) {
+    case kExitOk: j.status = "ok"; break;
+    case kExitResultWrong: j.status = "diverged"; break;
+    case kExitSigInt:
+    case kExitSigTerm: j.status = "interrupted"; break;
+    default: j.status = "failed"; break;
+  }
+  if (j.exit_code != kExitOk) j.error = firstErrorLine(j.log);
+  if (a.golden.empty() || j.status != "ok") return;
+  std::string golden = (fs::path(a.golden) / fs::path(j.out).filename()).string();
+  if (!fs::exists(golden)) {
+    j.golden_status = "no-golden";
+    j.error = "no golden file " + golden;
+    return;
+  }
+  Trajectory actual, gold;
+  Error err;
+  if (!readTrajectory(j.out, &actual, &err) || !readTrajectory(golden, &gold, &err)) {
+    j.golden_status = "unreadable";
+    j.error = err.str();
+    return;
+  }
+  CompareOptions opts;
+  opts.tol_pos = a.tol_pos;
+  opts.tol_rot = a.tol_rot;
+  CompareResult r = compareTrajectories(actual, gold, opts);
+  for (const auto& b : r.bodies) {
+    j.max_pos = std::max(j.max_pos, b.max_pos_err);
+    j.max_rot = std::max(j.max_rot, b.max_rot_err);
+  }
+  j.golden_status = r.pass ? "pass" : "mismatch";
+  if (!r.pass) {
+    std::string report = fs::path(j.out).replace_extension(".compare.txt").string();
+    Error werr;
+    writeFileAtomically(report, "actual: " + j.out + "\ngolden: " + golden + "\n" + r.text(), &werr);
+    if (r.first_divergence)
+      j.divergence = "first divergence at t=" + formatNumber(r.first_divergence->time) + " s, body '" +
+                     r.first_divergence->body + "' (" + sci(r.first_divergence->pos_err) + " m, " +
+                     sci(r.first_divergence->rot_err) + " rad)";
+    else
+      j.divergence = "bodies or sample times differ";
+    j.error = j.divergence + "; report: " + report;
+  }
+}
+
+bool jobFailed(const Job& j) { return j.status != "ok" || (!j.golden_status.empty() && j.golden_status != "pass"); }
+
+}  // namespace
+
+int cmdBatch(const BatchArgs& a) {
+  if (!(a.duration > 0) || a.dt < 0 || !(a.sample_interval > 0)) {
+    g_log.error({ErrorKind::InvalidInput, {}, "--duration and --sample-interval must be > 0, --dt >= 0"});
+    return kExitUsage;
+  }
+  std::vector<Job> jobs;
+  for (const auto& pattern : a.scenes)
+    for (const auto& path : expandGlob(pattern)) {
+      Job j;
+      j.scene = path;
+      jobs.push_back(std::move(j));
+    }
+  if (!a.manifest.empty()) {
+    std::ifstream in(a.manifest);
+    if (!in) {
+      g_log.error({ErrorKind::MissingInput, {a.manifest, 0}, std::string("cannot read manifest: ") + std::strerror(errno)});
+      return kExitNoInput;
+    }
+    fs::path base = fs::path(a.manifest).parent_path();
+    std::string line;
+    int line_no = 0;
+    while (std::getline(in, line)) {
+      ++line_no;
+      size_t hash = line.find('#');
+      if (hash != std::string::npos) line.resize(hash);
+      std::string err;
+      std::vector<std::string> words = splitArgs(line, &err);
+      if (!err.empty()) {
+        g_log.error({ErrorKind::InvalidInput, {a.manifest, line_no}, err});
+        return kExitDataErr;
+      }
+      if (words.empty()) continue;
+      // Scenes in a manifest are relative to the manifest's folder.
+      fs::path scene = words[0];
+      if (scene.is_relative()) scene = base / scene;
+      Job j;
+      j.scene = scene.string();
+      j.args.assign(words.begin() + 1, words.end());
+      j.loc = {a.manifest, line_no};
+      for (size_t i = 0; i + 1 < j.args.size(); ++i)
+        if (j.args[i] == "--out") {
+          fs::path out = j.args[i + 1];
+          if (out.is_relative()) out = base / out;
+          j.out = out.string();
+          j.args.erase(j.args.begin() + static_cast<long>(i), j.args.begin() + static_cast<long>(i) + 2);
+          break;
+        }
+      jobs.push_back(std::move(j));
+    }
+  }
+  if (jobs.empty()) {
+    g_log.error({ErrorKind::InvalidInput, {}, "no scenes given (name scene files, globs, or --manifest FILE)"});
+    return kExitUsage;
+  }
+  std::error_code ec;
+  fs::create_directories(a.out_dir, ec);
+  if (ec) {
+    g_log.error({ErrorKind::CannotCreate, {a.out_dir, 0}, "cannot create output folder: " + ec.message()});
+    return kExitCantCreate;
+  }
+  std::map<std::string, size_t> outs;
+  for (size_t i = 0; i < jobs.size(); ++i) {
+    Job& j = jobs[i];
+    if (j.out.empty()) j.out = (fs::path(a.out_dir) / fs::path(j.scene).stem()).string() + ".csv";
+    j.log = fs::path(j.out).replace_extension(".log").string();
+    auto [it, fresh] = outs.emplace(j.out, i);
+    if (!fresh) {
+      g_log.error({ErrorKind::InvalidInput, j.loc, "scenes " + jobs[it->second].scene + " and " + j.scene +
+                                                      " would both write " + j.out + "; give one of them --out"});
+      return kExitUsage;
+    }
+  }
+
+  int workers = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
+  catchStopSignals();
+  auto t0 = std::chrono::steady_clock::now();
+  size_t next = 0, done = 0, running = 0;
+  std::map<pid_t, size_t> by_pid;
+  while (done < jobs.size()) {
+    while (!g_stop && running < static_cast<size_t>(workers) && next < jobs.size()) {
+      Job& j = jobs[next];
+      j.started = std::chrono::steady_clock::now();
+      j.pid = startWorker(j, a);
+      if (j.pid < 0) {
+        j.status = "failed";
+        j.error = std::string("cannot fork: ") + std::strerror(errno);
+        ++done;
+      } else {
+        by_pid[j.pid] = next;
+        ++running;
+      }
+      ++next;
+    }
+    if (running == 0) {
+      if (g_stop) break;
+      continue;
+    }
+    int wstatus = 0;
+    pid_t pid = waitpid(-1, &wstatus, 0);
+    if (pid < 0) {
+      if (errno == EINTR) continue;  // a signal: stop starting new scenes, keep reaping
+      break;
+    }
+    auto it = by_pid.find(pid);
+    if (it == by_pid.end()) continue;
+    Job& j = jobs[it->second];
+    by_pid.erase(it);
+    --running;
+    ++done;
+    finish(j, wstatus, a);
+    std::string line = "[" + std::to_string(done) + "/" + std::to_string(jobs.size()) + "] " + j.status + "  " +
+                       j.scene + "  " + fixed(j.wall, 2) + " s";
+    if (!j.golden_status.empty()) line += "  golden: " + j.golden_status;
+    if (!j.error.empty()) line += "  -- " + j.error;
+    std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
+  }
+  double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  size_t failed = 0;
+  for (const auto& j : jobs) failed += jobFailed(j) ? 1 : 0;
+  nlohmann::ordered_json rep;
+  rep["scenes"] = jobs.size();
+  rep["failed"] = failed;
+  rep["workers"] = workers;
+  rep["wall_seconds"] = wall;
+  rep["golden"] = a.golden;
+  rep["results"] = nlohmann::json::array();
+  std::string table = "\nscene                                    status       wall s   golden      max pos err  max rot err\n";
+  for (const auto& j : jobs) {
+    nlohmann::ordered_json r;
+    r["scene"] = j.scene;
+    r["status"] = j.status;
+    r["exit_code"] = j.exit_code;
+    r["out"] = j.out;
+    r["log"] = j.log;
+    r["wall_seconds"] = j.wall;
+    if (!j.golden_status.empty()) {
+      r["golden"] = j.golden_status;
+      r["max_pos_err"] = j.max_pos;
+      r["max_rot_err"] = j.max_rot;
+    }
+    if (!j.error.empty()) r["error"] = j.error;
+    rep["results"].push_back(r);
+    char buf[512];
+    std::snprintf(buf, sizeof buf, "%-40s %-12s %7.2f   %-11s %-12s %s\n", j.scene.c_str(), j.status.c_str(), j.wall,
+                  j.golden_status.empty() ? "-" : j.golden_status.c_str(),
+                  j.golden_status.empty() ? "-" : sci(j.max_pos).c_str(),
+                  j.golden_status.empty() ? "-" : sci(j.max_rot).c_str());
+    table += buf;
+  }
+  table += "\n" + std::to_string(jobs.size() - failed) + " of " + std::to_string(jobs.size()) + " scenes ok (" +
+           std::to_string(workers) + " workers, " + fixed(wall, 2) + " s)\n";
+  if (a.json) std::printf("%s\n", rep.dump(2).c_str());
+  else std::fputs(table.c_str(), stdout);
+  if (!a.report.empty()) {
+    Error err;
+    std::string text = a.report.size() > 5 && a.report.compare(a.report.size() - 5, 5, ".json") == 0
+                           ? rep.dump(2) + "\n" : table;
+    if (!writeFileAtomically(a.report, text, &err)) {
+      g_log.error(err);
+      return exitCodeFor(err.kind);
+    }
+  }
+  if (g_stop) return g_stop == SIGTERM ? kExitSigTerm : kExitSigInt;
+  return failed == 0 ? kExitOk : kExitResultWrong;
+}
+
+}  // namespace simbob::cli

@@ -1,0 +1,118 @@
+#include "cli.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include "simbob/registry.h"
+
+namespace simbob::cli {
+
+Log g_log;
+volatile std::sig_atomic_t g_stop = 0;
+
+extern "C" void simbobOnSignal(int sig) { g_stop = sig; }
+
+void catchStopSignals() {
+  std::signal(SIGINT, simbobOnSignal);
+  std::signal(SIGTERM, simbobOnSignal);
+}
+
+int exitCodeFor(ErrorKind k) {
+  switch (k) {
+    case ErrorKind::InvalidInput: return kExitDataErr;
+    case ErrorKind::MissingInput: return kExitNoInput;
+    case ErrorKind::CannotCreate: return kExitCantCreate;
+    case ErrorKind::IoError: return kExitIoErr;
+    case ErrorKind::Diverged: return kExitResultWrong;
+    case ErrorKind::Internal: return kExitSoftware;
+  }
+  return kExitSoftware;
+}
+
+namespace {
+std::string place(const Error& e) {
+  if (e.loc.file.empty()) return "simbob";
+  return e.loc.line > 0 ? e.loc.file + ":" + std::to_string(e.loc.line) : e.loc.file;
+}
+}  // namespace
+
+void Log::write(const std::string& line, bool to_stderr) {
+  if (to_stderr) std::fprintf(stderr, "%s\n", line.c_str());
+  if (file) {
+    std::fprintf(file, "%s\n", line.c_str());
+    std::fflush(file);
+  }
+}
+// "file:line: error: message" so that editors and CI logs can jump to the place.
+void Log::error(const Error& e) { write(place(e) + ": error: " + e.message, true); }
+void Log::warning(const Error& e) { write(place(e) + ": warning: " + e.message, level != Level::Quiet); }
+void Log::info(const std::string& s) { write("simbob: " + s, level != Level::Quiet); }
+void Log::debug(const std::string& s) { write("simbob: " + s, level == Level::Verbose); }
+
+int report(const Diagnostics& d, bool warnings) {
+  if (warnings)
+    for (const auto& w : d.warnings()) g_log.warning(w);
+  int code = 0;
+  for (const auto& e : d.errors()) {
+    g_log.error(e);
+    int c = exitCodeFor(e.kind);
+    // A missing input file wins over data errors: nothing behind it could be checked.
+    if (code == 0 || c == kExitNoInput) code = c;
+  }
+  return code;
+}
+
+int setupLogging(const Common& c) {
+  g_log.level = c.quiet ? Level::Quiet : (c.verbose ? Level::Verbose : Level::Normal);
+  if (!c.log_file.empty()) {
+    g_log.file = std::fopen(c.log_file.c_str(), "a");
+    if (!g_log.file) {
+      g_log.error({ErrorKind::CannotCreate, {c.log_file, 0}, std::string("cannot open log file: ") + std::strerror(errno)});
+      return kExitCantCreate;
+    }
+  }
+  return 0;
+}
+
+int readSettings(Common& c) {
+  if (c.settings.empty()) return 0;
+  Scene holder;
+  int comp = -1;
+  Diagnostics d;
+  if (!loadStructIni(c.settings, builtinRegistry(), "GlobalSettings", &holder, &comp, d)) return report(d, true);
+  const std::string& log = holder.at(comp).string("LogFile");
+  if (c.log_file.empty() && !log.empty()) c.log_file = log;
+  return 0;
+}
+
+bool loadAndCompile(const std::string& path, Scene* scene, Model* model, int* code, bool warnings) {
+  Diagnostics d;
+  if (!loadScene(path, builtinRegistry(), scene, d) || !compileScene(*scene, model, d)) {
+    *code = report(d, warnings);
+    return false;
+  }
+  report(d, warnings);
+  return true;
+}
+
+bool writeFileAtomically(const std::string& path, const std::string& text, Error* err) {
+  std::string tmp = path + ".tmp." + std::to_string(getpid());
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (!f) {
+    *err = {ErrorKind::CannotCreate, {path, 0}, std::string("cannot create: ") + std::strerror(errno)};
+    return false;
+  }
+  bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  ok = (std::fclose(f) == 0) && ok;
+  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
+    int e = errno;
+    std::remove(tmp.c_str());
+    *err = {ErrorKind::IoError, {path, 0}, std::string("cannot write: ") + std::strerror(e)};
+    return false;
+  }
+  return true;
+}
+
+}  // namespace simbob::cli

@@ -1,0 +1,57 @@
+// One function per subcommand; main.cpp wires them to CLI11.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace simbob::cli {
+
+struct RunArgs {
+  std::string scene;
+  double duration = 0;
+  double dt = 0;
+  double sample_interval = 0.01;
+  std::string out;
+  uint32_t seed = 0;
+  bool json = false;
+  bool check_determinism = false;
+  bool batch_child = false;  ///< started by `simbob batch`: warnings stay out of the log
+};
+int cmdRun(RunArgs& a);
+
+int cmdCheck(const std::string& scene);
+int cmdDump(const std::string& scene, const std::string& format);
+int cmdTypes(bool markdown);
+
+struct CompareArgs {
+  std::string actual, golden, report;
+  double tol_pos = 1e-6;
+  double tol_rot = 1e-6;
+  bool json = false;
+  bool bless = false;
+};
+int cmdCompare(const CompareArgs& a);
+
+struct PlotArgs {
+  std::string trajectory, golden, out, bodies, title;
+};
+int cmdPlot(const PlotArgs& a);
+
+struct BatchArgs {
+  std::vector<std::string> scenes;  ///< paths or glob patterns
+  std::string manifest;
+  int jobs = 0;                     ///< 0 = all cores
+  double duration = 10;
+  double dt = 0;
+  double sample_interval = 0.01;
+  std::string out_dir = "batch-out";
+  std::string golden;
+  double tol_pos = 1e-6;
+  double tol_rot = 1e-6;
+  std::string report;
+  bool json = false;
+};
+int cmdBatch(const BatchArgs& a);
+
+}  // namespace simbob::cli

@@ -1,0 +1,97 @@
+// simbob compare and simbob plot: looking at trajectories against golden ones.
+#include <cstdio>
+#include <filesystem>
+
+#include "cli.h"
+#include "commands.h"
+#include "simbob/compare.h"
+#include "simbob/plot.h"
+#include "simbob/trajectory.h"
+
+namespace simbob::cli {
+
+namespace {
+
+bool readOrReport(const std::string& path, Trajectory* t, int* code) {
+  Error err;
+  if (!readTrajectory(path, t, &err)) {
+    g_log.error(err);
+    *code = exitCodeFor(err.kind);
+    return false;
+  }
+  return true;
+}
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+}  // namespace
+
+int cmdCompare(const CompareArgs& a) {
+  if (!(a.tol_pos >= 0) || !(a.tol_rot >= 0)) {
+    g_log.error({ErrorKind::InvalidInput, {}, "--tol-pos and --tol-rot must be >= 0"});
+    return kExitUsage;
+  }
+  Trajectory actual, golden;
+  int code = 0;
+  if (!readOrReport(a.actual, &actual, &code) || !readOrReport(a.golden, &golden, &code)) return code;
+  CompareOptions opts;
+  opts.tol_pos = a.tol_pos;
+  opts.tol_rot = a.tol_rot;
+  CompareResult r = compareTrajectories(actual, golden, opts);
+  std::string text = "actual: " + a.actual + "\ngolden: " + a.golden + "\n" + r.text();
+  std::string json = r.json().dump(2) + "\n";
+  std::fputs(a.json ? json.c_str() : text.c_str(), stdout);
+  std::fflush(stdout);
+  if (!a.report.empty()) {
+    Error err;
+    if (!writeFileAtomically(a.report, endsWith(a.report, ".json") ? json : text, &err)) {
+      g_log.error(err);
+      return exitCodeFor(err.kind);
+    }
+  }
+  if (a.bless) {
+    if (r.pass) {
+      g_log.info("golden " + a.golden + " already matches; left as it is");
+      return kExitOk;
+    }
+    std::error_code ec;
+    std::string tmp = a.golden + ".tmp.bless";
+    std::filesystem::copy_file(a.actual, tmp, std::filesystem::copy_options::overwrite_existing, ec);
+    if (!ec) std::filesystem::rename(tmp, a.golden, ec);
+    if (ec) {
+      std::filesystem::remove(tmp);
+      g_log.error({ErrorKind::CannotCreate, {a.golden, 0}, "cannot replace golden file: " + ec.message()});
+      return kExitCantCreate;
+    }
+    g_log.info("blessed: " + a.golden + " now holds " + a.actual + " (changes listed above)");
+    return kExitOk;
+  }
+  return r.pass ? kExitOk : kExitResultWrong;
+}
+
+int cmdPlot(const PlotArgs& a) {
+  Trajectory actual, golden;
+  int code = 0;
+  if (!readOrReport(a.trajectory, &actual, &code)) return code;
+  if (!a.golden.empty() && !readOrReport(a.golden, &golden, &code)) return code;
+  PlotOptions opts;
+  opts.title = a.title.empty() ? a.trajectory : a.title;
+  size_t start = 0;
+  while (start < a.bodies.size()) {
+    size_t comma = a.bodies.find(',', start);
+    if (comma == std::string::npos) comma = a.bodies.size();
+    if (comma > start) opts.bodies.push_back(a.bodies.substr(start, comma - start));
+    start = comma + 1;
+  }
+  Error err;
+  if (!plotTrajectory(actual, a.golden.empty() ? nullptr : &golden, opts, a.out, &err)) {
+    g_log.error(err);
+    return exitCodeFor(err.kind);
+  }
+  g_log.info("wrote " + a.out);
+  return kExitOk;
+}
+
+}  // namespace simbob::cli

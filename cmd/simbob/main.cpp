@@ -37,6 +37,8 @@ int main(int argc, char** argv) {
                 "Run twice in this process; fail naming the first step and body where the runs differ");
   run->add_flag("--batch-child", ra.batch_child, "(internal) started by simbob batch")->group("");
   addCommon(run, common);
+  // A batch manifest appends per-scene options after the batch-wide ones: the last one wins.
+  for (CLI::Option* o : run->get_options()) o->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
 
   std::string check_scene;
   CLI::App* check = app.add_subcommand("check", "Load and validate a scene; report every problem found");

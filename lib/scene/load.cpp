@@ -67,6 +67,9 @@ std::string familiesText(const ParamSpec& p) {
   return s;
 }
 
+// "RCSphereGeom 'Ball.Geom': " before a message; nothing for the scene root.
+std::string prefix(const std::string& what) { return what.empty() ? std::string() : prefix(what) + ""; }
+
 const char* rangeText(Range r) {
   switch (r) {
     case Range::Any: return "";
@@ -113,7 +116,10 @@ class Builder {
     }
     if (register_key && t->family != Family::Struct) registerKey(index);
     const std::string qkey = scene_.at(index).qkey;
-    const std::string what = t->name + (qkey.empty() ? std::string() : " '" + qkey + "'");
+    // The root <Simulation> needs no name in messages: the file:line says where.
+    const std::string what = parent < 0 && t->family == Family::Struct && t->name == "Simulation"
+                                 ? std::string()
+                                 : t->name + (qkey.empty() ? std::string() : " '" + qkey + "'");
 
     for (size_t pi = 0; pi < t->params.size(); ++pi) {
       const ParamSpec& p = t->params[pi];
@@ -126,7 +132,7 @@ class Builder {
           if (v.present) {
             slot.loc = {loc.file, v.line};
             if (!v.error.empty()) {
-              diag_.error(slot.loc, what + ": " + v.error);
+              diag_.error(slot.loc, prefix(what) + v.error);
             } else if (parseInto(p, v.text, &slot.value, slot.loc, what)) {
               slot.set = true;
             }
@@ -176,9 +182,9 @@ class Builder {
         std::string near = didYouMean(name, names);
         bool duplicate = t->paramIndex(name) >= 0 || (src->ignoresCase() && t->paramIndexIgnoreCase(name) >= 0);
         if (duplicate)
-          diag_.error({loc.file, line}, what + ": parameter '" + name + "' given twice");
+          diag_.error({loc.file, line}, prefix(what) + "parameter '" + name + "' given twice");
         else
-          diag_.error({loc.file, line}, what + ": parameter '" + name + "' unknown" +
+          diag_.error({loc.file, line}, prefix(what) + "parameter '" + name + "' unknown" +
                                             (near.empty() ? "" : " (did you mean '" + near + "'?)"));
       }
     }
@@ -195,14 +201,14 @@ class Builder {
     std::string what = t->name + " '" + c.qkey + "'";
     SourceLoc at = file_slot.set ? file_slot.loc : loc;
     if (file.empty()) {
-      diag_.error(at, what + ": parameter 'File' is required");
+      diag_.error(at, prefix(what) + "parameter 'File' is required");
       return;
     }
     std::filesystem::path p(file);
     if (p.is_relative()) p = std::filesystem::path(loc.file).parent_path() / p;
     std::string path = p.lexically_normal().string();
     if (import_stack_.size() >= kMaxImportDepth) {
-      diag_.error(at, what + ": imports nested deeper than " + std::to_string(kMaxImportDepth) + " files");
+      diag_.error(at, prefix(what) + "imports nested deeper than " + std::to_string(kMaxImportDepth) + " files");
       return;
     }
     std::error_code ec;
@@ -211,12 +217,12 @@ class Builder {
     if (std::find(import_stack_.begin(), import_stack_.end(), canon) != import_stack_.end()) {
       std::string chain;
       for (const auto& f : import_stack_) chain += f + " -> ";
-      diag_.error(at, what + ": cyclic import: " + chain + canon);
+      diag_.error(at, prefix(what) + "cyclic import: " + chain + canon);
       return;
     }
     std::string text, err;
     if (!readFile(path, &text, &err)) {
-      diag_.error(at, what + ": cannot read import '" + path + "': " + err, ErrorKind::MissingInput);
+      diag_.error(at, prefix(what) + "cannot read import '" + path + "': " + err, ErrorKind::MissingInput);
       return;
     }
     addFile(path, text);
@@ -276,7 +282,7 @@ class Builder {
     opts.allow_infinite = p.allow_infinite;
     ParseResult r = parseValue(p.type, text, p.table, opts);
     if (!r) {
-      diag_.error(loc, what + ": parameter '" + p.name + "': " + r.error);
+      diag_.error(loc, prefix(what) + "parameter '" + p.name + "': " + r.error);
       return false;
     }
     if (p.range != Range::Any) {
@@ -284,7 +290,7 @@ class Builder {
       if (auto* d = std::get_if<double>(&*r.value)) v = *d;
       if (auto* i = std::get_if<int64_t>(&*r.value)) v = static_cast<double>(*i);
       if (!inRange(p.range, v)) {
-        diag_.error(loc, what + ": parameter '" + p.name + "' " + rangeText(p.range) + ", got '" + text + "'");
+        diag_.error(loc, prefix(what) + "parameter '" + p.name + "' " + rangeText(p.range) + ", got '" + text + "'");
         return false;
       }
     }
@@ -313,7 +319,7 @@ class Builder {
     Link link;
     link.loc = {file, l.line};
     if (!l.error.empty()) {
-      diag_.error(link.loc, what + ": " + l.error);
+      diag_.error(link.loc, prefix(what) + l.error);
       return link;
     }
     if (!l.ref.empty()) {
@@ -327,12 +333,12 @@ class Builder {
         std::vector<std::string> names;
         for (const auto& mm : reg_.macros()) names.push_back(mm.name);
         std::string near = didYouMean(l.macro, names);
-        diag_.error(link.loc, what + ": unknown Macro '" + l.macro + "'" +
+        diag_.error(link.loc, prefix(what) + "unknown Macro '" + l.macro + "'" +
                                   (near.empty() ? "" : " (did you mean '" + near + "'?)"));
         return link;
       }
       if (!familyAccepted(p, m->family)) {
-        diag_.error(link.loc, what + ": Macro '" + m->name + "' makes a " + familyName(m->family) + ", parameter '" +
+        diag_.error(link.loc, prefix(what) + "Macro '" + m->name + "' makes a " + familyName(m->family) + ", parameter '" +
                                   p.name + "' needs a " + familiesText(p));
         return link;
       }
@@ -343,12 +349,12 @@ class Builder {
     if (!t && l.body && l.body->ignoresCase()) t = reg_.findIgnoreCase(l.type);
     if (!t || t->family == Family::Struct) {
       std::string near = reg_.suggestType(l.type);
-      diag_.error(link.loc, what + ": unknown component type '" + l.type + "'" +
+      diag_.error(link.loc, prefix(what) + "unknown component type '" + l.type + "'" +
                                 (near.empty() ? "" : " (did you mean '" + near + "'?)"));
       return link;
     }
     if (!familyAccepted(p, t->family)) {
-      diag_.error(link.loc, what + ": parameter '" + p.name + "' needs a " + familiesText(p) + ", got " + t->name +
+      diag_.error(link.loc, prefix(what) + "parameter '" + p.name + "' needs a " + familiesText(p) + ", got " + t->name +
                                 " (a " + familyName(t->family) + ")");
       return link;
     }

@@ -1,0 +1,772 @@
+#include "simbob/plot.h"
+
+#include <cairo-svg.h>
+#include <cairo.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+namespace simbob {
+namespace {
+
+// Tableau-like palette: distinct hues that stay readable on white and print in grey.
+constexpr PlotColor kPalette[kMaxPlotBodies] = {
+    {31, 119, 180}, {255, 127, 14}, {44, 160, 44},  {214, 39, 40},
+    {148, 103, 189}, {140, 86, 75}, {227, 119, 194}, {23, 190, 207},
+};
+
+constexpr int kMinWidth = 200;
+constexpr int kMinHeight = 300;
+constexpr int kMaxSide = 10000;
+constexpr int kPanelHeight = 300;  // default height per panel when PlotOptions::height == 0
+constexpr int kPanels = 3;
+
+// Layout, in pixels.
+constexpr double kOuterPad = 16;       // image edge to title / legend
+constexpr double kMarginRight = 28;    // box right edge to image edge (room for the last label)
+constexpr double kTitleSize = 17;      // font size of the headline
+constexpr double kTextSize = 12;       // font size of labels and legend
+constexpr double kPanelTitleSize = 13;
+constexpr double kLegendRowH = 18;
+constexpr double kLegendSwatch = 28;   // length of the line sample in a legend entry
+constexpr double kPanelTitleH = 22;    // above each box
+constexpr double kTickLabelH = 20;     // below each box
+constexpr double kPanelGap = 8;        // between panels
+constexpr double kFooterH = 28;        // "time [s]"
+constexpr double kTickLen = 5;
+constexpr double kLineWidth = 2.0;     // 2 px: a horizontal line always fully covers one row
+constexpr double kGoldenWidth = 1.5;
+constexpr double kDash[] = {7.0, 4.0};
+constexpr size_t kMaxLabelChars = 48;
+constexpr double kMinBoxSide = 30;     // smallest usable panel box
+constexpr double kPi = 3.14159265358979323846;  // body keys longer than this are shortened in the legend
+
+constexpr const char* kPanelTitles[kPanels] = {"x [m]", "y [m]", "z [m]"};
+
+enum class Format { Png, Svg };
+
+struct Rect {
+  double x = 0, y = 0, w = 0, h = 0;
+};
+
+/// A value range with its "nice" ticks.
+struct Axis {
+  double lo = 0, hi = 1;
+  double step = 1;
+  std::vector<double> ticks;
+  std::vector<std::string> labels;
+};
+
+/// One plotted body: its index in the actual and (if any) the golden trajectory.
+struct Series {
+  size_t actual = 0;
+  size_t golden = SIZE_MAX;
+  PlotColor color;
+  std::string label;
+};
+
+void setError(Error* err, ErrorKind kind, std::string file, std::string message) {
+  if (!err) return;
+  err->kind = kind;
+  err->loc.file = std::move(file);
+  err->loc.line = 0;
+  err->message = std::move(message);
+}
+
+char lowerAscii(char c) { return (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c; }
+
+// Levenshtein distance, ASCII case-insensitive; two rows keep it O(min) in memory.
+size_t editDistance(std::string_view a, std::string_view b) {
+  std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t sub = prev[j - 1] + (lowerAscii(a[i - 1]) == lowerAscii(b[j - 1]) ? 0 : 1);
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, sub});
+    }
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+// "(did you mean 'k'?)" for a close key, else a short list of what exists.
+std::string bodySuggestion(const std::string& wanted, const std::vector<std::string>& keys) {
+  const std::string* best = nullptr;
+  size_t best_dist = SIZE_MAX;
+  for (const std::string& k : keys) {
+    const size_t d = editDistance(wanted, k);
+    if (d < best_dist) {
+      best = &k;
+      best_dist = d;
+    }
+  }
+  const size_t limit = std::max<size_t>(2, wanted.size() / 3);
+  if (best && best_dist <= limit && best_dist < best->size()) {
+    return " (did you mean '" + *best + "'?)";
+  }
+  std::string out = " (bodies: ";
+  const size_t shown = std::min<size_t>(keys.size(), 5);
+  for (size_t i = 0; i < shown; ++i) {
+    if (i) out += ", ";
+    out += keys[i];
+  }
+  if (keys.size() > shown) out += ", ...";
+  return out + ")";
+}
+
+std::string lowerExtension(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  const size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = path.substr(dot);
+  for (char& c : ext) c = lowerAscii(c);
+  return ext;
+}
+
+// Valid UTF-8 without control characters: cairo's toy text API puts the context into an error
+// state on invalid UTF-8, which would silently stop all further drawing.
+std::string displayText(std::string_view s, size_t max_chars) {
+  std::string out;
+  size_t chars = 0;
+  size_t i = 0;
+  while (i < s.size()) {
+    if (chars == max_chars) {
+      out += "...";
+      break;
+    }
+    const auto c = static_cast<unsigned char>(s[i]);
+    size_t len = 0;
+    uint32_t cp = 0;
+    if (c < 0x80) {
+      len = 1;
+      cp = c;
+    } else if ((c & 0xE0) == 0xC0) {
+      len = 2;
+      cp = c & 0x1F;
+    } else if ((c & 0xF0) == 0xE0) {
+      len = 3;
+      cp = c & 0x0F;
+    } else if ((c & 0xF8) == 0xF0) {
+      len = 4;
+      cp = c & 0x07;
+    }
+    bool ok = len > 0 && i + len <= s.size();
+    for (size_t k = 1; ok && k < len; ++k) {
+      const auto cc = static_cast<unsigned char>(s[i + k]);
+      ok = (cc & 0xC0) == 0x80;
+      cp = (cp << 6) | (cc & 0x3F);
+    }
+    static constexpr uint32_t kMinForLen[5] = {0, 0, 0x80, 0x800, 0x10000};
+    ok = ok && cp >= kMinForLen[len] && cp <= 0x10FFFF && !(cp >= 0xD800 && cp <= 0xDFFF);
+    if (!ok) {
+      out += '?';
+      i += 1;
+    } else if (cp < 0x20 || cp == 0x7F) {
+      out += '?';
+      i += len;
+    } else {
+      out.append(s.data() + i, len);
+      i += len;
+    }
+    ++chars;
+  }
+  return out;
+}
+
+// 1, 2 or 5 times a power of ten, the smallest such value >= raw.
+double niceStep(double raw) {
+  const double base = std::pow(10.0, std::floor(std::log10(raw)));
+  const double f = raw / base;
+  const double m = f <= 1.0 ? 1.0 : f <= 2.0 ? 2.0 : f <= 5.0 ? 5.0 : 10.0;
+  return m * base;
+}
+
+std::string formatTick(double v, double step, double max_abs) {
+  char buf[64];
+  const int step_exp = static_cast<int>(std::floor(std::log10(step) + 1e-9));
+  if (max_abs >= 1e7 || step_exp < -6) {
+    // Enough significant digits to tell neighbouring ticks apart.
+    const int mag_exp = max_abs > 0 ? static_cast<int>(std::floor(std::log10(max_abs))) : step_exp;
+    const int digits = std::clamp(mag_exp - step_exp + 1, 1, 17);
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  } else {
+    std::snprintf(buf, sizeof buf, "%.*f", std::max(0, -step_exp), v);
+  }
+  return buf;
+}
+
+/// Ticks for [lo, hi] drawn over `pixels`, about one per `px_per_tick`.
+Axis makeAxis(double lo, double hi, double pixels, double px_per_tick) {
+  Axis a;
+  a.lo = lo;
+  a.hi = hi;
+  const double target = std::max(2.0, std::floor(pixels / px_per_tick));
+  a.step = niceStep((hi - lo) / target);
+  const double k0 = std::ceil(lo / a.step - 1e-9);
+  const double k1 = std::floor(hi / a.step + 1e-9);
+  for (double k = k0; k <= k1 && a.ticks.size() < 100; k += 1.0) {
+    double v = k * a.step;
+    if (std::fabs(v) < a.step * 1e-9) v = 0.0;  // never print "-0"
+    a.ticks.push_back(v);
+  }
+  double max_abs = 0;
+  for (double v : a.ticks) max_abs = std::max(max_abs, std::fabs(v));
+  for (double v : a.ticks) a.labels.push_back(formatTick(v, a.step, max_abs));
+  return a;
+}
+
+/// A constant (or empty) range gets room around it; a real one 5% padding per side.
+void padRange(double* lo, double* hi, double pad_fraction) {
+  if (*lo > *hi) {  // no data at all
+    *lo = -1.0;
+    *hi = 1.0;
+    return;
+  }
+  const double mag = std::max({1.0, std::fabs(*lo), std::fabs(*hi)});
+  if (*hi - *lo <= 1e-12 * mag) {
+    const double c = 0.5 * (*lo + *hi);
+    const double half = std::max(0.5, std::fabs(c) * 0.1);
+    *lo = c - half;
+    *hi = c + half;
+    return;
+  }
+  const double pad = (*hi - *lo) * pad_fraction;
+  *lo -= pad;
+  *hi += pad;
+}
+
+void setColor(cairo_t* cr, PlotColor c) {
+  cairo_set_source_rgb(cr, c.r / 255.0, c.g / 255.0, c.b / 255.0);
+}
+
+void setGray(cairo_t* cr, double v) { cairo_set_source_rgb(cr, v, v, v); }
+
+void setFont(cairo_t* cr, double size, bool bold) {
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL,
+                         bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, size);
+}
+
+double textWidth(cairo_t* cr, const std::string& s) {
+  cairo_text_extents_t ext;
+  cairo_text_extents(cr, s.c_str(), &ext);
+  return ext.x_advance;
+}
+
+/// Draws s with its baseline at y; align 0 = left, 0.5 = centre, 1 = right of x.
+void drawText(cairo_t* cr, const std::string& s, double x, double y, double align) {
+  cairo_move_to(cr, x - align * textWidth(cr, s), y);
+  cairo_show_text(cr, s.c_str());
+}
+
+/// Maps data to device coordinates inside one panel box.
+struct Mapper {
+  Rect box;
+  double t0 = 0, t1 = 1, v0 = 0, v1 = 1;
+  double x(double t) const { return box.x + (t - t0) / (t1 - t0) * box.w; }
+  double y(double v) const { return box.y + box.h - (v - v0) / (v1 - v0) * box.h; }
+};
+
+/// Pixel column of every sample time: the unit of decimation.
+std::vector<int32_t> sampleColumns(const Trajectory& tr, double t0, double t1, double width) {
+  std::vector<int32_t> cols(tr.times.size());
+  const double max_col = std::max(0.0, std::ceil(width) - 1);
+  for (size_t s = 0; s < tr.times.size(); ++s) {
+    const double c = std::floor((tr.times[s] - t0) / (t1 - t0) * width);
+    cols[s] = static_cast<int32_t>(std::clamp(c, 0.0, max_col));
+  }
+  return cols;
+}
+
+/// Adds one component of one body as sub-paths (a break at every missing row), keeping per pixel
+/// column only the first, lowest, highest and last sample so long trajectories stay cheap to
+/// draw while spikes survive. Isolated samples are collected in `dots`.
+void addSeriesPath(cairo_t* cr, const Trajectory& tr, size_t body, int comp,
+                   const std::vector<int32_t>& cols, const Mapper& m, std::vector<size_t>* run,
+                   std::vector<size_t>* dots) {
+  run->clear();
+  bool open = false;  // a column bucket is being filled
+  int32_t col = 0;
+  size_t first = 0, last = 0, lo = 0, hi = 0;
+  double lo_v = 0, hi_v = 0;
+
+  auto flushBucket = [&]() {
+    if (!open) return;
+    size_t picks[4] = {first, lo, hi, last};
+    std::sort(picks, picks + 4);
+    for (size_t p : picks) {
+      if (run->empty() || run->back() != p) run->push_back(p);
+    }
+    open = false;
+  };
+  auto emitRun = [&]() {
+    flushBucket();
+    if (run->size() == 1) {
+      dots->push_back(run->front());
+    } else if (run->size() > 1) {
+      for (size_t i = 0; i < run->size(); ++i) {
+        const size_t s = (*run)[i];
+        const double px = m.x(tr.times[s]);
+        const double py = m.y(tr.pose(s, body)[comp]);
+        if (i == 0) {
+          cairo_move_to(cr, px, py);
+        } else {
+          cairo_line_to(cr, px, py);
+        }
+      }
+    }
+    run->clear();
+  };
+
+  for (size_t s = 0; s < tr.times.size(); ++s) {
+    const double* p = tr.pose(s, body);
+    if (!p) {
+      emitRun();
+      continue;
+    }
+    const double v = p[comp];
+    if (!open || cols[s] != col) {
+      flushBucket();
+      open = true;
+      col = cols[s];
+      first = last = lo = hi = s;
+      lo_v = hi_v = v;
+      continue;
+    }
+    last = s;
+    if (v < lo_v) {
+      lo_v = v;
+      lo = s;
+    }
+    if (v > hi_v) {
+      hi_v = v;
+      hi = s;
+    }
+  }
+  emitRun();
+}
+
+/// Strokes one series (solid or dashed) and marks its isolated samples with dots.
+void drawSeries(cairo_t* cr, const Trajectory& tr, size_t body, int comp,
+                const std::vector<int32_t>& cols, const Mapper& m, PlotColor color, bool dashed,
+                std::vector<size_t>* run) {
+  std::vector<size_t> dots;
+  cairo_new_path(cr);
+  addSeriesPath(cr, tr, body, comp, cols, m, run, &dots);
+  setColor(cr, color);
+  cairo_set_line_width(cr, dashed ? kGoldenWidth : kLineWidth);
+  if (dashed) cairo_set_dash(cr, kDash, 2, 0);
+  cairo_stroke(cr);
+  cairo_set_dash(cr, nullptr, 0, 0);
+  for (size_t s : dots) {
+    const double r = dashed ? 2.5 : 3.0;
+    cairo_new_sub_path(cr);
+    cairo_arc(cr, m.x(tr.times[s]), m.y(tr.pose(s, body)[comp]), r, 0, 2 * kPi);
+  }
+  cairo_fill(cr);
+}
+
+void drawLegendSwatch(cairo_t* cr, double x, double y, PlotColor color, bool dashed) {
+  cairo_new_path(cr);
+  cairo_move_to(cr, x, y);
+  cairo_line_to(cr, x + kLegendSwatch, y);
+  setColor(cr, color);
+  cairo_set_line_width(cr, dashed ? kGoldenWidth : kLineWidth);
+  if (dashed) cairo_set_dash(cr, kDash, 2, 0);
+  cairo_stroke(cr);
+  cairo_set_dash(cr, nullptr, 0, 0);
+}
+
+struct LegendItem {
+  std::string label;
+  PlotColor color;
+  bool dashed = false;
+};
+
+/// Everything needed to draw, computed before any drawing.
+struct Scene {
+  const Trajectory* actual = nullptr;
+  const Trajectory* golden = nullptr;
+  std::vector<Series> series;
+  std::string title;
+  double t_lo = 0, t_hi = 1;
+  double v_lo[kPanels] = {0, 0, 0};
+  double v_hi[kPanels] = {0, 0, 0};
+};
+
+/// Lays out and draws everything; returns why the image is too small for the layout, else "".
+std::string render(cairo_t* cr, const Scene& sc, double width, double height) {
+  cairo_font_options_t* fo = cairo_font_options_create();
+  // Unhinted grey-scale text: identical metrics on every surface type and display setting.
+  cairo_font_options_set_hint_style(fo, CAIRO_HINT_STYLE_NONE);
+  cairo_font_options_set_hint_metrics(fo, CAIRO_HINT_METRICS_OFF);
+  cairo_font_options_set_antialias(fo, CAIRO_ANTIALIAS_GRAY);
+  cairo_set_font_options(cr, fo);
+  cairo_font_options_destroy(fo);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
+
+  setGray(cr, 1.0);
+  cairo_paint(cr);
+
+  // Headline.
+  double y = kOuterPad;
+  setFont(cr, kTitleSize, true);
+  setGray(cr, 0.1);
+  drawText(cr, sc.title, kOuterPad, y + kTitleSize, 0);
+  y += kTitleSize + 10;
+
+  // Legend, wrapped into rows.
+  std::vector<LegendItem> items;
+  for (const Series& s : sc.series) items.push_back({s.label, s.color, false});
+  if (sc.golden) items.push_back({"golden", PlotColor{90, 90, 90}, true});
+  setFont(cr, kTextSize, false);
+  double lx = kOuterPad;
+  double row_y = y + kLegendRowH * 0.5;
+  for (const LegendItem& it : items) {
+    const double w = kLegendSwatch + 6 + textWidth(cr, it.label);
+    if (lx > kOuterPad && lx + w > width - kOuterPad) {
+      lx = kOuterPad;
+      row_y += kLegendRowH;
+    }
+    drawLegendSwatch(cr, lx, row_y, it.color, it.dashed);
+    setGray(cr, 0.1);
+    drawText(cr, it.label, lx + kLegendSwatch + 6, row_y + kTextSize * 0.35, 0);
+    lx += w + 20;
+  }
+  const double panels_top = row_y + kLegendRowH * 0.5 + 6;
+  const double slot_h = (height - kFooterH - panels_top) / kPanels;
+  const double box_h = slot_h - kPanelTitleH - kTickLabelH - kPanelGap;
+  if (box_h < kMinBoxSide) {
+    return "plot height " + std::to_string(static_cast<int>(height)) +
+           " px is too small for three panels and the legend";
+  }
+
+  // Value axes first: their widest label decides the left margin.
+  Axis vaxes[kPanels];
+  double label_w = 0;
+  for (int p = 0; p < kPanels; ++p) {
+    vaxes[p] = makeAxis(sc.v_lo[p], sc.v_hi[p], box_h, 40);
+    for (const std::string& l : vaxes[p].labels) label_w = std::max(label_w, textWidth(cr, l));
+  }
+  const double box_x = std::floor(std::max(50.0, label_w + kTickLen + 12));
+  const double box_w = std::floor(width - kMarginRight - box_x);
+  if (box_w < kMinBoxSide) {
+    return "plot width " + std::to_string(static_cast<int>(width)) +
+           " px is too small for the axis labels";
+  }
+  const Axis taxis = makeAxis(sc.t_lo, sc.t_hi, box_w, 90);
+
+  const std::vector<int32_t> actual_cols = sampleColumns(*sc.actual, sc.t_lo, sc.t_hi, box_w);
+  std::vector<int32_t> golden_cols;
+  if (sc.golden) golden_cols = sampleColumns(*sc.golden, sc.t_lo, sc.t_hi, box_w);
+  std::vector<size_t> run;
+
+  for (int p = 0; p < kPanels; ++p) {
+    const double slot_y = panels_top + p * slot_h;
+    Mapper m;
+    m.box = Rect{box_x, std::floor(slot_y + kPanelTitleH), box_w, std::floor(box_h)};
+    m.t0 = sc.t_lo;
+    m.t1 = sc.t_hi;
+    m.v0 = vaxes[p].lo;
+    m.v1 = vaxes[p].hi;
+    const Rect& b = m.box;
+
+    setFont(cr, kPanelTitleSize, true);
+    setGray(cr, 0.1);
+    drawText(cr, kPanelTitles[p], b.x, b.y - 7, 0);
+
+    // Grid (half-pixel offsets keep 1 px lines crisp).
+    cairo_set_line_width(cr, 1.0);
+    setGray(cr, 0.9);
+    for (double t : taxis.ticks) {
+      const double px = std::round(m.x(t)) + 0.5;
+      cairo_move_to(cr, px, b.y);
+      cairo_line_to(cr, px, b.y + b.h);
+    }
+    for (double v : vaxes[p].ticks) {
+      const double py = std::round(m.y(v)) + 0.5;
+      cairo_move_to(cr, b.x, py);
+      cairo_line_to(cr, b.x + b.w, py);
+    }
+    cairo_stroke(cr);
+
+    // Data, clipped to the box; golden first so the actual lines stay on top.
+    cairo_save(cr);
+    cairo_rectangle(cr, b.x, b.y, b.w, b.h);
+    cairo_clip(cr);
+    if (sc.golden) {
+      for (const Series& s : sc.series) {
+        if (s.golden == SIZE_MAX) continue;
+        drawSeries(cr, *sc.golden, s.golden, p, golden_cols, m, s.color, true, &run);
+      }
+    }
+    for (const Series& s : sc.series) {
+      drawSeries(cr, *sc.actual, s.actual, p, actual_cols, m, s.color, false, &run);
+    }
+    cairo_restore(cr);
+
+    // Frame and ticks.
+    cairo_set_line_width(cr, 1.0);
+    setGray(cr, 0.25);
+    cairo_rectangle(cr, b.x + 0.5, b.y + 0.5, b.w - 1, b.h - 1);
+    for (double t : taxis.ticks) {
+      const double px = std::round(m.x(t)) + 0.5;
+      cairo_move_to(cr, px, b.y + b.h);
+      cairo_line_to(cr, px, b.y + b.h + kTickLen);
+    }
+    for (double v : vaxes[p].ticks) {
+      const double py = std::round(m.y(v)) + 0.5;
+      cairo_move_to(cr, b.x - kTickLen, py);
+      cairo_line_to(cr, b.x, py);
+    }
+    cairo_stroke(cr);
+
+    setFont(cr, kTextSize, false);
+    setGray(cr, 0.2);
+    for (size_t i = 0; i < taxis.ticks.size(); ++i) {
+      drawText(cr, taxis.labels[i], m.x(taxis.ticks[i]), b.y + b.h + kTickLen + kTextSize + 1,
+               0.5);
+    }
+    for (size_t i = 0; i < vaxes[p].ticks.size(); ++i) {
+      drawText(cr, vaxes[p].labels[i], b.x - kTickLen - 4, m.y(vaxes[p].ticks[i]) + kTextSize * 0.35,
+               1.0);
+    }
+  }
+
+  setFont(cr, kTextSize, true);
+  setGray(cr, 0.1);
+  drawText(cr, "time [s]", box_x + box_w * 0.5, height - 9, 0.5);
+  return "";
+}
+
+cairo_status_t appendToString(void* closure, const unsigned char* data, unsigned int length) {
+  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+  return CAIRO_STATUS_SUCCESS;
+}
+
+/// Renders to PNG or SVG bytes. On failure returns "" and sets *why and *kind (InvalidInput
+/// when the layout does not fit, Internal when cairo fails).
+std::string renderToBytes(const Scene& sc, Format format, int width, int height,
+                          std::string* why, ErrorKind* kind) {
+  std::string bytes;
+  cairo_surface_t* surface =
+      format == Format::Png
+          ? cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height)
+          : cairo_svg_surface_create_for_stream(appendToString, &bytes, width, height);
+  if (format == Format::Svg) cairo_svg_surface_set_document_unit(surface, CAIRO_SVG_UNIT_PX);
+  cairo_t* cr = cairo_create(surface);
+  const std::string layout_problem = render(cr, sc, width, height);
+  cairo_status_t st = cairo_status(cr);
+  cairo_destroy(cr);
+  if (!layout_problem.empty()) {
+    cairo_surface_destroy(surface);
+    *why = layout_problem;
+    *kind = ErrorKind::InvalidInput;
+    return {};
+  }
+  if (st == CAIRO_STATUS_SUCCESS) {
+    if (format == Format::Png) {
+      cairo_surface_flush(surface);
+      st = cairo_surface_write_to_png_stream(surface, appendToString, &bytes);
+    } else {
+      cairo_surface_finish(surface);  // the SVG stream is written here
+      st = cairo_surface_status(surface);
+    }
+  }
+  cairo_surface_destroy(surface);
+  if (st != CAIRO_STATUS_SUCCESS) {
+    *why = std::string("cannot render plot: cairo: ") + cairo_status_to_string(st);
+    *kind = ErrorKind::Internal;
+    return {};
+  }
+  return bytes;
+}
+
+/// Writes all bytes, retrying on EINTR and short writes; 0 or an errno value.
+int writeAll(int fd, const char* data, size_t size) {
+  while (size > 0) {
+    const ssize_t n = ::write(fd, data, size);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return errno;
+    }
+    if (n == 0) return ENOSPC;
+    data += n;
+    size -= static_cast<size_t>(n);
+  }
+  return 0;
+}
+
+// Temp file + rename: a failed write never leaves a truncated plot under the final name.
+bool writeFileAtomically(const std::string& path, const std::string& bytes, Error* err) {
+  const std::string tmp = path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd < 0) {
+    const int e = errno;
+    setError(err, ErrorKind::CannotCreate, path,
+             "cannot create plot file " + path + ": " + std::strerror(e));
+    return false;
+  }
+  int e = writeAll(fd, bytes.data(), bytes.size());
+  if (::close(fd) != 0 && e == 0 && errno != EINTR) e = errno;
+  if (e != 0) {
+    ::unlink(tmp.c_str());
+    setError(err, ErrorKind::IoError, path, std::string("write failed: ") + std::strerror(e));
+    return false;
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    e = errno;
+    ::unlink(tmp.c_str());
+    setError(err, ErrorKind::CannotCreate, path,
+             "cannot create plot file " + path + ": " + std::strerror(e));
+    return false;
+  }
+  return true;
+}
+
+/// Extends [lo, hi] of each panel by body b's positions in tr.
+void extendRanges(const Trajectory& tr, size_t b, double* lo, double* hi) {
+  for (size_t s = 0; s < tr.times.size(); ++s) {
+    const double* p = tr.pose(s, b);
+    if (!p) continue;
+    for (int c = 0; c < kPanels; ++c) {
+      lo[c] = std::min(lo[c], p[c]);
+      hi[c] = std::max(hi[c], p[c]);
+    }
+  }
+}
+
+std::unordered_map<std::string, size_t> bodyIndex(const Trajectory& tr) {
+  std::unordered_map<std::string, size_t> index;
+  for (size_t b = 0; b < tr.bodies.size(); ++b) index.emplace(tr.bodies[b], b);  // first wins
+  return index;
+}
+
+}  // namespace
+
+PlotColor plotColor(size_t i) { return kPalette[i % kMaxPlotBodies]; }
+
+bool plotTrajectory(const Trajectory& actual, const Trajectory* golden, const PlotOptions& options,
+                    const std::string& out_path, Error* err) {
+  const std::string ext = lowerExtension(out_path);
+  Format format;
+  if (ext == ".png") {
+    format = Format::Png;
+  } else if (ext == ".svg") {
+    format = Format::Svg;
+  } else {
+    setError(err, ErrorKind::InvalidInput, "",
+             "unsupported plot format " + (ext.empty() ? std::string("(no extension)") : "'" + ext + "'") +
+                 " for " + out_path + " (use .png or .svg)");
+    return false;
+  }
+
+  const int width = options.width;
+  const int height = options.height == 0 ? kPanelHeight * kPanels : options.height;
+  if (width < kMinWidth || width > kMaxSide || height < kMinHeight || height > kMaxSide) {
+    setError(err, ErrorKind::InvalidInput, "",
+             "plot size " + std::to_string(width) + "x" + std::to_string(height) +
+                 " out of range (width " + std::to_string(kMinWidth) + ".." +
+                 std::to_string(kMaxSide) + ", height " + std::to_string(kMinHeight) + ".." +
+                 std::to_string(kMaxSide) + " px)");
+    return false;
+  }
+  if (actual.sampleCount() == 0 || actual.bodyCount() == 0) {
+    setError(err, ErrorKind::InvalidInput, "", "nothing to plot: the trajectory has no samples");
+    return false;
+  }
+
+  // Which bodies, in legend order.
+  std::vector<size_t> selected;
+  std::string note;
+  if (options.bodies.empty()) {
+    const size_t n = std::min(actual.bodyCount(), kMaxPlotBodies);
+    for (size_t b = 0; b < n; ++b) selected.push_back(b);
+    if (actual.bodyCount() > n) {
+      note = " (first " + std::to_string(n) + " of " + std::to_string(actual.bodyCount()) +
+             " bodies)";
+    }
+  } else {
+    const auto index = bodyIndex(actual);
+    for (const std::string& key : options.bodies) {
+      const auto it = index.find(key);
+      if (it == index.end()) {
+        setError(err, ErrorKind::InvalidInput, "",
+                 "no body '" + key + "' in trajectory" + bodySuggestion(key, actual.bodies));
+        return false;
+      }
+      if (std::find(selected.begin(), selected.end(), it->second) == selected.end()) {
+        selected.push_back(it->second);
+      }
+    }
+    if (selected.size() > kMaxPlotBodies) {
+      setError(err, ErrorKind::InvalidInput, "",
+               "too many bodies for one plot: " + std::to_string(selected.size()) + " (at most " +
+                   std::to_string(kMaxPlotBodies) + ")");
+      return false;
+    }
+  }
+
+  Scene sc;
+  sc.actual = &actual;
+  sc.golden = (golden && golden->sampleCount() > 0) ? golden : nullptr;
+  sc.title = displayText(options.title.empty() ? "trajectory" : options.title, 200) + note;
+  std::unordered_map<std::string, size_t> golden_index;
+  if (sc.golden) golden_index = bodyIndex(*golden);
+  double lo[kPanels], hi[kPanels];
+  std::fill(lo, lo + kPanels, HUGE_VAL);
+  std::fill(hi, hi + kPanels, -HUGE_VAL);
+  for (size_t i = 0; i < selected.size(); ++i) {
+    Series s;
+    s.actual = selected[i];
+    s.color = plotColor(i);
+    s.label = displayText(actual.bodies[s.actual], kMaxLabelChars);
+    extendRanges(actual, s.actual, lo, hi);
+    if (sc.golden) {
+      const auto it = golden_index.find(actual.bodies[s.actual]);
+      if (it != golden_index.end()) {
+        s.golden = it->second;
+        extendRanges(*golden, s.golden, lo, hi);
+      } else {
+        s.label += " (no golden)";
+      }
+    }
+    sc.series.push_back(std::move(s));
+  }
+  for (int c = 0; c < kPanels; ++c) {
+    padRange(&lo[c], &hi[c], 0.05);
+    sc.v_lo[c] = lo[c];
+    sc.v_hi[c] = hi[c];
+  }
+  // Time spans both trajectories (times are increasing, so the ends suffice).
+  sc.t_lo = actual.times.front();
+  sc.t_hi = actual.times.back();
+  if (sc.golden) {
+    sc.t_lo = std::min(sc.t_lo, sc.golden->times.front());
+    sc.t_hi = std::max(sc.t_hi, sc.golden->times.back());
+  }
+  padRange(&sc.t_lo, &sc.t_hi, 0.0);
+
+  std::string why;
+  ErrorKind kind = ErrorKind::Internal;
+  const std::string bytes = renderToBytes(sc, format, width, height, &why, &kind);
+  if (bytes.empty()) {
+    setError(err, kind, "", why);
+    return false;
+  }
+  return writeFileAtomically(out_path, bytes, err);
+}
+
+}  // namespace simbob

@@ -13,6 +13,9 @@ int cmdCheck(const std::string& path) {
   Model model;
   int code = 0;
   if (!loadAndCompile(path, &scene, &model, &code, true)) return code;
+  Diagnostics lint;
+  lintModel(model, lint);
+  report(lint, true);
   g_log.info(path + ": ok (" + std::to_string(model.bodies.size()) + " mobile bodies, " +
              std::to_string(model.geoms.size()) + " geoms, " + std::to_string(model.joints.size()) + " joints)");
   return kExitOk;

@@ -11,6 +11,12 @@ namespace simbob {
 /// Fill *model from scene. Returns false (with messages in diag) if the scene is invalid.
 bool compileScene(const Scene& scene, Model* model, Diagnostics& diag);
 
+/// Warnings about legal scenes that make ODE unstable or wrong (`simbob check`): mass ratios
+/// across joints, bodies thin and fast enough to tunnel, a step too large for the fastest
+/// pendulum, joints far from their bodies, bodies overlapping at t = 0. Each says why and what
+/// to change.
+void lintModel(const Model& model, Diagnostics& diag);
+
 /// Volume (m^3) and inertia per unit density (m^5, about the body origin, body frame) of one
 /// placeable geom; planes have none.
 struct MassProps {

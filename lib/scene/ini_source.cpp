@@ -2,6 +2,8 @@
 // lists as NameCount + Name0.., components as X.Type / X.Key (and X.Ref / X.Macro).
 #include <algorithm>
 #include <cctype>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "scene/source.h"
 #include "simbob/values.h"
@@ -15,11 +17,16 @@ struct IniNode {
   bool has_value = false;
   std::string value;
   std::vector<IniNode> children;  // first-appearance order
+  std::unordered_map<std::string, size_t> index;  // lname -> children[i]; lookup only, never iterated
 
   IniNode* child(const std::string& lower) {
-    for (auto& c : children)
-      if (c.lname == lower) return &c;
-    return nullptr;
+    auto it = index.find(lower);
+    return it == index.end() ? nullptr : &children[it->second];
+  }
+  IniNode* add(IniNode n) {
+    index.emplace(n.lname, children.size());
+    children.push_back(std::move(n));
+    return &children.back();
   }
 };
 
@@ -51,7 +58,8 @@ std::string itemBase(const std::string& list_name) {
 
 class IniSource : public Source {
  public:
-  IniSource(IniNode* node, std::vector<std::string> pre_read) : node_(node), read_(std::move(pre_read)) {}
+  IniSource(IniNode* node, std::vector<std::string> pre_read)
+      : node_(node), read_(pre_read.begin(), pre_read.end()) {}
 
   int line() const override { return node_->line; }
   bool ignoresCase() const override { return true; }
@@ -94,12 +102,13 @@ class IniSource : public Source {
       std::string item = base + std::to_string(i);
       IniNode* c = take(item);
       if (!c) {
+        // One message for the first gap: a wrong count must not produce millions of errors.
         SourceLink missing;
         missing.present = true;
         missing.line = count->line;
         missing.error = base + "Count is " + count->value + " but " + item + " is missing";
         items.push_back(std::move(missing));
-        continue;
+        break;
       }
       items.push_back(linkFrom(c, item));
     }
@@ -116,7 +125,7 @@ class IniSource : public Source {
   std::vector<std::pair<std::string, int>> unread() const override {
     std::vector<std::pair<std::string, int>> out;
     for (const auto& c : node_->children)
-      if (std::find(read_.begin(), read_.end(), c.lname) == read_.end()) out.emplace_back(c.name, c.line);
+      if (!read_.count(c.lname)) out.emplace_back(c.name, c.line);
     return out;
   }
 
@@ -124,10 +133,7 @@ class IniSource : public Source {
   IniNode* take(const std::string& name) {
     std::string ln = lower(name);
     IniNode* c = node_->child(ln);
-    if (c && std::find(read_.begin(), read_.end(), ln) == read_.end()) {
-      read_.push_back(ln);
-      return c;
-    }
+    if (c && read_.insert(ln).second) return c;
     return nullptr;
   }
 
@@ -169,7 +175,7 @@ class IniSource : public Source {
   }
 
   IniNode* node_;
-  std::vector<std::string> read_;
+  std::unordered_set<std::string> read_;  // membership only, never iterated
 };
 
 }  // namespace
@@ -228,8 +234,11 @@ std::shared_ptr<IniDoc> parseIni(const std::string& text, std::string* error, in
       std::string lp = lower(part);
       IniNode* next = node->child(lp);
       if (!next) {
-        node->children.push_back(IniNode{part, lp, line_no, false, "", {}});
-        next = &node->children.back();
+        IniNode fresh;
+        fresh.name = part;
+        fresh.lname = lp;
+        fresh.line = line_no;
+        next = node->add(std::move(fresh));
       }
       node = next;
       if (dot == std::string::npos) break;

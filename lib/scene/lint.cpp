@@ -1,0 +1,320 @@
+// Warnings about legal scenes that make ODE unstable or wrong. They work on the compiled Model
+// (plain data), so they see exactly what the physics layer will get.
+#include <algorithm>
+#include <cstdio>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "simbob/compile.h"
+#include "simbob/transform.h"
+#include "simbob/values.h"
+
+namespace simbob {
+
+namespace {
+
+constexpr double kMassRatio = 100.0;       // QuickStep converges poorly beyond this
+constexpr double kStepsPerPeriod = 20.0;   // fewer steps per swing loses energy visibly
+constexpr double kAnchorFar = 10.0;        // anchor farther than this many body sizes
+constexpr double kAnchorFarMin = 2.0;      // m; pendulum rods up to this length are normal
+constexpr double kOverlap = 1e-3;          // m of penetration that counts as overlap
+constexpr int kMaxPerKind = 20;
+
+// Three significant digits: messages are for people.
+std::string approx(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+double boundingRadius(const GeomDef& g) {
+  switch (g.shape) {
+    case GeomShape::Box: return 0.5 * norm(g.size);
+    case GeomShape::Sphere: return g.size[0];
+    case GeomShape::Cylinder: return std::hypot(g.size[0], g.size[1] / 2);
+    case GeomShape::Capsule: return g.size[0] + g.size[1] / 2;
+    case GeomShape::Plane: return 0;
+  }
+  return 0;
+}
+
+double thickness(const GeomDef& g) {
+  switch (g.shape) {
+    case GeomShape::Box: return std::min({g.size[0], g.size[1], g.size[2]});
+    case GeomShape::Sphere:
+    case GeomShape::Cylinder:
+    case GeomShape::Capsule: return 2 * g.size[0];
+    case GeomShape::Plane: return 0;
+  }
+  return 0;
+}
+
+// Half extents of the geom's axis-aligned bounds in the global frame.
+Vec3 halfExtents(const GeomDef& g, const Quat& q) {
+  Vec3 local;
+  switch (g.shape) {
+    case GeomShape::Box: local = scale(g.size, 0.5); break;
+    case GeomShape::Sphere: return {g.size[0], g.size[0], g.size[0]};
+    case GeomShape::Cylinder: local = {g.size[0], g.size[0], g.size[1] / 2}; break;
+    case GeomShape::Capsule: local = {g.size[0], g.size[0], g.size[1] / 2 + g.size[0]}; break;
+    case GeomShape::Plane: return {0, 0, 0};
+  }
+  Mat3 r = toMatrix(q);
+  Vec3 out;
+  for (int i = 0; i < 3; ++i)
+    out[i] = std::fabs(r[i * 3]) * local[0] + std::fabs(r[i * 3 + 1]) * local[1] + std::fabs(r[i * 3 + 2]) * local[2];
+  return out;
+}
+
+// Lowest signed distance of the geom's surface below a plane (negative = penetrating).
+double planeClearance(const GeomDef& g, const Transform& t, const std::array<double, 4>& plane) {
+  Vec3 n{plane[0], plane[1], plane[2]};
+  double center = dot(n, t.p) - plane[3];
+  switch (g.shape) {
+    case GeomShape::Sphere: return center - g.size[0];
+    case GeomShape::Capsule: {
+      Vec3 axis = rotate(t.q, {0, 0, 1});
+      return center - std::fabs(dot(n, axis)) * g.size[1] / 2 - g.size[0];
+    }
+    case GeomShape::Box:
+    case GeomShape::Cylinder: {
+      Vec3 h = halfExtents(g, {1, 0, 0, 0});
+      Mat3 r = toMatrix(t.q);
+      // Support of the rotated box (a cylinder is treated as its bounding box) along -n.
+      double reach = 0;
+      for (int k = 0; k < 3; ++k) reach += std::fabs(n[0] * r[k] + n[1] * r[3 + k] + n[2] * r[6 + k]) * h[k];
+      return center - reach;
+    }
+    case GeomShape::Plane: return 1e300;
+  }
+  return 1e300;
+}
+
+struct Placed {
+  const GeomDef* g;
+  Transform t;   // global
+  Vec3 lo, hi;   // global bounds
+};
+
+class Linter {
+ public:
+  Linter(const Model& m, Diagnostics& d) : m_(m), d_(d) {}
+
+  void run() {
+    place();
+    massRatios();
+    pendulums();
+    anchors();
+    tunneling();
+    overlaps();
+    for (const auto& [kind, n] : suppressed_)
+      if (n > 0) d_.warning({}, "... and " + std::to_string(n) + " more warnings like '" + kind + "'");
+  }
+
+ private:
+  void warn(const std::string& kind, const SourceLoc& loc, const std::string& msg) {
+    if (++counts_[kind] > kMaxPerKind) {
+      ++suppressed_[kind];
+      return;
+    }
+    d_.warning(loc, msg);
+  }
+
+  void place() {
+    size_ = std::vector<double>(m_.bodies.size(), 0.0);
+    thin_ = std::vector<double>(m_.bodies.size(), 1e300);
+    for (const GeomDef& g : m_.geoms) {
+      if (g.shape == GeomShape::Plane) {
+        planes_.push_back(&g);
+        continue;
+      }
+      Placed p;
+      p.g = &g;
+      p.t = g.body >= 0 ? compose(m_.bodies[static_cast<size_t>(g.body)].pose, g.offset) : g.offset;
+      Vec3 h = halfExtents(g, p.t.q);
+      p.lo = sub(p.t.p, h);
+      p.hi = add(p.t.p, h);
+      placed_.push_back(p);
+      if (g.body >= 0) {
+        auto b = static_cast<size_t>(g.body);
+        size_[b] = std::max(size_[b], norm(g.offset.p) + boundingRadius(g));
+        thin_[b] = std::min(thin_[b], thickness(g));
+      }
+    }
+    for (const JointDef& j : m_.joints) {
+      int a = std::min(j.body1, j.body2), b = std::max(j.body1, j.body2);
+      if (a >= 0) joined_.insert({a, b});
+    }
+  }
+
+  double dt() const { return m_.settings.max_time_step; }
+  const BodyDef& body(int i) const { return m_.bodies[static_cast<size_t>(i)]; }
+
+  void massRatios() {
+    for (const JointDef& j : m_.joints) {
+      if (j.body1 < 0 || j.body2 < 0) continue;
+      double a = body(j.body1).mass, b = body(j.body2).mass;
+      double ratio = std::max(a, b) / std::min(a, b);
+      if (ratio > kMassRatio)
+        warn("mass ratio", j.loc,
+             "joint '" + j.key + "' connects masses " + approx(a) + " kg and " + approx(b) +
+                 " kg (ratio " + approx(std::round(ratio)) + " > " + approx(kMassRatio) +
+                 "): QuickStep converges slowly and joints stretch; bring the masses closer, raise "
+                 "SolverIterations or use Solver Step");
+    }
+  }
+
+  // The fastest gravity pendulum formed by a hinge or ball joint and its child body.
+  void pendulums() {
+    double g = norm(m_.settings.gravity);
+    if (g <= 0) return;
+    for (const JointDef& j : m_.joints) {
+      if (j.body2 < 0 || (j.kind != JointKind::Hinge && j.kind != JointKind::BallSocket)) continue;
+      const BodyDef& b = body(j.body2);
+      Vec3 r = sub(b.pose.p, j.anchor);
+      Vec3 gdir = scale(m_.settings.gravity, 1.0 / g);
+      double i_pivot = 0, lever = 0, g_eff = g;
+      Mat3 rot = toMatrix(b.pose.q);
+      auto inertiaAbout = [&](const Vec3& axis) {
+        // axis^T R I R^T axis
+        Vec3 local{0, 0, 0};
+        for (int k = 0; k < 3; ++k) local[k] = rot[k] * axis[0] + rot[3 + k] * axis[1] + rot[6 + k] * axis[2];
+        double s = 0;
+        for (int p = 0; p < 3; ++p)
+          for (int q = 0; q < 3; ++q) s += local[p] * b.inertia[p * 3 + q] * local[q];
+        return s;
+      };
+      if (j.kind == JointKind::Hinge) {
+        Vec3 axis = j.axis;
+        Vec3 perp = sub(r, scale(axis, dot(r, axis)));
+        lever = norm(perp);
+        double ga = dot(gdir, axis);
+        g_eff = g * std::sqrt(std::max(0.0, 1 - ga * ga));
+        i_pivot = inertiaAbout(axis) + b.mass * lever * lever;
+      } else {
+        lever = norm(r);
+        Vec3 axis = lever > 0 ? cross(scale(r, 1 / lever), gdir) : Vec3{1, 0, 0};
+        double n = norm(axis);
+        axis = n > 1e-9 ? scale(axis, 1 / n) : Vec3{1, 0, 0};
+        i_pivot = inertiaAbout(axis) + b.mass * lever * lever;
+      }
+      if (lever < 1e-9 || g_eff <= 0 || i_pivot <= 0) continue;
+      double period = 2 * kPi * std::sqrt(i_pivot / (b.mass * g_eff * lever));
+      if (dt() > period / kStepsPerPeriod)
+        warn("step size", j.loc,
+             "joint '" + j.key + "' makes a pendulum of period " + approx(period) + " s but the step is " +
+                 approx(dt()) + " s (fewer than " + approx(kStepsPerPeriod) +
+                 " steps per swing): the motion loses energy or blows up; use --dt " +
+                 approx(period / kStepsPerPeriod / 2) + " or smaller");
+    }
+  }
+
+  void anchors() {
+    for (const JointDef& j : m_.joints) {
+      if (j.kind == JointKind::Slider || j.kind == JointKind::Fixed) continue;
+      for (int bi : {j.body1, j.body2}) {
+        if (bi < 0) continue;
+        const BodyDef& b = body(bi);
+        double size = std::max(size_[static_cast<size_t>(bi)], 0.01);
+        double dist = norm(sub(b.pose.p, j.anchor));
+        if (dist > kAnchorFar * size && dist > kAnchorFarMin)
+          warn("anchor far", j.loc,
+               "joint '" + j.key + "' has its anchor " + approx(dist) + " m from body '" + b.key +
+                   "' (about " + approx(size) + " m in size): check the joint's Pose and Hinge/Anchor "
+                   "(RCLocalCoordinates are relative to the joint frame)");
+      }
+    }
+  }
+
+  void tunneling() {
+    double g = norm(m_.settings.gravity);
+    for (size_t i = 0; i < m_.bodies.size(); ++i) {
+      const BodyDef& b = m_.bodies[i];
+      if (thin_[i] >= 1e300) continue;
+      double fall = 0;
+      for (const GeomDef* p : planes_) {
+        Vec3 n{p->plane[0], p->plane[1], p->plane[2]};
+        if (g > 0 && dot(n, m_.settings.gravity) < 0) {
+          double h = dot(n, b.pose.p) - p->plane[3];
+          if (h > 0) fall = std::max(fall, std::sqrt(2 * g * h));
+        }
+      }
+      double speed = norm(b.lin_vel) + norm(b.ang_vel) * size_[i] + fall;
+      double travel = speed * dt();
+      if (travel > 0.5 * thin_[i])
+        warn("tunneling", b.loc,
+             "body '" + b.key + "' is " + approx(thin_[i]) + " m thin and may move " + approx(speed) +
+                 " m/s, " + approx(travel) + " m per step: it can pass through other bodies in one step; "
+                 "use a step below " + approx(0.5 * thin_[i] / speed) + " s or a thicker geom");
+    }
+  }
+
+  bool joined(int a, int b) const {
+    if (a > b) std::swap(a, b);
+    return joined_.count({a, b}) > 0;
+  }
+
+  std::string owner(const GeomDef& g) const { return g.key.empty() ? std::string("(static)") : g.key; }
+
+  SourceLoc loc(const GeomDef& g) const { return g.body >= 0 ? body(g.body).loc : SourceLoc{}; }
+
+  void overlaps() {
+    // Bodies penetrating static planes.
+    for (const Placed& p : placed_) {
+      if (p.g->body < 0) continue;
+      for (const GeomDef* plane : planes_) {
+        double c = planeClearance(*p.g, p.t, plane->plane);
+        if (c < -kOverlap)
+          warn("overlap", loc(*p.g),
+               "body '" + owner(*p.g) + "' starts " + approx(-c) + " m inside the plane of '" +
+                   owner(*plane) + "': ODE pushes it out violently at the first step; move it out");
+      }
+    }
+    // Pairs of geoms: sweep along x over sorted bounds.
+    std::vector<size_t> order(placed_.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+      return placed_[a].lo[0] < placed_[b].lo[0] || (placed_[a].lo[0] == placed_[b].lo[0] && a < b);
+    });
+    std::set<std::pair<int, int>> reported;
+    for (size_t oi = 0; oi < order.size(); ++oi) {
+      const Placed& a = placed_[order[oi]];
+      for (size_t oj = oi + 1; oj < order.size(); ++oj) {
+        const Placed& b = placed_[order[oj]];
+        if (b.lo[0] > a.hi[0] - kOverlap) break;
+        if (a.g->body == b.g->body || (a.g->body < 0 && b.g->body < 0)) continue;
+        if (a.g->body >= 0 && b.g->body >= 0 && joined(a.g->body, b.g->body)) continue;
+        double depth;
+        if (a.g->shape == GeomShape::Sphere && b.g->shape == GeomShape::Sphere) {
+          depth = a.g->size[0] + b.g->size[0] - norm(sub(a.t.p, b.t.p));
+        } else {
+          depth = 1e300;
+          for (int k = 0; k < 3; ++k) depth = std::min(depth, std::min(a.hi[k], b.hi[k]) - std::max(a.lo[k], b.lo[k]));
+        }
+        if (depth <= kOverlap) continue;
+        std::pair<int, int> key{std::min(a.g->body, b.g->body), std::max(a.g->body, b.g->body)};
+        if (!reported.insert(key).second) continue;
+        const GeomDef& mob = a.g->body >= 0 ? *a.g : *b.g;
+        warn("overlap", loc(mob),
+             "bodies '" + owner(*a.g) + "' and '" + owner(*b.g) + "' overlap by about " + approx(depth) +
+                 " m at t = 0: ODE pushes them apart violently at the first step; move them apart (or join "
+                 "them with a joint)");
+      }
+    }
+  }
+
+  const Model& m_;
+  Diagnostics& d_;
+  std::vector<double> size_, thin_;
+  std::vector<Placed> placed_;
+  std::vector<const GeomDef*> planes_;
+  std::set<std::pair<int, int>> joined_;
+  std::map<std::string, int> counts_, suppressed_;
+};
+
+}  // namespace
+
+void lintModel(const Model& model, Diagnostics& diag) { Linter(model, diag).run(); }
+
+}  // namespace simbob

@@ -1,0 +1,142 @@
+// lintModel: each warning fires on the scene it describes and stays silent on a sound one.
+#include <catch2/catch.hpp>
+
+#include "simbob/compile.h"
+#include "simbob/transform.h"
+
+using namespace simbob;
+
+namespace {
+
+Model base() {
+  Model m;
+  m.materials.push_back(MaterialDef{});
+  GeomDef ground;
+  ground.shape = GeomShape::Plane;
+  ground.key = "Ground";
+  ground.plane = {0, 1, 0, 0};
+  m.geoms.push_back(ground);
+  return m;
+}
+
+int addBody(Model& m, const std::string& key, Vec3 p, GeomShape shape, Vec3 size, double mass = 1.0) {
+  BodyDef b;
+  b.key = key;
+  b.loc = {"lint.xml", static_cast<int>(m.bodies.size()) + 10};
+  b.pose.p = p;
+  b.mass = mass;
+  b.inertia = {0.01 * mass, 0, 0, 0, 0.01 * mass, 0, 0, 0, 0.01 * mass};
+  m.bodies.push_back(b);
+  GeomDef g;
+  g.key = key;
+  g.shape = shape;
+  g.size = size;
+  g.body = static_cast<int>(m.bodies.size()) - 1;
+  m.geoms.push_back(g);
+  return g.body;
+}
+
+std::vector<std::string> warnings(const Model& m) {
+  Diagnostics d;
+  lintModel(m, d);
+  REQUIRE(d.ok());
+  std::vector<std::string> out;
+  for (const auto& w : d.warnings()) out.push_back(w.str());
+  return out;
+}
+
+bool anyContains(const std::vector<std::string>& ws, const std::string& part) {
+  for (const auto& w : ws)
+    if (w.find(part) != std::string::npos) return true;
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("a sound scene gives no warnings", "[scene][lint]") {
+  Model m = base();
+  // Boxes exactly resting on the ground and on each other: touching is not overlapping.
+  addBody(m, "Low", {0, 0.1, 0}, GeomShape::Box, {0.2, 0.2, 0.2});
+  addBody(m, "High", {0, 0.3, 0}, GeomShape::Box, {0.2, 0.2, 0.2});
+  addBody(m, "Ball", {1, 0.1, 0}, GeomShape::Sphere, {0.1, 0, 0});
+  CHECK(warnings(m).empty());
+}
+
+TEST_CASE("overlapping bodies and bodies inside a plane are reported", "[scene][lint]") {
+  Model m = base();
+  addBody(m, "A", {0, 1, 0}, GeomShape::Box, {0.4, 0.4, 0.4});
+  addBody(m, "B", {0.1, 1.1, 0}, GeomShape::Box, {0.4, 0.4, 0.4});
+  addBody(m, "Sunk", {3, 0.05, 0}, GeomShape::Sphere, {0.1, 0, 0});
+  auto ws = warnings(m);
+  CHECK(anyContains(ws, "lint.xml:10: bodies 'A' and 'B' overlap by about 0.3 m"));
+  CHECK(anyContains(ws, "lint.xml:12: body 'Sunk' starts 0.05 m inside the plane of 'Ground'"));
+  // Joined bodies may overlap: that is how a joint holds them.
+  JointDef j;
+  j.kind = JointKind::Fixed;
+  j.body1 = 0;
+  j.body2 = 1;
+  m.joints.push_back(j);
+  CHECK_FALSE(anyContains(warnings(m), "'A' and 'B' overlap"));
+}
+
+TEST_CASE("a large mass ratio across a joint is reported", "[scene][lint]") {
+  Model m = base();
+  int a = addBody(m, "Heavy", {0, 2, 0}, GeomShape::Sphere, {0.1, 0, 0}, 500.0);
+  int b = addBody(m, "Light", {1, 2, 0}, GeomShape::Sphere, {0.1, 0, 0}, 1.0);
+  JointDef j;
+  j.key = "Link";
+  j.loc = {"lint.xml", 40};
+  j.kind = JointKind::BallSocket;
+  j.body1 = a;
+  j.body2 = b;
+  j.anchor = {0.5, 2, 0};
+  m.joints.push_back(j);
+  CHECK(anyContains(warnings(m), "lint.xml:40: joint 'Link' connects masses 500 kg and 1 kg (ratio 500 > 100)"));
+  m.bodies[0].mass = 50;
+  CHECK_FALSE(anyContains(warnings(m), "ratio"));
+}
+
+TEST_CASE("thin fast bodies that can tunnel are reported", "[scene][lint]") {
+  Model m = base();
+  int i = addBody(m, "Bullet", {0, 0.5, 0}, GeomShape::Sphere, {0.01, 0, 0});
+  m.bodies[static_cast<size_t>(i)].lin_vel = {100, 0, 0};
+  // 100 m/s plus the fall from 0.5 m, times 1 ms, is about 0.1 m per step: more than half of 0.02 m.
+  CHECK(anyContains(warnings(m), "body 'Bullet' is 0.02 m thin and may move 103 m/s"));
+  m.bodies[static_cast<size_t>(i)].lin_vel = {1, 0, 0};
+  m.bodies[static_cast<size_t>(i)].pose.p = {0, 0.011, 0};
+  CHECK_FALSE(anyContains(warnings(m), "thin"));
+}
+
+TEST_CASE("a step too large for a pendulum is reported", "[scene][lint]") {
+  Model m = base();
+  // A point-like bob 0.01 m below its hinge: period 2 pi sqrt(0.01/9.81) = 0.2 s.
+  int b = addBody(m, "Bob", {0, 1.99, 0}, GeomShape::Sphere, {0.002, 0, 0}, 1.0);
+  m.bodies[static_cast<size_t>(b)].inertia = {1e-9, 0, 0, 0, 1e-9, 0, 0, 0, 1e-9};
+  JointDef j;
+  j.key = "Hinge";
+  j.kind = JointKind::Hinge;
+  j.body1 = -1;
+  j.body2 = b;
+  j.anchor = {0, 2, 0};
+  j.axis = {0, 0, 1};
+  m.joints.push_back(j);
+  m.settings.max_time_step = 0.001;  // 200 steps per period: fine
+  CHECK_FALSE(anyContains(warnings(m), "pendulum"));
+  m.settings.max_time_step = 0.02;  // 10 steps per period
+  CHECK(anyContains(warnings(m), "joint 'Hinge' makes a pendulum of period 0.201 s but the step is 0.02 s"));
+}
+
+TEST_CASE("a joint anchored far from its body is reported", "[scene][lint]") {
+  Model m = base();
+  int b = addBody(m, "Arm", {0, 1, 0}, GeomShape::Sphere, {0.05, 0, 0});
+  JointDef j;
+  j.key = "Far";
+  j.kind = JointKind::BallSocket;
+  j.body1 = -1;
+  j.body2 = b;
+  j.anchor = {10, 1, 0};
+  m.joints.push_back(j);
+  CHECK(anyContains(warnings(m), "joint 'Far' has its anchor 10 m from body 'Arm'"));
+  m.joints[0].anchor = {0, 2, 0};  // a 1 m pendulum rod is normal
+  CHECK_FALSE(anyContains(warnings(m), "anchor"));
+}

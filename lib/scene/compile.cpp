@@ -339,8 +339,9 @@ class Compiler {
         double radius = std::hypot(half[b], half[c2]);
         bool capped = geom.enumValue("GeomType") == 3;
         d.shape = capped ? GeomShape::Capsule : GeomShape::Cylinder;
+        // The bounds' edges along the axis lie at distance `radius` from it, so the cylindrical
+        // part must span the whole extent (a capsule's caps then lie beyond the bounds).
         double len = 2 * half[a];
-        if (capped) len = std::max(len - 2 * radius, 1e-9);  // caps cover the ends
         d.size = {radius, len, 0};
         if (axis == 0) d.offset.q = quatAxisAngle({0, 1, 0}, kPi / 2);
         if (axis == 1) d.offset.q = quatAxisAngle({1, 0, 0}, -kPi / 2);
@@ -671,7 +672,7 @@ class Compiler {
     Built child = body(bl.comp, &frame);
     if (!child.ok) return;
     JointDef j;
-    j.key = c.qkey;
+    j.key = bodyKey(c);  // renamed inside a RigidBodyClone, like the bodies
     j.loc = c.loc;
     j.body1 = parent.index;
     j.body2 = child.index;

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "scene/source.h"
@@ -68,7 +69,7 @@ std::string familiesText(const ParamSpec& p) {
 }
 
 // "RCSphereGeom 'Ball.Geom': " before a message; nothing for the scene root.
-std::string prefix(const std::string& what) { return what.empty() ? std::string() : prefix(what) + ""; }
+std::string prefix(const std::string& what) { return what.empty() ? std::string() : what + ": "; }
 
 const char* rangeText(Range r) {
   switch (r) {
@@ -300,8 +301,14 @@ class Builder {
 
   void registerKey(int index) {
     const Component& c = scene_.at(index);
+    // Below a component whose key was a duplicate every key repeats too: report the first only.
+    if (c.parent >= 0 && duplicates_.count(c.parent)) {
+      duplicates_.insert(index);
+      return;
+    }
     auto [it, inserted] = scene_.by_qkey.emplace(c.qkey, index);
     if (!inserted) {
+      duplicates_.insert(index);
       const Component& first = scene_.at(it->second);
       diag_.error(c.loc, c.type->name + ": duplicate key '" + c.qkey + "' (first used at " + first.loc.file + ":" +
                              std::to_string(first.loc.line) + "); give it a different Key");
@@ -342,7 +349,9 @@ class Builder {
                                   p.name + "' needs a " + familiesText(p));
         return link;
       }
-      link.comp = build(reg_.find(m->type), nullptr, default_key, false, parent, parent_qkey, link.loc);
+      // A Macro list item has no type element: it is keyed by the type it creates.
+      link.comp = build(reg_.find(m->type), nullptr, default_key.empty() ? m->type : default_key, false, parent,
+                        parent_qkey, link.loc);
       return link;
     }
     const TypeSpec* t = reg_.find(l.type);
@@ -373,6 +382,7 @@ class Builder {
   std::vector<std::string> import_stack_;
   uint64_t hash_ = 1469598103934665603ull;
   int depth_ = 0;
+  std::set<int> duplicates_;  // components whose qualified key was taken already
 };
 
 // Refs that connect rather than contain (a joint's Body, a drive's Joint, a camera's Body...):

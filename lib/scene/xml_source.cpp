@@ -66,6 +66,16 @@ class XmlSource : public Source {
       if (!isElement(item)) continue;
       if (doc_->reg->find(item.name())) {
         items.push_back(typeElement(item));
+      } else if (!isWrapper(item)) {
+        // Not a wrapper: a misspelled type element such as
+        // <RCMobileRigidBodyy Key=".."><Geom>..</Geom></RCMobileRigidBodyy>.
+        SourceLink l;
+        l.present = true;
+        l.line = doc_->lineOf(item);
+        std::string s = doc_->reg->suggestType(item.name());
+        l.error = std::string("unknown component type '") + item.name() + "'" +
+                  (s.empty() ? "" : " (did you mean '" + s + "'?)");
+        items.push_back(std::move(l));
       } else {
         items.push_back(linkFrom(item, false));
       }
@@ -107,6 +117,25 @@ class XmlSource : public Source {
   }
 
  private:
+  // A list item that is not a type element stands for a component only through a Ref or Macro
+  // attribute or a single type element inside it. Anything else that carries a Key, or holds
+  // no type element at all, is taken for a misspelled type element.
+  bool isWrapper(pugi::xml_node n) const {
+    if (n.attribute("Ref") || n.attribute("Macro")) return true;
+    int kids = 0, types = 0;
+    for (pugi::xml_node k : n.children()) {
+      if (!isElement(k)) continue;
+      ++kids;
+      if (doc_->reg->find(k.name())) ++types;
+    }
+    if (kids == 1 && types == 1) return true;
+    // <Component><RCMobilRigidBody/></Component>: a wrapper around a misspelled type element.
+    if (kids == 1 && !n.attribute("Key") && doc_->reg->suggestType(n.name()).empty() &&
+        !doc_->reg->suggestType(firstElement(n).name()).empty())
+      return true;
+    return !n.attribute("Key") && types > 0;
+  }
+
   static pugi::xml_node firstElement(pugi::xml_node n) {
     for (pugi::xml_node c : n.children())
       if (isElement(c)) return c;

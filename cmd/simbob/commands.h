@@ -17,6 +17,9 @@ struct RunArgs {
   bool json = false;
   bool check_determinism = false;
   bool batch_child = false;  ///< started by `simbob batch`: warnings stay out of the log
+  std::string space;         ///< overrides SceneSettings Space ("" = the scene's)
+  bool auto_disable = false; ///< turns SceneSettings AutoDisable on
+  int max_contacts = 0;      ///< overrides SceneSettings MaxContacts (0 = the scene's)
 };
 int cmdRun(RunArgs& a);
 

@@ -64,6 +64,17 @@ std::string typeText(const ParamSpec& p) {
   return "";
 }
 
+// A markdown table cell: '|' would end the cell (GitHub tables split on it even inside code
+// spans), so it is escaped; enums ("Off|Linear") and family lists ("A | B") contain it.
+std::string cell(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '|') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
 }  // namespace
 
 int cmdTypes(bool markdown) {
@@ -80,7 +91,8 @@ int cmdTypes(bool markdown) {
       if (!t.params.empty()) {
         out += "\n| Parameter | Type | Default | Unit | Meaning |\n|---|---|---|---|---|\n";
         for (const auto& p : t.params)
-          out += "| " + p.name + " | " + typeText(p) + " | `" + defaultText(p) + "` | " + p.unit + " | " + p.doc + " |\n";
+          out += "| " + cell(p.name) + " | " + cell(typeText(p)) + " | `" + cell(defaultText(p)) + "` | " +
+                 cell(p.unit) + " | " + cell(p.doc) + " |\n";
       }
     } else {
       out += t.name + " (" + familyName(t.family) + (aliases.empty() ? "" : "; alias " + aliases) + "): " + t.doc + "\n";
@@ -91,7 +103,7 @@ int cmdTypes(bool markdown) {
   }
   out += markdown ? "\n## Macros\n\n| Macro | Creates | Meaning |\n|---|---|---|\n" : "\nMacros:\n";
   for (const auto& m : reg.macros()) {
-    if (markdown) out += "| " + m.name + " | " + m.type + " | " + m.doc + " |\n";
+    if (markdown) out += "| " + cell(m.name) + " | " + cell(m.type) + " | " + cell(m.doc) + " |\n";
     else out += "  " + m.name + " -> " + m.type + " (" + familyName(m.family) + "): " + m.doc + "\n";
   }
   std::fwrite(out.data(), 1, out.size(), stdout);

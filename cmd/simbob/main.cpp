@@ -35,6 +35,11 @@ int main(int argc, char** argv) {
   run->add_flag("--json", ra.json, "Also print the run summary as JSON on stdout");
   run->add_flag("--check-determinism", ra.check_determinism,
                 "Run twice in this process; fail naming the first step and body where the runs differ");
+  run->add_option("--space", ra.space, "Collision space (overrides the scene): hash, sap, quadtree, simple")
+      ->check(CLI::IsMember({"hash", "sap", "quadtree", "simple"}));
+  run->add_flag("--auto-disable", ra.auto_disable, "Let ODE put resting bodies to sleep (changes trajectories)");
+  run->add_option("--max-contacts", ra.max_contacts, "Contact points per colliding pair (overrides the scene)")
+      ->check(CLI::Range(1, 64));
   run->add_flag("--batch-child", ra.batch_child, "(internal) started by simbob batch")->group("");
   addCommon(run, common);
   // A batch manifest appends per-scene options after the batch-wide ones: the last one wins.

@@ -133,6 +133,12 @@ int cmdRun(RunArgs& a) {
     return kExitUsage;
   }
   if (a.out.empty()) a.out = std::filesystem::path(a.scene).stem().string() + ".csv";
+  if (a.space == "hash") model.settings.space = SpaceKind::Hash;
+  if (a.space == "sap") model.settings.space = SpaceKind::SweepAndPrune;
+  if (a.space == "quadtree") model.settings.space = SpaceKind::QuadTree;
+  if (a.space == "simple") model.settings.space = SpaceKind::Simple;
+  if (a.auto_disable) model.settings.auto_disable = true;
+  if (a.max_contacts > 0) model.settings.max_contacts = a.max_contacts;
 
   std::vector<std::string> keys;
   for (const auto& b : model.bodies) keys.push_back(b.key);
@@ -174,6 +180,10 @@ int cmdRun(RunArgs& a) {
   summary["sim_time"] = r.sim_time;
   summary["sample_interval"] = a.sample_interval;
   summary["seed"] = a.seed;
+  static const char* kSpaceNames[] = {"hash", "sap", "quadtree", "simple"};
+  summary["space"] = kSpaceNames[static_cast<int>(model.settings.space)];
+  summary["auto_disable"] = model.settings.auto_disable;
+  summary["max_contacts"] = model.settings.max_contacts;
   summary["units"] = {{"time", "s"}, {"position", "m"}, {"orientation", "unit quaternion w x y z"}};
   summary["bodies"] = model.bodies.size();
   summary["steps"] = r.steps;
@@ -183,7 +193,11 @@ int cmdRun(RunArgs& a) {
   // What bit-identical reruns depend on.
   summary["reproducibility"] = {{"physics", physicsVersion()},
                                 {"precision", "double"},
-                                {"compiler", __VERSION__},
+                                #ifdef __clang__
+                                {"compiler", "clang " __clang_version__},
+#else
+                                {"compiler", "gcc " __VERSION__},
+#endif
                                 {"fp_contract", "off"},
                                 {"cpu_features", cpuFeatures()}};
 

@@ -73,6 +73,10 @@ struct JointDef {
   Vec3 axis{0, 0, 1};       ///< global unit vector (Hinge, Slider)
 };
 
+/// ODE collision space: how candidate pairs are found. Results differ between spaces (pairs
+/// arrive in another order), so the choice is part of a scene's reproducibility.
+enum class SpaceKind : uint8_t { Hash, SweepAndPrune, QuadTree, Simple };
+
 /// World and solver settings (SceneSettings in the scene file).
 struct SolverSettings {
   Vec3 gravity{0, -9.81, 0};  ///< m/s^2
@@ -83,6 +87,8 @@ struct SolverSettings {
   int iterations = 20;           ///< QuickStep iterations
   int max_contacts = 4;          ///< contact points per colliding geom pair
   bool quickstep = true;         ///< false: dWorldStep (exact LCP)
+  SpaceKind space = SpaceKind::Hash;
+  bool auto_disable = false;     ///< let ODE disable resting bodies (changes trajectories slightly)
 };
 
 struct Model {

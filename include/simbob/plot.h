@@ -40,15 +40,17 @@ struct PlotColor {
 /// The line colour of the i-th plotted body (fixed palette, cycles after kMaxPlotBodies).
 PlotColor plotColor(size_t i);
 
-/// Plots `actual` (solid lines) and, when `golden` is not null, the golden trajectory (dashed,
-/// same colour per body) into out_path. The format comes from the extension, case-insensitive:
-/// ".png" or ".svg". The time axis spans both trajectories; long trajectories are decimated to
-/// a few points per pixel column, so plotting is linear in the sample count. Same input ->
-/// same PNG bytes. The file is written to "<out_path>.tmp.<pid>" and renamed into place.
-/// Errors (*err set, false returned): ErrorKind::InvalidInput for an unsupported extension,
-/// an unknown body (with a "did you mean" suggestion), too many bodies, a bad size or an empty
-/// trajectory; ErrorKind::CannotCreate (loc.file = out_path) when the file cannot be created;
-/// ErrorKind::IoError when writing it fails; ErrorKind::Internal when cairo fails.
+/// Plots `actual` (solid lines) and, when `golden` is not null and has samples, the golden
+/// trajectory (dashed, same colour per body) into out_path. The format comes from the
+/// extension, case-insensitive: ".png" or ".svg". The time axis spans both trajectories; long
+/// trajectories are decimated to a few points per pixel column, so plotting is linear in the
+/// sample count. Same input -> same PNG or SVG bytes. The file is written to
+/// "<out_path>.tmp.<pid>" and renamed into place. Errors (*err set if not null, false returned):
+/// ErrorKind::InvalidInput for an unsupported extension (loc.file = out_path), an unknown body
+/// (with a "did you mean" suggestion), too many bodies, a size out of range or too small for
+/// the layout, or an empty actual trajectory; ErrorKind::CannotCreate (loc.file = out_path)
+/// when the file cannot be created; ErrorKind::IoError when writing it fails;
+/// ErrorKind::Internal when cairo fails.
 bool plotTrajectory(const Trajectory& actual, const Trajectory* golden, const PlotOptions& options,
                     const std::string& out_path, Error* err);
 

@@ -7,6 +7,7 @@ namespace simbob {
 static const EnumTable kFogMode{"FogMode", {{"Off", 0}, {"Linear", 1}, {"Exponential", 2},
                                             {"Exponential2", 3}}};
 static const EnumTable kSolver{"Solver", {{"QuickStep", 0}, {"Step", 1}}};
+static const EnumTable kSpace{"Space", {{"Hash", 0}, {"SweepAndPrune", 1}, {"QuadTree", 2}, {"Simple", 3}}};
 
 void registerSettings(Registry& r) {
   r.add({"FogSettings", Family::Struct, int(StructKind::FogSettings),
@@ -27,6 +28,8 @@ void registerSettings(Registry& r) {
           number("ERP", 0.2, "", "error reduction parameter of joints and contacts", Range::Unit),
           number("CFM", 1e-10, "", "constraint force mixing (softness)", Range::NonNegative),
           integer("MaxContacts", 4, "contact points per colliding pair of geoms", Range::Positive),
+          enumParam("Space", ValueType::Enum, &kSpace, 0, "collision space: Hash, SweepAndPrune, QuadTree, Simple (--space)"),
+          flag("AutoDisable", false, "let ODE put resting bodies to sleep (--auto-disable)"),
           valueParam("LightPos", ValueType::Vector, Vector4{{10, 10, 10, 1}}, "m", "light position"),
           color("LightColor", rgba(1, 1, 1), "light colour"),
           color("ClearColor", rgba(0.3, 0.3, 0.5), "background colour"),

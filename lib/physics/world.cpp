@@ -42,6 +42,37 @@ struct GeomInfo {
   bool sensor;
 };
 
+// The collision space chosen by the scene (SceneSettings Space, --space).
+dSpaceID createSpace(const Model& model) {
+  switch (model.settings.space) {
+    case SpaceKind::Hash: return dHashSpaceCreate(nullptr);
+    case SpaceKind::Simple: return dSimpleSpaceCreate(nullptr);
+    case SpaceKind::SweepAndPrune: return dSweepAndPruneSpaceCreate(nullptr, dSAP_AXES_XZY);  // Y is up
+    case SpaceKind::QuadTree: {
+      // The tree covers where the bodies start, with a margin; geoms outside it still collide.
+      double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+      auto grow = [&](const Vec3& p) {
+        for (int k = 0; k < 3; ++k) {
+          lo[k] = std::min(lo[k], p[k]);
+          hi[k] = std::max(hi[k], p[k]);
+        }
+      };
+      for (const BodyDef& b : model.bodies) grow(b.pose.p);
+      for (const GeomDef& g : model.geoms)
+        if (g.body < 0 && g.shape != GeomShape::Plane) grow(g.offset.p);
+      if (lo[0] > hi[0]) lo[0] = lo[1] = lo[2] = hi[0] = hi[1] = hi[2] = 0;
+      dVector3 center, extents;
+      for (int k = 0; k < 3; ++k) {
+        center[k] = (lo[k] + hi[k]) / 2;
+        extents[k] = std::max(hi[k] - lo[k], 1.0) * 2;
+      }
+      center[3] = extents[3] = 0;
+      return dQuadTreeSpaceCreate(nullptr, center, extents, 6);
+    }
+  }
+  return dHashSpaceCreate(nullptr);
+}
+
 }  // namespace
 
 struct World::Impl {
@@ -132,9 +163,8 @@ std::unique_ptr<World> World::create(const Model& model, uint32_t seed) {
   dWorldSetCFM(im.world, s.cfm);
   dWorldSetQuickStepNumIterations(im.world, s.iterations);
   im.quickstep = s.quickstep;
-  // A hash space suits scenes of a few to a few hundred geoms; the space type may become a
-  // scene option later.
-  im.space = dHashSpaceCreate(nullptr);
+  im.space = createSpace(model);
+  if (s.auto_disable) dWorldSetAutoDisableFlag(im.world, 1);
   im.contactGroup = dJointGroupCreate(0);
   im.contactBuffer.resize(static_cast<size_t>(std::max(1, s.max_contacts)));
 

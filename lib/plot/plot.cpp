@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <string_view>
@@ -21,8 +21,8 @@ namespace {
 
 // Tableau-like palette: distinct hues that stay readable on white and print in grey.
 constexpr PlotColor kPalette[kMaxPlotBodies] = {
-    {31, 119, 180}, {255, 127, 14}, {44, 160, 44},  {214, 39, 40},
-    {148, 103, 189}, {140, 86, 75}, {227, 119, 194}, {23, 190, 207},
+    {31, 119, 180},  {255, 127, 14}, {44, 160, 44},   {214, 39, 40},
+    {148, 103, 189}, {140, 86, 75},  {227, 119, 194}, {23, 190, 207},
 };
 
 constexpr int kMinWidth = 200;
@@ -32,24 +32,24 @@ constexpr int kPanelHeight = 300;  // default height per panel when PlotOptions:
 constexpr int kPanels = 3;
 
 // Layout, in pixels.
-constexpr double kOuterPad = 16;       // image edge to title / legend
-constexpr double kMarginRight = 28;    // box right edge to image edge (room for the last label)
-constexpr double kTitleSize = 17;      // font size of the headline
-constexpr double kTextSize = 12;       // font size of labels and legend
+constexpr double kOuterPad = 16;     // image edge to title / legend
+constexpr double kMarginRight = 28;  // box right edge to image edge (room for the last label)
+constexpr double kTitleSize = 17;    // font size of the headline
+constexpr double kTextSize = 12;     // font size of labels and legend
 constexpr double kPanelTitleSize = 13;
 constexpr double kLegendRowH = 18;
-constexpr double kLegendSwatch = 28;   // length of the line sample in a legend entry
-constexpr double kPanelTitleH = 22;    // above each box
-constexpr double kTickLabelH = 20;     // below each box
-constexpr double kPanelGap = 8;        // between panels
-constexpr double kFooterH = 28;        // "time [s]"
+constexpr double kLegendSwatch = 28;  // length of the line sample in a legend entry
+constexpr double kPanelTitleH = 22;   // above each box
+constexpr double kTickLabelH = 20;    // below each box
+constexpr double kPanelGap = 8;       // between panels
+constexpr double kFooterH = 28;       // "time [s]"
 constexpr double kTickLen = 5;
-constexpr double kLineWidth = 2.0;     // 2 px: a horizontal line always fully covers one row
+constexpr double kLineWidth = 2.0;  // 2 px: a horizontal line always fully covers one row
 constexpr double kGoldenWidth = 1.5;
 constexpr double kDash[] = {7.0, 4.0};
-constexpr size_t kMaxLabelChars = 48;
+constexpr size_t kMaxLabelChars = 48;  // body keys longer than this are shortened in the legend
 constexpr double kMinBoxSide = 30;     // smallest usable panel box
-constexpr double kPi = 3.14159265358979323846;  // body keys longer than this are shortened in the legend
+constexpr double kPi = 3.14159265358979323846;
 
 constexpr const char* kPanelTitles[kPanels] = {"x [m]", "y [m]", "z [m]"};
 
@@ -536,12 +536,11 @@ std::string render(cairo_t* cr, const Scene& sc, double width, double height) {
     setFont(cr, kTextSize, false);
     setGray(cr, 0.2);
     for (size_t i = 0; i < taxis.ticks.size(); ++i) {
-      drawText(cr, taxis.labels[i], m.x(taxis.ticks[i]), b.y + b.h + kTickLen + kTextSize + 1,
-               0.5);
+      drawText(cr, taxis.labels[i], m.x(taxis.ticks[i]), b.y + b.h + kTickLen + kTextSize + 1, 0.5);
     }
     for (size_t i = 0; i < vaxes[p].ticks.size(); ++i) {
-      drawText(cr, vaxes[p].labels[i], b.x - kTickLen - 4, m.y(vaxes[p].ticks[i]) + kTextSize * 0.35,
-               1.0);
+      drawText(cr, vaxes[p].labels[i], b.x - kTickLen - 4,
+               m.y(vaxes[p].ticks[i]) + kTextSize * 0.35, 1.0);
     }
   }
 
@@ -551,6 +550,34 @@ std::string render(cairo_t* cr, const Scene& sc, double width, double height) {
   return "";
 }
 
+/// cairo names SVG groups after a process-wide surface counter ("surface93"); renumbering them
+/// in order of appearance makes the same plot produce the same SVG bytes in any process.
+std::string normalizeSvgIds(const std::string& svg) {
+  static constexpr std::string_view kWord = "surface";
+  std::unordered_map<std::string, size_t> ids;
+  std::string out;
+  out.reserve(svg.size());
+  size_t i = 0;
+  while (i < svg.size()) {
+    const size_t hit = svg.find(kWord, i);
+    if (hit == std::string::npos) break;
+    size_t end = hit + kWord.size();
+    while (end < svg.size() && svg[end] >= '0' && svg[end] <= '9') ++end;
+    const bool is_ref = hit > 0 && (svg[hit - 1] == '"' || svg[hit - 1] == '#');
+    out.append(svg, i, hit - i);
+    if (is_ref && end > hit + kWord.size()) {
+      const auto it = ids.emplace(svg.substr(hit, end - hit), ids.size() + 1).first;
+      out += kWord;
+      out += std::to_string(it->second);
+    } else {
+      out.append(svg, hit, end - hit);
+    }
+    i = end;
+  }
+  out.append(svg, i, std::string::npos);
+  return out;
+}
+
 cairo_status_t appendToString(void* closure, const unsigned char* data, unsigned int length) {
   static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
   return CAIRO_STATUS_SUCCESS;
@@ -558,8 +585,8 @@ cairo_status_t appendToString(void* closure, const unsigned char* data, unsigned
 
 /// Renders to PNG or SVG bytes. On failure returns "" and sets *why and *kind (InvalidInput
 /// when the layout does not fit, Internal when cairo fails).
-std::string renderToBytes(const Scene& sc, Format format, int width, int height,
-                          std::string* why, ErrorKind* kind) {
+std::string renderToBytes(const Scene& sc, Format format, int width, int height, std::string* why,
+                          ErrorKind* kind) {
   std::string bytes;
   cairo_surface_t* surface =
       format == Format::Png
@@ -591,7 +618,7 @@ std::string renderToBytes(const Scene& sc, Format format, int width, int height,
     *kind = ErrorKind::Internal;
     return {};
   }
-  return bytes;
+  return format == Format::Svg ? normalizeSvgIds(bytes) : bytes;
 }
 
 /// Writes all bytes, retrying on EINTR and short writes; 0 or an errno value.
@@ -616,7 +643,7 @@ bool writeFileAtomically(const std::string& path, const std::string& bytes, Erro
   if (fd < 0) {
     const int e = errno;
     setError(err, ErrorKind::CannotCreate, path,
-             "cannot create plot file " + path + ": " + std::strerror(e));
+             std::string("cannot create plot file: ") + std::strerror(e));
     return false;
   }
   int e = writeAll(fd, bytes.data(), bytes.size());
@@ -630,7 +657,7 @@ bool writeFileAtomically(const std::string& path, const std::string& bytes, Erro
     e = errno;
     ::unlink(tmp.c_str());
     setError(err, ErrorKind::CannotCreate, path,
-             "cannot create plot file " + path + ": " + std::strerror(e));
+             std::string("cannot create plot file: ") + std::strerror(e));
     return false;
   }
   return true;
@@ -667,9 +694,10 @@ bool plotTrajectory(const Trajectory& actual, const Trajectory* golden, const Pl
   } else if (ext == ".svg") {
     format = Format::Svg;
   } else {
-    setError(err, ErrorKind::InvalidInput, "",
-             "unsupported plot format " + (ext.empty() ? std::string("(no extension)") : "'" + ext + "'") +
-                 " for " + out_path + " (use .png or .svg)");
+    setError(err, ErrorKind::InvalidInput, out_path,
+             "unsupported plot format " +
+                 (ext.empty() ? std::string("(no extension)") : "'" + ext + "'") +
+                 " (use .png or .svg)");
     return false;
   }
 
@@ -684,7 +712,7 @@ bool plotTrajectory(const Trajectory& actual, const Trajectory* golden, const Pl
     return false;
   }
   if (actual.sampleCount() == 0 || actual.bodyCount() == 0) {
-    setError(err, ErrorKind::InvalidInput, "", "nothing to plot: the trajectory has no samples");
+    setError(err, ErrorKind::InvalidInput, "", "nothing to plot: the trajectory is empty");
     return false;
   }
 
@@ -695,8 +723,8 @@ bool plotTrajectory(const Trajectory& actual, const Trajectory* golden, const Pl
     const size_t n = std::min(actual.bodyCount(), kMaxPlotBodies);
     for (size_t b = 0; b < n; ++b) selected.push_back(b);
     if (actual.bodyCount() > n) {
-      note = " (first " + std::to_string(n) + " of " + std::to_string(actual.bodyCount()) +
-             " bodies)";
+      note =
+          " (first " + std::to_string(n) + " of " + std::to_string(actual.bodyCount()) + " bodies)";
     }
   } else {
     const auto index = bodyIndex(actual);

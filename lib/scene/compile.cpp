@@ -71,8 +71,11 @@ class Compiler {
   const Component& at(int i) const { return scene_.at(i); }
 
   std::string bodyKey(const Component& c) const {
-    if (clone_.active && c.qkey.compare(0, clone_.from.size(), clone_.from) == 0)
-      return clone_.to + c.qkey.substr(clone_.from.size());
+    // Only the original and the components below it: "Ball" renames "Ball.Arm", not "Ballast".
+    const std::string& from = clone_.from;
+    if (clone_.active && c.qkey.compare(0, from.size(), from) == 0 &&
+        (c.qkey.size() == from.size() || c.qkey[from.size()] == '.'))
+      return clone_.to + c.qkey.substr(from.size());
     return c.qkey;
   }
 
@@ -90,6 +93,8 @@ class Compiler {
     s.erp = c.number("ERP");
     s.cfm = c.number("CFM");
     s.max_contacts = static_cast<int>(std::min<int64_t>(c.integer("MaxContacts"), 64));
+    s.space = static_cast<SpaceKind>(c.enumValue("Space"));
+    s.auto_disable = c.boolean("AutoDisable");
     if (s.min_time_step > s.max_time_step)
       diag_.error(c.slot("MinTimeStep").loc, "SceneSettings: MinTimeStep must not exceed MaxTimeStep");
   }

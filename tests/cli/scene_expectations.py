@@ -1,0 +1,219 @@
+#!/usr/bin/env python3
+"""Physical expectations of the shipped example scenes (used by tests/cli/scenes.sh).
+
+    python3 scene_expectations.py SCENE_NAME TRAJECTORY.csv
+
+Checks what each scene's header comment promises, with tolerances loose enough for the
+iterative solver but tight enough to catch a wrong frame, axis, material rule or a diverging
+solver. Prints one line per check; exits 1 on the first failure. Unknown scene names pass.
+"""
+import collections
+import csv
+import math
+import sys
+
+
+def load(path):
+    rows = collections.OrderedDict()
+    for r in csv.DictReader(open(path, newline="")):
+        rows.setdefault(r["body"], []).append(
+            (float(r["time"]), (float(r["x"]), float(r["y"]), float(r["z"])),
+             (float(r["qw"]), float(r["qx"]), float(r["qy"]), float(r["qz"]))))
+    return rows
+
+
+def qmul(a, b):
+    w1, x1, y1, z1 = a
+    w2, x2, y2, z2 = b
+    return (w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2, w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+            w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2, w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2)
+
+
+def conj(q):
+    return (q[0], -q[1], -q[2], -q[3])
+
+
+def rotate(q, v):
+    return qmul(qmul(q, (0.0,) + tuple(v)), conj(q))[1:]
+
+
+def add(a, b):
+    return tuple(x + y for x, y in zip(a, b))
+
+
+def sub(a, b):
+    return tuple(x - y for x, y in zip(a, b))
+
+
+def qdist(a, b):
+    """Distance of two unit quaternions, sign-insensitive."""
+    return min(math.dist(a, b), math.dist(a, tuple(-x for x in b)))
+
+
+class Checker:
+    def __init__(self, scene, rows):
+        self.scene = scene
+        self.rows = rows
+
+    def body(self, key):
+        if key not in self.rows:
+            self.fail(f"no body {key!r} in the trajectory (bodies: {list(self.rows)})")
+        return self.rows[key]
+
+    def at(self, key, t):
+        """The sample of body `key` nearest to time t."""
+        return min(self.body(key), key=lambda r: abs(r[0] - t))
+
+    def fail(self, msg):
+        print(f"FAIL: {self.scene}: {msg}")
+        sys.exit(1)
+
+    def near(self, what, value, expected, tol):
+        print(f"check: {self.scene}: {what} = {value:.6g} (expected {expected:.6g} +- {tol:g})")
+        if not abs(value - expected) <= tol:
+            self.fail(f"{what} is {value!r}, expected {expected!r} +- {tol!r}")
+
+    def below(self, what, value, limit):
+        print(f"check: {self.scene}: {what} = {value:.6g} (at most {limit:g})")
+        if not value <= limit:
+            self.fail(f"{what} is {value!r}, above {limit!r}")
+
+    def above(self, what, value, limit):
+        print(f"check: {self.scene}: {what} = {value:.6g} (at least {limit:g})")
+        if not value >= limit:
+            self.fail(f"{what} is {value!r}, below {limit!r}")
+
+
+def pendulum(c):
+    bob = c.body("Pendulum.Hinge.Bob")
+    pivot = (0.0, 2.0, 0.0)
+    c.below("largest deviation of the rod length from 1 m",
+            max(abs(math.dist(p, pivot) - 1.0) for _, p, _ in bob), 2e-3)
+    c.below("highest bob position (released at y = 1.134 m)", max(p[1] for _, p, _ in bob), 1.134 + 2e-3)
+    # The bob is at its lowest point (x = 0, moving towards -X) a quarter period after release.
+    crossing = next(t for (t, p, _), (_, q, _) in zip(bob, bob[1:]) if p[0] > 0 >= q[0])
+    c.near("first swing through the bottom (quarter period, s)", crossing, 2.006 * 1.017 / 4, 0.02)
+
+
+def box_stack(c):
+    for k in range(5):
+        key = f"Box{k}"
+        for t in (2.0, 10.0):
+            _, p, q = c.at(key, t)
+            c.near(f"{key} height at t={t:g}", p[1], 0.1 + 0.2 * k, 3e-3)
+            c.below(f"{key} horizontal drift at t={t:g}", math.hypot(p[0], p[2]), 5e-3)
+            c.below(f"{key} rotation at t={t:g}", qdist(q, (1, 0, 0, 0)), 5e-3)
+    ball = c.body("Ball")
+    c.above("lowest ball centre (radius 0.1, on the ground)", min(p[1] for _, p, _ in ball), 0.099)
+    c.near("ball x at t=0.5 (rolling at 2 m/s)", c.at("Ball", 0.5)[1][0], 0.0, 0.01)
+    c.above("farthest ball x (touches the wall x = 2 at x = 1.9)", max(p[0] for _, p, _ in ball), 1.85)
+    c.below("farthest ball x (cannot pass the wall)", max(p[0] for _, p, _ in ball), 1.9 + 5e-3)
+    c.below("ball x at t=3 (rolled back from the wall)", c.at("Ball", 3.0)[1][0], 1.5)
+    c.below("ball drift in z", max(abs(p[2] - 1.0) for _, p, _ in ball), 0.01)
+
+
+def chain(c):
+    keys = list(c.rows)
+    c.near("links", len(keys), 5, 0)
+    anchor = (0.0, 2.0, 0.0)
+    gap = reach = 0.0
+    for s in range(len(c.rows[keys[0]])):
+        prev = anchor
+        for k in keys:
+            _, p, q = c.rows[k][s]
+            gap = max(gap, math.dist(add(p, rotate(q, (-0.1, 0, 0))), prev))
+            prev = add(p, rotate(q, (0.1, 0, 0)))
+            reach = max(reach, math.dist(prev, anchor))
+    c.below("largest gap at a hinge (m)", gap, 5e-3)
+    c.below("farthest chain point from the anchor (m)", reach, 1.0 + 5e-3)
+    mean_y = [sum(c.rows[k][s][1][1] for k in keys) / 5 for s in range(len(c.rows[keys[0]]))]
+    c.below("highest mean link height (energy is not gained)", max(mean_y), 2.0 + 2e-3)
+    c.below("lowest point of the last link centre (the chain swings down)",
+            min(p[1] for _, p, _ in c.rows[keys[-1]]), 1.3)
+    c.below("largest |z| of any link (swings in the X-Y plane)",
+            max(abs(p[2]) for k in keys for _, p, _ in c.rows[k]), 1e-3)
+
+
+def imported_bodies(c):
+    c.near("Rolling.Wheel x at t=10 (1 m/s from x=-3)", c.at("Rolling.Wheel", 10)[1][0], 7.0, 0.05)
+    c.near("Rolling.Wheel y at t=10", c.at("Rolling.Wheel", 10)[1][1], 0.2, 3e-3)
+    v = (c.at("Spinning.Wheel", 10)[1][0] - c.at("Spinning.Wheel", 5)[1][0]) / 5
+    c.near("Spinning.Wheel speed after the slip (w0 r / 3)", v, 1.0, 0.05)
+    c.near("Spinning.Wheel z at t=10 (slight turn while slipping)", c.at("Spinning.Wheel", 10)[1][2], 1.5, 0.2)
+    c.near("Spinning.Wheel y at t=10", c.at("Spinning.Wheel", 10)[1][1], 0.2, 3e-3)
+    c.near("Lying.Wheel height at rest (half its width)", c.at("Lying.Wheel", 10)[1][1], 0.04, 3e-3)
+    c.below("Lying.Wheel turning between t=5 and t=10",
+            qdist(c.at("Lying.Wheel", 5)[2], c.at("Lying.Wheel", 10)[2]), 1e-3)
+    c.near("Lying.Wheel x at rest", c.at("Lying.Wheel", 10)[1][0], 0.0, 0.01)
+
+
+def mechanisms(c):
+    axis = (math.cos(math.radians(30)), -math.sin(math.radians(30)), 0.0)
+    car = c.body("Slide.Slider.Carriage")
+    p0, q0 = car[0][1], car[0][2]
+    off = max(math.dist(sub(p, p0), tuple(sum(a * b for a, b in zip(sub(p, p0), axis)) * x for x in axis))
+              for _, p, _ in car)
+    c.below("carriage distance from its rail axis", off, 1e-4)
+    c.below("carriage rotation", max(qdist(q, q0) for _, _, q in car), 1e-4)
+    along = lambda t: sum(a * b for a, b in zip(sub(c.at("Slide.Slider.Carriage", t)[1], p0), axis))
+    c.near("carriage travel at t=0.5 (g sin30 t^2 / 2)", along(0.5), 0.5 * 9.81 * 0.5 * 0.25, 0.01)
+    c.near("carriage travel at rest against the stop", along(10), 1.35, 0.01)
+    bob = c.body("Conical.Socket.Bob")
+    c.below("bob distance from the pivot - 1 m", max(abs(math.dist(p, (0, 2.5, -2)) - 1) for _, p, _ in bob), 2e-3)
+    c.near("lowest bob height (conical: constant)", min(p[1] for _, p, _ in bob), 1.7, 0.01)
+    c.near("highest bob height (conical: constant)", max(p[1] for _, p, _ in bob), 1.7, 0.01)
+    c.near("bob x half a revolution later (t=0.9 s)", c.at("Conical.Socket.Bob", 0.9)[1][0], -0.6, 0.02)
+    a, b = c.body("Bent.A"), c.body("Bent.Fix.B")
+
+    def rel(i):
+        qa = a[i][2]
+        return rotate(conj(qa), sub(b[i][1], a[i][1])), qmul(conj(qa), b[i][2])
+
+    rp0, rq0 = rel(0)
+    c.near("initial angle between the fixed bars (deg)", math.degrees(2 * math.acos(min(1, abs(rq0[0])))), 45, 0.01)
+    c.below("change of B's position relative to A (m)", max(math.dist(rel(i)[0], rp0) for i in range(len(a))), 1e-3)
+    c.below("change of B's orientation relative to A", max(qdist(rel(i)[1], rq0) for i in range(len(a))), 1e-3)
+    c.near("bar A height at rest (lying on its 0.1 m face)", c.at("Bent.A", 10)[1][1], 0.05, 3e-3)
+    c.below("bent arm motion between t=5 and t=10", math.dist(c.at("Bent.A", 5)[1], c.at("Bent.A", 10)[1]), 1e-3)
+    for key, x, z in (("Rod", None, 2.0), ("RodCopy", -0.5, 3.0)):
+        _, p, q = c.at(key, 10)
+        c.near(f"{key} height at rest (its radius)", p[1], 0.05, 3e-3)
+        c.near(f"{key} z at rest", p[2], z, 0.01)
+        if x is not None:
+            c.near(f"{key} x at rest", p[0], x, 0.01)
+        # Lying flat: the rod's local Z axis is horizontal.
+        c.below(f"{key} axis tilt at rest", abs(rotate(q, (0, 0, 1))[1]), 1e-2)
+
+
+def bounce(c):
+    for key, e in (("Dull", 0.2), ("Medium", 0.5), ("Lively", 0.9)):
+        rows = c.body(key)
+        peak = max(p[1] for t, p, _ in rows if 0.46 < t < 0.46 + 2 * e * 0.4515 + 0.05)
+        c.near(f"{key} first rebound height (e^2 of 1 m)", peak - 0.1, e * e, max(0.01, 0.05 * e * e))
+        c.near(f"{key} height at rest", rows[-1][1][1], 0.1, 2e-3)
+        c.below(f"{key} sideways motion", max(math.hypot(p[0] - rows[0][1][0], p[2]) for _, p, _ in rows), 1e-6)
+
+
+def robot(c):
+    for key in c.rows:
+        _, p1, q1 = c.at(key, 1.0)
+        moved = max(math.dist(p, p1) for t, p, _ in c.rows[key] if t >= 1.0)
+        turned = max(qdist(q, q1) for t, _, q in c.rows[key] if t >= 1.0)
+        c.below(f"{key} motion after settling (m)", moved, 1e-4)
+        c.below(f"{key} rotation after settling", turned, 1e-3)
+    _, p, q = c.at("Bot.Cart.Chassis", 10)
+    c.near("chassis height", p[1], 0.12, 2e-3)
+    c.below("chassis tilt", qdist(q, (1, 0, 0, 0)), 2e-3)
+    for key in ("Bot.Cart.LeftAxle.LeftWheel", "Bot.Cart.RightAxle.RightWheel"):
+        c.near(f"{key} height (its radius)", c.at(key, 10)[1][1], 0.1, 2e-3)
+    c.near("caster ball height (its radius)", c.at("Bot.Cart.CasterSocket.CasterBall", 10)[1][1], 0.04, 2e-3)
+
+
+SCENES = {f.__name__: f for f in (pendulum, box_stack, chain, imported_bodies, mechanisms, bounce, robot)}
+
+if __name__ == "__main__":
+    name, path = sys.argv[1], sys.argv[2]
+    if name not in SCENES:
+        print(f"check: {name}: no physical expectations recorded")
+        sys.exit(0)
+    SCENES[name](Checker(name, load(path)))

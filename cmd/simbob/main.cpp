@@ -1,9 +1,11 @@
 // simbob: the command-line driver. Each subcommand lives in its own file (commands.h).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <exception>
 
 #include "cli.h"
 #include "commands.h"
+#include "simbob/registry.h"
 
 using namespace simbob::cli;
 
@@ -96,6 +98,15 @@ int main(int argc, char** argv) {
   plot->add_option("--out", pa.out, "Output .png or .svg")->required();
   addCommon(plot, common);
 
+  // Name an unknown subcommand instead of CLI11's "A subcommand is required".
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+  if (argc > 1 && argv[1][0] != '-' && std::find(names.begin(), names.end(), argv[1]) == names.end()) {
+    std::string near = simbob::didYouMean(argv[1], names);
+    std::fprintf(stderr, "simbob: error: unknown command '%s'%s; commands: run, check, dump, types, compare, batch, plot\n",
+                 argv[1], near.empty() ? "" : (" (did you mean '" + near + "'?)").c_str());
+    return kExitUsage;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {

@@ -18,6 +18,8 @@ namespace {
 
 constexpr int kMaxImportDepth = 16;
 constexpr int kMaxNesting = 200;
+// Scene and import files are read whole; /dev/zero or a runaway generator must not eat memory.
+constexpr size_t kMaxFileBytes = size_t{64} << 20;
 
 bool readFile(const std::string& path, std::string* out, std::string* error) {
   std::error_code ec;
@@ -33,7 +35,15 @@ bool readFile(const std::string& path, std::string* out, std::string* error) {
   out->clear();
   char buf[65536];
   size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) out->append(buf, n);
+  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) {
+    if (out->size() + n > kMaxFileBytes) {
+      std::fclose(f);
+      out->clear();
+      *error = "larger than " + std::to_string(kMaxFileBytes >> 20) + " MiB";
+      return false;
+    }
+    out->append(buf, n);
+  }
   bool bad = std::ferror(f) != 0;
   std::fclose(f);
   if (bad) *error = "read error";
@@ -70,6 +80,36 @@ std::string familiesText(const ParamSpec& p) {
 
 // "RCSphereGeom 'Ball.Geom': " before a message; nothing for the scene root.
 std::string prefix(const std::string& what) { return what.empty() ? std::string() : what + ": "; }
+
+constexpr double kMaxMagnitude = 1e9;  // m, kg, m/s, ...: far beyond any robot scene
+
+// The largest finite absolute number inside a value (infinities are checked by the parser).
+double largestFinite(const Value& v) {
+  double big = 0;
+  auto take = [&](double d) {
+    if (std::isfinite(d)) big = std::max(big, std::fabs(d));
+  };
+  std::visit(
+      [&](const auto& x) {
+        using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<T, double>) take(x);
+        else if constexpr (std::is_same_v<T, int64_t>) take(static_cast<double>(x));
+        else if constexpr (std::is_same_v<T, Triple>) for (double d : x) take(d);
+        else if constexpr (std::is_same_v<T, Vector4>) for (double d : x.v) take(d);
+        else if constexpr (std::is_same_v<T, Quaternion>) for (double d : x.q) take(d);
+        else if constexpr (std::is_same_v<T, Pose>) {
+          for (double d : x.pos) take(d);
+          for (double d : x.euler_deg) take(d);
+        }
+        else if constexpr (std::is_same_v<T, Matrix4>) for (double d : x.m) take(d);
+        else if constexpr (std::is_same_v<T, Cuboid>) {
+          for (double d : x.a) take(d);
+          for (double d : x.b) take(d);
+        }
+      },
+      v);
+  return big;
+}
 
 const char* rangeText(Range r) {
   switch (r) {
@@ -155,9 +195,12 @@ class Builder {
           int line = loc.line;
           std::unique_ptr<Source> s = src ? src->structure(p.name, &line) : nullptr;
           const TypeSpec* st = reg_.find(p.struct_type);
-          slot.set = s != nullptr;
           slot.loc = {loc.file, line};
           slot.link.comp = build(st, s.get(), p.name, false, index, qkey, slot.loc);
+          // An empty <SceneSettings/> sets nothing (and INI cannot even write it): set only
+          // when a member is.
+          if (s && slot.link.comp >= 0)
+            for (const Slot& member : scene_.at(slot.link.comp).slots) slot.set = slot.set || member.set;
           break;
         }
         case ParamKind::List: {
@@ -284,6 +327,12 @@ class Builder {
     ParseResult r = parseValue(p.type, text, p.table, opts);
     if (!r) {
       diag_.error(loc, prefix(what) + "parameter '" + p.name + "': " + r.error);
+      return false;
+    }
+    // Absurd magnitudes (1e300 m) overflow inertia and contact math inside ODE: refuse them here.
+    if (double big = largestFinite(*r.value); big > kMaxMagnitude) {
+      diag_.error(loc, prefix(what) + "parameter '" + p.name + "': " + formatNumber(big) +
+                           " is beyond the supported magnitude " + formatNumber(kMaxMagnitude));
       return false;
     }
     if (p.range != Range::Any) {

@@ -231,6 +231,18 @@ int cmdRun(RunArgs& a) {
                formatNumber(std::round(r.wall_seconds * 1000) / 1000) + " s)");
     return kExitOk;
   }
+  if (r.status == RunStatus::Diverged) {
+    // The checks of `simbob check` usually know why: name the first one about this body.
+    Diagnostics lint;
+    lintModel(model, lint);
+    size_t q = r.error.message.find('\'');
+    std::string key = r.error.message.substr(q + 1, r.error.message.find('\'', q + 1) - q - 1);
+    for (const auto& w : lint.warnings())
+      if (w.message.find("'" + key + "'") != std::string::npos) {
+        r.error.message += "; likely cause: " + w.message;
+        break;
+      }
+  }
   // A failed run keeps what it computed, beside the output and never over it.
   std::string partial = partialPath(a.out);
   Error perr;

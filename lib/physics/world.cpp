@@ -287,16 +287,20 @@ BodyState World::body(int i) const {
 }
 
 int World::firstBadBody(double limit) const {
+  // Runs after every step: read ODE's arrays in place. `!(|x| <= limit)` is also true for NaN;
+  // an infinite limit still catches infinities through isfinite.
+  auto bad = [limit](const dReal* v, int n) {
+    for (int k = 0; k < n; ++k)
+      if (!(std::fabs(v[k]) <= limit) || !std::isfinite(v[k])) return true;
+    return false;
+  };
   const int n = bodyCount();
   for (int i = 0; i < n; ++i) {
-    const BodyState s = body(i);
-    auto ok = [limit](double x) { return std::isfinite(x) && std::fabs(x) <= limit; };
-    bool good = true;
-    for (int k = 0; k < 3; ++k) {
-      good = good && ok(s.pose.p[k]) && ok(s.lin_vel[k]) && ok(s.ang_vel[k]);
-    }
-    for (int k = 0; k < 4; ++k) good = good && std::isfinite(s.pose.q[k]);
-    if (!good) return i;
+    dBodyID b = impl_->bodies[static_cast<size_t>(i)];
+    if (bad(dBodyGetPosition(b), 3) || bad(dBodyGetLinearVel(b), 3) || bad(dBodyGetAngularVel(b), 3)) return i;
+    const dReal* q = dBodyGetQuaternion(b);
+    for (int k = 0; k < 4; ++k)
+      if (!std::isfinite(q[k])) return i;
   }
   return -1;
 }

@@ -21,6 +21,7 @@ void lintModel(const Model& model, Diagnostics& diag);
 /// placeable geom; planes have none.
 struct MassProps {
   double volume = 0;
+  Vec3 moment{0, 0, 0};  ///< m^4: volume times the centroid (body frame)
   Mat3 inertia{0, 0, 0, 0, 0, 0, 0, 0, 0};
 };
 MassProps geomMassProps(const GeomDef& g);

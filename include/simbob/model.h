@@ -39,7 +39,8 @@ struct BodyDef {
   Vec3 lin_vel{0, 0, 0};     ///< m/s, global
   Vec3 ang_vel{0, 0, 0};     ///< rad/s, global
   double mass = 1.0;         ///< kg, > 0
-  Mat3 inertia{1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< kg m^2 about the body origin, body frame
+  Vec3 com{0, 0, 0};         ///< centre of mass in the body frame, m (offset geoms move it)
+  Mat3 inertia{1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< kg m^2 about the centre of mass, body axes
 };
 
 enum class GeomShape : uint8_t {

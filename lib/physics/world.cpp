@@ -2,6 +2,7 @@
 // Builds an ODE world from a compiled Model (bodies, geoms, joints in Model order) and steps it
 // with the contact rules of the Simulator Bob guide 7.1.
 #include "simbob/physics.h"
+#include "simbob/transform.h"
 
 #include <ode/ode.h>
 
@@ -80,6 +81,8 @@ struct World::Impl {
   dSpaceID space = nullptr;
   dJointGroupID contactGroup = nullptr;
   std::vector<dBodyID> bodies;
+  std::vector<Vec3> com;  // centre of mass in the body frame, per body
+  bool anyCom = false;
   std::vector<dGeomID> geoms;
   std::vector<dJointID> joints;
   std::vector<GeomInfo> geomInfo;
@@ -176,12 +179,22 @@ std::unique_ptr<World> World::create(const Model& model, uint32_t seed) {
     // COM at the body origin; full inertia tensor (row-major: I12 = [1], I13 = [2], I23 = [5]).
     dMassSetParameters(&m, bd.mass, 0, 0, 0, I[0], I[4], I[8], I[1], I[2], I[5]);
     dBodySetMass(b, &m);
-    dBodySetPosition(b, bd.pose.p[0], bd.pose.p[1], bd.pose.p[2]);
+    // ODE's body frame sits at the centre of mass; simbob's at the body origin. Both share axes.
+    Vec3 p = bd.pose.p, v = bd.lin_vel;
+    const bool offset = bd.com != Vec3{0, 0, 0};
+    if (offset) {
+      Vec3 rc = rotate(bd.pose.q, bd.com);
+      p = add(p, rc);
+      v = add(v, cross(bd.ang_vel, rc));
+    }
+    dBodySetPosition(b, p[0], p[1], p[2]);
     const dQuaternion q = {bd.pose.q[0], bd.pose.q[1], bd.pose.q[2], bd.pose.q[3]};
     dBodySetQuaternion(b, q);
-    dBodySetLinearVel(b, bd.lin_vel[0], bd.lin_vel[1], bd.lin_vel[2]);
+    dBodySetLinearVel(b, v[0], v[1], v[2]);
     dBodySetAngularVel(b, bd.ang_vel[0], bd.ang_vel[1], bd.ang_vel[2]);
     im.bodies.push_back(b);
+    im.com.push_back(bd.com);
+    im.anyCom = im.anyCom || offset;
   }
 
   im.geoms.reserve(model.geoms.size());
@@ -209,8 +222,10 @@ std::unique_ptr<World> World::create(const Model& model, uint32_t seed) {
     const dQuaternion q = {gd.offset.q[0], gd.offset.q[1], gd.offset.q[2], gd.offset.q[3]};
     if (gd.body >= 0) {
       dGeomSetBody(g, im.bodies[static_cast<size_t>(gd.body)]);
-      if (!isIdentity(gd.offset)) {
-        dGeomSetOffsetPosition(g, gd.offset.p[0], gd.offset.p[1], gd.offset.p[2]);
+      const Vec3& c = im.com[static_cast<size_t>(gd.body)];
+      if (!isIdentity(gd.offset) || c != Vec3{0, 0, 0}) {
+        // Offsets are relative to ODE's body frame, which sits at the centre of mass.
+        dGeomSetOffsetPosition(g, gd.offset.p[0] - c[0], gd.offset.p[1] - c[1], gd.offset.p[2] - c[2]);
         dGeomSetOffsetQuaternion(g, q);
       }
     } else if (gd.shape != GeomShape::Plane) {
@@ -283,6 +298,13 @@ BodyState World::body(int i) const {
   s.pose.q = {q[0], q[1], q[2], q[3]};
   s.lin_vel = {v[0], v[1], v[2]};
   s.ang_vel = {w[0], w[1], w[2]};
+  const Vec3& c = impl_->com[static_cast<size_t>(i)];
+  if (c != Vec3{0, 0, 0}) {
+    // Report the body origin, not ODE's centre-of-mass frame.
+    Vec3 rc = rotate(s.pose.q, c);
+    s.pose.p = sub(s.pose.p, rc);
+    s.lin_vel = sub(s.lin_vel, cross(s.ang_vel, rc));
+  }
   return s;
 }
 

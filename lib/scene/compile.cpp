@@ -15,6 +15,12 @@ namespace simbob {
 namespace {
 
 constexpr int kMaxCloneDepth = 8;
+// Bounds on what a small file can make the compiler do (found by fuzzing): bodies chained
+// through joint Refs recurse once per link, and Refs shared in model trees or clones of clones
+// multiply the work.
+constexpr int kMaxBodyChain = 500;            // bodies being compiled inside one another
+constexpr size_t kMaxModelParts = 10000;      // models collected for one model-derived geom
+constexpr size_t kMaxModelItems = 100000;     // bodies + geoms + joints of the whole model
 
 std::string describe(const Component& c) { return c.type->name + " '" + c.qkey + "'"; }
 
@@ -237,7 +243,7 @@ class Compiler {
   };
 
   void collectModels(const Link& l, const Transform& parent, bool children, std::vector<ModelPart>* out, int depth) {
-    if (l.comp < 0 || depth > 64) return;
+    if (l.comp < 0 || depth > 64 || out->size() > kMaxModelParts) return;
     const Component& c = at(l.comp);
     Transform t;
     const Link& pl = c.link("Pose");
@@ -252,6 +258,11 @@ class Compiler {
                   const Transform& frame) {
     std::vector<ModelPart> parts;
     collectModels(model_link, g.offset, !geom.boolean("IgnoreChilds"), &parts, 0);
+    if (parts.size() > kMaxModelParts) {
+      error(geom, "the model of '" + owner.qkey + "' has more than " + std::to_string(kMaxModelParts) +
+                      " parts (model Refs shared over and over?)");
+      return;
+    }
     bool wrap = kindOf<GeomKind>(geom) == GeomKind::ModelWrap;
     auto emit = [&](GeomDef d) {
       if (d.body < 0) d.offset = compose(frame, d.offset);
@@ -420,6 +431,7 @@ class Compiler {
         for (size_t gi = first_geom; gi < model_.geoms.size(); ++gi) {
           MassProps p = geomMassProps(model_.geoms[gi]);
           total.volume += p.volume;
+          total.moment = add(total.moment, p.moment);
           for (int k = 0; k < 9; ++k) total.inertia[k] += p.inertia[k];
         }
         if (!(total.volume > 0)) {
@@ -434,7 +446,14 @@ class Compiler {
           return false;
         }
         b->mass = density * total.volume;
-        for (int k = 0; k < 9; ++k) b->inertia[k] = density * total.inertia[k];
+        // ODE wants the inertia about the centre of mass: undo the parallel-axis term of c.
+        Vec3 cm = scale(total.moment, 1.0 / total.volume);
+        b->com = cm;
+        double c2 = dot(cm, cm);
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j)
+            b->inertia[static_cast<size_t>(i * 3 + j)] =
+                density * (total.inertia[static_cast<size_t>(i * 3 + j)] - total.volume * ((i == j ? c2 : 0) - cm[static_cast<size_t>(i)] * cm[static_cast<size_t>(j)]));
         if (!isPositiveDefinite(b->inertia)) {
           error(c, "the inertia computed from the geometry is degenerate");
           return false;
@@ -459,6 +478,21 @@ class Compiler {
     if (it != memo.end()) return it->second;
     if (!in_progress_.insert(ci).second) {
       error(at(ci), "body is part of its own construction (a joint's Body refers back to it)");
+      return {};
+    }
+    if (in_progress_.size() > static_cast<size_t>(kMaxBodyChain)) {
+      in_progress_.erase(ci);
+      if (!too_big_)
+        error(at(ci), "bodies nested more than " + std::to_string(kMaxBodyChain) +
+                          " levels deep (constructions chained through joints)");
+      too_big_ = true;
+      return {};
+    }
+    if (model_.bodies.size() + model_.geoms.size() + model_.joints.size() > kMaxModelItems) {
+      in_progress_.erase(ci);
+      if (!too_big_) error(at(ci), "the scene makes more than " + std::to_string(kMaxModelItems) +
+                                       " bodies, geoms and joints (clones of clones?)");
+      too_big_ = true;
       return {};
     }
     Built b = bodyUncached(ci, parent);
@@ -787,6 +821,7 @@ class Compiler {
   std::set<int> in_progress_;
   Clone clone_;
   int clone_depth_ = 0;
+  bool too_big_ = false;  // a bound above was hit (reported once)
 };
 
 }  // namespace
@@ -850,6 +885,7 @@ MassProps geomMassProps(const GeomDef& g) {
       p.inertia[i * 3 + j] = s;
     }
   const Vec3& o = g.offset.p;
+  p.moment = scale(o, p.volume);
   double o2 = dot(o, o);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) p.inertia[i * 3 + j] += p.volume * ((i == j ? o2 : 0) - o[i] * o[j]);

@@ -1,0 +1,725 @@
+// Tests of bad scene input: every class of error is reported with file:line and a message
+// that says what is wrong; loading never crashes; independent errors are collected in one pass.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "scene/scene_helpers.h"
+
+using namespace simbob;
+using namespace scenetest;
+
+namespace {
+
+struct Result {
+  bool loaded = false;
+  bool compiled = false;
+  Diagnostics diag;
+};
+
+/// Load (and, when loading succeeds, compile) a scene; collect every message.
+Result run(const std::string& text, Format format = Format::Xml, const std::string& name = "bad.xml") {
+  Result r;
+  Scene s;
+  r.loaded = loadSceneFromText(text, name, format, builtinRegistry(), &s, r.diag);
+  CHECK(r.loaded == r.diag.ok());
+  if (r.loaded) {
+    Model m;
+    r.compiled = compileScene(s, &m, r.diag);
+    CHECK(r.compiled == r.diag.ok());
+  }
+  return r;
+}
+
+/// Some error reads exactly `expected` ("file:line: message").
+void expectExact(const Result& r, const std::string& expected) {
+  INFO("errors:\n" << errorText(r.diag));
+  bool found = std::any_of(r.diag.errors().begin(), r.diag.errors().end(),
+                           [&](const Error& e) { return e.str() == expected; });
+  CHECK(found);
+}
+
+/// Some error starts with `where` ("file:line: ") and contains every phrase.
+void expectError(const Result& r, const std::string& where, std::initializer_list<std::string> phrases) {
+  INFO("errors:\n" << errorText(r.diag));
+  INFO("expected at '" << where << "' an error containing all of the phrases");
+  bool found = std::any_of(r.diag.errors().begin(), r.diag.errors().end(), [&](const Error& e) {
+    std::string s = e.str();
+    if (s.compare(0, where.size(), where) != 0) return false;
+    for (const auto& p : phrases)
+      if (s.find(p) == std::string::npos) return false;
+    return true;
+  });
+  CHECK(found);
+}
+
+std::string inList(const std::string& components) {
+  return "<Simulation>\n<ComponentList>\n" + components + "</ComponentList>\n</Simulation>\n";
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------- syntax
+
+TEST_CASE("errors: malformed XML names the line", "[scene][errors]") {
+  Result r = run("<Simulation>\n  <ComponentList>\n    <RCGround>\n  </ComponentList>\n</Simulation>\n");
+  CHECK_FALSE(r.loaded);
+  REQUIRE(r.diag.errors().size() == 1);
+  expectError(r, "bad.xml:4: ", {"malformed XML"});
+
+  Result attr = run("<Simulation>\n<ComponentList>\n<RCGround Key=\"x/>\n</ComponentList></Simulation>");
+  CHECK_FALSE(attr.loaded);
+  REQUIRE(attr.diag.errors().size() == 1);
+  expectError(attr, "bad.xml:", {"malformed XML"});
+}
+
+TEST_CASE("errors: empty and blank files", "[scene][errors]") {
+  for (const char* text : {"", "   \n\n", "<?xml version=\"1.0\"?>\n", "<!-- only a comment -->"}) {
+    INFO("'" << text << "'");
+    Result r = run(text);
+    CHECK_FALSE(r.loaded);
+    REQUIRE(r.diag.errors().size() == 1);
+    expectError(r, "bad.xml:", {"No document element"});
+  }
+  // INI: an empty file is an empty scene, which is valid.
+  Result ini = run("", Format::Ini, "empty.ini");
+  CHECK(ini.loaded);
+}
+
+TEST_CASE("errors: wrong root element", "[scene][errors]") {
+  Result r = run("<?xml version=\"1.0\"?>\n<Scene>\n</Scene>\n");
+  CHECK_FALSE(r.loaded);
+  expectExact(r, "bad.xml:2: root element is <Scene>, expected <Simulation>");
+  Result body = run("<Body><RCStaticRigidBody/></Body>");
+  expectExact(body, "bad.xml:1: root element is <Body>, expected <Simulation>");
+}
+
+TEST_CASE("errors: unknown component types with did-you-mean", "[scene][errors]") {
+  Result r = run(inList("<RCGrond/>\n"                                                    // line 3
+                        "<RCStaticRigidBody><Geom><RCSphereGeon/></Geom></RCStaticRigidBody>\n"  // 4
+                        "<RCStaticRigidBody Key=\"B\"><Geom><Zzzzzzzz/></Geom></RCStaticRigidBody>\n"  // 5
+                        "<Component><RCMobilRigidBody/></Component>\n"));  // 6
+  CHECK_FALSE(r.loaded);
+  expectError(r, "bad.xml:3: ", {"unknown component type 'RCGrond' (did you mean 'RCGround'?)"});
+  expectError(r, "bad.xml:4: ", {"unknown component type 'RCSphereGeon' (did you mean 'RCSphereGeom'?)"});
+  expectError(r, "bad.xml:5: ", {"unknown component type 'Zzzzzzzz'"});
+  expectError(r, "bad.xml:6: ", {"unknown component type 'RCMobilRigidBody' (did you mean 'RCMobileRigidBody'?)"});
+  CHECK(r.diag.errors().size() == 4);
+
+  Result ini = run("ComponentCount = 1\nComponent0.Type = RCGrund\n", Format::Ini, "bad.ini");
+  expectError(ini, "bad.ini:2: ", {"unknown component type 'RCGrund' (did you mean 'RCGround'?)"});
+}
+
+TEST_CASE("errors: a component of the wrong family for its parameter", "[scene][errors]") {
+  Result r = run(inList("<RCStaticRigidBody Key=\"S\"><Geom><RCHingeJoint/></Geom></RCStaticRigidBody>\n"
+                        "<RCHingeJoint/>\n"));
+  expectExact(r, "bad.xml:3: RCStaticRigidBody 'S': parameter 'Geom' needs a GeomComponent, got RCHingeJoint (a "
+                 "JointComponent)");
+  expectError(r, "bad.xml:4: ", {"parameter 'ComponentList' needs a BodyComponent", "got RCHingeJoint"});
+  // Struct types are no components.
+  Result s = run(inList("<SceneSettings/>\n"));
+  expectError(s, "bad.xml:3: ", {"unknown component type 'SceneSettings'"});
+}
+
+TEST_CASE("errors: unknown parameter names with did-you-mean", "[scene][errors]") {
+  Result r = run(inList("<RCConstruction Key=\"C\"><Body><RCStaticRigidBody/></Body><ChildList>\n"
+                        "<RCHingeJoint Key=\"J\"><Hing/></RCHingeJoint>\n"
+                        "<RCSliderJoint Key=\"S\"><Axiss><RCLocalCoordinates/></Axiss><Color Value=\"1\"/></RCSliderJoint>\n"
+                        "</ChildList></RCConstruction>\n"));
+  CHECK_FALSE(r.loaded);
+  expectExact(r, "bad.xml:4: RCHingeJoint 'C.J': parameter 'Hing' unknown (did you mean 'Hinge'?)");
+  expectExact(r, "bad.xml:5: RCSliderJoint 'C.S': parameter 'Axiss' unknown (did you mean 'Axis'?)");
+  expectExact(r, "bad.xml:5: RCSliderJoint 'C.S': parameter 'Color' unknown");
+  CHECK(r.diag.errors().size() == 3);
+
+  // Exact case in XML; INI names are case-insensitive but still checked.
+  Result xcase = run(inList("<RCSky Key=\"Sky\"><height Value=\"3\"/></RCSky>\n"));
+  expectExact(xcase, "bad.xml:3: RCSky 'Sky': parameter 'height' unknown (did you mean 'Height'?)");
+  Result ini = run("ComponentCount = 1\nComponent0.Type = RCSky\nComponent0.Hieght = 3\n", Format::Ini, "bad.ini");
+  expectExact(ini, "bad.ini:3: RCSky 'RCSky': parameter 'Hieght' unknown (did you mean 'Height'?)");
+  Result settings = run("<Simulation><SceneSettings>\n<Gravty Value=\"0\"/></SceneSettings></Simulation>");
+  expectError(settings, "bad.xml:2: ", {"parameter 'Gravty' unknown (did you mean 'Gravity'?)"});
+  Result root = run("<Simulation>\n<ComponentLists/>\n</Simulation>");
+  expectError(root, "bad.xml:2: ", {"parameter 'ComponentLists' unknown (did you mean 'ComponentList'?)"});
+}
+
+TEST_CASE("errors: malformed parameter elements", "[scene][errors]") {
+  Result r = run(inList("<RCSky Key=\"A\"><Height/></RCSky>\n"                                   // 3
+                        "<RCSky Key=\"B\"><Height Value=\"1\" Unit=\"m\"/></RCSky>\n"            // 4
+                        "<RCSky Key=\"C\"><Height Value=\"1\"><X/></Height></RCSky>\n"           // 5
+                        "<RCSky Key=\"D\"><Material><RCGenericMaterial/><RCGenericMaterial/></Material></RCSky>\n"  // 6
+                        "<RCSky Key=\"E\"><Material/></RCSky>\n"                                 // 7
+                        "<RCSky Key=\"F\"><Material Ref=\"\"/></RCSky>\n"                        // 8
+                        "<RCSky Key=\"G\"><Material Ref=\"x\" Macro=\"DefaultMaterial\"/></RCSky>\n"  // 9
+                        "<RCSky Key=\"H\"><Material><RCGenericMaterial Key=\"a.b\"/></Material></RCSky>\n"  // 10
+                        "<RCSky Key=\"I\"><Material><RCGenericMaterial Name=\"x\"/></Material></RCSky>\n"));  // 11
+  CHECK_FALSE(r.loaded);
+  expectError(r, "bad.xml:3: ", {"'Height' needs a Value attribute"});
+  expectError(r, "bad.xml:4: ", {"'Height'", "unknown attribute 'Unit'"});
+  expectError(r, "bad.xml:5: ", {"'Height' is a value and takes no child elements"});
+  expectError(r, "bad.xml:6: ", {"<Material> must hold exactly one component element, a Ref or a Macro"});
+  expectError(r, "bad.xml:7: ", {"<Material> must hold exactly one component element, a Ref or a Macro"});
+  expectError(r, "bad.xml:8: ", {"empty Ref"});
+  expectError(r, "bad.xml:9: ", {"has both Ref and Macro"});
+  expectError(r, "bad.xml:10: ", {"Key 'a.b' must be non-empty and contain no '.'"});
+  expectError(r, "bad.xml:11: ", {"unknown attribute 'Name'"});
+  CHECK(r.diag.errors().size() == 9);
+}
+
+TEST_CASE("errors: unknown Macro and Macro of the wrong family", "[scene][errors]") {
+  Result r = run(inList("<RCStaticRigidBody Key=\"S\"><Geom Macro=\"NoGeon\"/><Model Macro=\"NoGeom\"/></RCStaticRigidBody>\n"));
+  expectExact(r, "bad.xml:3: RCStaticRigidBody 'S': unknown Macro 'NoGeon' (did you mean 'NoGeom'?)");
+  expectExact(r, "bad.xml:3: RCStaticRigidBody 'S': Macro 'NoGeom' makes a GeomComponent, parameter 'Model' needs a "
+                 "ModelComponent");
+}
+
+// ---------------------------------------------------------------------------------- values
+
+TEST_CASE("errors: wrong value syntax", "[scene][errors]") {
+  Result r = run(inList("<RCStaticRigidBody Key=\"S\">\n"                                        // 3
+                        "<Geom><RCSphereGeom><Radius Value=\"abc\"/></RCSphereGeom></Geom>\n"   // 4
+                        "</RCStaticRigidBody>\n"
+                        "<RCCuboidModel Key=\"M\"><Wire Value=\"maybe\"/></RCCuboidModel>\n"   // 6
+                        "<RCEllipsoidModel Key=\"E\"><Accuracy Value=\"2.5\"/></RCEllipsoidModel>\n"  // 7
+                        "<RCCuboidModel Key=\"N\"><SideMask Value=\"Top|Sideways\"/></RCCuboidModel>\n"  // 8
+                        "<RCColoredSkin Key=\"K\"><ColorMode Value=\"Glow\"/></RCColoredSkin>\n"  // 9
+                        "<RCGround Key=\"G\"><Extension Value=\"1,5\"/></RCGround>\n"));  // 10
+  CHECK_FALSE(r.loaded);
+  expectExact(r, "bad.xml:4: RCSphereGeom 'S.Geom': parameter 'Radius': expected a number, got 'abc'");
+  expectError(r, "bad.xml:6: ", {"RCCuboidModel 'M': parameter 'Wire': expected a boolean", "'maybe'"});
+  expectError(r, "bad.xml:7: ", {"RCEllipsoidModel 'E': parameter 'Accuracy': expected an integer, got '2.5'"});
+  expectError(r, "bad.xml:8: ", {"RCCuboidModel 'N': parameter 'SideMask'", "Sideways"});
+  expectError(r, "bad.xml:9: ", {"RCColoredSkin 'K': parameter 'ColorMode'", "Glow"});
+  expectError(r, "bad.xml:10: ", {"RCGround 'G': parameter 'Extension': expected a number, got '1,5'"});
+  CHECK(r.diag.errors().size() == 6);
+}
+
+TEST_CASE("errors: wrong arity", "[scene][errors]") {
+  Result r = run(inList("<RCStaticRigidBody Key=\"S\">\n"                                                        // 3
+                        "<Pose><RCGlobalCoordinates><Pose Value=\"1 2 3\"/></RCGlobalCoordinates></Pose>\n"  // 4
+                        "</RCStaticRigidBody>\n"
+                        "<RCMobileRigidBody Key=\"M\"><Motion><RCGlobalMotion>\n"                            // 6
+                        "<AngVelocity Value=\"1 2 3 4\"/></RCGlobalMotion></Motion>\n"                      // 7
+                        "<Inertia><RCGenericInertia><Inertia Value=\"1 2 3 4 5\"/></RCGenericInertia></Inertia>\n"  // 8
+                        "</RCMobileRigidBody>\n"
+                        "<RCCuboidModel Key=\"C\"><Cuboid Value=\"0 0 0 1 1\"/></RCCuboidModel>\n"));  // 10
+  CHECK_FALSE(r.loaded);
+  expectExact(r, "bad.xml:4: RCGlobalCoordinates 'S.Pose': parameter 'Pose': expected 6 numbers for a Pose, got 3");
+  expectExact(r, "bad.xml:7: RCGlobalMotion 'M.Motion': parameter 'AngVelocity': expected 1 to 3 numbers for a "
+                 "Triple, got 4");
+  expectExact(r, "bad.xml:8: RCGenericInertia 'M.Inertia': parameter 'Inertia': matrix needs 3, 9, 12 or 16 numbers, got 5");
+  expectExact(r, "bad.xml:10: RCCuboidModel 'C': parameter 'Cuboid': expected 6 numbers for a Cuboid, got 5");
+  CHECK(r.diag.errors().size() == 4);
+}
+
+TEST_CASE("errors: NaN and infinities", "[scene][errors]") {
+  Result r = run(inList("<RCMobileRigidBody Key=\"M\"><Motion><RCGlobalMotion>\n"   // 3
+                        "<LinVelocity Value=\"1 nan 0\"/>\n"                       // 4
+                        "</RCGlobalMotion></Motion>\n"
+                        "<Geom><RCSphereGeom><Radius Value=\"NaN\"/></RCSphereGeom></Geom>\n"  // 6
+                        "</RCMobileRigidBody>\n"
+                        "<RCSky Key=\"S\"><Height Value=\"Infinite\"/></RCSky>\n"            // 8
+                        "<RCSky Key=\"T\"><Height Value=\"-1e400\"/></RCSky>\n"              // 9
+                        "<RCGround Key=\"G\"><Extension Value=\"inf\"/></RCGround>\n"));     // 10
+  CHECK_FALSE(r.loaded);
+  expectExact(r, "bad.xml:4: RCGlobalMotion 'M.Motion': parameter 'LinVelocity': NaN is not allowed: 'nan'");
+  expectExact(r, "bad.xml:6: RCSphereGeom 'M.Geom': parameter 'Radius': NaN is not allowed: 'NaN'");
+  expectExact(r, "bad.xml:8: RCSky 'S': parameter 'Height': infinite value not allowed here: 'Infinite'");
+  expectExact(r, "bad.xml:9: RCSky 'T': parameter 'Height': number out of range: '-1e400'");
+  expectExact(r, "bad.xml:10: RCGround 'G': parameter 'Extension': expected a number, got 'inf'");
+  CHECK(r.diag.errors().size() == 5);
+  // Drive limits are the documented exception.
+  Result ok = run(inList("<RCConstruction Key=\"C\"><ChildList><RCGenericServo Key=\"D\">"
+                         "<MinPos Value=\"-Infinite\"/><MaxPos Value=\"Infinite\"/></RCGenericServo></ChildList>"
+                         "</RCConstruction>\n"));
+  CHECK(ok.loaded);
+}
+
+TEST_CASE("errors: values out of their range", "[scene][errors]") {
+  Result r = run(inList("<RCMobileRigidBody Key=\"A\">\n"                                             // 3
+                        "<Geom><RCSphereGeom><Radius Value=\"0\"/></RCSphereGeom></Geom>\n"          // 4
+                        "<Inertia><RCGenericInertia><Mass Value=\"-1\"/></RCGenericInertia></Inertia>\n"  // 5
+                        "<Material><RCGenericMaterial><Bounceness Value=\"1.5\"/>\n"                 // 6
+                        "<Friction Value=\"-0.1\"/></RCGenericMaterial></Material>\n"               // 7
+                        "</RCMobileRigidBody>\n"
+                        "<RCStaticRigidBody Key=\"B\"><Geom><RCCuboidGeom><Width Value=\"-2\"/>"     // 9
+                        "</RCCuboidGeom></Geom></RCStaticRigidBody>\n"
+                        "<RCRodBody Key=\"R\"><Mass Value=\"0\"/><Radius Value=\"-0\"/></RCRodBody>\n"  // 10
+                        "<RCEllipsoidModel Key=\"E\"><Accuracy Value=\"0\"/></RCEllipsoidModel>\n"));  // 11
+  CHECK_FALSE(r.loaded);
+  expectExact(r, "bad.xml:4: RCSphereGeom 'A.Geom': parameter 'Radius' must be > 0, got '0'");
+  expectExact(r, "bad.xml:5: RCGenericInertia 'A.Inertia': parameter 'Mass' must be > 0, got '-1'");
+  expectExact(r, "bad.xml:6: RCGenericMaterial 'A.Material': parameter 'Bounceness' must be in [0, 1], got '1.5'");
+  expectExact(r, "bad.xml:7: RCGenericMaterial 'A.Material': parameter 'Friction' must be >= 0, got '-0.1'");
+  expectExact(r, "bad.xml:9: RCCuboidGeom 'B.Geom': parameter 'Width' must be > 0, got '-2'");
+  expectExact(r, "bad.xml:10: RCRodBody 'R': parameter 'Mass' must be > 0, got '0'");
+  expectExact(r, "bad.xml:10: RCRodBody 'R': parameter 'Radius' must be > 0, got '-0'");
+  expectExact(r, "bad.xml:11: RCEllipsoidModel 'E': parameter 'Accuracy' must be > 0, got '0'");
+  CHECK(r.diag.errors().size() == 8);
+}
+
+TEST_CASE("errors: RCInertiaByGeom with Mass 0", "[scene][errors]") {
+  Result r = run(inList("<RCMobileRigidBody Key=\"A\">\n"
+                        "<Geom><RCSphereGeom/></Geom>\n"
+                        "<Inertia><RCInertiaByGeom><Mass Value=\"0\"/></RCInertiaByGeom></Inertia>\n"
+                        "</RCMobileRigidBody>\n"));
+  CHECK(r.loaded);
+  CHECK_FALSE(r.compiled);
+  expectError(r, "bad.xml:5: ", {"RCInertiaByGeom 'A.Inertia'", "'Mass' must be > 0"});
+}
+
+TEST_CASE("errors: inertia tensors that are not positive definite or not symmetric", "[scene][errors]") {
+  Result r = run(inList("<RCMobileRigidBody Key=\"A\"><Inertia><RCGenericInertia>\n"   // 3
+                        "<Inertia Value=\"1 1 -1\"/>\n"                               // 4
+                        "</RCGenericInertia></Inertia></RCMobileRigidBody>\n"
+                        "<RCMobileRigidBody Key=\"B\"><Inertia><RCGenericInertia>\n"   // 6
+                        "<Inertia Value=\"1 0.5 0 0 1 0 0 0 1\"/>\n"                  // 7
+                        "</RCGenericInertia></Inertia></RCMobileRigidBody>\n"
+                        "<RCMobileRigidBody Key=\"C\"><Inertia><RCGenericInertia>\n"   // 9
+                        "<Inertia Value=\"1 2 0 2 1 0 0 0 1\"/>\n"                    // 10: symmetric, indefinite
+                        "</RCGenericInertia></Inertia></RCMobileRigidBody>\n"
+                        "<RCMobileRigidBody Key=\"D\"><Inertia><RCGenericInertia>\n"   // 12
+                        "<Inertia Value=\"0 0 0\"/>\n"                                // 13
+                        "</RCGenericInertia></Inertia></RCMobileRigidBody>\n"));
+  CHECK(r.loaded);
+  CHECK_FALSE(r.compiled);
+  expectExact(r, "bad.xml:4: RCGenericInertia 'A.Inertia': parameter 'Inertia' is not positive definite");
+  expectExact(r, "bad.xml:7: RCGenericInertia 'B.Inertia': parameter 'Inertia' must be symmetric");
+  expectExact(r, "bad.xml:10: RCGenericInertia 'C.Inertia': parameter 'Inertia' is not positive definite");
+  expectExact(r, "bad.xml:13: RCGenericInertia 'D.Inertia': parameter 'Inertia' is not positive definite");
+  CHECK(r.diag.errors().size() == 4);
+}
+
+// ---------------------------------------------------------------------------------- references
+
+TEST_CASE("errors: dangling Ref with did-you-mean", "[scene][errors]") {
+  Result r = run(inList("<RCGenericMaterial Key=\"Rubber\"/>\n"
+                        "<RCStaticRigidBody Key=\"S\"><Material Ref=\"Rubbr\"/></RCStaticRigidBody>\n"       // 4
+                        "<RCStaticRigidBody Key=\"T\"><Material Ref=\"Nothing.Here\"/></RCStaticRigidBody>\n"  // 5
+                        "<RCCuboidModel Key=\"M\"><ChildList><Child Ref=\"Gone\"/></ChildList></RCCuboidModel>\n"));  // 6
+  CHECK_FALSE(r.loaded);
+  expectExact(r, "bad.xml:4: RCStaticRigidBody 'S': Ref 'Rubbr' names no component (did you mean 'Rubber'?)");
+  expectExact(r, "bad.xml:5: RCStaticRigidBody 'T': Ref 'Nothing.Here' names no component");
+  expectExact(r, "bad.xml:6: RCCuboidModel 'M': Ref 'Gone' names no component");
+  CHECK(r.diag.errors().size() == 3);
+}
+
+TEST_CASE("errors: Ref to the wrong kind of component", "[scene][errors]") {
+  Result r = run(inList("<RCMobileRigidBody Key=\"Ball\"><Geom><RCSphereGeom/></Geom></RCMobileRigidBody>\n"
+                        "<RCStaticRigidBody Key=\"S\"><Material Ref=\"Ball\"/></RCStaticRigidBody>\n"     // 4
+                        "<RCStaticRigidBody Key=\"T\"><Geom Ref=\"Ball.Material\"/></RCStaticRigidBody>\n"  // 5
+                        "<Component Ref=\"Ball.Geom\"/>\n"));                                                   // 6
+  CHECK_FALSE(r.loaded);
+  expectExact(r, "bad.xml:4: RCStaticRigidBody 'S': Ref 'Ball' names a RCMobileRigidBody, parameter 'Material' "
+                 "needs a MaterialComponent");
+  expectExact(r, "bad.xml:5: RCStaticRigidBody 'T': Ref 'Ball.Material' names a RCGenericMaterial, parameter "
+                 "'Geom' needs a GeomComponent");
+  expectError(r, "bad.xml:6: ", {"Ref 'Ball.Geom' names a RCSphereGeom, parameter 'ComponentList' needs a "
+                                 "BodyComponent, GlobalSimComponent, MaterialComponent, SkinComponent or "
+                                 "ModelComponent"});
+  CHECK(r.diag.errors().size() == 3);
+}
+
+TEST_CASE("errors: cyclic Refs", "[scene][errors]") {
+  SECTION("a model whose ChildList refers to itself") {
+    Result r = run(inList("<RCCuboidModel Key=\"M\"><ChildList>\n<Child Ref=\"M\"/>\n</ChildList></RCCuboidModel>\n"));
+    CHECK_FALSE(r.loaded);
+    REQUIRE(r.diag.errors().size() == 1);
+    expectError(r, "bad.xml:4: ", {"RCCuboidModel 'M': cyclic Ref 'M'"});
+  }
+  SECTION("a model whose child refers to an ancestor") {
+    Result r = run(inList("<RCCuboidModel Key=\"P\"><ChildList>\n"
+                          "<RCConeModel Key=\"Q\"><ChildList><RCConeModel Key=\"R\"><ChildList>\n"
+                          "<Child Ref=\"P\"/>\n"  // line 5
+                          "</ChildList></RCConeModel></ChildList></RCConeModel></ChildList></RCCuboidModel>\n"));
+    CHECK_FALSE(r.loaded);
+    REQUIRE(r.diag.errors().size() == 1);
+    expectError(r, "bad.xml:5: ", {"RCConeModel 'P.Q.R': cyclic Ref 'P'"});
+  }
+  SECTION("two top-level models referring to each other") {
+    Result r = run(inList("<RCCuboidModel Key=\"A\"><ChildList><Child Ref=\"B\"/></ChildList></RCCuboidModel>\n"
+                          "<RCCuboidModel Key=\"B\"><ChildList><Child Ref=\"A\"/></ChildList></RCCuboidModel>\n"));
+    CHECK_FALSE(r.loaded);
+    REQUIRE(r.diag.errors().size() == 1);
+    expectError(r, "bad.xml:", {"cyclic Ref"});
+  }
+  SECTION("a transform geom whose SubGeom is itself") {
+    Result r = run(inList("<RCStaticRigidBody Key=\"S\"><Geom><RCTransformGeom Key=\"T\">\n"
+                          "<SubGeom Ref=\"S.T\"/></RCTransformGeom></Geom></RCStaticRigidBody>\n"));
+    CHECK_FALSE(r.loaded);
+    expectError(r, "bad.xml:4: ", {"RCTransformGeom 'S.T': cyclic Ref 'S.T'"});
+  }
+  SECTION("shared models are no cycle") {
+    Result r = run(inList("<RCCuboidModel Key=\"Leaf\"/>\n"
+                          "<RCCuboidModel Key=\"A\"><ChildList><Child Ref=\"Leaf\"/><Child Ref=\"Leaf\"/></ChildList>"
+                          "</RCCuboidModel>\n"
+                          "<RCStaticRigidBody Key=\"S\"><Model Ref=\"A\"/></RCStaticRigidBody>\n"
+                          "<RCStaticRigidBody Key=\"T\"><Model Ref=\"A\"/></RCStaticRigidBody>\n"));
+    CHECK(r.loaded);
+    CHECK(r.compiled);
+  }
+  SECTION("a construction whose Body is itself") {
+    Result r = run(inList("<RCConstruction Key=\"Self\"><Body Ref=\"Self\"/></RCConstruction>\n"));
+    CHECK_FALSE(r.compiled);
+    expectError(r, "bad.xml:3: ", {"RCConstruction 'Self'", "part of its own construction"});
+  }
+  SECTION("a joint whose Body is the construction's root") {
+    Result r = run(inList("<RCConstruction Key=\"C\"><Body><RCMobileRigidBody Key=\"R\"><Geom><RCSphereGeom/></Geom>"
+                          "</RCMobileRigidBody></Body>\n<ChildList><RCFixJoint Key=\"J\"><Body Ref=\"C.R\"/>"
+                          "</RCFixJoint></ChildList></RCConstruction>\n"));
+    CHECK(r.loaded);
+    CHECK_FALSE(r.compiled);
+    expectError(r, "bad.xml:4: ", {"RCFixJoint 'C.J'", "connects a body with itself"});
+  }
+}
+
+TEST_CASE("errors: duplicate keys", "[scene][errors]") {
+  Result r = run(inList("<RCStaticRigidBody Key=\"A\"/>\n"
+                        "<RCGenericMaterial Key=\"A\"/>\n"));  // line 4
+  CHECK_FALSE(r.loaded);
+  expectExact(r, "bad.xml:4: RCGenericMaterial: duplicate key 'A' (first used at bad.xml:3); give it a different Key");
+  // A Key that collides with a default component's key.
+  Result d = run(inList("<RCStaticRigidBody Key=\"S\"><Geom><RCSphereGeom Key=\"Pose\"/></Geom></RCStaticRigidBody>\n"));
+  expectError(d, "bad.xml:3: ", {"duplicate key 'S.Pose'"});
+  // List items without Key are keyed by their type name.
+  Result t = run(inList("<RCGround/>\n<RCGround/>\n"));
+  expectError(t, "bad.xml:4: ", {"duplicate key 'RCGround'"});
+  // The same key below different parents is fine.
+  Result ok = run(inList("<RCStaticRigidBody Key=\"A\"><Geom><RCSphereGeom Key=\"G\"/></Geom></RCStaticRigidBody>\n"
+                         "<RCStaticRigidBody Key=\"B\"><Geom><RCSphereGeom Key=\"G\"/></Geom></RCStaticRigidBody>\n"));
+  CHECK(ok.loaded);
+}
+
+TEST_CASE("errors: a duplicate key is reported once, not once per default child", "[scene][errors]") {
+  Result r = run(inList("<RCStaticRigidBody Key=\"A\"/>\n<RCStaticRigidBody Key=\"A\"/>\n"));
+  CHECK_FALSE(r.loaded);
+  INFO(errorText(r.diag));
+  CHECK(r.diag.errors().size() == 1);
+  expectExact(r, "bad.xml:4: RCStaticRigidBody: duplicate key 'A' (first used at bad.xml:3); give it a different Key");
+}
+
+TEST_CASE("errors: a parameter given twice", "[scene][errors]") {
+  Result r = run(inList("<RCStaticRigidBody Key=\"S\"><Geom><RCSphereGeom>\n"
+                        "<Radius Value=\"1\"/>\n"
+                        "<Radius Value=\"2\"/>\n"  // line 5
+                        "</RCSphereGeom></Geom>\n"
+                        "<Geom Macro=\"NoGeom\"/>\n"  // line 7
+                        "</RCStaticRigidBody>\n"));
+  CHECK_FALSE(r.loaded);
+  expectExact(r, "bad.xml:5: RCSphereGeom 'S.Geom': parameter 'Radius' given twice");
+  expectExact(r, "bad.xml:7: RCStaticRigidBody 'S': parameter 'Geom' given twice");
+  CHECK(r.diag.errors().size() == 2);
+  // INI: the same key twice (in any case) is caught by the INI reader.
+  Result ini = run("ComponentCount = 1\nComponent0.Type = RCSky\nComponent0.Height = 1\ncomponent0.HEIGHT = 2\n",
+                   Format::Ini, "bad.ini");
+  expectError(ini, "bad.ini:4: ", {"assigned twice", "first on line 3"});
+}
+
+TEST_CASE("errors: a Ref with child elements", "[scene][errors]") {
+  Result r = run(inList("<RCStaticRigidBody Key=\"S\">\n"
+                        "<Material Ref=\"M\"><RCGenericMaterial/></Material>\n"  // line 4
+                        "</RCStaticRigidBody>\n"
+                        "<RCGenericMaterial Key=\"M\"/>\n"
+                        "<RCCuboidModel Key=\"C\"><ChildList><Child Ref=\"C2\"><RCConeModel/></Child></ChildList>"
+                        "</RCCuboidModel>\n"  // line 7
+                        "<RCCuboidModel Key=\"C2\"/>\n"));
+  CHECK_FALSE(r.loaded);
+  expectExact(r, "bad.xml:4: RCStaticRigidBody 'S': <Material> with Ref or Macro takes no child elements");
+  expectExact(r, "bad.xml:7: RCCuboidModel 'C': <Child> with Ref or Macro takes no child elements");
+  CHECK(r.diag.errors().size() == 2);
+  Result ini = run("ComponentCount = 1\nComponent0.Type = RCSky\nComponent0.Material.Ref = X\n"
+                   "Component0.Material.Friction = 1\n",
+                   Format::Ini, "bad.ini");
+  expectError(ini, "bad.ini:", {"'Material' with Ref or Macro takes no other entries"});
+}
+
+// ---------------------------------------------------------------------------------- imports
+
+TEST_CASE("errors: cyclic import", "[scene][errors][import]") {
+  TempDir dir;
+  dir.write("a.xml", "<Body>\n<RCImportBody Key=\"X\"><File Value=\"sub/b.xml\"/></RCImportBody>\n</Body>\n");
+  std::string b = dir.write("sub/b.xml", "<Body>\n\n<RCImportBody Key=\"Y\"><File Value=\"../a.xml\"/></RCImportBody>\n</Body>\n");
+  std::string main = dir.write("main.xml", inList("<RCImportBody Key=\"I\"><File Value=\"a.xml\"/></RCImportBody>\n"));
+  Scene s;
+  Diagnostics d;
+  CHECK_FALSE(loadScene(main, builtinRegistry(), &s, d));
+  INFO(errorText(d));
+  REQUIRE(d.errors().size() == 1);
+  const Error& e = d.errors()[0];
+  CHECK(e.kind == ErrorKind::InvalidInput);
+  CHECK(e.loc.file == std::filesystem::path(b).lexically_normal().string());
+  CHECK(e.loc.line == 3);
+  CHECK(e.message.find("RCImportBody 'I.X.Y': cyclic import: ") == 0);
+  CHECK(e.message.find("main.xml -> ") != std::string::npos);
+  CHECK(e.message.find("a.xml -> ") != std::string::npos);
+
+  // A scene importing itself (through a Body import of a Simulation file) is a cycle too.
+  std::string self = dir.write("self.xml", inList("<RCImportBody Key=\"I\"><File Value=\"self.xml\"/></RCImportBody>\n"));
+  Diagnostics d2;
+  CHECK_FALSE(loadScene(self, builtinRegistry(), &s, d2));
+  REQUIRE(d2.errors().size() == 1);
+  CHECK(d2.errors()[0].str().find(self + ":3: RCImportBody 'I': cyclic import") == 0);
+}
+
+TEST_CASE("errors: missing import and import without File", "[scene][errors][import]") {
+  TempDir dir;
+  std::string main = dir.write("main.xml", inList("<RCImportBody Key=\"M\"><File Value=\"missing.xml\"/></RCImportBody>\n"
+                                                  "<RCImportBody Key=\"E\"/>\n"
+                                                  "<RCImportRefList Key=\"D\"><File Value=\".\"/></RCImportRefList>\n"));
+  Scene s;
+  Diagnostics d;
+  CHECK_FALSE(loadScene(main, builtinRegistry(), &s, d));
+  INFO(errorText(d));
+  REQUIRE(d.errors().size() == 3);
+  const Error& missing = d.errors()[0];
+  CHECK(missing.kind == ErrorKind::MissingInput);
+  CHECK(missing.str() == main + ":3: RCImportBody 'M': cannot read import '" +
+                             (dir.path() / "missing.xml").string() + "': No such file or directory");
+  CHECK(d.errors()[1].str() == main + ":4: RCImportBody 'E': parameter 'File' is required");
+  CHECK(d.errors()[1].kind == ErrorKind::InvalidInput);
+  CHECK(d.errors()[2].kind == ErrorKind::MissingInput);
+  CHECK(d.errors()[2].str().find("is a directory") != std::string::npos);
+
+  // The scene itself missing.
+  Diagnostics d2;
+  CHECK_FALSE(loadScene((dir.path() / "nope.xml").string(), builtinRegistry(), &s, d2));
+  REQUIRE(d2.errors().size() == 1);
+  CHECK(d2.errors()[0].kind == ErrorKind::MissingInput);
+  CHECK(d2.errors()[0].str().find("nope.xml: cannot read scene") != std::string::npos);
+}
+
+TEST_CASE("errors: imported files with the wrong root or bad content", "[scene][errors][import]") {
+  TempDir dir;
+  dir.write("joint.xml", "<Joint><RCFixJoint/></Joint>");
+  dir.write("bad.xml", "<Body>\n<RCStaticRigidBody Key=\"B\">\n<Geom><RCSphereGeom><Radius Value=\"x\"/></RCSphereGeom>"
+                       "</Geom></RCStaticRigidBody></Body>");
+  dir.write("broken.xml", "<Body>\n<RCStaticRigidBody>\n</Body>");
+  dir.write("ref.xml", "<Body Ref=\"Other\"/>");
+  dir.write("list.xml", "<RefList>\n<Item Ref=\"X\"/>\n<RCGenericMaterial Key=\"M\"/>\n<RCHingeJoint/>\n</RefList>");
+  std::string main = dir.write("main.xml", inList("<RCImportBody Key=\"W\"><File Value=\"joint.xml\"/></RCImportBody>\n"
+                                                  "<RCImportBody Key=\"B\"><File Value=\"bad.xml\"/></RCImportBody>\n"
+                                                  "<RCImportBody Key=\"C\"><File Value=\"broken.xml\"/></RCImportBody>\n"
+                                                  "<RCImportBody Key=\"R\"><File Value=\"ref.xml\"/></RCImportBody>\n"
+                                                  "<RCImportRefList Key=\"L\"><File Value=\"list.xml\"/></RCImportRefList>\n"));
+  Scene s;
+  Diagnostics d;
+  CHECK_FALSE(loadScene(main, builtinRegistry(), &s, d));
+  INFO(errorText(d));
+  std::string p = dir.path().string() + "/";
+  Result r;
+  r.diag = d;
+  expectExact(r, p + "joint.xml:1: root element is <Joint>, expected <Body> (imported by " + main + ":3)");
+  expectExact(r, p + "bad.xml:3: RCSphereGeom 'B.B.Geom': parameter 'Radius': expected a number, got 'x'");
+  expectError(r, p + "broken.xml:3: ", {"malformed XML"});
+  expectError(r, p + "ref.xml:1: ", {"must hold a component, not a Ref"});
+  expectError(r, p + "list.xml:2: ", {"<RefList> items must be components, not Refs"});
+  expectError(r, p + "list.xml:4: ", {"RCHingeJoint", "JointComponent"});
+}
+
+// ---------------------------------------------------------------------------------- compile
+
+TEST_CASE("errors: RCLocalCoordinates at the top level", "[scene][errors]") {
+  Result r = run(inList("<RCMobileRigidBody Key=\"B\">\n<Pose><RCLocalCoordinates/></Pose>\n"
+                        "<Geom><RCSphereGeom/></Geom></RCMobileRigidBody>\n"
+                        "<RCStaticRigidBody Key=\"S\">\n<Pose Macro=\"Origin\"/></RCStaticRigidBody>\n"));
+  CHECK(r.loaded);
+  CHECK_FALSE(r.compiled);
+  expectExact(r, "bad.xml:4: RCMobileRigidBody 'B': RCLocalCoordinates needs a parent frame (a joint, construction or "
+                 "body); use RCGlobalCoordinates at the top level");
+  expectError(r, "bad.xml:7: ", {"RCStaticRigidBody 'S': RCLocalCoordinates needs a parent frame"});
+}
+
+TEST_CASE("errors: a plane geom on a mobile body", "[scene][errors]") {
+  Result r = run(inList("<RCMobileRigidBody Key=\"C\">\n<Geom><RCPlaneGeom/></Geom>\n"
+                        "<Inertia><RCGenericInertia/></Inertia></RCMobileRigidBody>\n"
+                        "<RCMobileRigidBody Key=\"D\"><Geom><RCTransformGeom><SubGeom><RCPlaneGeom/></SubGeom>"
+                        "</RCTransformGeom></Geom><Inertia><RCGenericInertia/></Inertia></RCMobileRigidBody>\n"));
+  CHECK_FALSE(r.compiled);
+  expectExact(r, "bad.xml:4: RCPlaneGeom 'C.Geom': a plane is infinite and can only belong to a static body");
+  expectError(r, "bad.xml:6: ", {"RCPlaneGeom 'D.Geom.SubGeom'", "only belong to a static body"});
+  CHECK(r.diag.errors().size() == 2);
+}
+
+TEST_CASE("errors: a joint without Body", "[scene][errors]") {
+  Result r = run(inList("<RCConstruction Key=\"K\"><Body><RCStaticRigidBody/></Body><ChildList>\n"
+                        "<RCHingeJoint Key=\"J\"/>\n"
+                        "</ChildList></RCConstruction>\n"));
+  CHECK(r.loaded);
+  CHECK_FALSE(r.compiled);
+  expectExact(r, "bad.xml:4: RCHingeJoint 'K.J': parameter 'Body' (the body the joint connects to) is required");
+  Result nb = run(inList("<RCConstruction Key=\"K\"/>\n"));
+  expectExact(nb, "bad.xml:3: RCConstruction 'K': parameter 'Body' (the root body) is required");
+  Result statics = run(inList("<RCConstruction Key=\"K\"><Body><RCStaticRigidBody/></Body><ChildList>\n"
+                              "<RCFixJoint Key=\"J\"><Body><RCStaticRigidBody Key=\"S\"/></Body></RCFixJoint>\n"
+                              "</ChildList></RCConstruction>\n"));
+  expectExact(statics, "bad.xml:4: RCFixJoint 'K.J': connects two static bodies; one of them must be mobile");
+}
+
+TEST_CASE("errors: a mobile body without volume and the default RCInertiaByGeom", "[scene][errors]") {
+  Result r = run(inList("<RCMobileRigidBody Key=\"N\">\n<Geom Macro=\"NoGeom\"/>\n</RCMobileRigidBody>\n"
+                        "<RCMobileRigidBody Key=\"E\"/>\n"));
+  CHECK(r.loaded);
+  CHECK_FALSE(r.compiled);
+  expectExact(r, "bad.xml:3: RCInertiaByGeom 'N.Inertia': RCInertiaByGeom needs a geom with volume on body 'N' (give "
+                 "it a Geom or use RCGenericInertia)");
+  expectError(r, "bad.xml:6: ", {"RCInertiaByGeom 'E.Inertia'", "needs a geom with volume on body 'E'"});
+  CHECK(r.diag.errors().size() == 2);
+}
+
+TEST_CASE("errors: rods whose ends are too close", "[scene][errors]") {
+  Result r = run(inList("<RCRodBody Key=\"R\"><Capped Value=\"true\"/><Radius Value=\"0.5\"/>\n"
+                        "<Pos2><RCGlobalCoordinates><Pose Value=\"0 0.8 0 0 0 0\"/></RCGlobalCoordinates></Pos2>"
+                        "</RCRodBody>\n"
+                        "<RCRodBody Key=\"Z\"/>\n"));
+  CHECK(r.loaded);
+  CHECK_FALSE(r.compiled);
+  expectError(r, "bad.xml:3: ", {"RCRodBody 'R'", "too close"});
+  expectError(r, "bad.xml:5: ", {"RCRodBody 'Z'", "too close"});
+}
+
+TEST_CASE("errors: RigidBodyClone of nothing", "[scene][errors]") {
+  Result r = run(inList("<RCStaticRigidBody Key=\"Wall\"/>\n<RigidBodyClone Key=\"C\">\n<Original Value=\"Wal\"/>\n"
+                        "</RigidBodyClone>\n<RigidBodyClone Key=\"D\"/>\n"));
+  CHECK(r.loaded);
+  CHECK_FALSE(r.compiled);
+  expectExact(r, "bad.xml:5: RigidBodyClone 'C': parameter 'Original' 'Wal' names no body (did you mean 'Wall'?)");
+  expectError(r, "bad.xml:7: ", {"RigidBodyClone 'D'", "names no body"});
+}
+
+TEST_CASE("errors: SceneSettings checks", "[scene][errors]") {
+  Result r = run("<Simulation><SceneSettings>\n<MaxTimeStep Value=\"0.001\"/>\n<MinTimeStep Value=\"0.01\"/>\n"
+                 "<ERP Value=\"2\"/>\n<SolverIterations Value=\"0\"/>\n</SceneSettings></Simulation>");
+  CHECK_FALSE(r.loaded);
+  expectError(r, "bad.xml:4: ", {"'ERP' must be in [0, 1], got '2'"});
+  expectError(r, "bad.xml:5: ", {"'SolverIterations' must be > 0, got '0'"});
+  Result c = run("<Simulation><SceneSettings>\n<MaxTimeStep Value=\"0.001\"/>\n<MinTimeStep Value=\"0.01\"/>\n"
+                 "</SceneSettings></Simulation>");
+  CHECK(c.loaded);
+  CHECK_FALSE(c.compiled);
+  expectExact(c, "bad.xml:3: SceneSettings: MinTimeStep must not exceed MaxTimeStep");
+}
+
+// ---------------------------------------------------------------------------------- INI syntax
+
+TEST_CASE("errors: INI syntax", "[scene][errors][ini]") {
+  expectExact(run("ComponentCount = 1\n[Component0\nType = RCSky\n", Format::Ini, "b.ini"),
+              "b.ini:2: malformed section header '[Component0'");
+  expectExact(run("ComponentCount = 1\nComponent0.Type RCSky\n", Format::Ini, "b.ini"),
+              "b.ini:2: expected 'key = value', got 'Component0.Type RCSky'");
+  expectExact(run("\n\n = 3\n", Format::Ini, "b.ini"), "b.ini:3: empty key before '='");
+  expectExact(run("Component0..Type = RCSky\n", Format::Ini, "b.ini"), "b.ini:1: empty name in key 'Component0..Type'");
+  expectError(run("ComponentCount = 2\nComponent0.Type = RCSky\n", Format::Ini, "b.ini"), "b.ini:1: ",
+              {"ComponentCount is 2 but Component1 is missing"});
+  expectError(run("ComponentCount = -1\n", Format::Ini, "b.ini"), "b.ini:1: ",
+              {"ComponentCount must be a whole number >= 0, got '-1'"});
+  expectError(run("ComponentCount = 1.5\n", Format::Ini, "b.ini"), "b.ini:1: ", {"ComponentCount must be a whole number"});
+  expectError(run("ComponentCount = 1\nComponent0 = RCSky\n", Format::Ini, "b.ini"), "b.ini:2: ",
+              {"'Component0' is a component: write Component0.Type = ..."});
+  expectError(run("ComponentCount = 1\nComponent0.Type = RCSky\nComponent0.Ref = X\n", Format::Ini, "b.ini"),
+              "b.ini:", {"'Component0' needs exactly one of Component0.Type, Component0.Ref, Component0.Macro"});
+  expectError(run("ComponentCount = 1\nComponent0.Key = X\n", Format::Ini, "b.ini"), "b.ini:",
+              {"needs exactly one of"});
+  expectError(run("ComponentCount = 1\nComponent0.Type = RCSky\nComponent0.Height.X = 1\n", Format::Ini, "b.ini"),
+              "b.ini:3: ", {"parameter 'Height' is a value: write 'Height = ...'"});
+  expectError(run("ComponentCount = 1\nComponent0.Type = RCSky\nComponent7.Type = RCSky\n", Format::Ini, "b.ini"),
+              "b.ini:3: ", {"parameter 'Component7' unknown"});
+}
+
+// ---------------------------------------------------------------------------------- many errors
+
+TEST_CASE("errors: independent errors are all collected in one pass", "[scene][errors]") {
+  Result r = run(inList("<RCStaticRigidBody Key=\"S\">\n"
+                        "<Geom><RCCuboidGeom><Width Value=\"wide\"/><Height Value=\"-1\"/></RCCuboidGeom></Geom>\n"  // 4
+                        "<Modle Macro=\"NoModel\"/>\n"                                                               // 5
+                        "</RCStaticRigidBody>\n"
+                        "<RCSky><Hieght Value=\"3\"/></RCSky>\n"                                                     // 7
+                        "<RCGrund/>\n"));                                                                           // 8
+  CHECK_FALSE(r.loaded);
+  INFO(errorText(r.diag));
+  CHECK(r.diag.errors().size() == 5);
+  expectError(r, "bad.xml:4: ", {"'Width': expected a number, got 'wide'"});
+  expectError(r, "bad.xml:4: ", {"'Height' must be > 0, got '-1'"});
+  expectError(r, "bad.xml:5: ", {"parameter 'Modle' unknown (did you mean 'Model'?)"});
+  expectError(r, "bad.xml:7: ", {"parameter 'Hieght' unknown (did you mean 'Height'?)"});
+  expectError(r, "bad.xml:8: ", {"unknown component type 'RCGrund' (did you mean 'RCGround'?)"});
+
+  // Compile errors of independent bodies are collected as well.
+  Result c = run(inList("<RCMobileRigidBody Key=\"A\"><Geom><RCPlaneGeom/></Geom><Inertia><RCGenericInertia/>"
+                        "</Inertia></RCMobileRigidBody>\n"
+                        "<RCMobileRigidBody Key=\"B\"><Geom Macro=\"NoGeom\"/></RCMobileRigidBody>\n"
+                        "<RCConstruction Key=\"K\"><Body><RCStaticRigidBody/></Body><ChildList><RCFixJoint/>"
+                        "</ChildList></RCConstruction>\n"));
+  CHECK(c.loaded);
+  CHECK(c.diag.errors().size() == 3);
+}
+
+TEST_CASE("errors: loading never crashes on truncated or mutated input", "[scene][errors][fuzz]") {
+  const std::string base = R"(<Simulation>
+  <SceneSettings><Gravity Value="0 -9.81 0"/><FogSettings><Mode Value="Linear"/></FogSettings></SceneSettings>
+  <CameraList><StaticCamera Key="C"/></CameraList>
+  <ComponentList>
+    <RCGenericMaterial Key="Rubber"><Friction Value="1"/></RCGenericMaterial>
+    <RCCuboidModel Key="M"><ChildList><Child Ref="M2"/><RCConeModel/></ChildList></RCCuboidModel>
+    <RCCuboidModel Key="M2"/>
+    <RCGround/>
+    <RCConstruction Key="P">
+      <Body><RCStaticRigidBody Key="Pivot"><Pose><RCGlobalCoordinates><Pose Value="0 2 0 0 0 0"/></RCGlobalCoordinates></Pose></RCStaticRigidBody></Body>
+      <ChildList>
+        <RCHingeJoint Key="H">
+          <Pose><RCLocalCoordinates><Pose Value="0 0 0 0 0 30"/></RCLocalCoordinates></Pose>
+          <Body><RCMobileRigidBody Key="Bob"><Geom><RCSphereGeom><Radius Value="0.1"/></RCSphereGeom></Geom>
+            <Material Ref="Rubber"/><Model Ref="M"/><Inertia><RCInertiaByGeom/></Inertia></RCMobileRigidBody></Body>
+        </RCHingeJoint>
+        <RCGenericDrive><Joint Ref="P.H"/></RCGenericDrive>
+      </ChildList>
+    </RCConstruction>
+    <RigidBodyClone Key="P2"><Original Value="P"/><Pose><RCGlobalCoordinates><Pose Value="3 2 0 0 0 0"/></RCGlobalCoordinates></Pose></RigidBodyClone>
+  </ComponentList>
+</Simulation>
+)";
+  {
+    Result whole = run(base);
+    INFO(errorText(whole.diag));
+    REQUIRE(whole.compiled);
+  }
+  Scene sc = mustLoad(base);
+  const std::string ini = writeScene(sc, Format::Ini, true);
+  size_t runs = 0;
+  // Every prefix.
+  for (size_t n = 0; n < base.size(); n += 7) {
+    Result r = run(base.substr(0, n));
+    ++runs;
+    if (!r.loaded) CHECK_FALSE(r.diag.errors().empty());
+  }
+  for (size_t n = 0; n < ini.size(); n += 11) {
+    Result r = run(ini.substr(0, n), Format::Ini, "fuzz.ini");
+    ++runs;
+  }
+  // Single-character mutations at many places.
+  const char replacements[] = {'<', '>', '"', '.', '0', '-', 'X', ' ', '/', '='};
+  for (size_t i = 0; i < base.size(); i += 3) {
+    std::string t = base;
+    t[i] = replacements[i % sizeof replacements];
+    run(t);
+    ++runs;
+  }
+  for (size_t i = 0; i < ini.size(); i += 5) {
+    std::string t = ini;
+    t[i] = replacements[i % sizeof replacements];
+    run(t, Format::Ini, "fuzz.ini");
+    ++runs;
+  }
+  CHECK(runs > 500);
+}
+
+TEST_CASE("errors: deep nesting is an error, not a stack overflow", "[scene][errors]") {
+  std::string open, close;
+  for (int i = 0; i < 400; ++i) {
+    open += "<RCCuboidModel><ChildList>";
+    close += "</ChildList></RCCuboidModel>";
+  }
+  Result r = run(inList(open + close + "\n"));
+  CHECK_FALSE(r.loaded);
+  expectError(r, "bad.xml:3: ", {"nested deeper than"});
+}

@@ -140,6 +140,9 @@ int cmdRun(RunArgs& a) {
   if (a.auto_disable) model.settings.auto_disable = true;
   if (a.max_contacts > 0) model.settings.max_contacts = a.max_contacts;
 
+  // The run needs only the compiled model: free the component graph before ODE allocates.
+  const std::string scene_hash = scene.content_hash;
+  scene = Scene{};
   std::vector<std::string> keys;
   for (const auto& b : model.bodies) keys.push_back(b.key);
   Error err;
@@ -173,7 +176,7 @@ int cmdRun(RunArgs& a) {
   nlohmann::ordered_json summary;
   summary["simbob_version"] = SIMBOB_VERSION;
   summary["scene"] = a.scene;
-  summary["scene_hash"] = "fnv1a64:" + scene.content_hash;
+  summary["scene_hash"] = "fnv1a64:" + scene_hash;
   summary["status"] = statusName(r.status);
   summary["dt"] = r.dt;
   summary["duration"] = a.duration;

@@ -435,8 +435,9 @@ class Compiler {
           for (int k = 0; k < 9; ++k) total.inertia[k] += p.inertia[k];
         }
         if (!(total.volume > 0)) {
-          error(c, "RCInertiaByGeom needs a geom with volume on body '" + owner.qkey +
-                       "' (give it a Geom or use RCGenericInertia)");
+          // Reported at the body: a left-out Inertia is a shared default with no place of its own.
+          error(owner, "RCInertiaByGeom needs a geom with volume on body '" + owner.qkey +
+                           "' (give it a Geom or use RCGenericInertia)");
           return false;
         }
         double mass = c.number("Mass");

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -187,7 +188,7 @@ class Builder {
             slot.loc = {loc.file, l.line};
             slot.link = makeLink(l, p, p.name, index, qkey, loc.file, what);
           } else if (!p.default_type.empty()) {
-            slot.link.comp = makeDefault(p.default_type, p.name, index, qkey, loc);
+            slot.link.comp = sharedDefault(p.default_type);
           }
           break;
         }
@@ -265,7 +266,9 @@ class Builder {
       return;
     }
     std::string text, err;
-    if (!readFile(path, &text, &err)) {
+    // A device, FIFO or socket (/dev/stdout, /dev/zero) would block or never end.
+    if (std::filesystem::is_other(std::filesystem::status(path, ec))) err = "not a regular file";
+    if (!err.empty() || !readFile(path, &text, &err)) {
       diag_.error(at, prefix(what) + "cannot read import '" + path + "': " + err, ErrorKind::MissingInput);
       return;
     }
@@ -364,10 +367,14 @@ class Builder {
     }
   }
 
-  int makeDefault(const std::string& type, const std::string& key, int parent, const std::string& parent_qkey,
-                  const SourceLoc& loc) {
-    const TypeSpec* t = reg_.find(type);
-    return build(t, nullptr, key, false, parent, parent_qkey, loc);
+  // Parameters left out take their default component. Defaults never change, so one instance
+  // per type serves every body: a 100,000-body scene does not carry 500,000 copies of them.
+  int sharedDefault(const std::string& type) {
+    auto it = shared_defaults_.find(type);
+    if (it != shared_defaults_.end()) return it->second;
+    int index = build(reg_.find(type), nullptr, "", false, -1, "", SourceLoc{}, false);
+    shared_defaults_.emplace(type, index);
+    return index;
   }
 
   Link makeLink(SourceLink& l, const ParamSpec& p, const std::string& default_key, int parent,
@@ -421,6 +428,11 @@ class Builder {
       diag_.error(link.loc, t->name + ": Key '" + key + "' must be non-empty and contain no '.'");
       key = default_key;
     }
+    // A line break in a key would break the INI writer's "Key = ..." line (and every message).
+    if (l.has_key && std::any_of(key.begin(), key.end(), [](char ch) { return ch == '\n' || ch == '\r'; })) {
+      diag_.error(link.loc, t->name + ": Key must not contain a line break");
+      key = default_key;
+    }
     link.comp = build(t, l.body.get(), key, l.has_key, parent, parent_qkey, link.loc);
     return link;
   }
@@ -432,6 +444,7 @@ class Builder {
   uint64_t hash_ = 1469598103934665603ull;
   int depth_ = 0;
   std::set<int> duplicates_;  // components whose qualified key was taken already
+  std::map<std::string, int> shared_defaults_;  // default component of each type
 };
 
 // Refs that connect rather than contain (a joint's Body, a drive's Joint, a camera's Body...):

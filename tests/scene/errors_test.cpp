@@ -306,7 +306,8 @@ TEST_CASE("errors: dangling Ref with did-you-mean", "[scene][errors]") {
 }
 
 TEST_CASE("errors: Ref to the wrong kind of component", "[scene][errors]") {
-  Result r = run(inList("<RCMobileRigidBody Key=\"Ball\"><Geom><RCSphereGeom/></Geom></RCMobileRigidBody>\n"
+  Result r = run(inList("<RCMobileRigidBody Key=\"Ball\"><Geom><RCSphereGeom/></Geom>"
+                        "<Material><RCGenericMaterial/></Material></RCMobileRigidBody>\n"
                         "<RCStaticRigidBody Key=\"S\"><Material Ref=\"Ball\"/></RCStaticRigidBody>\n"     // 4
                         "<RCStaticRigidBody Key=\"T\"><Geom Ref=\"Ball.Material\"/></RCStaticRigidBody>\n"  // 5
                         "<Component Ref=\"Ball.Geom\"/>\n"));                                                   // 6
@@ -379,8 +380,9 @@ TEST_CASE("errors: duplicate keys", "[scene][errors]") {
                         "<RCGenericMaterial Key=\"A\"/>\n"));  // line 4
   CHECK_FALSE(r.loaded);
   expectExact(r, "bad.xml:4: RCGenericMaterial: duplicate key 'A' (first used at bad.xml:3); give it a different Key");
-  // A Key that collides with a default component's key.
-  Result d = run(inList("<RCStaticRigidBody Key=\"S\"><Geom><RCSphereGeom Key=\"Pose\"/></Geom></RCStaticRigidBody>\n"));
+  // A Key that collides with the key a keyless component takes from its parameter name.
+  Result d = run(inList("<RCStaticRigidBody Key=\"S\"><Pose><RCGlobalCoordinates/></Pose>"
+                        "<Geom><RCSphereGeom Key=\"Pose\"/></Geom></RCStaticRigidBody>\n"));
   expectError(d, "bad.xml:3: ", {"duplicate key 'S.Pose'"});
   // List items without Key are keyed by their type name.
   Result t = run(inList("<RCGround/>\n<RCGround/>\n"));
@@ -561,9 +563,10 @@ TEST_CASE("errors: a mobile body without volume and the default RCInertiaByGeom"
                         "<RCMobileRigidBody Key=\"E\"/>\n"));
   CHECK(r.loaded);
   CHECK_FALSE(r.compiled);
-  expectExact(r, "bad.xml:3: RCInertiaByGeom 'N.Inertia': RCInertiaByGeom needs a geom with volume on body 'N' (give "
+  // A left-out Inertia is the shared default RCInertiaByGeom: the error names the body.
+  expectExact(r, "bad.xml:3: RCMobileRigidBody 'N': RCInertiaByGeom needs a geom with volume on body 'N' (give "
                  "it a Geom or use RCGenericInertia)");
-  expectError(r, "bad.xml:6: ", {"RCInertiaByGeom 'E.Inertia'", "needs a geom with volume on body 'E'"});
+  expectError(r, "bad.xml:6: ", {"RCMobileRigidBody 'E'", "needs a geom with volume on body 'E'"});
   CHECK(r.diag.errors().size() == 2);
 }
 

@@ -109,6 +109,7 @@ TEST_CASE("load: component parameters inline, by Ref and by Macro", "[scene][loa
   <ComponentList>
     <RCGenericMaterial Key="Rubber"><Friction Value="1.2"/></RCGenericMaterial>
     <RCMobileRigidBody Key="Ball">
+      <Pose><RCGlobalCoordinates><Pose Value="0 1 0 0 0 0"/></RCGlobalCoordinates></Pose>
       <Geom Macro="NoGeom"/>
       <Model Macro="NoModel"/>
       <Motion Macro="NoMotion"/>
@@ -144,11 +145,17 @@ TEST_CASE("load: component parameters inline, by Ref and by Macro", "[scene][loa
   CHECK(inertia.type->name == "RCGenericInertia");
   CHECK(inertia.number("Mass") == 2);
   CHECK(inertia.qkey == "Ball.Inertia");
-  // Unset component parameters get their default type, keyed by the parameter name.
+  // An inline component without Key is keyed by the parameter name.
   const Component& pose = comp(s, "Ball.Pose");
   CHECK(pose.type->name == "RCGlobalCoordinates");
-  CHECK_FALSE(ball.slot("Pose").set);
-  // An inline component with a Key is known under it; a Ref may name a default component.
+  CHECK(ball.slot("Pose").set);
+  // Unset component parameters link to the shared default of their type (no key).
+  const Component& wallModel = s.at(comp(s, "Wall").link("Model").comp);
+  CHECK(wallModel.type->name == "RCEmptyModel");
+  CHECK(wallModel.qkey.empty());
+  CHECK(ball.link("Model").comp != comp(s, "Wall").link("Model").comp);  // Ball's came from a Macro
+  CHECK_FALSE(comp(s, "Wall").slot("Model").set);
+  // An inline component with a Key is known under it; a Ref names any keyed component.
   const Component& wall = comp(s, "Wall");
   CHECK(comp(s, "Wall.Shape").number("Width") == 3);
   CHECK(wall.link("Geom").comp == s.by_qkey.at("Wall.Shape"));
@@ -215,12 +222,16 @@ TEST_CASE("load: fully qualified keys of nested components", "[scene][load]") {
     </RCConstruction>
   </ComponentList>
 </Simulation>)");
-  for (const char* k : {"Robot", "Robot.Base", "Robot.Base.Geom", "Robot.Base.Pose", "Robot.Base.Inertia",
-                        "Robot.Shoulder", "Robot.Shoulder.Arm", "Robot.Shoulder.Arm.Upper",
-                        "Robot.Shoulder.Arm.RCBallSocketJoint", "Robot.Shoulder.Arm.RCBallSocketJoint.Hand",
-                        "Robot.Shoulder.Arm.RCBallSocketJoint.Hand.Material", "Robot.Motor"}) {
+  for (const char* k : {"Robot", "Robot.Base", "Robot.Base.Geom", "Robot.Shoulder", "Robot.Shoulder.Arm",
+                        "Robot.Shoulder.Arm.Upper", "Robot.Shoulder.Arm.RCBallSocketJoint",
+                        "Robot.Shoulder.Arm.RCBallSocketJoint.Hand", "Robot.Motor"}) {
     INFO(k);
     CHECK(s.by_qkey.count(k) == 1);
+  }
+  // Left-out parameters take one shared default component per type, which has no key.
+  for (const char* k : {"Robot.Base.Pose", "Robot.Base.Inertia", "Robot.Shoulder.Arm.RCBallSocketJoint.Hand.Material"}) {
+    INFO(k);
+    CHECK(s.by_qkey.count(k) == 0);
   }
   // The joint's Pose has no default: nothing is created for it.
   CHECK(s.by_qkey.count("Robot.Shoulder.Pose") == 0);

@@ -35,8 +35,9 @@ class Compiler {
 
   bool run() {
     settings();
-    model_.materials.push_back(MaterialDef{});  // [0] default, overwritten by the first use
-    model_.materials[0].key = "";
+    // [0]: the registry's defaults, for geoms made without a material (none today: every
+    // body and global has a Material parameter with a default).
+    model_.materials.push_back(MaterialDef{});
     for (const Link& l : scene_.components) {
       if (l.comp < 0) continue;
       const Component& c = scene_.at(l.comp);
@@ -95,6 +96,8 @@ class Compiler {
     s.max_time_step = c.number("MaxTimeStep");
     s.min_time_step = c.number("MinTimeStep");
     s.quickstep = c.enumValue("Solver") == 0;
+    if (c.integer("SolverIterations") > 100000 || c.integer("MaxContacts") > 64)
+      diag_.error(c.loc, "SceneSettings: SolverIterations must be at most 100000 and MaxContacts at most 64");
     s.iterations = static_cast<int>(std::min<int64_t>(c.integer("SolverIterations"), 100000));
     s.erp = c.number("ERP");
     s.cfm = c.number("CFM");

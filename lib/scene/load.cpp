@@ -363,7 +363,9 @@ class Builder {
       duplicates_.insert(index);
       const Component& first = scene_.at(it->second);
       diag_.error(c.loc, c.type->name + ": duplicate key '" + c.qkey + "' (first used at " + first.loc.file + ":" +
-                             std::to_string(first.loc.line) + "); give it a different Key");
+                             std::to_string(first.loc.line) + "); give it a different Key" +
+                             (c.has_key ? "" : " (a component without Key is keyed by its parameter name, or in a "
+                                               "list by its type name)"));
     }
   }
 

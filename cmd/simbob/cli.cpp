@@ -97,22 +97,4 @@ bool loadAndCompile(const std::string& path, Scene* scene, Model* model, int* co
   return true;
 }
 
-bool writeFileAtomically(const std::string& path, const std::string& text, Error* err) {
-  std::string tmp = path + ".tmp." + std::to_string(getpid());
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) {
-    *err = {ErrorKind::CannotCreate, {path, 0}, std::string("cannot create: ") + std::strerror(errno)};
-    return false;
-  }
-  bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  ok = (std::fclose(f) == 0) && ok;
-  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
-    int e = errno;
-    std::remove(tmp.c_str());
-    *err = {ErrorKind::IoError, {path, 0}, std::string("cannot write: ") + std::strerror(e)};
-    return false;
-  }
-  return true;
-}
-
 }  // namespace simbob::cli

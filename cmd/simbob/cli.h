@@ -9,6 +9,7 @@
 
 #include "simbob/compile.h"
 #include "simbob/error.h"
+#include "simbob/files.h"
 #include "simbob/graph.h"
 
 namespace simbob::cli {
@@ -61,9 +62,6 @@ int readSettings(Common& c);
 
 /// Load and compile a scene, reporting problems; *code is the exit status on failure.
 bool loadAndCompile(const std::string& path, Scene* scene, Model* model, int* code, bool warnings);
-
-/// Write text to path through a temporary file and a rename.
-bool writeFileAtomically(const std::string& path, const std::string& text, Error* err);
 
 /// Install SIGINT/SIGTERM handlers that set g_stop.
 void catchStopSignals();

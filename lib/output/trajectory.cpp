@@ -1,5 +1,7 @@
 #include "simbob/trajectory.h"
 
+#include "simbob/files.h"
+
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -25,6 +27,12 @@ namespace {
 constexpr size_t kFlushBytes = size_t{1} << 20;
 
 constexpr size_t kFieldCount = 9;
+
+/// Trajectories are stored densely (every body at every sample time), so a sparse file (each
+/// row a new body at a new time) needs memory quadratic in its size. Bound the dense storage
+/// to this many cells per row, beyond a fixed allowance of kSparseAllowance cells.
+constexpr size_t kMaxCellsPerRow = 16;
+constexpr size_t kSparseAllowance = size_t{1} << 20;
 constexpr const char* kColumnNames[kFieldCount] = {"time", "body", "x",  "y", "z",
                                                    "qw",   "qx",   "qy", "qz"};
 
@@ -54,22 +62,6 @@ Error makeError(ErrorKind kind, const std::string& file, int line, std::string m
 
 void setError(Error* err, Error e) {
   if (err) *err = std::move(e);
-}
-
-/// Writes all of [data, data+size), retrying on EINTR and partial writes.
-/// Returns 0 on success, else an errno value (ENOSPC when write() made no progress).
-int writeAll(int fd, const char* data, size_t size) {
-  while (size > 0) {
-    ssize_t n = ::write(fd, data, size);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return errno;
-    }
-    if (n == 0) return ENOSPC;
-    data += n;
-    size -= static_cast<size_t>(n);
-  }
-  return 0;
 }
 
 }  // namespace
@@ -269,6 +261,33 @@ bool looksLikeNan(std::string_view f) {
          (f[2] == 'n' || f[2] == 'N');
 }
 
+/// Whether s is well-formed UTF-8 (no overlong forms, surrogates or code points > U+10FFFF).
+/// Body keys end up in JSON reports, which must be valid UTF-8.
+bool isValidUtf8(std::string_view s) {
+  size_t i = 0;
+  while (i < s.size()) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    size_t n = 0;
+    unsigned char lo = 0x80, hi = 0xBF;  // allowed range of the second byte
+    if (c < 0x80) n = 0;
+    else if (c >= 0xC2 && c <= 0xDF) n = 1;
+    else if (c == 0xE0) n = 2, lo = 0xA0;
+    else if ((c >= 0xE1 && c <= 0xEC) || c == 0xEE || c == 0xEF) n = 2;
+    else if (c == 0xED) n = 2, hi = 0x9F;
+    else if (c == 0xF0) n = 3, lo = 0x90;
+    else if (c >= 0xF1 && c <= 0xF3) n = 3;
+    else if (c == 0xF4) n = 3, hi = 0x8F;
+    else return false;
+    if (s.size() - i <= n) return false;  // truncated sequence
+    for (size_t k = 1; k <= n; ++k) {
+      const auto b = static_cast<unsigned char>(s[i + k]);
+      if (b < (k == 1 ? lo : 0x80) || b > (k == 1 ? hi : 0xBF)) return false;
+    }
+    i += n + 1;
+  }
+  return true;
+}
+
 /// Field text for messages: bounded, so a garbage line does not flood the terminal.
 std::string quoteForMessage(std::string_view f) {
   constexpr size_t kMax = 60;
@@ -380,6 +399,7 @@ bool CsvParser::run(Trajectory* out, Error* err) {
   std::unordered_map<std::string, size_t> index;
   std::string key;
   size_t last_body = 0;
+  size_t rows = 0;
   double pose[kPoseSize];
 
   while (p_ < end_) {
@@ -411,6 +431,7 @@ bool CsvParser::run(Trajectory* out, Error* err) {
     const double time = values[0];
     std::string_view body = fields_[1];
     if (body.empty()) return fail(err, line, "empty body key");
+    if (!isValidUtf8(body)) return fail(err, line, "body key is not valid UTF-8");
 
     if (t.times.empty() || time != t.times.back()) {
       if (!t.times.empty() && time < t.times.back()) {
@@ -446,6 +467,13 @@ bool CsvParser::run(Trajectory* out, Error* err) {
       appendNumber(msg, time);
       return fail(err, line, std::move(msg));
     }
+    ++rows;
+    const size_t cells = t.bodies.size() * t.times.size();
+    if (cells > kSparseAllowance && cells / kMaxCellsPerRow > rows)
+      return fail(err, line,
+                  "too sparse to hold: " + std::to_string(t.bodies.size()) + " bodies at " +
+                      std::to_string(t.times.size()) + " sample times but only " +
+                      std::to_string(rows) + " rows (every body needs a row at most sample times)");
     t.setPose(s, b, pose);
   }
   t.finalize();

@@ -1,5 +1,7 @@
 #include "simbob/plot.h"
 
+#include "simbob/files.h"
+
 #include <cairo-svg.h>
 #include <cairo.h>
 #include <fcntl.h>
@@ -619,48 +621,6 @@ std::string renderToBytes(const Scene& sc, Format format, int width, int height,
     return {};
   }
   return format == Format::Svg ? normalizeSvgIds(bytes) : bytes;
-}
-
-/// Writes all bytes, retrying on EINTR and short writes; 0 or an errno value.
-int writeAll(int fd, const char* data, size_t size) {
-  while (size > 0) {
-    const ssize_t n = ::write(fd, data, size);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return errno;
-    }
-    if (n == 0) return ENOSPC;
-    data += n;
-    size -= static_cast<size_t>(n);
-  }
-  return 0;
-}
-
-// Temp file + rename: a failed write never leaves a truncated plot under the final name.
-bool writeFileAtomically(const std::string& path, const std::string& bytes, Error* err) {
-  const std::string tmp = path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  if (fd < 0) {
-    const int e = errno;
-    setError(err, ErrorKind::CannotCreate, path,
-             std::string("cannot create plot file: ") + std::strerror(e));
-    return false;
-  }
-  int e = writeAll(fd, bytes.data(), bytes.size());
-  if (::close(fd) != 0 && e == 0 && errno != EINTR) e = errno;
-  if (e != 0) {
-    ::unlink(tmp.c_str());
-    setError(err, ErrorKind::IoError, path, std::string("write failed: ") + std::strerror(e));
-    return false;
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    e = errno;
-    ::unlink(tmp.c_str());
-    setError(err, ErrorKind::CannotCreate, path,
-             std::string("cannot create plot file: ") + std::strerror(e));
-    return false;
-  }
-  return true;
 }
 
 /// Extends [lo, hi] of each panel by body b's positions in tr.

@@ -2,6 +2,8 @@
 // over the registry's parameter tables.
 #include "simbob/graph.h"
 
+#include "scene/source.h"
+
 #include <pugixml.hpp>
 #include <sstream>
 
@@ -38,14 +40,6 @@ const Link& Component::link(std::string_view p) const { return slot(p).link; }
 const std::vector<Link>& Component::list(std::string_view p) const { return slot(p).list; }
 
 namespace {
-
-std::string itemName(const std::string& list_name) {
-  const std::string suffix = "List";
-  if (list_name.size() > suffix.size() &&
-      list_name.compare(list_name.size() - suffix.size(), suffix.size(), suffix) == 0)
-    return list_name.substr(0, list_name.size() - suffix.size());
-  return list_name;
-}
 
 /// What a writer must do; the walk below decides what to write.
 class Emitter {
@@ -137,7 +131,7 @@ class XmlEmitter : public Emitter {
   }
   void beginStruct(const std::string& name) override { stack_.push_back({top().append_child(name.c_str()), ""}); }
   void beginList(const std::string& name, size_t) override {
-    stack_.push_back({top().append_child(name.c_str()), itemName(name)});
+    stack_.push_back({top().append_child(name.c_str()), listItemName(name)});
   }
   void listItem(size_t, const std::string& type, const std::string* key) override {
     pugi::xml_node t = top().append_child(type.c_str());
@@ -161,7 +155,7 @@ class XmlEmitter : public Emitter {
 
 std::string iniQuote(const std::string& v) {
   bool quote = v.empty() || v.front() == '"' || v.back() == '"' || v.front() == ' ' || v.back() == ' ' ||
-               v.front() == '\t' || v.back() == '\t';
+               v.front() == '\t' || v.back() == '\t' || v.front() == '\r' || v.back() == '\r';
   return quote ? "\"" + v + "\"" : v;
 }
 
@@ -179,7 +173,7 @@ class IniEmitter : public Emitter {
   }
   void beginStruct(const std::string& name) override { push(name, ""); }
   void beginList(const std::string& name, size_t count) override {
-    std::string base = itemName(name);
+    std::string base = listItemName(name);
     line(base + "Count", std::to_string(count));
     // Items are <prefix>.<base><i>: the list itself adds no prefix level.
     stack_.push_back({prefix(), base});

@@ -47,14 +47,6 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-// "ComponentList" -> "Component"; a list's items and count take the name without "List".
-std::string itemBase(const std::string& list_name) {
-  const std::string suffix = "List";
-  if (list_name.size() > suffix.size() &&
-      list_name.compare(list_name.size() - suffix.size(), suffix.size(), suffix) == 0)
-    return list_name.substr(0, list_name.size() - suffix.size());
-  return list_name;
-}
 
 class IniSource : public Source {
  public:
@@ -84,13 +76,14 @@ class IniSource : public Source {
 
   std::vector<SourceLink> list(const std::string& name, bool* present, int* line) override {
     std::vector<SourceLink> items;
-    const std::string base = itemBase(name);
+    const std::string base = listItemName(name);
     IniNode* count = take(base + "Count");
     *present = count != nullptr;
     if (!count) return items;
     *line = count->line;
     auto n = parseNumber(trim(count->value));
-    if (!count->has_value || !n || *n < 0 || *n != static_cast<double>(static_cast<int64_t>(*n)) || *n > 1e7) {
+    // Range first: casting a double beyond int64 to int64 is undefined behaviour.
+    if (!count->has_value || !n || *n < 0 || *n > 1e7 || *n != static_cast<double>(static_cast<int64_t>(*n))) {
       SourceLink bad;
       bad.present = true;
       bad.line = count->line;
@@ -181,6 +174,12 @@ class IniSource : public Source {
 }  // namespace
 
 std::shared_ptr<IniDoc> parseIni(const std::string& text, std::string* error, int* error_line) {
+  // A NUL byte is no text: the XML writer (C strings) would silently cut the value there.
+  if (size_t nul = text.find('\0'); nul != std::string::npos) {
+    *error = "NUL byte in INI text";
+    *error_line = static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(nul), '\n')) + 1;
+    return nullptr;
+  }
   auto doc = std::make_shared<IniDoc>();
   doc->root.line = 1;
   std::string section;

@@ -12,6 +12,16 @@ namespace simbob {
 
 class Source;
 
+/// Items and count of a list parameter take its name without "List" (guide 4.1:
+/// "StructList" -> "StructCount", "Struct0"; "ComponentList" -> "Component").
+inline std::string listItemName(const std::string& list_name) {
+  const std::string suffix = "List";
+  if (list_name.size() > suffix.size() &&
+      list_name.compare(list_name.size() - suffix.size(), suffix.size(), suffix) == 0)
+    return list_name.substr(0, list_name.size() - suffix.size());
+  return list_name;
+}
+
 /// What a component-valued entry says: an inline type element, a Ref, or a Macro.
 struct SourceLink {
   bool present = false;

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Every example scene runs valgrind-clean (memcheck: no invalid access, no use of uninitialised
+# values, no leak) for a short run through the whole pipeline: load, compile, ODE, CSV, summary.
+set -euo pipefail
+simbob=$1
+repo=$2
+if ! command -v valgrind >/dev/null; then
+  echo "FAIL: valgrind is not installed (scripts/deps.sh installs it)"
+  exit 1
+fi
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+for scene in "$repo"/scenes/*.xml; do
+  name=$(basename "${scene%.xml}")
+  echo "== $name"
+  valgrind --quiet --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect \
+    "$simbob" run "$scene" --duration 0.05 --out "$tmp/$name.csv" --quiet || {
+    echo "FAIL: valgrind reported errors for $name"
+    exit 1
+  }
+done
+echo PASS

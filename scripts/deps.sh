@@ -14,6 +14,8 @@ SIMBOB_PACKAGES=(
   libcairo2-dev         # trajectory plots (PNG, SVG)
   catch2                # unit tests
   python3               # test helpers
+  valgrind              # memcheck of the example scenes (tests/cli/valgrind.sh)
+  clang libclang-rt-14-dev  # sanitizer and fuzz builds (scripts/sanitize.sh, scripts/fuzz.sh)
 )
 
 missing=()

@@ -41,7 +41,7 @@ int cmdCompare(const CompareArgs& a) {
   opts.tol_rot = a.tol_rot;
   CompareResult r = compareTrajectories(actual, golden, opts);
   std::string text = "actual: " + a.actual + "\ngolden: " + a.golden + "\n" + r.text();
-  std::string json = r.json().dump(2) + "\n";
+  std::string json = r.json().dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
   std::fputs(a.json ? json.c_str() : text.c_str(), stdout);
   std::fflush(stdout);
   if (!a.report.empty()) {

@@ -1,5 +1,7 @@
 #include "simbob/compare.h"
 
+#include <algorithm>
+
 #include <cmath>
 #include <cstdio>
 #include <unordered_map>
@@ -80,8 +82,15 @@ double positionError(const double* p1, const double* p2) {
 }
 
 double rotationError(const double* q1, const double* q2) {
-  const double w1 = q1[0], x1 = q1[1], y1 = q1[2], z1 = q1[3];
-  const double w2 = q2[0], x2 = q2[1], y2 = q2[2], z2 = q2[3];
+  // Scale each quaternion by its largest component first: the angle does not depend on the
+  // scale, and products of components near 1e154 would overflow.
+  auto largest = [](const double* q) {
+    double m = std::max({std::fabs(q[0]), std::fabs(q[1]), std::fabs(q[2]), std::fabs(q[3])});
+    return m > 0 && std::isfinite(m) ? m : 1.0;
+  };
+  const double s1 = largest(q1), s2 = largest(q2);
+  const double w1 = q1[0] / s1, x1 = q1[1] / s1, y1 = q1[2] / s1, z1 = q1[3] / s1;
+  const double w2 = q2[0] / s2, x2 = q2[1] / s2, y2 = q2[2] / s2, z2 = q2[3] / s2;
   // r = conj(q1) * q2: the rotation taking q1 to q2.
   const double rw = w1 * w2 + x1 * x2 + y1 * y2 + z1 * z2;
   const double rx = w1 * x2 - w2 * x1 - (y1 * z2 - z1 * y2);

@@ -430,9 +430,11 @@ class Builder {
       diag_.error(link.loc, t->name + ": Key '" + key + "' must be non-empty and contain no '.'");
       key = default_key;
     }
-    // A line break in a key would break the INI writer's "Key = ..." line (and every message).
-    if (l.has_key && std::any_of(key.begin(), key.end(), [](char ch) { return ch == '\n' || ch == '\r'; })) {
-      diag_.error(link.loc, t->name + ": Key must not contain a line break");
+    // A line break in a key would break the INI writer's "Key = ..." line (and every message);
+    // XML cannot hold other control characters.
+    auto control = [](char ch) { return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f; };
+    if (l.has_key && std::any_of(key.begin(), key.end(), control)) {
+      diag_.error(link.loc, t->name + ": Key must not contain control characters (line breaks, tabs)");
       key = default_key;
     }
     link.comp = build(t, l.body.get(), key, l.has_key, parent, parent_qkey, link.loc);

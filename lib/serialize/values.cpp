@@ -634,6 +634,11 @@ std::string formatValue(ValueType t, const Value& v, const EnumTable* table) {
           return parenList(out, 4);
         }
         const double out[4] = {e[0] / e[3], e[1] / e[3], e[2] / e[3], 1.0};
+        // Normalising can overflow (1e300 / 1e-300) or give NaN (inf / inf): such a text
+        // would not read back, so write the four elements as they are.
+        for (int i = 0; i < 3; ++i) {
+          if (std::isnan(out[i]) || (std::isinf(out[i]) && !std::isinf(e[i]))) return parenList(e.data(), 4);
+        }
         return parenList(out, 4);
       }
       break;

@@ -1,0 +1,307 @@
+// What each fuzz target does with one input, shared by the libFuzzer mains in fuzz/*_fuzzer.cpp
+// and by the regression test tests/fuzz/fuzz_regression_test.cpp (which feeds every file under
+// tests/data/fuzz/<target>/ through the same function). Header-only so that the normal test
+// target needs no extra source file.
+//
+// Each entry returns "" when the input was handled correctly (accepted or rejected with a
+// message) and a description of the broken invariant otherwise. Crashes, sanitizer reports,
+// hangs and runaway allocations are caught by the fuzzer / test harness itself.
+#pragma once
+
+#include <stdlib.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <set>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <variant>
+#include <vector>
+
+#include "simbob/compare.h"
+#include "simbob/compile.h"
+#include "simbob/graph.h"
+#include "simbob/registry.h"
+#include "simbob/trajectory.h"
+#include "simbob/values.h"
+
+namespace simbob::fuzz {
+
+/// The fuzz targets; the names are the directories under fuzz/corpus/ and tests/data/fuzz/.
+inline const std::vector<std::string>& targetNames() {
+  static const std::vector<std::string> names{"scene_xml", "scene_ini", "values", "trajectory"};
+  return names;
+}
+
+/// A fresh, empty directory private to this process, removed at exit. Scenes are "loaded" from
+/// a name inside it, so relative imports find nothing and fail cleanly; trajectories are
+/// written into it to be read back.
+class TempDir {
+ public:
+  static const std::string& path() {
+    static TempDir dir;
+    return dir.path_;
+  }
+
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+
+ private:
+  TempDir() {
+    std::error_code ec;
+    std::filesystem::path base = std::filesystem::temp_directory_path(ec);
+    if (ec) base = "/tmp";
+    std::string templ = (base / "simbob-fuzz-XXXXXX").string();
+    std::vector<char> buf(templ.begin(), templ.end());
+    buf.push_back('\0');
+    if (!::mkdtemp(buf.data())) {
+      std::perror("simbob fuzz: mkdtemp");
+      std::abort();
+    }
+    path_ = buf.data();
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  std::string path_;
+};
+
+// ------------------------------------------------------------------------------------ scenes
+
+inline std::string sceneName(Format format) {
+  return TempDir::path() + (format == Format::Xml ? "/scene.xml" : "/scene.ini");
+}
+
+/// loadSceneFromText; if it loads, compileScene and writeScene in both formats (with and
+/// without defaults). What the writer writes must load again and be written the same way
+/// (graph.h: the writers' output is a scene file).
+inline std::string runScene(const uint8_t* data, size_t size, Format format) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  const std::string name = sceneName(format);
+  Scene scene;
+  Diagnostics diag;
+  if (!loadSceneFromText(text, name, format, builtinRegistry(), &scene, diag)) {
+    if (diag.errors().empty()) return "loadSceneFromText failed without an error message";
+    return {};
+  }
+  if (!diag.errors().empty()) return "loadSceneFromText succeeded but reported errors";
+  Model model;
+  Diagnostics cdiag;
+  bool compiled = compileScene(scene, &model, cdiag);
+  if (!compiled && cdiag.errors().empty()) return "compileScene failed without an error message";
+  for (Format f : {Format::Xml, Format::Ini}) {
+    for (bool fill : {false, true}) {
+      const std::string what =
+          std::string("writeScene(") + (f == Format::Xml ? "Xml" : "Ini") + (fill ? ", defaults" : "") + ")";
+      const std::string out = writeScene(scene, f, fill);
+      if (out.empty() && (f == Format::Xml || fill)) return what + " wrote nothing for a loaded scene";
+      Scene again;
+      Diagnostics adiag;
+      if (!loadSceneFromText(out, sceneName(f), f, builtinRegistry(), &again, adiag))
+        return what + " wrote a scene that does not load: " +
+               (adiag.errors().empty() ? std::string("(no message)") : adiag.errors().front().str());
+      if (writeScene(again, f, fill) != out) return what + " of the reloaded scene differs";
+    }
+  }
+  return {};
+}
+
+inline std::string runSceneXml(const uint8_t* data, size_t size) { return runScene(data, size, Format::Xml); }
+inline std::string runSceneIni(const uint8_t* data, size_t size) { return runScene(data, size, Format::Ini); }
+
+// ------------------------------------------------------------------------------------ values
+
+/// Enum/bitmask tables: every table of the built-in registry, plus synthetic ones covering
+/// aliases, a zero key, overlapping bits and the greedy path for tables of more than 20 keys.
+inline const std::vector<const EnumTable*>& fuzzTables() {
+  static const EnumTable aliases{"FuzzAliases",
+                                 {{"None", 0}, {"Left", 1}, {"MinX", 1}, {"Right", 2}, {"Both", 3},
+                                  {"Top", 4}, {"High", 0x80000000u}, {"Wide", 0x0000ff00u}}};
+  static const EnumTable no_zero{"FuzzNoZero", {{"A", 1}, {"B", 6}, {"C", 12}, {"D", 24}}};
+  // 24 keys, each "all of the low 24 bits but one": the full mask takes the greedy path, any
+  // other mask has at most one candidate key. (Tables of up to 20 single-bit keys make the
+  // exhaustive search of formatBitmask try ~2^20 combinations; no built-in table comes close.)
+  static const EnumTable big = [] {
+    EnumTable t{"FuzzBig", {}};
+    static const char* const names[] = {"K0",  "K1",  "K2",  "K3",  "K4",  "K5",  "K6",  "K7",
+                                        "K8",  "K9",  "K10", "K11", "K12", "K13", "K14", "K15",
+                                        "K16", "K17", "K18", "K19", "K20", "K21", "K22", "K23"};
+    for (uint32_t i = 0; i < 24; ++i) t.keys.push_back({names[i], 0xFFFFFFu ^ (1u << i)});
+    return t;
+  }();
+  static const std::vector<const EnumTable*> tables = [] {
+    std::vector<const EnumTable*> v;
+    std::set<const EnumTable*> seen;
+    for (const TypeSpec& t : builtinRegistry().types())
+      for (const ParamSpec& p : t.params)
+        if (p.table && seen.insert(p.table).second) v.push_back(p.table);
+    v.push_back(&aliases);
+    v.push_back(&no_zero);
+    v.push_back(&big);
+    return v;
+  }();
+  return tables;
+}
+
+/// Bit-for-bit equality of two values (values.h: parse(write(v)) == v bit for bit), so that
+/// -0 and +0 differ; an invalid Color equals any invalid Color.
+inline bool sameBits(const Value& a, const Value& b) {
+  if (a.index() != b.index()) return false;
+  auto bits = [](const double* x, const double* y, size_t n) { return std::memcmp(x, y, n * sizeof(double)) == 0; };
+  if (auto* x = std::get_if<double>(&a)) return bits(x, std::get_if<double>(&b), 1);
+  if (auto* x = std::get_if<Triple>(&a)) return bits(x->data(), std::get_if<Triple>(&b)->data(), 3);
+  if (auto* x = std::get_if<Vector4>(&a)) return bits(x->v.data(), std::get_if<Vector4>(&b)->v.data(), 4);
+  if (auto* x = std::get_if<Quaternion>(&a)) return bits(x->q.data(), std::get_if<Quaternion>(&b)->q.data(), 4);
+  if (auto* x = std::get_if<Pose>(&a)) {
+    auto* y = std::get_if<Pose>(&b);
+    return bits(x->pos.data(), y->pos.data(), 3) && bits(x->euler_deg.data(), y->euler_deg.data(), 3);
+  }
+  if (auto* x = std::get_if<Matrix4>(&a)) return bits(x->m.data(), std::get_if<Matrix4>(&b)->m.data(), 16);
+  if (auto* x = std::get_if<Cuboid>(&a)) {
+    auto* y = std::get_if<Cuboid>(&b);
+    return bits(x->a.data(), y->a.data(), 3) && bits(x->b.data(), y->b.data(), 3);
+  }
+  if (auto* x = std::get_if<Color>(&a)) {
+    auto* y = std::get_if<Color>(&b);
+    return x->valid == y->valid && (!x->valid || bits(x->rgba.data(), y->rgba.data(), 4));
+  }
+  return a == b;  // bool, int64, string, enum, bitmask
+}
+
+/// One value type: parse `text`; when it parses, write it and parse the result again. The
+/// second parse must succeed and give the same value bit for bit. Vectors are written
+/// normalised (x/w, y/w, z/w, 1) by design, so for them the written text must be a fixed point
+/// (write(parse(write(v))) == write(v)) and the value must come back exactly when w is 1.
+inline std::string checkValue(ValueType t, std::string_view text, const EnumTable* table, ParseOptions opts) {
+  ParseResult r = parseValue(t, text, table, opts);
+  if (!r) {
+    if (r.error.empty()) return std::string(valueTypeName(t)) + ": parse failed without a message";
+    return {};
+  }
+  const std::string written = formatValue(t, *r.value, table);
+  const std::string what = std::string(valueTypeName(t)) + (table ? std::string(" (") + table->name + ")" : "") +
+                           (opts.allow_infinite ? " [allow_infinite]" : "") + ": '" + std::string(text) +
+                           "' was written as '" + written + "'";
+  ParseResult back = parseValue(t, written, table, opts);
+  if (!back) return what + ", which does not parse: " + back.error;
+  if (t == ValueType::Vector) {
+    const std::string again = formatValue(t, *back.value, table);
+    if (again != written) return what + ", which reads back and is written as '" + again + "'";
+    if (std::get<Vector4>(*r.value).v[3] == 1.0 && !sameBits(*r.value, *back.value))
+      return what + ", which reads back as a different value";
+    return {};
+  }
+  if (!sameBits(*r.value, *back.value)) return what + ", which reads back as a different value";
+  return {};
+}
+
+/// parseValue for every value type (numbers and lists with and without allow_infinite, Enum
+/// and Bitmask with a table), and the write/read round trip of every value that parses.
+inline std::string runValues(const uint8_t* data, size_t size) {
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  static const ValueType kTypes[] = {ValueType::Bool,    ValueType::Int,        ValueType::Number,
+                                     ValueType::String,  ValueType::Triple,     ValueType::Vector,
+                                     ValueType::Quaternion, ValueType::Pose,    ValueType::Matrix,
+                                     ValueType::Cuboid,  ValueType::Color};
+  for (bool inf : {false, true}) {
+    ParseOptions opts;
+    opts.allow_infinite = inf;
+    for (ValueType t : kTypes) {
+      std::string problem = checkValue(t, text, nullptr, opts);
+      if (!problem.empty()) return problem;
+    }
+  }
+  // Enum and Bitmask with one table, picked by a hash of the input: every table is reached
+  // while each run stays cheap (a failed key lookup computes edit distances for its message).
+  // allow_infinite does not apply to keys.
+  uint32_t h = 2166136261u;
+  for (unsigned char c : text) h = (h ^ c) * 16777619u;
+  const EnumTable* table = fuzzTables()[h % fuzzTables().size()];
+  for (ValueType t : {ValueType::Enum, ValueType::Bitmask}) {
+    std::string problem = checkValue(t, text, table, ParseOptions{});
+    if (!problem.empty()) return problem;
+  }
+  // Without a table Enum/Bitmask must fail cleanly, never crash.
+  for (ValueType t : {ValueType::Enum, ValueType::Bitmask})
+    if (parseValue(t, text, nullptr)) return std::string(valueTypeName(t)) + " parsed without a key table";
+  return {};
+}
+
+// ------------------------------------------------------------------------------------ trajectories
+
+/// Writes the input to a file of this process, reads it with readTrajectory and, if it reads,
+/// compares the trajectory with itself: that must find no structural mismatch and compare
+/// every row that is present.
+inline std::string runTrajectory(const uint8_t* data, size_t size) {
+  const std::string path = TempDir::path() + "/trajectory.csv";
+  {
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    if (!f) {
+      std::perror(("simbob fuzz: " + path).c_str());
+      std::abort();
+    }
+    if (size && std::fwrite(data, 1, size, f) != size) {
+      std::perror(("simbob fuzz: " + path).c_str());
+      std::abort();
+    }
+    std::fclose(f);
+  }
+  Trajectory t;
+  Error err;
+  if (!readTrajectory(path, &t, &err)) {
+    if (err.message.empty()) return "readTrajectory failed without an error message";
+    return {};
+  }
+  // Shape invariants of trajectory.h.
+  if (t.poses.size() != t.bodies.size() || t.present.size() != t.bodies.size())
+    return "per-body columns do not match the body count";
+  for (size_t s = 1; s < t.times.size(); ++s)
+    if (!(t.times[s - 1] < t.times[s])) return "sample times are not increasing";
+  size_t rows = 0;
+  for (size_t b = 0; b < t.bodies.size(); ++b) {
+    if (t.present[b].size() != t.times.size() || t.poses[b].size() != t.times.size() * kPoseSize)
+      return "column of body '" + t.bodies[b] + "' is not sized to the sample count";
+    for (size_t s = 0; s < t.times.size(); ++s) rows += t.present[b][s] ? 1 : 0;
+  }
+  // Storage is dense (bodies x sample times); readTrajectory keeps it linear in the row count
+  // (lib/output/trajectory.cpp: at most 16 cells per row beyond 2^20 cells).
+  const size_t cells = t.bodies.size() * t.times.size();
+  if (cells > (size_t{1} << 20) && cells / 16 > rows)
+    return "dense storage of " + std::to_string(cells) + " cells for " + std::to_string(rows) + " rows";
+  CompareResult r = compareTrajectories(t, t);
+  if (r.structuralMismatch()) return "a trajectory compared with itself shows a structural mismatch";
+  if (r.shared_samples != t.times.size() || r.bodies.size() != t.bodies.size())
+    return "a trajectory compared with itself does not share every sample and body";
+  size_t compared = 0;
+  for (const BodyDiff& d : r.bodies) compared += d.compared;
+  if (compared != rows) return "a trajectory compared with itself does not compare every row";
+  (void)r.text();
+  (void)r.json().dump();
+  return {};
+}
+
+/// The entry for a target name, or nullptr.
+using Entry = std::string (*)(const uint8_t*, size_t);
+inline Entry entryFor(std::string_view target) {
+  if (target == "scene_xml") return runSceneXml;
+  if (target == "scene_ini") return runSceneIni;
+  if (target == "values") return runValues;
+  if (target == "trajectory") return runTrajectory;
+  return nullptr;
+}
+
+/// For the libFuzzer mains: run the entry and abort (a finding) when an invariant broke.
+inline int fuzzOne(Entry entry, const uint8_t* data, size_t size) {
+  std::string problem = entry(data, size);
+  if (!problem.empty()) {
+    std::fprintf(stderr, "simbob fuzz: invariant broken: %s\n", problem.c_str());
+    std::abort();
+  }
+  return 0;
+}
+
+}  // namespace simbob::fuzz

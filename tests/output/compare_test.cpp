@@ -397,3 +397,14 @@ TEST_CASE("compare: files written and read back compare equal", "[compare]") {
   std::error_code ec;
   fs::remove_all(dir, ec);
 }
+
+TEST_CASE("rotationError does not depend on the quaternions' scale", "[compare]") {
+  // Components near 1e200 would overflow the products of the angle formula without scaling.
+  const double big[4] = {1e200, 2e200, -3e200, 0.5e200};
+  CHECK(simbob::rotationError(big, big) == 0.0);
+  const double unit[4] = {1, 2, -3, 0.5};
+  const double small[4] = {1e-200, 2e-200, -3e-200, 0.5e-200};
+  CHECK(simbob::rotationError(unit, small) == Approx(0.0).margin(1e-15));
+  const double other[4] = {0, 1, 0, 0};
+  CHECK(simbob::rotationError(big, other) == Approx(simbob::rotationError(unit, other)).epsilon(1e-12));
+}

@@ -60,6 +60,13 @@ RunResult runModel(const Model& model, const RunOptions& opts, TrajectoryWriter*
       clock.served(sampler);
     }
     if (clock.now() >= end || end - clock.now() <= 0) break;
+    if (writer && !writer->ok()) {
+      // A full disk is reported when it happens, not after simulating the rest for nothing.
+      res.status = RunStatus::Failed;
+      res.error = {ErrorKind::IoError, {writer->finalPath(), 0},
+                   "writing the trajectory failed at t=" + formatNumber(toSeconds(clock.now())) + " s"};
+      break;
+    }
     if (opts.stop && *opts.stop) {
       res.status = RunStatus::Interrupted;
       res.error = {ErrorKind::Diverged, {}, "interrupted at t=" + formatNumber(toSeconds(clock.now())) + " s"};
@@ -89,7 +96,7 @@ RunResult runModel(const Model& model, const RunOptions& opts, TrajectoryWriter*
       next_progress += progress_every;
     }
   }
-  if (res.status == RunStatus::Failed) {
+  if (res.status == RunStatus::Failed && res.error.message.empty()) {
     // The final state is always recorded, even when the duration is not a multiple of the interval.
     if (last_sample != clock.now()) sample();
     res.status = RunStatus::Completed;

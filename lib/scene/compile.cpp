@@ -38,12 +38,16 @@ class Compiler {
     // [0]: the registry's defaults, for geoms made without a material (none today: every
     // body and global has a Material parameter with a default).
     model_.materials.push_back(MaterialDef{});
+    std::vector<int> clones;
     for (const Link& l : scene_.components) {
       if (l.comp < 0) continue;
       const Component& c = scene_.at(l.comp);
       switch (c.type->family) {
         case Family::Body:
-          if (!l.isRef()) body(l.comp, nullptr);
+          // Clones come last: the bodies their originals join to must exist outside the copy.
+          if (l.isRef()) break;
+          if (kindOf<BodyKind>(c) == BodyKind::Clone) clones.push_back(l.comp);
+          else body(l.comp, nullptr);
           break;
         case Family::GlobalSim:
           global(l.comp);
@@ -65,6 +69,7 @@ class Compiler {
           break;
       }
     }
+    for (int ci : clones) body(ci, nullptr);
     return diag_.ok();
   }
 

@@ -61,14 +61,15 @@ echo "== a crashing worker (killed by SIGKILL) is reported and the others still 
 batch_pid=$!
 victim=""
 for _ in $(seq 1 50); do
-  victim=$(pgrep -f "simbob run .*chain.xml" || true)
+  # Only this batch's own workers: other tests may run chain.xml at the same time.
+  victim=$(pgrep -P $batch_pid -f "simbob run .*chain.xml" || true)
   [ -n "$victim" ] && break
   sleep 0.1
 done
 [ -n "$victim" ] || fail "worker for chain.xml not found"
 kill -KILL $victim
 sleep 0.5
-other=$(pgrep -f "simbob run .*pendulum.xml" || true)
+other=$(pgrep -P $batch_pid -f "simbob run .*pendulum.xml" || true)
 [ -n "$other" ] && kill -INT $other
 set +e
 wait $batch_pid

@@ -82,7 +82,6 @@ struct World::Impl {
   dJointGroupID contactGroup = nullptr;
   std::vector<dBodyID> bodies;
   std::vector<Vec3> com;  // centre of mass in the body frame, per body
-  bool anyCom = false;
   std::vector<dGeomID> geoms;
   std::vector<dJointID> joints;
   std::vector<GeomInfo> geomInfo;
@@ -194,7 +193,6 @@ std::unique_ptr<World> World::create(const Model& model, uint32_t seed) {
     dBodySetAngularVel(b, bd.ang_vel[0], bd.ang_vel[1], bd.ang_vel[2]);
     im.bodies.push_back(b);
     im.com.push_back(bd.com);
-    im.anyCom = im.anyCom || offset;
   }
 
   im.geoms.reserve(model.geoms.size());

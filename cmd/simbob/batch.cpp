@@ -340,12 +340,11 @@ int cmdBatch(const BatchArgs& a) {
   }
   table += "\n" + std::to_string(jobs.size() - failed) + " of " + std::to_string(jobs.size()) + " scenes ok (" +
            std::to_string(workers) + " workers, " + fixed(wall, 2) + " s)\n";
-  if (a.json) std::printf("%s\n", rep.dump(2, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
+  if (a.json) std::fputs(jsonText(rep).c_str(), stdout);
   else std::fputs(table.c_str(), stdout);
   if (!a.report.empty()) {
     Error err;
-    std::string text = a.report.size() > 5 && a.report.compare(a.report.size() - 5, 5, ".json") == 0
-                           ? rep.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n" : table;
+    std::string text = endsWith(a.report, ".json") ? jsonText(rep) : table;
     if (!writeFileAtomically(a.report, text, &err)) {
       g_log.error(err);
       return exitCodeFor(err.kind);

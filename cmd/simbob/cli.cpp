@@ -19,6 +19,17 @@ void catchStopSignals() {
   std::signal(SIGTERM, simbobOnSignal);
 }
 
+std::string jsonText(const nlohmann::json& j) {
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+std::string jsonText(const nlohmann::ordered_json& j) {
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
 int exitCodeFor(ErrorKind k) {
   switch (k) {
     case ErrorKind::InvalidInput: return kExitDataErr;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <csignal>
+#include <nlohmann/json.hpp>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -62,6 +63,13 @@ int readSettings(Common& c);
 
 /// Load and compile a scene, reporting problems; *code is the exit status on failure.
 bool loadAndCompile(const std::string& path, Scene* scene, Model* model, int* code, bool warnings);
+
+/// JSON text of a report or summary; invalid UTF-8 (from keys in input files) is replaced, never
+/// thrown.
+std::string jsonText(const nlohmann::json& j);
+std::string jsonText(const nlohmann::ordered_json& j);
+
+bool endsWith(const std::string& s, const std::string& suffix);
 
 /// Install SIGINT/SIGTERM handlers that set g_stop.
 void catchStopSignals();

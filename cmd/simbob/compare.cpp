@@ -22,10 +22,6 @@ bool readOrReport(const std::string& path, Trajectory* t, int* code) {
   return true;
 }
 
-bool endsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 }  // namespace
 
 int cmdCompare(const CompareArgs& a) {
@@ -41,7 +37,7 @@ int cmdCompare(const CompareArgs& a) {
   opts.tol_rot = a.tol_rot;
   CompareResult r = compareTrajectories(actual, golden, opts);
   std::string text = "actual: " + a.actual + "\ngolden: " + a.golden + "\n" + r.text();
-  std::string json = r.json().dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+  std::string json = jsonText(r.json());
   std::fputs(a.json ? json.c_str() : text.c_str(), stdout);
   std::fflush(stdout);
   if (!a.report.empty()) {

@@ -210,7 +210,7 @@ int cmdRun(RunArgs& a) {
     summary["determinism_check"] = same ? "identical" : where;
     if (!same) {
       writer->abandon();
-      if (a.json) std::printf("%s\n", summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
+      if (a.json) std::fputs(jsonText(summary).c_str(), stdout);
       g_log.error({ErrorKind::Diverged, {a.scene, 0}, "two runs in one process differ: " + where});
       return kExitResultWrong;
     }
@@ -224,11 +224,11 @@ int cmdRun(RunArgs& a) {
     }
     summary["trajectory"] = a.out;
     summary["csv_bytes"] = writer->bytesWritten();
-    if (!writeFileAtomically(replaceExtension(a.out, ".json"), summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n", &err)) {
+    if (!writeFileAtomically(replaceExtension(a.out, ".json"), jsonText(summary), &err)) {
       g_log.error(err);
       return exitCodeFor(err.kind);
     }
-    if (a.json) std::printf("%s\n", summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
+    if (a.json) std::fputs(jsonText(summary).c_str(), stdout);
     g_log.info("wrote " + a.out + " (" + std::to_string(r.samples) + " samples of " +
                std::to_string(model.bodies.size()) + " bodies, " + std::to_string(r.steps) + " steps in " +
                formatNumber(std::round(r.wall_seconds * 1000) / 1000) + " s)");
@@ -250,7 +250,7 @@ int cmdRun(RunArgs& a) {
   std::string partial = partialPath(a.out);
   Error perr;
   if (writer->keepPartial(partial, &perr)) summary["partial_trajectory"] = partial;
-  if (a.json) std::printf("%s\n", summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
+  if (a.json) std::fputs(jsonText(summary).c_str(), stdout);
   g_log.error(r.error);
   if (!perr.message.empty()) g_log.error(perr);
   else g_log.info("kept the trajectory so far in " + partial);

@@ -46,8 +46,8 @@ static_assert(sizeof(dReal) == sizeof(double), "bare_ode needs ODE built in doub
 // ---- the scene (bench/boxgrid.py holds the same numbers) ----
 constexpr int64_t kSpacingMm = 300;
 constexpr int64_t kDropYMm = 101;
-constexpr double kSize = 0.2;         // m, cube edge
-constexpr double kDensity = 500.0;    // kg/m^3
+constexpr double kSize = 0.2;       // m, cube edge
+constexpr double kDensity = 500.0;  // kg/m^3
 constexpr double kFriction = 0.8;
 constexpr double kBounce = 0.1;
 constexpr double kMinBounceVel = 0.1;  // m/s
@@ -58,8 +58,8 @@ constexpr double kErp = 0.2;
 constexpr double kCfm = 1e-10;
 constexpr int kIterations = 20;
 constexpr int kMaxContacts = 4;
-constexpr int64_t kStepNs = 1000000;     // 1 ms
-constexpr int64_t kMinStepNs = 1000;     // 1 us: a time this close counts as reached
+constexpr int64_t kStepNs = 1000000;             // 1 ms
+constexpr int64_t kMinStepNs = 1000;             // 1 us: a time this close counts as reached
 constexpr double kDefaultSampleInterval = 0.01;  // s
 constexpr unsigned kSeed = 0;
 
@@ -91,8 +91,7 @@ void nearCallback(void* data, dGeomID g1, dGeomID g2) {
   if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
   const Material& m1 = sim.geom_material[reinterpret_cast<uintptr_t>(dGeomGetData(g1))];
   const Material& m2 = sim.geom_material[reinterpret_cast<uintptr_t>(dGeomGetData(g2))];
-  const int n = dCollide(g1, g2, static_cast<int>(sim.contact_buf.size()), &sim.contact_buf[0].geom,
-                         sizeof(dContact));
+  const int n = dCollide(g1, g2, static_cast<int>(sim.contact_buf.size()), &sim.contact_buf[0].geom, sizeof(dContact));
   if (n <= 0) return;
   const double mu = std::max(m1.friction, m2.friction);
   const double bounce = std::max(m1.bounce, m2.bounce);
@@ -297,7 +296,8 @@ int main(int argc, char** argv) {
       "{\"bodies\": %ld, \"steps\": %llu, \"samples\": %llu, \"loop_seconds\": %.6f, \"steps_per_second\": %.1f, "
       "\"csv_bytes\": %llu, \"sample_seconds\": %.6f}\n",
       n, static_cast<unsigned long long>(steps), static_cast<unsigned long long>(samples), loop_seconds,
-      loop_seconds > 0 ? static_cast<double>(steps) / loop_seconds : 0.0, static_cast<unsigned long long>(csv.bytes()), sample_seconds);
+      loop_seconds > 0 ? static_cast<double>(steps) / loop_seconds : 0.0, static_cast<unsigned long long>(csv.bytes()),
+      sample_seconds);
 
   dJointGroupDestroy(sim.contacts);
   dSpaceDestroy(sim.space);

@@ -119,8 +119,14 @@ inline std::string runSceneIni(const uint8_t* data, size_t size) { return runSce
 /// aliases, a zero key, overlapping bits and the greedy path for tables of more than 20 keys.
 inline const std::vector<const EnumTable*>& fuzzTables() {
   static const EnumTable aliases{"FuzzAliases",
-                                 {{"None", 0}, {"Left", 1}, {"MinX", 1}, {"Right", 2}, {"Both", 3},
-                                  {"Top", 4}, {"High", 0x80000000u}, {"Wide", 0x0000ff00u}}};
+                                 {{"None", 0},
+                                  {"Left", 1},
+                                  {"MinX", 1},
+                                  {"Right", 2},
+                                  {"Both", 3},
+                                  {"Top", 4},
+                                  {"High", 0x80000000u},
+                                  {"Wide", 0x0000ff00u}}};
   static const EnumTable no_zero{"FuzzNoZero", {{"A", 1}, {"B", 6}, {"C", 12}, {"D", 24}}};
   // 24 keys, each "all of the low 24 bits but one": the full mask takes the greedy path, any
   // other mask has at most one candidate key. (Tables of up to 20 single-bit keys make the
@@ -203,10 +209,9 @@ inline std::string checkValue(ValueType t, std::string_view text, const EnumTabl
 /// and Bitmask with a table), and the write/read round trip of every value that parses.
 inline std::string runValues(const uint8_t* data, size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
-  static const ValueType kTypes[] = {ValueType::Bool,    ValueType::Int,        ValueType::Number,
-                                     ValueType::String,  ValueType::Triple,     ValueType::Vector,
-                                     ValueType::Quaternion, ValueType::Pose,    ValueType::Matrix,
-                                     ValueType::Cuboid,  ValueType::Color};
+  static const ValueType kTypes[] = {ValueType::Bool,   ValueType::Int,    ValueType::Number,     ValueType::String,
+                                     ValueType::Triple, ValueType::Vector, ValueType::Quaternion, ValueType::Pose,
+                                     ValueType::Matrix, ValueType::Cuboid, ValueType::Color};
   for (bool inf : {false, true}) {
     ParseOptions opts;
     opts.allow_infinite = inf;

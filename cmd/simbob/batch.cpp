@@ -32,15 +32,15 @@ struct Job {
   std::vector<std::string> args;  // extra `simbob run` arguments from the manifest
   std::string out;
   std::string log;
-  SourceLoc loc;                  // manifest line, if any
+  SourceLoc loc;  // manifest line, if any
   // Results.
   pid_t pid = -1;
   std::string status = "pending";  // ok, failed, diverged, crashed, interrupted
   int exit_code = -1;
   double wall = 0;
   std::chrono::steady_clock::time_point started;
-  std::string error;               // first error line of the worker
-  std::string golden_status;       // pass, mismatch, no-golden, unreadable ("" without --golden)
+  std::string error;          // first error line of the worker
+  std::string golden_status;  // pass, mismatch, no-golden, unreadable ("" without --golden)
   double max_pos = 0, max_rot = 0;
   std::string divergence;
 };
@@ -139,11 +139,19 @@ void finish(Job& j, int wstatus, const BatchArgs& a) {
   }
   j.exit_code = WEXITSTATUS(wstatus);
   switch (j.exit_code) {
-    case kExitOk: j.status = "ok"; break;
-    case kExitResultWrong: j.status = "diverged"; break;
+    case kExitOk:
+      j.status = "ok";
+      break;
+    case kExitResultWrong:
+      j.status = "diverged";
+      break;
     case kExitSigInt:
-    case kExitSigTerm: j.status = "interrupted"; break;
-    default: j.status = "failed"; break;
+    case kExitSigTerm:
+      j.status = "interrupted";
+      break;
+    default:
+      j.status = "failed";
+      break;
   }
   if (j.exit_code != kExitOk) j.error = firstErrorLine(j.log);
   if (a.golden.empty() || j.status != "ok") return;
@@ -202,7 +210,8 @@ int cmdBatch(const BatchArgs& a) {
   if (!a.manifest.empty()) {
     std::ifstream in(a.manifest);
     if (!in) {
-      g_log.error({ErrorKind::MissingInput, {a.manifest, 0}, std::string("cannot read manifest: ") + std::strerror(errno)});
+      g_log.error(
+          {ErrorKind::MissingInput, {a.manifest, 0}, std::string("cannot read manifest: ") + std::strerror(errno)});
       return kExitNoInput;
     }
     fs::path base = fs::path(a.manifest).parent_path();
@@ -254,8 +263,9 @@ int cmdBatch(const BatchArgs& a) {
     j.log = fs::path(j.out).replace_extension(".log").string();
     auto [it, fresh] = outs.emplace(j.out, i);
     if (!fresh) {
-      g_log.error({ErrorKind::InvalidInput, j.loc, "scenes " + jobs[it->second].scene + " and " + j.scene +
-                                                      " would both write " + j.out + "; give one of them --out"});
+      g_log.error({ErrorKind::InvalidInput, j.loc,
+                   "scenes " + jobs[it->second].scene + " and " + j.scene + " would both write " + j.out +
+                       "; give one of them --out"});
       return kExitUsage;
     }
   }
@@ -315,7 +325,8 @@ int cmdBatch(const BatchArgs& a) {
   rep["wall_seconds"] = wall;
   rep["golden"] = a.golden;
   rep["results"] = nlohmann::json::array();
-  std::string table = "\nscene                                    status       wall s   golden      max pos err  max rot err\n";
+  std::string table =
+      "\nscene                                    status       wall s   golden      max pos err  max rot err\n";
   for (const auto& j : jobs) {
     nlohmann::ordered_json r;
     r["scene"] = j.scene;
@@ -340,8 +351,10 @@ int cmdBatch(const BatchArgs& a) {
   }
   table += "\n" + std::to_string(jobs.size() - failed) + " of " + std::to_string(jobs.size()) + " scenes ok (" +
            std::to_string(workers) + " workers, " + fixed(wall, 2) + " s)\n";
-  if (a.json) std::fputs(jsonText(rep).c_str(), stdout);
-  else std::fputs(table.c_str(), stdout);
+  if (a.json)
+    std::fputs(jsonText(rep).c_str(), stdout);
+  else
+    std::fputs(table.c_str(), stdout);
   if (!a.report.empty()) {
     Error err;
     std::string text = endsWith(a.report, ".json") ? jsonText(rep) : table;

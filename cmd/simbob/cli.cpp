@@ -32,12 +32,18 @@ bool endsWith(const std::string& s, const std::string& suffix) {
 
 int exitCodeFor(ErrorKind k) {
   switch (k) {
-    case ErrorKind::InvalidInput: return kExitDataErr;
-    case ErrorKind::MissingInput: return kExitNoInput;
-    case ErrorKind::CannotCreate: return kExitCantCreate;
-    case ErrorKind::IoError: return kExitIoErr;
-    case ErrorKind::Diverged: return kExitResultWrong;
-    case ErrorKind::Internal: return kExitSoftware;
+    case ErrorKind::InvalidInput:
+      return kExitDataErr;
+    case ErrorKind::MissingInput:
+      return kExitNoInput;
+    case ErrorKind::CannotCreate:
+      return kExitCantCreate;
+    case ErrorKind::IoError:
+      return kExitIoErr;
+    case ErrorKind::Diverged:
+      return kExitResultWrong;
+    case ErrorKind::Internal:
+      return kExitSoftware;
   }
   return kExitSoftware;
 }
@@ -80,7 +86,8 @@ int setupLogging(const Common& c) {
   if (!c.log_file.empty()) {
     g_log.file = std::fopen(c.log_file.c_str(), "a");
     if (!g_log.file) {
-      g_log.error({ErrorKind::CannotCreate, {c.log_file, 0}, std::string("cannot open log file: ") + std::strerror(errno)});
+      g_log.error(
+          {ErrorKind::CannotCreate, {c.log_file, 0}, std::string("cannot open log file: ") + std::strerror(errno)});
       return kExitCantCreate;
     }
   }

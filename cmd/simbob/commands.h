@@ -16,10 +16,10 @@ struct RunArgs {
   uint32_t seed = 0;
   bool json = false;
   bool check_determinism = false;
-  bool batch_child = false;  ///< started by `simbob batch`: warnings stay out of the log
-  std::string space;         ///< overrides SceneSettings Space ("" = the scene's)
-  bool auto_disable = false; ///< turns SceneSettings AutoDisable on
-  int max_contacts = 0;      ///< overrides SceneSettings MaxContacts (0 = the scene's)
+  bool batch_child = false;   ///< started by `simbob batch`: warnings stay out of the log
+  std::string space;          ///< overrides SceneSettings Space ("" = the scene's)
+  bool auto_disable = false;  ///< turns SceneSettings AutoDisable on
+  int max_contacts = 0;       ///< overrides SceneSettings MaxContacts (0 = the scene's)
 };
 int cmdRun(RunArgs& a);
 
@@ -44,7 +44,7 @@ int cmdPlot(const PlotArgs& a);
 struct BatchArgs {
   std::vector<std::string> scenes;  ///< paths or glob patterns
   std::string manifest;
-  int jobs = 0;                     ///< 0 = all cores
+  int jobs = 0;  ///< 0 = all cores
   double duration = 10;
   double dt = 0;
   double sample_interval = 0.01;

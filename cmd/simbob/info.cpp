@@ -34,10 +34,13 @@ namespace {
 
 std::string defaultText(const ParamSpec& p) {
   switch (p.kind) {
-    case ParamKind::Value: return formatValue(p.type, p.default_value, p.table);
+    case ParamKind::Value:
+      return formatValue(p.type, p.default_value, p.table);
     case ParamKind::Component:
-    case ParamKind::Struct: return p.default_type.empty() ? "(none)" : p.default_type;
-    case ParamKind::List: return "(empty)";
+    case ParamKind::Struct:
+      return p.default_type.empty() ? "(none)" : p.default_type;
+    case ParamKind::List:
+      return "(empty)";
   }
   return "";
 }
@@ -59,7 +62,8 @@ std::string typeText(const ParamSpec& p) {
       for (size_t i = 0; i < p.families.size(); ++i) s += (i ? " | " : "") + std::string(familyName(p.families[i]));
       return s;
     }
-    case ParamKind::Struct: return "Struct " + p.struct_type;
+    case ParamKind::Struct:
+      return "Struct " + p.struct_type;
   }
   return "";
 }
@@ -95,7 +99,8 @@ int cmdTypes(bool markdown) {
                  cell(p.unit) + " | " + cell(p.doc) + " |\n";
       }
     } else {
-      out += t.name + " (" + familyName(t.family) + (aliases.empty() ? "" : "; alias " + aliases) + "): " + t.doc + "\n";
+      out +=
+          t.name + " (" + familyName(t.family) + (aliases.empty() ? "" : "; alias " + aliases) + "): " + t.doc + "\n";
       for (const auto& p : t.params)
         out += "  " + p.name + " : " + typeText(p) + " = " + defaultText(p) +
                (p.unit.empty() ? "" : " [" + p.unit + "]") + "  -- " + p.doc + "\n";
@@ -103,8 +108,10 @@ int cmdTypes(bool markdown) {
   }
   out += markdown ? "\n## Macros\n\n| Macro | Creates | Meaning |\n|---|---|---|\n" : "\nMacros:\n";
   for (const auto& m : reg.macros()) {
-    if (markdown) out += "| " + cell(m.name) + " | " + cell(m.type) + " | " + cell(m.doc) + " |\n";
-    else out += "  " + m.name + " -> " + m.type + " (" + familyName(m.family) + "): " + m.doc + "\n";
+    if (markdown)
+      out += "| " + cell(m.name) + " | " + cell(m.type) + " | " + cell(m.doc) + " |\n";
+    else
+      out += "  " + m.name + " -> " + m.type + " (" + familyName(m.family) + "): " + m.doc + "\n";
   }
   std::fwrite(out.data(), 1, out.size(), stdout);
   return kExitOk;

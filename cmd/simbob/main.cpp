@@ -103,7 +103,8 @@ int main(int argc, char** argv) {
   for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
   if (argc > 1 && argv[1][0] != '-' && std::find(names.begin(), names.end(), argv[1]) == names.end()) {
     std::string near = simbob::didYouMean(argv[1], names);
-    std::fprintf(stderr, "simbob: error: unknown command '%s'%s; commands: run, check, dump, types, compare, batch, plot\n",
+    std::fprintf(stderr,
+                 "simbob: error: unknown command '%s'%s; commands: run, check, dump, types, compare, batch, plot\n",
                  argv[1], near.empty() ? "" : (" (did you mean '" + near + "'?)").c_str());
     return kExitUsage;
   }

@@ -29,8 +29,8 @@ class Progress {
     if (wall < 1.0) return;  // runs shorter than a second print no bar
     int pct = static_cast<int>(100.0 * t / duration_ + 0.5);
     int bar = pct * 30 / 100;
-    std::fprintf(stderr, "\r[%.*s%*s] %3d%% t=%.2f/%.2f s", bar, "##############################", 30 - bar, "",
-                 pct, t, duration_);
+    std::fprintf(stderr, "\r[%.*s%*s] %3d%% t=%.2f/%.2f s", bar, "##############################", 30 - bar, "", pct, t,
+                 duration_);
     shown_ = true;
   }
   void done() {
@@ -68,10 +68,14 @@ std::string replaceExtension(const std::string& path, const std::string& ext) {
 
 const char* statusName(RunStatus s) {
   switch (s) {
-    case RunStatus::Completed: return "completed";
-    case RunStatus::Diverged: return "diverged";
-    case RunStatus::Interrupted: return "interrupted";
-    case RunStatus::Failed: return "failed";
+    case RunStatus::Completed:
+      return "completed";
+    case RunStatus::Diverged:
+      return "diverged";
+    case RunStatus::Interrupted:
+      return "interrupted";
+    case RunStatus::Failed:
+      return "failed";
   }
   return "failed";
 }
@@ -196,7 +200,7 @@ int cmdRun(RunArgs& a) {
   // What bit-identical reruns depend on.
   summary["reproducibility"] = {{"physics", physicsVersion()},
                                 {"precision", "double"},
-                                #ifdef __clang__
+#ifdef __clang__
                                 {"compiler", "clang " __clang_version__},
 #else
                                 {"compiler", "gcc " __VERSION__},
@@ -252,8 +256,10 @@ int cmdRun(RunArgs& a) {
   if (writer->keepPartial(partial, &perr)) summary["partial_trajectory"] = partial;
   if (a.json) std::fputs(jsonText(summary).c_str(), stdout);
   g_log.error(r.error);
-  if (!perr.message.empty()) g_log.error(perr);
-  else g_log.info("kept the trajectory so far in " + partial);
+  if (!perr.message.empty())
+    g_log.error(perr);
+  else
+    g_log.info("kept the trajectory so far in " + partial);
   if (r.status == RunStatus::Interrupted) return g_stop == SIGTERM ? kExitSigTerm : kExitSigInt;
   return exitCodeFor(r.error.kind);
 }

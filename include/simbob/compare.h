@@ -24,16 +24,16 @@ struct CompareOptions {
 /// Results for one body present in both trajectories. Times are the golden file's.
 struct BodyDiff {
   std::string body;
-  size_t compared = 0;      ///< shared samples where both have a row
-  double max_pos_err = 0;   ///< m
-  double max_pos_time = 0;  ///< time of the first occurrence of max_pos_err (if compared > 0)
-  double max_rot_err = 0;   ///< rad
-  double max_rot_time = 0;  ///< time of the first occurrence of max_rot_err (if compared > 0)
-  std::optional<double> first_exceed_time;  ///< earliest time a tolerance was exceeded
-  double first_exceed_pos_err = 0;          ///< position error at first_exceed_time
-  double first_exceed_rot_err = 0;          ///< rotation error at first_exceed_time
-  size_t missing_in_actual = 0;  ///< shared times where only golden has a row for this body
-  size_t missing_in_golden = 0;  ///< shared times where only actual has a row for this body
+  size_t compared = 0;                       ///< shared samples where both have a row
+  double max_pos_err = 0;                    ///< m
+  double max_pos_time = 0;                   ///< time of the first occurrence of max_pos_err (if compared > 0)
+  double max_rot_err = 0;                    ///< rad
+  double max_rot_time = 0;                   ///< time of the first occurrence of max_rot_err (if compared > 0)
+  std::optional<double> first_exceed_time;   ///< earliest time a tolerance was exceeded
+  double first_exceed_pos_err = 0;           ///< position error at first_exceed_time
+  double first_exceed_rot_err = 0;           ///< rotation error at first_exceed_time
+  size_t missing_in_actual = 0;              ///< shared times where only golden has a row for this body
+  size_t missing_in_golden = 0;              ///< shared times where only actual has a row for this body
   std::optional<double> first_missing_time;  ///< earliest such time
 
   bool exceeded() const { return first_exceed_time.has_value(); }

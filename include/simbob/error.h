@@ -16,12 +16,12 @@ struct SourceLoc {
 
 /// What went wrong, coarse enough for the CLI to choose an exit status.
 enum class ErrorKind {
-  InvalidInput,   ///< the scene or a data file is wrong (EX_DATAERR 65)
-  MissingInput,   ///< an input file does not exist or cannot be read (EX_NOINPUT 66)
-  CannotCreate,   ///< an output file cannot be created (EX_CANTCREAT 73)
-  IoError,        ///< writing an output failed (EX_IOERR 74)
-  Diverged,       ///< the simulation produced a non-finite or runaway state (exit 1)
-  Internal,       ///< a bug in simbob (EX_SOFTWARE 70)
+  InvalidInput,  ///< the scene or a data file is wrong (EX_DATAERR 65)
+  MissingInput,  ///< an input file does not exist or cannot be read (EX_NOINPUT 66)
+  CannotCreate,  ///< an output file cannot be created (EX_CANTCREAT 73)
+  IoError,       ///< writing an output failed (EX_IOERR 74)
+  Diverged,      ///< the simulation produced a non-finite or runaway state (exit 1)
+  Internal,      ///< a bug in simbob (EX_SOFTWARE 70)
 };
 
 struct Error {
@@ -45,7 +45,10 @@ class Diagnostics {
   bool ok() const { return errors_.empty(); }
   const std::vector<Error>& errors() const { return errors_; }
   const std::vector<Error>& warnings() const { return warnings_; }
-  void clear() { errors_.clear(); warnings_.clear(); }
+  void clear() {
+    errors_.clear();
+    warnings_.clear();
+  }
 
  private:
   std::vector<Error> errors_;

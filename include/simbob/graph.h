@@ -15,9 +15,9 @@ namespace simbob {
 
 /// One component-valued slot: an inline component, a Ref, or a Macro (which creates one).
 struct Link {
-  int comp = -1;        ///< component index (inline, macro-created, or resolved Ref target)
-  std::string ref;      ///< Ref text as written ("" if none)
-  std::string macro;    ///< Macro name as written ("" if none)
+  int comp = -1;      ///< component index (inline, macro-created, or resolved Ref target)
+  std::string ref;    ///< Ref text as written ("" if none)
+  std::string macro;  ///< Macro name as written ("" if none)
   SourceLoc loc;
 
   bool empty() const { return comp < 0 && ref.empty(); }
@@ -26,22 +26,22 @@ struct Link {
 
 /// The value of one parameter of one component.
 struct Slot {
-  bool set = false;          ///< written in the file (else the default applies)
-  Value value;               ///< Value params (the default when !set)
-  Link link;                 ///< Component and Struct params
-  std::vector<Link> list;    ///< List params
+  bool set = false;        ///< written in the file (else the default applies)
+  Value value;             ///< Value params (the default when !set)
+  Link link;               ///< Component and Struct params
+  std::vector<Link> list;  ///< List params
   SourceLoc loc;
 };
 
 struct Component {
   const TypeSpec* type = nullptr;
-  std::string key;           ///< Key attribute, or the parameter name it stands in
-  bool has_key = false;      ///< Key was written in the file
-  std::string qkey;          ///< fully qualified key
-  int parent = -1;           ///< owning component (-1: top level of the scene or an import root)
+  std::string key;       ///< Key attribute, or the parameter name it stands in
+  bool has_key = false;  ///< Key was written in the file
+  std::string qkey;      ///< fully qualified key
+  int parent = -1;       ///< owning component (-1: top level of the scene or an import root)
   SourceLoc loc;
-  std::vector<Slot> slots;   ///< parallel to type->params
-  std::vector<int> imported; ///< roots read from this component's File (imports)
+  std::vector<Slot> slots;    ///< parallel to type->params
+  std::vector<int> imported;  ///< roots read from this component's File (imports)
 
   const Slot& slot(std::string_view param) const;
   Slot& slot(std::string_view param);
@@ -59,14 +59,14 @@ struct Component {
 
 /// A whole scene: components in document order (imports appended as they are read).
 struct Scene {
-  std::string path;                 ///< the scene file as given
+  std::string path;  ///< the scene file as given
   std::vector<Component> comps;
-  int settings = -1;                ///< SceneSettings struct component
-  std::vector<Link> cameras;        ///< CameraList
-  std::vector<Link> components;     ///< ComponentList
+  int settings = -1;                                ///< SceneSettings struct component
+  std::vector<Link> cameras;                        ///< CameraList
+  std::vector<Link> components;                     ///< ComponentList
   std::map<std::string, int, std::less<>> by_qkey;  ///< fully qualified key -> component
-  std::vector<std::string> files;   ///< every file read (scene first, then imports)
-  std::string content_hash;         ///< FNV-1a 64 of all files' bytes, hex
+  std::vector<std::string> files;                   ///< every file read (scene first, then imports)
+  std::string content_hash;                         ///< FNV-1a 64 of all files' bytes, hex
 
   const Component& at(int i) const { return comps[static_cast<size_t>(i)]; }
   Component& at(int i) { return comps[static_cast<size_t>(i)]; }
@@ -80,15 +80,15 @@ enum class Format { Xml, Ini };
 bool loadScene(const std::string& path, const Registry& reg, Scene* scene, Diagnostics& diag);
 
 /// Same from text in memory (tests, fuzzing); `name` is used in messages and for imports.
-bool loadSceneFromText(const std::string& text, const std::string& name, Format format,
-                       const Registry& reg, Scene* scene, Diagnostics& diag);
+bool loadSceneFromText(const std::string& text, const std::string& name, Format format, const Registry& reg,
+                       Scene* scene, Diagnostics& diag);
 
 /// Write the scene in `format`. With `fill_defaults`, every parameter is written, including
 /// defaults and default components; otherwise only what the file set.
 std::string writeScene(const Scene& scene, Format format, bool fill_defaults);
 
 /// Read an INI file of one Struct type (global settings): the global section's keys.
-bool loadStructIni(const std::string& path, const Registry& reg, const std::string& struct_type,
-                   Scene* holder, int* comp, Diagnostics& diag);
+bool loadStructIni(const std::string& path, const Registry& reg, const std::string& struct_type, Scene* holder,
+                   int* comp, Diagnostics& diag);
 
 }  // namespace simbob

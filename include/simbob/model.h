@@ -25,21 +25,21 @@ struct Transform {
 
 /// Contact properties of one material (guide 6.7.1, combined per 7.1).
 struct MaterialDef {
-  std::string key;                ///< fully qualified key ("" for the default material)
-  double friction = 0.5;          ///< Coulomb coefficient mu (dimensionless)
-  double bounceness = 0.0;        ///< restitution in [0,1]
-  double min_bounce_vel = 0.1;    ///< m/s; slower impacts do not bounce
+  std::string key;              ///< fully qualified key ("" for the default material)
+  double friction = 0.5;        ///< Coulomb coefficient mu (dimensionless)
+  double bounceness = 0.0;      ///< restitution in [0,1]
+  double min_bounce_vel = 0.1;  ///< m/s; slower impacts do not bounce
 };
 
 /// A mobile rigid body. Static bodies have no entry: their geoms are world geoms.
 struct BodyDef {
-  std::string key;           ///< fully qualified key, written to the trajectory
+  std::string key;  ///< fully qualified key, written to the trajectory
   SourceLoc loc;
-  Transform pose;            ///< initial pose, global (m, unit quaternion)
-  Vec3 lin_vel{0, 0, 0};     ///< m/s, global
-  Vec3 ang_vel{0, 0, 0};     ///< rad/s, global
-  double mass = 1.0;         ///< kg, > 0
-  Vec3 com{0, 0, 0};         ///< centre of mass in the body frame, m (offset geoms move it)
+  Transform pose;                           ///< initial pose, global (m, unit quaternion)
+  Vec3 lin_vel{0, 0, 0};                    ///< m/s, global
+  Vec3 ang_vel{0, 0, 0};                    ///< rad/s, global
+  double mass = 1.0;                        ///< kg, > 0
+  Vec3 com{0, 0, 0};                        ///< centre of mass in the body frame, m (offset geoms move it)
   Mat3 inertia{1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< kg m^2 about the centre of mass, body axes
 };
 
@@ -52,26 +52,26 @@ enum class GeomShape : uint8_t {
 };
 
 struct GeomDef {
-  std::string key;          ///< qualified key of the owning body (for messages)
+  std::string key;  ///< qualified key of the owning body (for messages)
   GeomShape shape = GeomShape::Box;
-  int body = -1;            ///< index into Model::bodies; -1 = static (world) geom
-  Transform offset;         ///< relative to the body frame, or global when body == -1
-  Vec3 size{0, 0, 0};       ///< see GeomShape
+  int body = -1;                            ///< index into Model::bodies; -1 = static (world) geom
+  Transform offset;                         ///< relative to the body frame, or global when body == -1
+  Vec3 size{0, 0, 0};                       ///< see GeomShape
   std::array<double, 4> plane{0, 1, 0, 0};  ///< Plane only, global
-  int material = 0;         ///< index into Model::materials
-  bool sensor = false;      ///< detects contacts but creates no contact joints
+  int material = 0;                         ///< index into Model::materials
+  bool sensor = false;                      ///< detects contacts but creates no contact joints
 };
 
 enum class JointKind : uint8_t { BallSocket, Hinge, Slider, Fixed };
 
 struct JointDef {
-  std::string key;          ///< fully qualified key
+  std::string key;  ///< fully qualified key
   SourceLoc loc;
   JointKind kind = JointKind::BallSocket;
-  int body1 = -1;           ///< parent body index, -1 = the static world
-  int body2 = -1;           ///< child body index, -1 = the static world (not both -1)
-  Vec3 anchor{0, 0, 0};     ///< global, m (BallSocket, Hinge)
-  Vec3 axis{0, 0, 1};       ///< global unit vector (Hinge, Slider)
+  int body1 = -1;        ///< parent body index, -1 = the static world
+  int body2 = -1;        ///< child body index, -1 = the static world (not both -1)
+  Vec3 anchor{0, 0, 0};  ///< global, m (BallSocket, Hinge)
+  Vec3 axis{0, 0, 1};    ///< global unit vector (Hinge, Slider)
 };
 
 /// ODE collision space: how candidate pairs are found. Results differ between spaces (pairs
@@ -80,7 +80,7 @@ enum class SpaceKind : uint8_t { Hash, SweepAndPrune, QuadTree, Simple };
 
 /// World and solver settings (SceneSettings in the scene file).
 struct SolverSettings {
-  Vec3 gravity{0, -9.81, 0};  ///< m/s^2
+  Vec3 gravity{0, -9.81, 0};     ///< m/s^2
   double max_time_step = 0.001;  ///< s, the step size (MaxTimeStep; --dt overrides)
   double min_time_step = 1e-6;   ///< s, a requested time this close counts as reached
   double erp = 0.2;              ///< error reduction parameter
@@ -89,7 +89,7 @@ struct SolverSettings {
   int max_contacts = 4;          ///< contact points per colliding geom pair
   bool quickstep = true;         ///< false: dWorldStep (exact LCP)
   SpaceKind space = SpaceKind::Hash;
-  bool auto_disable = false;     ///< let ODE disable resting bodies (changes trajectories slightly)
+  bool auto_disable = false;  ///< let ODE disable resting bodies (changes trajectories slightly)
 };
 
 struct Model {

@@ -59,29 +59,35 @@ struct ParamSpec {
   Value default_value;                 ///< Value params
   Range range = Range::Any;
   bool allow_infinite = false;
-  std::vector<Family> families;        ///< Component / List: accepted families
-  std::string default_type;            ///< Component: type created when absent ("" = stays empty)
-  std::string struct_type;             ///< Struct: the Struct type describing the members
-  std::string unit;                    ///< "m", "kg", "deg", "s", ... ("" = none)
-  std::string doc;                     ///< one line for `simbob types`
+  std::vector<Family> families;  ///< Component / List: accepted families
+  std::string default_type;      ///< Component: type created when absent ("" = stays empty)
+  std::string struct_type;       ///< Struct: the Struct type describing the members
+  std::string unit;              ///< "m", "kg", "deg", "s", ... ("" = none)
+  std::string doc;               ///< one line for `simbob types`
 };
 
 struct TypeSpec {
   TypeSpec() = default;
-  TypeSpec(std::string n, Family f, int k, std::vector<ParamSpec> ps, std::vector<std::string> al,
-           std::string d, bool finished = false, std::string import = "")
-      : name(std::move(n)), family(f), kind(k), params(std::move(ps)), aliases(std::move(al)),
-        doc(std::move(d)), finished_here(finished), import_root(std::move(import)) {}
+  TypeSpec(std::string n, Family f, int k, std::vector<ParamSpec> ps, std::vector<std::string> al, std::string d,
+           bool finished = false, std::string import = "")
+      : name(std::move(n)),
+        family(f),
+        kind(k),
+        params(std::move(ps)),
+        aliases(std::move(al)),
+        doc(std::move(d)),
+        finished_here(finished),
+        import_root(std::move(import)) {}
 
-  std::string name;                 ///< "RCSphereGeom"
+  std::string name;  ///< "RCSphereGeom"
   Family family = Family::Struct;
-  int kind = 0;                     ///< family-specific enum value used by the compile step
-  std::vector<ParamSpec> params;    ///< family (inherited) parameters first, then the type's own
-  std::vector<std::string> aliases; ///< other accepted spellings ("RCMoelMatchGeom")
+  int kind = 0;                      ///< family-specific enum value used by the compile step
+  std::vector<ParamSpec> params;     ///< family (inherited) parameters first, then the type's own
+  std::vector<std::string> aliases;  ///< other accepted spellings ("RCMoelMatchGeom")
   std::string doc;
-  bool finished_here = false;       ///< marked * (never finished) in the guide, finished in simbob
-  std::string import_root;          ///< non-empty: parameter File names an XML file with this root
-                                    ///< element ("Body", "Joint", "RefList") read into the scene
+  bool finished_here = false;  ///< marked * (never finished) in the guide, finished in simbob
+  std::string import_root;     ///< non-empty: parameter File names an XML file with this root
+                               ///< element ("Body", "Joint", "RefList") read into the scene
 
   /// Index of the parameter called `name` (exact case), or -1.
   int paramIndex(std::string_view name) const;
@@ -136,12 +142,10 @@ void registerBuiltins(Registry& r);
 std::string didYouMean(std::string_view word, const std::vector<std::string>& candidates);
 
 // --- helpers for the parameter tables in lib/components/*.cpp ---
-ParamSpec valueParam(std::string name, ValueType type, Value def, std::string unit,
-                     std::string doc, Range range = Range::Any);
-ParamSpec enumParam(std::string name, ValueType type, const EnumTable* table, uint32_t def,
-                    std::string doc);
-ParamSpec componentParam(std::string name, std::vector<Family> families,
-                         std::string default_type, std::string doc);
+ParamSpec valueParam(std::string name, ValueType type, Value def, std::string unit, std::string doc,
+                     Range range = Range::Any);
+ParamSpec enumParam(std::string name, ValueType type, const EnumTable* table, uint32_t def, std::string doc);
+ParamSpec componentParam(std::string name, std::vector<Family> families, std::string default_type, std::string doc);
 ParamSpec listParam(std::string name, std::vector<Family> families, std::string doc);
 ParamSpec structParam(std::string name, std::string struct_type, std::string doc);
 

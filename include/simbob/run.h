@@ -14,11 +14,11 @@
 namespace simbob {
 
 struct RunOptions {
-  double duration = 10.0;          ///< s of simulated time
-  double dt = 0.0;                 ///< s; 0 = the scene's MaxTimeStep
-  double sample_interval = 0.01;   ///< s of simulated time between trajectory samples
-  uint32_t seed = 0;               ///< ODE's random generator (QuickStep constraint order)
-  double runaway_limit = 1e6;      ///< |position| in m or |velocity| in m/s, rad/s beyond which a run diverged
+  double duration = 10.0;         ///< s of simulated time
+  double dt = 0.0;                ///< s; 0 = the scene's MaxTimeStep
+  double sample_interval = 0.01;  ///< s of simulated time between trajectory samples
+  uint32_t seed = 0;              ///< ODE's random generator (QuickStep constraint order)
+  double runaway_limit = 1e6;     ///< |position| in m or |velocity| in m/s, rad/s beyond which a run diverged
   /// Called about every 1% of the run with the simulated time reached.
   std::function<void(double)> progress;
   /// Called with every sample: time and kPoseSize doubles per body (x y z qw qx qy qz).
@@ -31,12 +31,12 @@ enum class RunStatus { Completed, Diverged, Interrupted, Failed };
 
 struct RunResult {
   RunStatus status = RunStatus::Failed;
-  Error error;                 ///< set unless Completed
+  Error error;  ///< set unless Completed
   uint64_t steps = 0;
-  double sim_time = 0.0;       ///< s reached
+  double sim_time = 0.0;  ///< s reached
   uint64_t samples = 0;
   double wall_seconds = 0.0;
-  double dt = 0.0;             ///< step size used
+  double dt = 0.0;  ///< step size used
 };
 
 /// Runs the model. Samples go to `writer` (may be null: no trajectory). The caller commits

@@ -29,8 +29,8 @@ class TrajectoryWriter {
   /// body_keys are fully qualified keys in output order; they must be non-empty and distinct
   /// (ErrorKind::Internal otherwise). Returns nullptr and sets *err on failure
   /// (ErrorKind::CannotCreate when the temporary file cannot be created).
-  static std::unique_ptr<TrajectoryWriter> open(const std::string& final_path,
-                                                std::vector<std::string> body_keys, Error* err);
+  static std::unique_ptr<TrajectoryWriter> open(const std::string& final_path, std::vector<std::string> body_keys,
+                                                Error* err);
 
   /// Abandons the output (removes the temporary file) unless commit() or keepPartial() was called.
   ~TrajectoryWriter();

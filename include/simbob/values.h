@@ -79,8 +79,8 @@ struct BitmaskValue {
 
 enum class ValueType {
   Bool,
-  Int,      ///< a number that must be integral (stored as int64)
-  Number,   ///< double
+  Int,     ///< a number that must be integral (stored as int64)
+  Number,  ///< double
   String,
   Triple,
   Vector,
@@ -93,8 +93,8 @@ enum class ValueType {
   Bitmask,
 };
 
-using Value = std::variant<bool, int64_t, double, std::string, Triple, Vector4, Quaternion, Pose,
-                           Matrix4, Cuboid, Color, EnumValue, BitmaskValue>;
+using Value = std::variant<bool, int64_t, double, std::string, Triple, Vector4, Quaternion, Pose, Matrix4, Cuboid,
+                           Color, EnumValue, BitmaskValue>;
 
 /// Name used in messages and `simbob types`: "Bool", "Number", "Triple", ...
 const char* valueTypeName(ValueType t);
@@ -113,8 +113,7 @@ struct ParseResult {
 
 /// Parse `text` as a value of type `t`. `table` is required for Enum and Bitmask.
 /// NaN is always rejected; infinities only with allow_infinite.
-ParseResult parseValue(ValueType t, std::string_view text, const EnumTable* table = nullptr,
-                       ParseOptions opts = {});
+ParseResult parseValue(ValueType t, std::string_view text, const EnumTable* table = nullptr, ParseOptions opts = {});
 
 /// Write `v` (which must hold the alternative for `t`) in its canonical string form.
 std::string formatValue(ValueType t, const Value& v, const EnumTable* table = nullptr);

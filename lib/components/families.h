@@ -12,15 +12,13 @@ enum class BodyKind { StaticRigid, MobileRigid, Rod, Construction, Import, Clone
 enum class GlobalKind { Ground, Sky, SandBox, Robot, ImportRefList };
 enum class ModelKind { Cuboid, Plane, Ellipsoid, Cylinder, Cone, Empty };
 enum class SkinKind { Colored, Textured, ColTex };
-enum class GeomKind { Transform, Cuboid, Plane, Sphere, Cylinder, CappedCylinder, ModelMatch,
-                      ModelWrap, Empty };
+enum class GeomKind { Transform, Cuboid, Plane, Sphere, Cylinder, CappedCylinder, ModelMatch, ModelWrap, Empty };
 enum class JointCompKind { BallSocket, Hinge, Slider, Fix, Import };
 enum class MaterialKind { Generic };
 enum class PoseKind { Global, Local };
 enum class MotionKind { Global };
 enum class InertiaKind { Generic, ByGeom };
-enum class PeripheryKind { GenericDrive, GenericServo, VelControlledDrive, ProximitySensor,
-                           LocalSocketCommunicator };
+enum class PeripheryKind { GenericDrive, GenericServo, VelControlledDrive, ProximitySensor, LocalSocketCommunicator };
 enum class ControllerKind { DriveTest, ServoTest, TwoWheelMotionControl };
 enum class CameraKind { Static, Mounted, Spotlight, Tracking };
 enum class StructKind { SceneSettings, FogSettings, GlobalSettings, Simulation };
@@ -41,13 +39,10 @@ void registerCameras(Registry& r);
 void registerSettings(Registry& r);
 
 // Short forms for the parameter tables.
-inline ParamSpec number(std::string name, double def, std::string unit, std::string doc,
-                        Range range = Range::Any) {
-  return valueParam(std::move(name), ValueType::Number, def, std::move(unit), std::move(doc),
-                    range);
+inline ParamSpec number(std::string name, double def, std::string unit, std::string doc, Range range = Range::Any) {
+  return valueParam(std::move(name), ValueType::Number, def, std::move(unit), std::move(doc), range);
 }
-inline ParamSpec integer(std::string name, int64_t def, std::string doc,
-                         Range range = Range::Any) {
+inline ParamSpec integer(std::string name, int64_t def, std::string doc, Range range = Range::Any) {
   return valueParam(std::move(name), ValueType::Int, def, "", std::move(doc), range);
 }
 inline ParamSpec flag(std::string name, bool def, std::string doc) {

@@ -5,11 +5,14 @@
 namespace simbob {
 
 void registerMaterials(Registry& r) {
-  r.add({"RCGenericMaterial", Family::Material, int(MaterialKind::Generic),
+  r.add({"RCGenericMaterial",
+         Family::Material,
+         int(MaterialKind::Generic),
          {number("Friction", 0.5, "", "Coulomb friction coefficient", Range::NonNegative),
           number("Bounceness", 0.0, "", "restitution, 0 = no bounce, 1 = elastic", Range::Unit),
           number("MinBounceVel", 0.1, "m/s", "slower impacts do not bounce", Range::NonNegative)},
-         {}, "Contact properties of a body."});
+         {},
+         "Contact properties of a body."});
   r.addMacro({"DefaultMaterial", Family::Material, "RCGenericMaterial", {}, "the default material"});
 }
 

@@ -3,8 +3,9 @@
 
 namespace simbob {
 
-static const EnumTable kColorMode{"ColorMode", {{"Color", 0}, {"Shading", 1}, {"TransparentColor", 2},
-                                                {"TransparentLighting", 3}, {"TransparentLighing", 3}}};
+static const EnumTable kColorMode{
+    "ColorMode",
+    {{"Color", 0}, {"Shading", 1}, {"TransparentColor", 2}, {"TransparentLighting", 3}, {"TransparentLighing", 3}}};
 
 static std::vector<ParamSpec> coloredParams() {
   return {color("Color", rgba(0.8, 0.8, 0.8), "base colour"),
@@ -15,8 +16,9 @@ static std::vector<ParamSpec> coloredParams() {
 }
 
 static std::vector<ParamSpec> commonParams() {
-  return {enumParam("ColorMode", ValueType::Enum, &kColorMode, 1, "Color, Shading, TransparentColor, TransparentLighting"),
-          number("Shininess", 0.0, "", "specular exponent", Range::NonNegative)};
+  return {
+      enumParam("ColorMode", ValueType::Enum, &kColorMode, 1, "Color, Shading, TransparentColor, TransparentLighting"),
+      number("Shininess", 0.0, "", "specular exponent", Range::NonNegative)};
 }
 
 static std::vector<ParamSpec> concat(std::vector<ParamSpec> a, const std::vector<ParamSpec>& b) {
@@ -26,12 +28,23 @@ static std::vector<ParamSpec> concat(std::vector<ParamSpec> a, const std::vector
 
 void registerSkins(Registry& r) {
   const ParamSpec texture = text("Texture", "", "image file name in the TextureFolder");
-  r.add({"RCColoredSkin", Family::Skin, int(SkinKind::Colored), concat(coloredParams(), commonParams()),
-         {}, "A coloured surface."});
-  r.add({"RCTexturedSkin", Family::Skin, int(SkinKind::Textured), concat({texture}, commonParams()),
-         {}, "A textured surface."});
-  r.add({"RCColTexSkin", Family::Skin, int(SkinKind::ColTex),
-         concat(concat(coloredParams(), {texture}), commonParams()), {},
+  r.add({"RCColoredSkin",
+         Family::Skin,
+         int(SkinKind::Colored),
+         concat(coloredParams(), commonParams()),
+         {},
+         "A coloured surface."});
+  r.add({"RCTexturedSkin",
+         Family::Skin,
+         int(SkinKind::Textured),
+         concat({texture}, commonParams()),
+         {},
+         "A textured surface."});
+  r.add({"RCColTexSkin",
+         Family::Skin,
+         int(SkinKind::ColTex),
+         concat(concat(coloredParams(), {texture}), commonParams()),
+         {},
          "Base colour blended with a texture."});
 }
 

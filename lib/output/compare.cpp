@@ -26,9 +26,7 @@ std::string fmtTime(double t) {
   return formatNumber(t);
 }
 
-nlohmann::json optTime(const std::optional<double>& t) {
-  return t ? nlohmann::json(*t) : nlohmann::json(nullptr);
-}
+nlohmann::json optTime(const std::optional<double>& t) { return t ? nlohmann::json(*t) : nlohmann::json(nullptr); }
 
 const char* statusOf(const BodyDiff& d) {
   if (d.exceeded() && d.missingRows()) return "exceeded, missing rows";
@@ -116,8 +114,7 @@ bool CompareResult::structuralMismatch() const {
   return false;
 }
 
-CompareResult compareTrajectories(const Trajectory& actual, const Trajectory& golden,
-                                  const CompareOptions& options) {
+CompareResult compareTrajectories(const Trajectory& actual, const Trajectory& golden, const CompareOptions& options) {
   CompareResult r;
   r.options = options;
   r.actual_samples = actual.times.size();
@@ -164,13 +161,11 @@ CompareResult compareTrajectories(const Trajectory& actual, const Trajectory& go
         const double pe = positionError(pa, pg);
         const double re = rotationError(pa + 3, pg + 3);
         // Strictly greater keeps the first time of the maximum; NaN always wins.
-        if (d.compared == 0 || pe > d.max_pos_err ||
-            (std::isnan(pe) && !std::isnan(d.max_pos_err))) {
+        if (d.compared == 0 || pe > d.max_pos_err || (std::isnan(pe) && !std::isnan(d.max_pos_err))) {
           d.max_pos_err = pe;
           d.max_pos_time = t;
         }
-        if (d.compared == 0 || re > d.max_rot_err ||
-            (std::isnan(re) && !std::isnan(d.max_rot_err))) {
+        if (d.compared == 0 || re > d.max_rot_err || (std::isnan(re) && !std::isnan(d.max_rot_err))) {
           d.max_rot_err = re;
           d.max_rot_time = t;
         }
@@ -183,8 +178,7 @@ CompareResult compareTrajectories(const Trajectory& actual, const Trajectory& go
           d.first_exceed_pos_err = pe;
           d.first_exceed_rot_err = re;
           // Samples are visited in time order, so the first one found overall is the earliest.
-          if (!r.first_divergence)
-            r.first_divergence = Divergence{t, d.body, pe, re, pos_ex, rot_ex};
+          if (!r.first_divergence) r.first_divergence = Divergence{t, d.body, pe, re, pos_ex, rot_ex};
         }
       }
       ++i;
@@ -217,11 +211,9 @@ std::string CompareResult::text() const {
   for (const std::string& b : only_golden) rows.push_back({b, "-", "-", "-", "only in golden"});
   std::string out = renderTable(rows);
 
-  out += "\ntolerances: pos " + fmtErr(options.tol_pos) + " m, rot " + fmtErr(options.tol_rot) +
-         " rad\n";
-  out += "samples: " + std::to_string(actual_samples) + " actual, " +
-         std::to_string(golden_samples) + " golden, " + std::to_string(shared_samples) +
-         " shared\n";
+  out += "\ntolerances: pos " + fmtErr(options.tol_pos) + " m, rot " + fmtErr(options.tol_rot) + " rad\n";
+  out += "samples: " + std::to_string(actual_samples) + " actual, " + std::to_string(golden_samples) + " golden, " +
+         std::to_string(shared_samples) + " shared\n";
   auto timesLine = [&out](const char* which, const TimeMismatch& m) {
     if (m.count == 0) return;
     out += std::string("sample times only in ") + which + ": " + std::to_string(m.count) +
@@ -233,15 +225,14 @@ std::string CompareResult::text() const {
   if (!only_golden.empty()) out += "bodies only in golden: " + joinNames(only_golden) + "\n";
   for (const BodyDiff& d : bodies) {
     if (!d.missingRows()) continue;
-    out += "missing rows for " + d.body + ": " + std::to_string(d.missing_in_actual) +
-           " in actual, " + std::to_string(d.missing_in_golden) +
-           " in golden (first at t=" + fmtTime(*d.first_missing_time) + ")\n";
+    out += "missing rows for " + d.body + ": " + std::to_string(d.missing_in_actual) + " in actual, " +
+           std::to_string(d.missing_in_golden) + " in golden (first at t=" + fmtTime(*d.first_missing_time) + ")\n";
   }
   if (first_divergence) {
     const Divergence& v = *first_divergence;
-    out += "first divergence: t=" + fmtTime(v.time) + " body " + v.body + ": pos err " +
-           fmtErr(v.pos_err) + " m" + (v.pos_exceeded ? " (exceeds)" : "") + ", rot err " +
-           fmtErr(v.rot_err) + " rad" + (v.rot_exceeded ? " (exceeds)" : "") + "\n";
+    out += "first divergence: t=" + fmtTime(v.time) + " body " + v.body + ": pos err " + fmtErr(v.pos_err) + " m" +
+           (v.pos_exceeded ? " (exceeds)" : "") + ", rot err " + fmtErr(v.rot_err) + " rad" +
+           (v.rot_exceeded ? " (exceeds)" : "") + "\n";
   }
   out += pass ? "result: PASS\n" : "result: FAIL\n";
   return out;
@@ -252,11 +243,8 @@ nlohmann::json CompareResult::json() const {
   json j;
   j["pass"] = pass;
   j["structural_mismatch"] = structuralMismatch();
-  j["tolerances"] = {
-      {"pos", options.tol_pos}, {"rot", options.tol_rot}, {"time_eps", options.time_eps}};
-  auto times = [](const TimeMismatch& m) {
-    return json{{"count", m.count}, {"first_time", optTime(m.first_time)}};
-  };
+  j["tolerances"] = {{"pos", options.tol_pos}, {"rot", options.tol_rot}, {"time_eps", options.time_eps}};
+  auto times = [](const TimeMismatch& m) { return json{{"count", m.count}, {"first_time", optTime(m.first_time)}}; };
   j["samples"] = {{"actual", actual_samples},
                   {"golden", golden_samples},
                   {"shared", shared_samples},
@@ -267,21 +255,20 @@ nlohmann::json CompareResult::json() const {
   json list = json::array();
   for (const BodyDiff& d : bodies) {
     const bool any = d.compared > 0;
-    list.push_back(
-        json{{"body", d.body},
-             {"compared", d.compared},
-             {"max_pos_err", d.max_pos_err},
-             {"max_pos_time", any ? json(d.max_pos_time) : json(nullptr)},
-             {"max_rot_err", d.max_rot_err},
-             {"max_rot_time", any ? json(d.max_rot_time) : json(nullptr)},
-             {"first_exceed_time", optTime(d.first_exceed_time)},
-             {"first_exceed_pos_err", d.exceeded() ? json(d.first_exceed_pos_err) : json(nullptr)},
-             {"first_exceed_rot_err", d.exceeded() ? json(d.first_exceed_rot_err) : json(nullptr)},
-             {"missing_in_actual", d.missing_in_actual},
-             {"missing_in_golden", d.missing_in_golden},
-             {"first_missing_time", optTime(d.first_missing_time)},
-             {"status", statusOf(d)},
-             {"pass", d.pass()}});
+    list.push_back(json{{"body", d.body},
+                        {"compared", d.compared},
+                        {"max_pos_err", d.max_pos_err},
+                        {"max_pos_time", any ? json(d.max_pos_time) : json(nullptr)},
+                        {"max_rot_err", d.max_rot_err},
+                        {"max_rot_time", any ? json(d.max_rot_time) : json(nullptr)},
+                        {"first_exceed_time", optTime(d.first_exceed_time)},
+                        {"first_exceed_pos_err", d.exceeded() ? json(d.first_exceed_pos_err) : json(nullptr)},
+                        {"first_exceed_rot_err", d.exceeded() ? json(d.first_exceed_rot_err) : json(nullptr)},
+                        {"missing_in_actual", d.missing_in_actual},
+                        {"missing_in_golden", d.missing_in_golden},
+                        {"first_missing_time", optTime(d.first_missing_time)},
+                        {"status", statusOf(d)},
+                        {"pass", d.pass()}});
   }
   j["bodies"] = std::move(list);
   if (first_divergence) {

@@ -33,12 +33,9 @@ constexpr size_t kFieldCount = 9;
 /// to this many cells per row, beyond a fixed allowance of kSparseAllowance cells.
 constexpr size_t kMaxCellsPerRow = 16;
 constexpr size_t kSparseAllowance = size_t{1} << 20;
-constexpr const char* kColumnNames[kFieldCount] = {"time", "body", "x",  "y", "z",
-                                                   "qw",   "qx",   "qy", "qz"};
+constexpr const char* kColumnNames[kFieldCount] = {"time", "body", "x", "y", "z", "qw", "qx", "qy", "qz"};
 
-bool needsQuoting(std::string_view key) {
-  return key.find_first_of(",\"\r\n") != std::string_view::npos;
-}
+bool needsQuoting(std::string_view key) { return key.find_first_of(",\"\r\n") != std::string_view::npos; }
 
 std::string encodeKey(std::string_view key) {
   if (!needsQuoting(key)) return std::string(key);
@@ -70,8 +67,7 @@ void setError(Error* err, Error e) {
 // TrajectoryWriter
 
 std::unique_ptr<TrajectoryWriter> TrajectoryWriter::open(const std::string& final_path,
-                                                         std::vector<std::string> body_keys,
-                                                         Error* err) {
+                                                         std::vector<std::string> body_keys, Error* err) {
   std::unordered_set<std::string> seen;
   for (const std::string& key : body_keys) {
     if (key.empty()) {
@@ -79,8 +75,7 @@ std::unique_ptr<TrajectoryWriter> TrajectoryWriter::open(const std::string& fina
       return nullptr;
     }
     if (!seen.insert(key).second) {
-      setError(err,
-               makeError(ErrorKind::Internal, final_path, 0, "duplicate body key '" + key + "'"));
+      setError(err, makeError(ErrorKind::Internal, final_path, 0, "duplicate body key '" + key + "'"));
       return nullptr;
     }
   }
@@ -92,9 +87,8 @@ std::unique_ptr<TrajectoryWriter> TrajectoryWriter::open(const std::string& fina
   if (w->fd_ < 0) {
     int e = errno;
     w->done_ = true;  // nothing to clean up
-    setError(err,
-             makeError(ErrorKind::CannotCreate, final_path, 0,
-                       "cannot create temporary file " + w->temp_path_ + ": " + std::strerror(e)));
+    setError(err, makeError(ErrorKind::CannotCreate, final_path, 0,
+                            "cannot create temporary file " + w->temp_path_ + ": " + std::strerror(e)));
     return nullptr;
   }
   w->keys_ = std::move(body_keys);
@@ -150,8 +144,7 @@ void TrajectoryWriter::closeFd() {
 
 bool TrajectoryWriter::finish(const std::string& target, Error* err) {
   if (done_) {
-    setError(err,
-             makeError(ErrorKind::Internal, final_path_, 0, "trajectory writer already closed"));
+    setError(err, makeError(ErrorKind::Internal, final_path_, 0, "trajectory writer already closed"));
     return false;
   }
   flush();
@@ -173,9 +166,8 @@ bool TrajectoryWriter::finish(const std::string& target, Error* err) {
   if (std::rename(temp_path_.c_str(), target.c_str()) != 0) {
     int e = errno;
     abandon();
-    setError(err,
-             makeError(ErrorKind::CannotCreate, target, 0,
-                       "cannot rename " + temp_path_ + " to " + target + ": " + std::strerror(e)));
+    setError(err, makeError(ErrorKind::CannotCreate, target, 0,
+                            "cannot rename " + temp_path_ + " to " + target + ": " + std::strerror(e)));
     return false;
   }
   done_ = true;
@@ -184,9 +176,7 @@ bool TrajectoryWriter::finish(const std::string& target, Error* err) {
 
 bool TrajectoryWriter::commit(Error* err) { return finish(final_path_, err); }
 
-bool TrajectoryWriter::keepPartial(const std::string& partial_path, Error* err) {
-  return finish(partial_path, err);
-}
+bool TrajectoryWriter::keepPartial(const std::string& partial_path, Error* err) { return finish(partial_path, err); }
 
 void TrajectoryWriter::abandon() {
   if (done_) return;
@@ -257,8 +247,7 @@ int slurp(const std::string& path, std::string* out, const char** what) {
 
 bool looksLikeNan(std::string_view f) {
   if (!f.empty() && (f[0] == '-' || f[0] == '+')) f.remove_prefix(1);
-  return f.size() == 3 && (f[0] == 'n' || f[0] == 'N') && (f[1] == 'a' || f[1] == 'A') &&
-         (f[2] == 'n' || f[2] == 'N');
+  return f.size() == 3 && (f[0] == 'n' || f[0] == 'N') && (f[1] == 'a' || f[1] == 'A') && (f[2] == 'n' || f[2] == 'N');
 }
 
 /// Whether s is well-formed UTF-8 (no overlong forms, surrogates or code points > U+10FFFF).
@@ -269,15 +258,24 @@ bool isValidUtf8(std::string_view s) {
     const auto c = static_cast<unsigned char>(s[i]);
     size_t n = 0;
     unsigned char lo = 0x80, hi = 0xBF;  // allowed range of the second byte
-    if (c < 0x80) n = 0;
-    else if (c >= 0xC2 && c <= 0xDF) n = 1;
-    else if (c == 0xE0) n = 2, lo = 0xA0;
-    else if ((c >= 0xE1 && c <= 0xEC) || c == 0xEE || c == 0xEF) n = 2;
-    else if (c == 0xED) n = 2, hi = 0x9F;
-    else if (c == 0xF0) n = 3, lo = 0x90;
-    else if (c >= 0xF1 && c <= 0xF3) n = 3;
-    else if (c == 0xF4) n = 3, hi = 0x8F;
-    else return false;
+    if (c < 0x80)
+      n = 0;
+    else if (c >= 0xC2 && c <= 0xDF)
+      n = 1;
+    else if (c == 0xE0)
+      n = 2, lo = 0xA0;
+    else if ((c >= 0xE1 && c <= 0xEC) || c == 0xEE || c == 0xEF)
+      n = 2;
+    else if (c == 0xED)
+      n = 2, hi = 0x9F;
+    else if (c == 0xF0)
+      n = 3, lo = 0x90;
+    else if (c >= 0xF1 && c <= 0xF3)
+      n = 3;
+    else if (c == 0xF4)
+      n = 3, hi = 0x8F;
+    else
+      return false;
     if (s.size() - i <= n) return false;  // truncated sequence
     for (size_t k = 1; k <= n; ++k) {
       const auto b = static_cast<unsigned char>(s[i + k]);
@@ -379,8 +377,7 @@ bool CsvParser::parseRecord(Error* err) {
 bool CsvParser::run(Trajectory* out, Error* err) {
   // A UTF-8 byte order mark (added by some editors) is not part of the header.
   if (end_ - p_ >= 3 && std::memcmp(p_, "\xEF\xBB\xBF", 3) == 0) p_ += 3;
-  if (p_ == end_)
-    return fail(err, 0, std::string("empty file, expected header ") + kTrajectoryHeader);
+  if (p_ == end_) return fail(err, 0, std::string("empty file, expected header ") + kTrajectoryHeader);
 
   // Header: the whole first line, compared verbatim.
   const char* nl = static_cast<const char*>(std::memchr(p_, '\n', static_cast<size_t>(end_ - p_)));
@@ -388,9 +385,7 @@ bool CsvParser::run(Trajectory* out, Error* err) {
   std::string_view header(p_, static_cast<size_t>(line_end - p_));
   if (!header.empty() && header.back() == '\r') header.remove_suffix(1);
   if (header != kTrajectoryHeader)
-    return fail(err, 1,
-                std::string("expected header '") + kTrajectoryHeader + "', found " +
-                    quoteForMessage(header));
+    return fail(err, 1, std::string("expected header '") + kTrajectoryHeader + "', found " + quoteForMessage(header));
   p_ = nl ? nl + 1 : end_;
   line_ = 2;
 
@@ -413,8 +408,7 @@ bool CsvParser::run(Trajectory* out, Error* err) {
     const int line = record_line_;
     if (field_count_ != kFieldCount)
       return fail(err, line,
-                  "expected " + std::to_string(kFieldCount) + " fields, found " +
-                      std::to_string(field_count_));
+                  "expected " + std::to_string(kFieldCount) + " fields, found " + std::to_string(field_count_));
 
     double values[kFieldCount] = {};
     for (size_t i = 0; i < kFieldCount; ++i) {
@@ -422,9 +416,7 @@ bool CsvParser::run(Trajectory* out, Error* err) {
       std::string_view f = fields_[i];
       if (looksLikeNan(f)) return fail(err, line, std::string("NaN in column ") + kColumnNames[i]);
       std::optional<double> v = parseNumber(f);
-      if (!v)
-        return fail(err, line,
-                    "bad number " + quoteForMessage(f) + " in column " + kColumnNames[i]);
+      if (!v) return fail(err, line, "bad number " + quoteForMessage(f) + " in column " + kColumnNames[i]);
       values[i] = *v;
     }
     for (size_t k = 0; k < kPoseSize; ++k) pose[k] = values[2 + k];
@@ -472,8 +464,8 @@ bool CsvParser::run(Trajectory* out, Error* err) {
     if (cells > kSparseAllowance && cells / kMaxCellsPerRow > rows)
       return fail(err, line,
                   "too sparse to hold: " + std::to_string(t.bodies.size()) + " bodies at " +
-                      std::to_string(t.times.size()) + " sample times but only " +
-                      std::to_string(rows) + " rows (every body needs a row at most sample times)");
+                      std::to_string(t.times.size()) + " sample times but only " + std::to_string(rows) +
+                      " rows (every body needs a row at most sample times)");
     t.setPose(s, b, pose);
   }
   t.finalize();
@@ -487,8 +479,7 @@ bool readTrajectory(const std::string& path, Trajectory* out, Error* err) {
   const char* what = nullptr;
   int e = slurp(path, &text, &what);
   if (e != 0) {
-    setError(err, makeError(ErrorKind::MissingInput, path, 0,
-                            std::string(what) + ": " + std::strerror(e)));
+    setError(err, makeError(ErrorKind::MissingInput, path, 0, std::string(what) + ": " + std::strerror(e)));
     return false;
   }
   Trajectory t;

@@ -31,8 +31,7 @@ void initOdeOnce() {
 }
 
 bool isIdentity(const Transform& t) {
-  return t.p[0] == 0 && t.p[1] == 0 && t.p[2] == 0 && t.q[0] == 1 && t.q[1] == 0 &&
-         t.q[2] == 0 && t.q[3] == 0;
+  return t.p[0] == 0 && t.p[1] == 0 && t.p[2] == 0 && t.q[0] == 1 && t.q[1] == 0 && t.q[2] == 0 && t.q[3] == 0;
 }
 
 // Contact-relevant data of one geom, looked up by the index stored with dGeomSetData.
@@ -46,9 +45,12 @@ struct GeomInfo {
 // The collision space chosen by the scene (SceneSettings Space, --space).
 dSpaceID createSpace(const Model& model) {
   switch (model.settings.space) {
-    case SpaceKind::Hash: return dHashSpaceCreate(nullptr);
-    case SpaceKind::Simple: return dSimpleSpaceCreate(nullptr);
-    case SpaceKind::SweepAndPrune: return dSweepAndPruneSpaceCreate(nullptr, dSAP_AXES_XZY);  // Y is up
+    case SpaceKind::Hash:
+      return dHashSpaceCreate(nullptr);
+    case SpaceKind::Simple:
+      return dSimpleSpaceCreate(nullptr);
+    case SpaceKind::SweepAndPrune:
+      return dSweepAndPruneSpaceCreate(nullptr, dSAP_AXES_XZY);  // Y is up
     case SpaceKind::QuadTree: {
       // The tree covers where the bodies start, with a margin; geoms outside it still collide.
       double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
@@ -97,9 +99,7 @@ struct World::Impl {
     if (world) dWorldDestroy(world);
   }
 
-  static void nearCallback(void* data, dGeomID g1, dGeomID g2) {
-    static_cast<Impl*>(data)->collidePair(g1, g2);
-  }
+  static void nearCallback(void* data, dGeomID g1, dGeomID g2) { static_cast<Impl*>(data)->collidePair(g1, g2); }
 
   const GeomInfo& infoOf(dGeomID g) const {
     return geomInfo[static_cast<size_t>(reinterpret_cast<intptr_t>(dGeomGetData(g)))];
@@ -241,10 +241,18 @@ std::unique_ptr<World> World::create(const Model& model, uint32_t seed) {
   for (const JointDef& jd : model.joints) {
     dJointID j = nullptr;
     switch (jd.kind) {
-      case JointKind::BallSocket: j = dJointCreateBall(im.world, nullptr); break;
-      case JointKind::Hinge: j = dJointCreateHinge(im.world, nullptr); break;
-      case JointKind::Slider: j = dJointCreateSlider(im.world, nullptr); break;
-      case JointKind::Fixed: j = dJointCreateFixed(im.world, nullptr); break;
+      case JointKind::BallSocket:
+        j = dJointCreateBall(im.world, nullptr);
+        break;
+      case JointKind::Hinge:
+        j = dJointCreateHinge(im.world, nullptr);
+        break;
+      case JointKind::Slider:
+        j = dJointCreateSlider(im.world, nullptr);
+        break;
+      case JointKind::Fixed:
+        j = dJointCreateFixed(im.world, nullptr);
+        break;
     }
     // Index -1 is the static world, which ODE spells as a null body.
     dBodyID b1 = jd.body1 >= 0 ? im.bodies[static_cast<size_t>(jd.body1)] : nullptr;

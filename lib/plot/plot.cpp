@@ -248,9 +248,7 @@ void padRange(double* lo, double* hi, double pad_fraction) {
   *hi += pad;
 }
 
-void setColor(cairo_t* cr, PlotColor c) {
-  cairo_set_source_rgb(cr, c.r / 255.0, c.g / 255.0, c.b / 255.0);
-}
+void setColor(cairo_t* cr, PlotColor c) { cairo_set_source_rgb(cr, c.r / 255.0, c.g / 255.0, c.b / 255.0); }
 
 void setGray(cairo_t* cr, double v) { cairo_set_source_rgb(cr, v, v, v); }
 
@@ -294,9 +292,8 @@ std::vector<int32_t> sampleColumns(const Trajectory& tr, double t0, double t1, d
 /// Adds one component of one body as sub-paths (a break at every missing row), keeping per pixel
 /// column only the first, lowest, highest and last sample so long trajectories stay cheap to
 /// draw while spikes survive. Isolated samples are collected in `dots`.
-void addSeriesPath(cairo_t* cr, const Trajectory& tr, size_t body, int comp,
-                   const std::vector<int32_t>& cols, const Mapper& m, std::vector<size_t>* run,
-                   std::vector<size_t>* dots) {
+void addSeriesPath(cairo_t* cr, const Trajectory& tr, size_t body, int comp, const std::vector<int32_t>& cols,
+                   const Mapper& m, std::vector<size_t>* run, std::vector<size_t>* dots) {
   run->clear();
   bool open = false;  // a column bucket is being filled
   int32_t col = 0;
@@ -360,9 +357,8 @@ void addSeriesPath(cairo_t* cr, const Trajectory& tr, size_t body, int comp,
 }
 
 /// Strokes one series (solid or dashed) and marks its isolated samples with dots.
-void drawSeries(cairo_t* cr, const Trajectory& tr, size_t body, int comp,
-                const std::vector<int32_t>& cols, const Mapper& m, PlotColor color, bool dashed,
-                std::vector<size_t>* run) {
+void drawSeries(cairo_t* cr, const Trajectory& tr, size_t body, int comp, const std::vector<int32_t>& cols,
+                const Mapper& m, PlotColor color, bool dashed, std::vector<size_t>* run) {
   std::vector<size_t> dots;
   cairo_new_path(cr);
   addSeriesPath(cr, tr, body, comp, cols, m, run, &dots);
@@ -465,8 +461,7 @@ std::string render(cairo_t* cr, const Scene& sc, double width, double height) {
   const double box_x = std::floor(std::max(50.0, label_w + kTickLen + 12));
   const double box_w = std::floor(width - kMarginRight - box_x);
   if (box_w < kMinBoxSide) {
-    return "plot width " + std::to_string(static_cast<int>(width)) +
-           " px is too small for the axis labels";
+    return "plot width " + std::to_string(static_cast<int>(width)) + " px is too small for the axis labels";
   }
   const Axis taxis = makeAxis(sc.t_lo, sc.t_hi, box_w, 90);
 
@@ -541,8 +536,7 @@ std::string render(cairo_t* cr, const Scene& sc, double width, double height) {
       drawText(cr, taxis.labels[i], m.x(taxis.ticks[i]), b.y + b.h + kTickLen + kTextSize + 1, 0.5);
     }
     for (size_t i = 0; i < vaxes[p].ticks.size(); ++i) {
-      drawText(cr, vaxes[p].labels[i], b.x - kTickLen - 4,
-               m.y(vaxes[p].ticks[i]) + kTextSize * 0.35, 1.0);
+      drawText(cr, vaxes[p].labels[i], b.x - kTickLen - 4, m.y(vaxes[p].ticks[i]) + kTextSize * 0.35, 1.0);
     }
   }
 
@@ -587,13 +581,11 @@ cairo_status_t appendToString(void* closure, const unsigned char* data, unsigned
 
 /// Renders to PNG or SVG bytes. On failure returns "" and sets *why and *kind (InvalidInput
 /// when the layout does not fit, Internal when cairo fails).
-std::string renderToBytes(const Scene& sc, Format format, int width, int height, std::string* why,
-                          ErrorKind* kind) {
+std::string renderToBytes(const Scene& sc, Format format, int width, int height, std::string* why, ErrorKind* kind) {
   std::string bytes;
-  cairo_surface_t* surface =
-      format == Format::Png
-          ? cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height)
-          : cairo_svg_surface_create_for_stream(appendToString, &bytes, width, height);
+  cairo_surface_t* surface = format == Format::Png
+                                 ? cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height)
+                                 : cairo_svg_surface_create_for_stream(appendToString, &bytes, width, height);
   if (format == Format::Svg) cairo_svg_surface_set_document_unit(surface, CAIRO_SVG_UNIT_PX);
   cairo_t* cr = cairo_create(surface);
   const std::string layout_problem = render(cr, sc, width, height);
@@ -655,8 +647,7 @@ bool plotTrajectory(const Trajectory& actual, const Trajectory* golden, const Pl
     format = Format::Svg;
   } else {
     setError(err, ErrorKind::InvalidInput, out_path,
-             "unsupported plot format " +
-                 (ext.empty() ? std::string("(no extension)") : "'" + ext + "'") +
+             "unsupported plot format " + (ext.empty() ? std::string("(no extension)") : "'" + ext + "'") +
                  " (use .png or .svg)");
     return false;
   }
@@ -665,10 +656,9 @@ bool plotTrajectory(const Trajectory& actual, const Trajectory* golden, const Pl
   const int height = options.height == 0 ? kPanelHeight * kPanels : options.height;
   if (width < kMinWidth || width > kMaxSide || height < kMinHeight || height > kMaxSide) {
     setError(err, ErrorKind::InvalidInput, "",
-             "plot size " + std::to_string(width) + "x" + std::to_string(height) +
-                 " out of range (width " + std::to_string(kMinWidth) + ".." +
-                 std::to_string(kMaxSide) + ", height " + std::to_string(kMinHeight) + ".." +
-                 std::to_string(kMaxSide) + " px)");
+             "plot size " + std::to_string(width) + "x" + std::to_string(height) + " out of range (width " +
+                 std::to_string(kMinWidth) + ".." + std::to_string(kMaxSide) + ", height " +
+                 std::to_string(kMinHeight) + ".." + std::to_string(kMaxSide) + " px)");
     return false;
   }
   if (actual.sampleCount() == 0 || actual.bodyCount() == 0) {
@@ -683,8 +673,7 @@ bool plotTrajectory(const Trajectory& actual, const Trajectory* golden, const Pl
     const size_t n = std::min(actual.bodyCount(), kMaxPlotBodies);
     for (size_t b = 0; b < n; ++b) selected.push_back(b);
     if (actual.bodyCount() > n) {
-      note =
-          " (first " + std::to_string(n) + " of " + std::to_string(actual.bodyCount()) + " bodies)";
+      note = " (first " + std::to_string(n) + " of " + std::to_string(actual.bodyCount()) + " bodies)";
     }
   } else {
     const auto index = bodyIndex(actual);

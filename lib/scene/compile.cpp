@@ -18,9 +18,9 @@ constexpr int kMaxCloneDepth = 8;
 // Bounds on what a small file can make the compiler do (found by fuzzing): bodies chained
 // through joint Refs recurse once per link, and Refs shared in model trees or clones of clones
 // multiply the work.
-constexpr int kMaxBodyChain = 500;            // bodies being compiled inside one another
-constexpr size_t kMaxModelParts = 10000;      // models collected for one model-derived geom
-constexpr size_t kMaxModelItems = 100000;     // bodies + geoms + joints of the whole model
+constexpr int kMaxBodyChain = 500;         // bodies being compiled inside one another
+constexpr size_t kMaxModelParts = 10000;   // models collected for one model-derived geom
+constexpr size_t kMaxModelItems = 100000;  // bodies + geoms + joints of the whole model
 
 std::string describe(const Component& c) { return c.type->name + " '" + c.qkey + "'"; }
 
@@ -46,8 +46,10 @@ class Compiler {
         case Family::Body:
           // Clones come last: the bodies their originals join to must exist outside the copy.
           if (l.isRef()) break;
-          if (kindOf<BodyKind>(c) == BodyKind::Clone) clones.push_back(l.comp);
-          else body(l.comp, nullptr);
+          if (kindOf<BodyKind>(c) == BodyKind::Clone)
+            clones.push_back(l.comp);
+          else
+            body(l.comp, nullptr);
           break;
         case Family::GlobalSim:
           global(l.comp);
@@ -129,8 +131,9 @@ class Compiler {
         return true;
       case PoseKind::Local:
         if (!parent) {
-          error(l, owner, "RCLocalCoordinates needs a parent frame (a joint, construction or body); use "
-                          "RCGlobalCoordinates at the top level");
+          error(l, owner,
+                "RCLocalCoordinates needs a parent frame (a joint, construction or body); use "
+                "RCGlobalCoordinates at the top level");
           return false;
         }
         *out = compose(*parent, local);
@@ -179,8 +182,8 @@ class Compiler {
 
   // ---------------------------------------------------------------- geoms (6.5)
   /// Append the geoms of `geom_link` for a body (index `body`, -1 static at `frame`).
-  void geoms(const Link& l, const Component& owner, int body, const Transform& frame, const Transform& offset,
-             int mat, const Link& model_link) {
+  void geoms(const Link& l, const Component& owner, int body, const Transform& frame, const Transform& offset, int mat,
+             const Link& model_link) {
     if (l.comp < 0) return;
     const Component& c = at(l.comp);
     GeomDef g;
@@ -255,8 +258,10 @@ class Compiler {
     const Component& c = at(l.comp);
     Transform t;
     const Link& pl = c.link("Pose");
-    if (pl.comp >= 0) t = compose(parent, fromPose(at(pl.comp).pose("Pose")));
-    else t = parent;
+    if (pl.comp >= 0)
+      t = compose(parent, fromPose(at(pl.comp).pose("Pose")));
+    else
+      t = parent;
     out->push_back({&c, t});
     if (children)
       for (const Link& child : c.list("ChildList")) collectModels(child, t, true, out, depth + 1);
@@ -313,8 +318,8 @@ class Compiler {
           }
           case ModelKind::Plane:
           case ModelKind::Cone:
-            error(geom, "RCModelMatchGeom: no geom matches " + p.c->type->name + " '" + p.c->qkey +
-                            "'; use RCModelWrapGeom");
+            error(geom,
+                  "RCModelMatchGeom: no geom matches " + p.c->type->name + " '" + p.c->qkey + "'; use RCModelWrapGeom");
             continue;
           case ModelKind::Empty:
             continue;
@@ -334,7 +339,8 @@ class Compiler {
       Mat3 r = toMatrix(p.t.q);
       Vec3 c = add(p.t.p, rotate(p.t.q, center));
       for (int i = 0; i < 3; ++i) {
-        double e = std::fabs(r[i * 3]) * half[0] + std::fabs(r[i * 3 + 1]) * half[1] + std::fabs(r[i * 3 + 2]) * half[2];
+        double e =
+            std::fabs(r[i * 3]) * half[0] + std::fabs(r[i * 3 + 1]) * half[1] + std::fabs(r[i * 3 + 2]) * half[2];
         lo[i] = std::min(lo[i], c[i] - e);
         hi[i] = std::max(hi[i], c[i] + e);
       }
@@ -462,7 +468,9 @@ class Compiler {
         for (int i = 0; i < 3; ++i)
           for (int j = 0; j < 3; ++j)
             b->inertia[static_cast<size_t>(i * 3 + j)] =
-                density * (total.inertia[static_cast<size_t>(i * 3 + j)] - total.volume * ((i == j ? c2 : 0) - cm[static_cast<size_t>(i)] * cm[static_cast<size_t>(j)]));
+                density *
+                (total.inertia[static_cast<size_t>(i * 3 + j)] -
+                 total.volume * ((i == j ? c2 : 0) - cm[static_cast<size_t>(i)] * cm[static_cast<size_t>(j)]));
         if (!isPositiveDefinite(b->inertia)) {
           error(c, "the inertia computed from the geometry is degenerate");
           return false;
@@ -499,8 +507,9 @@ class Compiler {
     }
     if (model_.bodies.size() + model_.geoms.size() + model_.joints.size() > kMaxModelItems) {
       in_progress_.erase(ci);
-      if (!too_big_) error(at(ci), "the scene makes more than " + std::to_string(kMaxModelItems) +
-                                       " bodies, geoms and joints (clones of clones?)");
+      if (!too_big_)
+        error(at(ci), "the scene makes more than " + std::to_string(kMaxModelItems) +
+                          " bodies, geoms and joints (clones of clones?)");
       too_big_ = true;
       return {};
     }
@@ -551,8 +560,10 @@ class Compiler {
         for (const Link& child : c.list("ChildList")) {
           if (child.comp < 0) continue;
           const Component& cc = at(child.comp);
-          if (cc.type->family == Family::Joint) joint(child.comp, out, nullptr, nullptr);
-          else periphery(cc);
+          if (cc.type->family == Family::Joint)
+            joint(child.comp, out, nullptr, nullptr);
+          else
+            periphery(cc);
         }
         return out;
       }
@@ -568,8 +579,8 @@ class Compiler {
           for (const auto& [k, i] : scene_.by_qkey)
             if (at(i).type->family == Family::Body) keys.push_back(k);
           std::string near = didYouMean(original, keys);
-          diag_.error(c.slot("Original").loc, describe(c) + ": parameter 'Original' '" + original +
-                                                  "' names no body" + (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+          diag_.error(c.slot("Original").loc, describe(c) + ": parameter 'Original' '" + original + "' names no body" +
+                                                  (near.empty() ? "" : " (did you mean '" + near + "'?)"));
           return out;
         }
         return rigidCopy(c, f->second, parent, c.link("Pose"), Link{}, true);

@@ -16,7 +16,7 @@ struct IniNode {
   int line = 0;
   bool has_value = false;
   std::string value;
-  std::vector<IniNode> children;  // first-appearance order
+  std::vector<IniNode> children;                  // first-appearance order
   std::unordered_map<std::string, size_t> index;  // lname -> children[i]; lookup only, never iterated
 
   IniNode* child(const std::string& lower) {
@@ -47,11 +47,9 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-
 class IniSource : public Source {
  public:
-  IniSource(IniNode* node, std::vector<std::string> pre_read)
-      : node_(node), read_(pre_read.begin(), pre_read.end()) {}
+  IniSource(IniNode* node, std::vector<std::string> pre_read) : node_(node), read_(pre_read.begin(), pre_read.end()) {}
 
   int line() const override { return node_->line; }
   bool ignoresCase() const override { return true; }
@@ -135,8 +133,8 @@ class IniSource : public Source {
     l.present = true;
     l.line = c->line;
     if (c->has_value) {
-      l.error = "'" + name + "' is a component: write " + name + ".Type = ..., " + name + ".Ref = ... or " +
-                name + ".Macro = ...";
+      l.error = "'" + name + "' is a component: write " + name + ".Type = ..., " + name + ".Ref = ... or " + name +
+                ".Macro = ...";
       return l;
     }
     IniNode* type = c->child("type");

@@ -14,11 +14,11 @@ namespace simbob {
 
 namespace {
 
-constexpr double kMassRatio = 100.0;       // QuickStep converges poorly beyond this
-constexpr double kStepsPerPeriod = 20.0;   // fewer steps per swing loses energy visibly
-constexpr double kAnchorFar = 10.0;        // anchor farther than this many body sizes
-constexpr double kAnchorFarMin = 2.0;      // m; pendulum rods up to this length are normal
-constexpr double kOverlap = 1e-3;          // m of penetration that counts as overlap
+constexpr double kMassRatio = 100.0;      // QuickStep converges poorly beyond this
+constexpr double kStepsPerPeriod = 20.0;  // fewer steps per swing loses energy visibly
+constexpr double kAnchorFar = 10.0;       // anchor farther than this many body sizes
+constexpr double kAnchorFarMin = 2.0;     // m; pendulum rods up to this length are normal
+constexpr double kOverlap = 1e-3;         // m of penetration that counts as overlap
 constexpr int kMaxPerKind = 20;
 
 // Three significant digits: messages are for people.
@@ -30,22 +30,30 @@ std::string approx(double v) {
 
 double boundingRadius(const GeomDef& g) {
   switch (g.shape) {
-    case GeomShape::Box: return 0.5 * norm(g.size);
-    case GeomShape::Sphere: return g.size[0];
-    case GeomShape::Cylinder: return std::hypot(g.size[0], g.size[1] / 2);
-    case GeomShape::Capsule: return g.size[0] + g.size[1] / 2;
-    case GeomShape::Plane: return 0;
+    case GeomShape::Box:
+      return 0.5 * norm(g.size);
+    case GeomShape::Sphere:
+      return g.size[0];
+    case GeomShape::Cylinder:
+      return std::hypot(g.size[0], g.size[1] / 2);
+    case GeomShape::Capsule:
+      return g.size[0] + g.size[1] / 2;
+    case GeomShape::Plane:
+      return 0;
   }
   return 0;
 }
 
 double thickness(const GeomDef& g) {
   switch (g.shape) {
-    case GeomShape::Box: return std::min({g.size[0], g.size[1], g.size[2]});
+    case GeomShape::Box:
+      return std::min({g.size[0], g.size[1], g.size[2]});
     case GeomShape::Sphere:
     case GeomShape::Cylinder:
-    case GeomShape::Capsule: return 2 * g.size[0];
-    case GeomShape::Plane: return 0;
+    case GeomShape::Capsule:
+      return 2 * g.size[0];
+    case GeomShape::Plane:
+      return 0;
   }
   return 0;
 }
@@ -54,11 +62,19 @@ double thickness(const GeomDef& g) {
 Vec3 halfExtents(const GeomDef& g, const Quat& q) {
   Vec3 local;
   switch (g.shape) {
-    case GeomShape::Box: local = scale(g.size, 0.5); break;
-    case GeomShape::Sphere: return {g.size[0], g.size[0], g.size[0]};
-    case GeomShape::Cylinder: local = {g.size[0], g.size[0], g.size[1] / 2}; break;
-    case GeomShape::Capsule: local = {g.size[0], g.size[0], g.size[1] / 2 + g.size[0]}; break;
-    case GeomShape::Plane: return {0, 0, 0};
+    case GeomShape::Box:
+      local = scale(g.size, 0.5);
+      break;
+    case GeomShape::Sphere:
+      return {g.size[0], g.size[0], g.size[0]};
+    case GeomShape::Cylinder:
+      local = {g.size[0], g.size[0], g.size[1] / 2};
+      break;
+    case GeomShape::Capsule:
+      local = {g.size[0], g.size[0], g.size[1] / 2 + g.size[0]};
+      break;
+    case GeomShape::Plane:
+      return {0, 0, 0};
   }
   Mat3 r = toMatrix(q);
   Vec3 out;
@@ -72,7 +88,8 @@ double planeClearance(const GeomDef& g, const Transform& t, const std::array<dou
   Vec3 n{plane[0], plane[1], plane[2]};
   double center = dot(n, t.p) - plane[3];
   switch (g.shape) {
-    case GeomShape::Sphere: return center - g.size[0];
+    case GeomShape::Sphere:
+      return center - g.size[0];
     case GeomShape::Capsule: {
       Vec3 axis = rotate(t.q, {0, 0, 1});
       return center - std::fabs(dot(n, axis)) * g.size[1] / 2 - g.size[0];
@@ -86,15 +103,16 @@ double planeClearance(const GeomDef& g, const Transform& t, const std::array<dou
       for (int k = 0; k < 3; ++k) reach += std::fabs(n[0] * r[k] + n[1] * r[3 + k] + n[2] * r[6 + k]) * h[k];
       return center - reach;
     }
-    case GeomShape::Plane: return 1e300;
+    case GeomShape::Plane:
+      return 1e300;
   }
   return 1e300;
 }
 
 struct Placed {
   const GeomDef* g;
-  Transform t;   // global
-  Vec3 lo, hi;   // global bounds
+  Transform t;  // global
+  Vec3 lo, hi;  // global bounds
 };
 
 class Linter {
@@ -158,8 +176,8 @@ class Linter {
       double ratio = std::max(a, b) / std::min(a, b);
       if (ratio > kMassRatio)
         warn("mass ratio", j.loc,
-             "joint '" + j.key + "' connects masses " + approx(a) + " kg and " + approx(b) +
-                 " kg (ratio " + approx(std::round(ratio)) + " > " + approx(kMassRatio) +
+             "joint '" + j.key + "' connects masses " + approx(a) + " kg and " + approx(b) + " kg (ratio " +
+                 approx(std::round(ratio)) + " > " + approx(kMassRatio) +
                  "): QuickStep converges slowly and joints stretch; bring the masses closer, raise "
                  "SolverIterations or use Solver Step");
     }
@@ -220,8 +238,9 @@ class Linter {
         double dist = norm(sub(b.pose.p, j.anchor));
         if (dist > kAnchorFar * size && dist > kAnchorFarMin)
           warn("anchor far", j.loc,
-               "joint '" + j.key + "' has its anchor " + approx(dist) + " m from body '" + b.key +
-                   "' (about " + approx(size) + " m in size): check the joint's Pose and Hinge/Anchor "
+               "joint '" + j.key + "' has its anchor " + approx(dist) + " m from body '" + b.key + "' (about " +
+                   approx(size) +
+                   " m in size): check the joint's Pose and Hinge/Anchor "
                    "(RCLocalCoordinates are relative to the joint frame)");
       }
     }
@@ -244,9 +263,11 @@ class Linter {
       double travel = speed * dt();
       if (travel > 0.5 * thin_[i])
         warn("tunneling", b.loc,
-             "body '" + b.key + "' is " + approx(thin_[i]) + " m thin and may move " + approx(speed) +
-                 " m/s, " + approx(travel) + " m per step: it can pass through other bodies in one step; "
-                 "use a step below " + approx(0.5 * thin_[i] / speed) + " s or a thicker geom");
+             "body '" + b.key + "' is " + approx(thin_[i]) + " m thin and may move " + approx(speed) + " m/s, " +
+                 approx(travel) +
+                 " m per step: it can pass through other bodies in one step; "
+                 "use a step below " +
+                 approx(0.5 * thin_[i] / speed) + " s or a thicker geom");
     }
   }
 
@@ -267,8 +288,8 @@ class Linter {
         double c = planeClearance(*p.g, p.t, plane->plane);
         if (c < -kOverlap)
           warn("overlap", loc(*p.g),
-               "body '" + owner(*p.g) + "' starts " + approx(-c) + " m inside the plane of '" +
-                   owner(*plane) + "': ODE pushes it out violently at the first step; move it out");
+               "body '" + owner(*p.g) + "' starts " + approx(-c) + " m inside the plane of '" + owner(*plane) +
+                   "': ODE pushes it out violently at the first step; move it out");
       }
     }
     // Pairs of geoms: sweep along x over sorted bounds.

@@ -93,16 +93,21 @@ double largestFinite(const Value& v) {
   std::visit(
       [&](const auto& x) {
         using T = std::decay_t<decltype(x)>;
-        if constexpr (std::is_same_v<T, double>) take(x);
-        else if constexpr (std::is_same_v<T, int64_t>) take(static_cast<double>(x));
-        else if constexpr (std::is_same_v<T, Triple>) for (double d : x) take(d);
-        else if constexpr (std::is_same_v<T, Vector4>) for (double d : x.v) take(d);
-        else if constexpr (std::is_same_v<T, Quaternion>) for (double d : x.q) take(d);
+        if constexpr (std::is_same_v<T, double>)
+          take(x);
+        else if constexpr (std::is_same_v<T, int64_t>)
+          take(static_cast<double>(x));
+        else if constexpr (std::is_same_v<T, Triple>)
+          for (double d : x) take(d);
+        else if constexpr (std::is_same_v<T, Vector4>)
+          for (double d : x.v) take(d);
+        else if constexpr (std::is_same_v<T, Quaternion>)
+          for (double d : x.q) take(d);
         else if constexpr (std::is_same_v<T, Pose>) {
           for (double d : x.pos) take(d);
           for (double d : x.euler_deg) take(d);
-        }
-        else if constexpr (std::is_same_v<T, Matrix4>) for (double d : x.m) take(d);
+        } else if constexpr (std::is_same_v<T, Matrix4>)
+          for (double d : x.m) take(d);
         else if constexpr (std::is_same_v<T, Cuboid>) {
           for (double d : x.a) take(d);
           for (double d : x.b) take(d);
@@ -114,20 +119,28 @@ double largestFinite(const Value& v) {
 
 const char* rangeText(Range r) {
   switch (r) {
-    case Range::Any: return "";
-    case Range::Positive: return "must be > 0";
-    case Range::NonNegative: return "must be >= 0";
-    case Range::Unit: return "must be in [0, 1]";
+    case Range::Any:
+      return "";
+    case Range::Positive:
+      return "must be > 0";
+    case Range::NonNegative:
+      return "must be >= 0";
+    case Range::Unit:
+      return "must be in [0, 1]";
   }
   return "";
 }
 
 bool inRange(Range r, double v) {
   switch (r) {
-    case Range::Any: return true;
-    case Range::Positive: return v > 0;
-    case Range::NonNegative: return v >= 0;
-    case Range::Unit: return v >= 0 && v <= 1;
+    case Range::Any:
+      return true;
+    case Range::Positive:
+      return v > 0;
+    case Range::NonNegative:
+      return v >= 0;
+    case Range::Unit:
+      return v >= 0 && v <= 1;
   }
   return true;
 }
@@ -137,8 +150,8 @@ class Builder {
   Builder(const Registry& reg, Scene& scene, Diagnostics& diag) : reg_(reg), scene_(scene), diag_(diag) {}
 
   // Build one component of type t from src; returns its index.
-  int build(const TypeSpec* t, Source* src, std::string key, bool has_key, int parent,
-            const std::string& parent_qkey, SourceLoc loc, bool register_key = true) {
+  int build(const TypeSpec* t, Source* src, std::string key, bool has_key, int parent, const std::string& parent_qkey,
+            SourceLoc loc, bool register_key = true) {
     if (++depth_ > kMaxNesting) {
       --depth_;
       diag_.error(loc, "components nested deeper than " + std::to_string(kMaxNesting) + " levels");
@@ -283,7 +296,7 @@ class Builder {
     std::unique_ptr<Source> root = xmlRoot(doc, &root_name);
     if (root_name != t->import_root) {
       diag_.error({path, root->line()}, "root element is <" + root_name + ">, expected <" + t->import_root +
-                                           "> (imported by " + loc.file + ":" + std::to_string(loc.line) + ")");
+                                            "> (imported by " + loc.file + ":" + std::to_string(loc.line) + ")");
       return;
     }
     import_stack_.push_back(canon);
@@ -294,8 +307,8 @@ class Builder {
     holder.kind = t->import_root == "RefList" ? ParamKind::List : ParamKind::Component;
     std::vector<int> roots;
     if (holder.kind == ParamKind::List) {
-      holder.families = {Family::Material, Family::Skin, Family::Model, Family::Pose, Family::Geom,
-                         Family::Inertia, Family::Motion};
+      holder.families = {Family::Material, Family::Skin,    Family::Model, Family::Pose,
+                         Family::Geom,     Family::Inertia, Family::Motion};
       bool present = false;
       int line = 0;
       for (auto& item : docsrc->list(t->import_root, &present, &line)) {
@@ -364,8 +377,9 @@ class Builder {
       const Component& first = scene_.at(it->second);
       diag_.error(c.loc, c.type->name + ": duplicate key '" + c.qkey + "' (first used at " + first.loc.file + ":" +
                              std::to_string(first.loc.line) + "); give it a different Key" +
-                             (c.has_key ? "" : " (a component without Key is keyed by its parameter name, or in a "
-                                               "list by its type name)"));
+                             (c.has_key ? ""
+                                        : " (a component without Key is keyed by its parameter name, or in a "
+                                          "list by its type name)"));
     }
   }
 
@@ -403,8 +417,8 @@ class Builder {
         return link;
       }
       if (!familyAccepted(p, m->family)) {
-        diag_.error(link.loc, prefix(what) + "Macro '" + m->name + "' makes a " + familyName(m->family) + ", parameter '" +
-                                  p.name + "' needs a " + familiesText(p));
+        diag_.error(link.loc, prefix(what) + "Macro '" + m->name + "' makes a " + familyName(m->family) +
+                                  ", parameter '" + p.name + "' needs a " + familiesText(p));
         return link;
       }
       // A Macro list item has no type element: it is keyed by the type it creates.
@@ -421,8 +435,8 @@ class Builder {
       return link;
     }
     if (!familyAccepted(p, t->family)) {
-      diag_.error(link.loc, prefix(what) + "parameter '" + p.name + "' needs a " + familiesText(p) + ", got " + t->name +
-                                " (a " + familyName(t->family) + ")");
+      diag_.error(link.loc, prefix(what) + "parameter '" + p.name + "' needs a " + familiesText(p) + ", got " +
+                                t->name + " (a " + familyName(t->family) + ")");
       return link;
     }
     std::string key = l.has_key ? l.key : default_key;
@@ -447,7 +461,7 @@ class Builder {
   std::vector<std::string> import_stack_;
   uint64_t hash_ = 1469598103934665603ull;
   int depth_ = 0;
-  std::set<int> duplicates_;  // components whose qualified key was taken already
+  std::set<int> duplicates_;                    // components whose qualified key was taken already
   std::map<std::string, int> shared_defaults_;  // default component of each type
 };
 
@@ -511,11 +525,20 @@ void checkCycles(const Scene& scene, Diagnostics& diag) {
         const std::vector<Link>* items = nullptr;
         if (c.type->params[f.slot].kind == ParamKind::List) items = &s.list;
         if (items) {
-          if (f.item < items->size()) next = &(*items)[f.item++];
-          else { ++f.slot; f.item = 0; }
+          if (f.item < items->size())
+            next = &(*items)[f.item++];
+          else {
+            ++f.slot;
+            f.item = 0;
+          }
         } else {
-          if (f.item == 0) { next = &s.link; f.item = 1; }
-          else { ++f.slot; f.item = 0; }
+          if (f.item == 0) {
+            next = &s.link;
+            f.item = 1;
+          } else {
+            ++f.slot;
+            f.item = 0;
+          }
         }
         if (next && (next->comp < 0 || (next->isRef() && isConnection(scene.at(next->comp).type->family))))
           next = nullptr;
@@ -527,8 +550,8 @@ void checkCycles(const Scene& scene, Diagnostics& diag) {
       }
       auto target = static_cast<size_t>(next->comp);
       if (state[target] == Grey) {
-        diag.error(next->loc, c.type->name + " '" + c.qkey + "': cyclic Ref '" + next->ref + "' (it contains " +
-                                  c.qkey + ")");
+        diag.error(next->loc,
+                   c.type->name + " '" + c.qkey + "': cyclic Ref '" + next->ref + "' (it contains " + c.qkey + ")");
         state[target] = Black;  // report each cycle once
         continue;
       }
@@ -540,8 +563,8 @@ void checkCycles(const Scene& scene, Diagnostics& diag) {
   }
 }
 
-bool loadFromText(const std::string& text, const std::string& name, Format format, const Registry& reg,
-                  Scene* scene, Diagnostics& diag) {
+bool loadFromText(const std::string& text, const std::string& name, Format format, const Registry& reg, Scene* scene,
+                  Diagnostics& diag) {
   *scene = Scene{};
   scene->path = name;
   Builder b(reg, *scene, diag);

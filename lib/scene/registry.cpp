@@ -7,20 +7,34 @@ namespace simbob {
 
 const char* familyName(Family f) {
   switch (f) {
-    case Family::Body: return "BodyComponent";
-    case Family::GlobalSim: return "GlobalSimComponent";
-    case Family::Model: return "ModelComponent";
-    case Family::Skin: return "SkinComponent";
-    case Family::Geom: return "GeomComponent";
-    case Family::Joint: return "JointComponent";
-    case Family::Material: return "MaterialComponent";
-    case Family::Pose: return "PoseComponent";
-    case Family::Motion: return "MotionComponent";
-    case Family::Inertia: return "InertiaComponent";
-    case Family::Periphery: return "PeripheryComponent";
-    case Family::Controller: return "ControllerComponent";
-    case Family::Camera: return "CameraComponent";
-    case Family::Struct: return "Struct";
+    case Family::Body:
+      return "BodyComponent";
+    case Family::GlobalSim:
+      return "GlobalSimComponent";
+    case Family::Model:
+      return "ModelComponent";
+    case Family::Skin:
+      return "SkinComponent";
+    case Family::Geom:
+      return "GeomComponent";
+    case Family::Joint:
+      return "JointComponent";
+    case Family::Material:
+      return "MaterialComponent";
+    case Family::Pose:
+      return "PoseComponent";
+    case Family::Motion:
+      return "MotionComponent";
+    case Family::Inertia:
+      return "InertiaComponent";
+    case Family::Periphery:
+      return "PeripheryComponent";
+    case Family::Controller:
+      return "ControllerComponent";
+    case Family::Camera:
+      return "CameraComponent";
+    case Family::Struct:
+      return "Struct";
   }
   return "?";
 }
@@ -43,8 +57,7 @@ void Registry::setFamilyParams(Family family, std::vector<ParamSpec> params) {
 
 void Registry::add(TypeSpec spec) {
   auto it = family_params_.find(spec.family);
-  if (it != family_params_.end())
-    spec.params.insert(spec.params.begin(), it->second.begin(), it->second.end());
+  if (it != family_params_.end()) spec.params.insert(spec.params.begin(), it->second.begin(), it->second.end());
   size_t index = types_.size();
   by_name_[spec.name] = index;
   for (const auto& a : spec.aliases) by_name_[a] = index;
@@ -86,8 +99,8 @@ size_t editDistance(std::string_view a, std::string_view b) {
     row[0] = i;
     for (size_t j = 1; j <= b.size(); ++j) {
       size_t up = row[j];
-      bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
-                  std::tolower(static_cast<unsigned char>(b[j - 1]));
+      bool same =
+          std::tolower(static_cast<unsigned char>(a[i - 1])) == std::tolower(static_cast<unsigned char>(b[j - 1]));
       row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (same ? 0 : 1)});
       diag = up;
     }
@@ -109,8 +122,7 @@ std::string didYouMean(std::string_view word, const std::vector<std::string>& ca
   return best;
 }
 
-ParamSpec valueParam(std::string name, ValueType type, Value def, std::string unit,
-                     std::string doc, Range range) {
+ParamSpec valueParam(std::string name, ValueType type, Value def, std::string unit, std::string doc, Range range) {
   ParamSpec p;
   p.name = std::move(name);
   p.kind = ParamKind::Value;
@@ -122,8 +134,7 @@ ParamSpec valueParam(std::string name, ValueType type, Value def, std::string un
   return p;
 }
 
-ParamSpec enumParam(std::string name, ValueType type, const EnumTable* table, uint32_t def,
-                    std::string doc) {
+ParamSpec enumParam(std::string name, ValueType type, const EnumTable* table, uint32_t def, std::string doc) {
   ParamSpec p;
   p.name = std::move(name);
   p.kind = ParamKind::Value;
@@ -137,8 +148,7 @@ ParamSpec enumParam(std::string name, ValueType type, const EnumTable* table, ui
   return p;
 }
 
-ParamSpec componentParam(std::string name, std::vector<Family> families, std::string default_type,
-                         std::string doc) {
+ParamSpec componentParam(std::string name, std::vector<Family> families, std::string default_type, std::string doc) {
   ParamSpec p;
   p.name = std::move(name);
   p.kind = ParamKind::Component;

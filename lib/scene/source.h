@@ -26,20 +26,20 @@ inline std::string listItemName(const std::string& list_name) {
 struct SourceLink {
   bool present = false;
   int line = 0;
-  std::string type;               ///< inline component's type name
+  std::string type;  ///< inline component's type name
   std::string key;
   bool has_key = false;
   std::string ref;
   std::string macro;
-  std::unique_ptr<Source> body;   ///< inline component's parameters
-  std::string error;              ///< malformed entry (e.g. two type elements)
+  std::unique_ptr<Source> body;  ///< inline component's parameters
+  std::string error;             ///< malformed entry (e.g. two type elements)
 };
 
 struct SourceValue {
   bool present = false;
   int line = 0;
   std::string text;
-  std::string error;              ///< e.g. element without Value attribute
+  std::string error;  ///< e.g. element without Value attribute
 };
 
 /// Parameters of one component or struct in a file. Each accessor marks what it read, so that
@@ -63,8 +63,7 @@ class Registry;
 
 /// Parse XML text; the registry tells type elements from wrapper elements in lists.
 struct XmlDoc;
-std::shared_ptr<XmlDoc> parseXml(const std::string& text, const Registry& reg, std::string* error,
-                                 int* error_line);
+std::shared_ptr<XmlDoc> parseXml(const std::string& text, const Registry& reg, std::string* error, int* error_line);
 std::unique_ptr<Source> xmlRoot(const std::shared_ptr<XmlDoc>& doc, std::string* root_name);
 /// The document node itself, whose one parameter is the root element: imports read
 /// component("Body") / component("Joint") / list("RefList") from it.

@@ -45,8 +45,7 @@ class XmlSource : public Source {
     for (pugi::xml_attribute other : c.attributes())
       if (std::string(other.name()) != "Value")
         v.error = "parameter '" + name + "': unknown attribute '" + other.name() + "'";
-    if (v.error.empty() && firstElement(c))
-      v.error = "parameter '" + name + "' is a value and takes no child elements";
+    if (v.error.empty() && firstElement(c)) v.error = "parameter '" + name + "' is a value and takes no child elements";
     return v;
   }
 
@@ -161,9 +160,12 @@ class XmlSource : public Source {
     l.line = doc_->lineOf(c);
     for (pugi::xml_attribute a : c.attributes()) {
       std::string an = a.name();
-      if (an == "Ref") l.ref = a.value();
-      else if (an == "Macro") l.macro = a.value();
-      else l.error = std::string("<") + c.name() + ">: unknown attribute '" + an + "'";
+      if (an == "Ref")
+        l.ref = a.value();
+      else if (an == "Macro")
+        l.macro = a.value();
+      else
+        l.error = std::string("<") + c.name() + ">: unknown attribute '" + an + "'";
     }
     std::vector<pugi::xml_node> kids;
     for (pugi::xml_node k : c.children())
@@ -208,8 +210,7 @@ class XmlSource : public Source {
 
 }  // namespace
 
-std::shared_ptr<XmlDoc> parseXml(const std::string& text, const Registry& reg, std::string* error,
-                                 int* error_line) {
+std::shared_ptr<XmlDoc> parseXml(const std::string& text, const Registry& reg, std::string* error, int* error_line) {
   auto d = std::make_shared<XmlDoc>();
   d->text = text;
   d->reg = &reg;
@@ -219,8 +220,8 @@ std::shared_ptr<XmlDoc> parseXml(const std::string& text, const Registry& reg, s
       d->doc.load_buffer(d->text.data(), d->text.size(), pugi::parse_default, pugi::encoding_utf8);
   if (!res) {
     auto off = static_cast<size_t>(std::max<ptrdiff_t>(0, res.offset));
-    *error_line = static_cast<int>(std::upper_bound(d->newlines.begin(), d->newlines.end(), off) -
-                                   d->newlines.begin()) + 1;
+    *error_line =
+        static_cast<int>(std::upper_bound(d->newlines.begin(), d->newlines.end(), off) - d->newlines.begin()) + 1;
     *error = std::string("malformed XML: ") + res.description();
     return nullptr;
   }

@@ -21,9 +21,7 @@ bool isBlank(char c) { return c == ' ' || c == '\t'; }
 
 bool isDigit(char c) { return c >= '0' && c <= '9'; }
 
-bool isHexDigit(char c) {
-  return isDigit(c) || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
-}
+bool isHexDigit(char c) { return isDigit(c) || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F'); }
 
 bool isSeparator(char c) { return kListSeparators.find(c) != std::string_view::npos; }
 
@@ -35,9 +33,7 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-bool allDigits(std::string_view s) {
-  return !s.empty() && std::all_of(s.begin(), s.end(), isDigit);
-}
+bool allDigits(std::string_view s) { return !s.empty() && std::all_of(s.begin(), s.end(), isDigit); }
 
 // Quote user text in messages so leading/trailing blanks and empty input stay visible.
 std::string quoted(std::string_view s) {
@@ -63,8 +59,7 @@ NumStatus parseNumberImpl(std::string_view text, bool allow_infinite, double& ou
   }
   if (equalsIgnoreCase(s, "Infinite")) {
     if (!allow_infinite) return NumStatus::InfiniteNotAllowed;
-    out = negative ? -std::numeric_limits<double>::infinity()
-                   : std::numeric_limits<double>::infinity();
+    out = negative ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
     return NumStatus::Ok;
   }
   if (equalsIgnoreCase(s, "nan")) return NumStatus::NotANumberValue;
@@ -201,8 +196,7 @@ ParseResult fail(std::string msg) { return ParseResult{std::nullopt, std::move(m
 ParseResult ok(Value v) { return ParseResult{std::move(v), {}}; }
 
 std::string arityError(const char* expected, const char* type, size_t got) {
-  return std::string("expected ") + expected + " numbers for a " + type + ", got " +
-         decimalString(got);
+  return std::string("expected ") + expected + " numbers for a " + type + ", got " + decimalString(got);
 }
 
 ParseResult parseBool(std::string_view text) {
@@ -293,8 +287,8 @@ int popCount(uint32_t v) {
 }
 
 // Lexicographically first (= table order) combination of exactly k candidates whose union is target.
-bool findCombination(const std::vector<uint32_t>& values, size_t k, uint32_t target,
-                     std::vector<size_t>& picked, size_t start, uint32_t acc) {
+bool findCombination(const std::vector<uint32_t>& values, size_t k, uint32_t target, std::vector<size_t>& picked,
+                     size_t start, uint32_t acc) {
   if (picked.size() == k) return acc == target;
   for (size_t i = start; i + (k - picked.size()) <= values.size(); ++i) {
     picked.push_back(i);
@@ -373,19 +367,32 @@ std::string formatEnum(uint32_t value, const EnumTable* table) {
 
 const char* valueTypeName(ValueType t) {
   switch (t) {
-    case ValueType::Bool: return "Bool";
-    case ValueType::Int: return "Int";
-    case ValueType::Number: return "Number";
-    case ValueType::String: return "String";
-    case ValueType::Triple: return "Triple";
-    case ValueType::Vector: return "Vector";
-    case ValueType::Quaternion: return "Quaternion";
-    case ValueType::Pose: return "Pose";
-    case ValueType::Matrix: return "Matrix";
-    case ValueType::Cuboid: return "Cuboid";
-    case ValueType::Color: return "Color";
-    case ValueType::Enum: return "Enum";
-    case ValueType::Bitmask: return "Bitmask";
+    case ValueType::Bool:
+      return "Bool";
+    case ValueType::Int:
+      return "Int";
+    case ValueType::Number:
+      return "Number";
+    case ValueType::String:
+      return "String";
+    case ValueType::Triple:
+      return "Triple";
+    case ValueType::Vector:
+      return "Vector";
+    case ValueType::Quaternion:
+      return "Quaternion";
+    case ValueType::Pose:
+      return "Pose";
+    case ValueType::Matrix:
+      return "Matrix";
+    case ValueType::Cuboid:
+      return "Cuboid";
+    case ValueType::Color:
+      return "Color";
+    case ValueType::Enum:
+      return "Enum";
+    case ValueType::Bitmask:
+      return "Bitmask";
   }
   return "Unknown";
 }
@@ -424,8 +431,7 @@ std::optional<double> parseNumber(std::string_view text, bool allow_infinite) {
   return d;
 }
 
-std::optional<std::vector<double>> parseNumberList(std::string_view text, std::string* error,
-                                                   bool allow_infinite) {
+std::optional<std::vector<double>> parseNumberList(std::string_view text, std::string* error, bool allow_infinite) {
   std::vector<double> out;
   size_t i = 0;
   while (i < text.size()) {
@@ -480,8 +486,7 @@ std::string escapeString(std::string_view text) {
   return out;
 }
 
-ParseResult parseValue(ValueType t, std::string_view text, const EnumTable* table,
-                       ParseOptions opts) {
+ParseResult parseValue(ValueType t, std::string_view text, const EnumTable* table, ParseOptions opts) {
   const bool inf = opts.allow_infinite;
   switch (t) {
     case ValueType::Bool:
@@ -578,8 +583,7 @@ ParseResult parseValue(ValueType t, std::string_view text, const EnumTable* tabl
     }
     case ValueType::Color: {
       if (count != 3 && count != 4) {
-        return fail("expected 3 or 4 numbers (or 'invalid') for a Color, got " +
-                    decimalString(count));
+        return fail("expected 3 or 4 numbers (or 'invalid') for a Color, got " + decimalString(count));
       }
       Color c;
       std::copy(n.begin(), n.end(), c.rgba.begin());
@@ -647,19 +651,17 @@ std::string formatValue(ValueType t, const Value& v, const EnumTable* table) {
       break;
     case ValueType::Pose:
       if (auto* p = std::get_if<Pose>(&v)) {
-        const double out[6] = {p->pos[0],       p->pos[1],       p->pos[2],
-                               p->euler_deg[0], p->euler_deg[1], p->euler_deg[2]};
+        const double out[6] = {p->pos[0], p->pos[1], p->pos[2], p->euler_deg[0], p->euler_deg[1], p->euler_deg[2]};
         return spaceList(out, 6);
       }
       break;
     case ValueType::Matrix:
       if (auto* mat = std::get_if<Matrix4>(&v)) {
         const auto& m = mat->m;
-        const bool last_row = isPlusZero(m[12]) && isPlusZero(m[13]) && isPlusZero(m[14]) &&
-                              isOne(m[15]);
+        const bool last_row = isPlusZero(m[12]) && isPlusZero(m[13]) && isPlusZero(m[14]) && isOne(m[15]);
         const bool last_col = isPlusZero(m[3]) && isPlusZero(m[7]) && isPlusZero(m[11]);
-        const bool diagonal = isPlusZero(m[1]) && isPlusZero(m[2]) && isPlusZero(m[4]) &&
-                              isPlusZero(m[6]) && isPlusZero(m[8]) && isPlusZero(m[9]);
+        const bool diagonal = isPlusZero(m[1]) && isPlusZero(m[2]) && isPlusZero(m[4]) && isPlusZero(m[6]) &&
+                              isPlusZero(m[8]) && isPlusZero(m[9]);
         if (last_row && last_col && diagonal) {
           const double out[3] = {m[0], m[5], m[10]};
           return spaceList(out, 3);

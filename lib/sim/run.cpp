@@ -63,7 +63,8 @@ RunResult runModel(const Model& model, const RunOptions& opts, TrajectoryWriter*
     if (writer && !writer->ok()) {
       // A full disk is reported when it happens, not after simulating the rest for nothing.
       res.status = RunStatus::Failed;
-      res.error = {ErrorKind::IoError, {writer->finalPath(), 0},
+      res.error = {ErrorKind::IoError,
+                   {writer->finalPath(), 0},
                    "writing the trajectory failed at t=" + formatNumber(toSeconds(clock.now())) + " s"};
       break;
     }

@@ -31,9 +31,7 @@ Trajectory makeTraj(const std::vector<std::string>& bodies, const std::vector<do
   return t;
 }
 
-double* mutablePose(Trajectory& t, size_t s, size_t b) {
-  return t.poses[b].data() + s * simbob::kPoseSize;
-}
+double* mutablePose(Trajectory& t, size_t s, size_t b) { return t.poses[b].data() + s * simbob::kPoseSize; }
 
 /// Hamilton product a*b, quaternions w x y z.
 void quatMul(const double* a, const double* b, double* out) {
@@ -264,8 +262,7 @@ TEST_CASE("compare: missing rows for a body at a shared time", "[compare]") {
   REQUIRE(r.bodies[1].first_missing_time);
   CHECK(*r.bodies[1].first_missing_time == 0.1);
   CHECK(r.bodies[1].compared == 1);
-  CHECK(r.text().find("missing rows for b: 2 in actual, 0 in golden (first at t=0.1)\n") !=
-        std::string::npos);
+  CHECK(r.text().find("missing rows for b: 2 in actual, 0 in golden (first at t=0.1)\n") != std::string::npos);
   CHECK(r.json()["bodies"][1]["status"] == "missing rows");
 
   // The other way round: the row is missing in golden.
@@ -310,15 +307,12 @@ TEST_CASE("compare: first divergence is the earliest exceedance over all bodies"
   CHECK_FALSE(c.first_exceed_time);
 
   std::string text = r.text();
-  CHECK(text.find("first divergence: t=0.2 body b: pos err 0 m, rot err 0.001 rad (exceeds)\n") !=
-        std::string::npos);
+  CHECK(text.find("first divergence: t=0.2 body b: pos err 0 m, rot err 0.001 rad (exceeds)\n") != std::string::npos);
   CHECK(text.find("result: FAIL\n") != std::string::npos);
   // The table has a header and one row per body, with status per body.
   CHECK(text.find("body  max pos err (m)  max rot err (rad)  first exceed (s)  status\n") == 0);
-  CHECK(text.find("a     5e-06            0                  0.3               exceeded\n") !=
-        std::string::npos);
-  CHECK(text.find("c     5e-07            0                  -                 ok\n") !=
-        std::string::npos);
+  CHECK(text.find("a     5e-06            0                  0.3               exceeded\n") != std::string::npos);
+  CHECK(text.find("c     5e-07            0                  -                 ok\n") != std::string::npos);
 }
 
 TEST_CASE("compare: JSON report fields", "[compare]") {
@@ -326,8 +320,8 @@ TEST_CASE("compare: JSON report fields", "[compare]") {
   Trajectory actual = makeTraj({"a"}, {0, 0.1, 0.2});
   mutablePose(actual, 1, 0)[0] = 1e-3;
   nlohmann::json j = simbob::compareTrajectories(actual, golden).json();
-  for (const char* key : {"pass", "structural_mismatch", "tolerances", "samples", "bodies",
-                          "bodies_only_actual", "bodies_only_golden", "first_divergence"})
+  for (const char* key : {"pass", "structural_mismatch", "tolerances", "samples", "bodies", "bodies_only_actual",
+                          "bodies_only_golden", "first_divergence"})
     CHECK(j.contains(key));
   CHECK(j["pass"] == false);
   CHECK(j["structural_mismatch"] == true);
@@ -340,10 +334,9 @@ TEST_CASE("compare: JSON report fields", "[compare]") {
   CHECK(j["samples"]["only_golden"]["first_time"].is_null());
   REQUIRE(j["bodies"].size() == 1);
   const nlohmann::json& a = j["bodies"][0];
-  for (const char* key :
-       {"body", "compared", "max_pos_err", "max_pos_time", "max_rot_err", "max_rot_time",
-        "first_exceed_time", "first_exceed_pos_err", "first_exceed_rot_err", "missing_in_actual",
-        "missing_in_golden", "first_missing_time", "status", "pass"})
+  for (const char* key : {"body", "compared", "max_pos_err", "max_pos_time", "max_rot_err", "max_rot_time",
+                          "first_exceed_time", "first_exceed_pos_err", "first_exceed_rot_err", "missing_in_actual",
+                          "missing_in_golden", "first_missing_time", "status", "pass"})
     CHECK(a.contains(key));
   CHECK(a["body"] == "a");
   CHECK(a["max_pos_err"] == 1e-3);
@@ -369,8 +362,8 @@ TEST_CASE("compare: empty trajectories pass", "[compare]") {
 
 TEST_CASE("compare: files written and read back compare equal", "[compare]") {
   namespace fs = std::filesystem;
-  fs::path dir = fs::temp_directory_path() / ("simbob_compare_test_" + std::to_string(::getpid()) +
-                                              "_" + std::to_string(std::random_device{}()));
+  fs::path dir = fs::temp_directory_path() /
+                 ("simbob_compare_test_" + std::to_string(::getpid()) + "_" + std::to_string(std::random_device{}()));
   fs::create_directories(dir);
   const std::string path = (dir / "golden.csv").string();
   std::mt19937_64 rng(7);

@@ -191,8 +191,8 @@ TEST_CASE("trajectory writer reports CannotCreate for a missing directory", "[tr
   auto w = TrajectoryWriter::open(path, {"a"}, &err);
   CHECK_FALSE(w);
   CHECK(err.kind == ErrorKind::CannotCreate);
-  CHECK(err.str() == path + ": cannot create temporary file " + path + ".tmp." +
-                         std::to_string(::getpid()) + ": No such file or directory");
+  CHECK(err.str() == path + ": cannot create temporary file " + path + ".tmp." + std::to_string(::getpid()) +
+                         ": No such file or directory");
 }
 
 TEST_CASE("trajectory writer rejects empty and duplicate body keys", "[trajectory]") {
@@ -237,8 +237,7 @@ TEST_CASE("trajectory write/read round trip is bit-exact", "[trajectory]") {
   TempDir dir;
   std::string path = dir.file("traj.csv");
   std::mt19937_64 rng(20240607);
-  const std::vector<std::string> keys = {"world/base", "arm.link1", "arm.link2", "gripper",
-                                         "w\"eird,key"};
+  const std::vector<std::string> keys = {"world/base", "arm.link1", "arm.link2", "gripper", "w\"eird,key"};
   const size_t nb = keys.size();
   const size_t ns = 3000;  // > 1 MiB of text: exercises buffered flushing
   std::uniform_real_distribution<double> uni(-10, 10);
@@ -410,8 +409,7 @@ TEST_CASE("trajectory reader errors name file and line", "[trajectory]") {
     CHECK(err.str() == dir.path.string() + ": cannot read: Is a directory");
   }
   SECTION("empty file") {
-    CHECK(readError(dir, "", &kind) ==
-          p + ": empty file, expected header time,body,x,y,z,qw,qx,qy,qz");
+    CHECK(readError(dir, "", &kind) == p + ": empty file, expected header time,body,x,y,z,qw,qx,qy,qz");
     CHECK(kind == ErrorKind::InvalidInput);
   }
   SECTION("wrong header") {
@@ -420,18 +418,14 @@ TEST_CASE("trajectory reader errors name file and line", "[trajectory]") {
     CHECK(kind == ErrorKind::InvalidInput);
   }
   SECTION("wrong field count") {
-    CHECK(readError(dir, kHeader + "0,a,1,2,3,1,0,0,0\n0,b,1,2,3,1,0,0\n") ==
-          p + ":3: expected 9 fields, found 8");
-    CHECK(readError(dir, kHeader + "0,a,1,2,3,1,0,0,0,7\n") ==
-          p + ":2: expected 9 fields, found 10");
+    CHECK(readError(dir, kHeader + "0,a,1,2,3,1,0,0,0\n0,b,1,2,3,1,0,0\n") == p + ":3: expected 9 fields, found 8");
+    CHECK(readError(dir, kHeader + "0,a,1,2,3,1,0,0,0,7\n") == p + ":2: expected 9 fields, found 10");
   }
   SECTION("bad number") {
-    CHECK(readError(dir, kHeader + "0,a,1,abc,3,1,0,0,0\n", &kind) ==
-          p + ":2: bad number 'abc' in column y");
+    CHECK(readError(dir, kHeader + "0,a,1,abc,3,1,0,0,0\n", &kind) == p + ":2: bad number 'abc' in column y");
     CHECK(kind == ErrorKind::InvalidInput);
     CHECK(readError(dir, kHeader + "0,a,1,2,3,1,0,0,\n") == p + ":2: bad number '' in column qz");
-    CHECK(readError(dir, kHeader + "x,a,1,2,3,1,0,0,0\n") ==
-          p + ":2: bad number 'x' in column time");
+    CHECK(readError(dir, kHeader + "x,a,1,2,3,1,0,0,0\n") == p + ":2: bad number 'x' in column time");
     CHECK(readError(dir, kHeader + "0,a,1,2,3,1,0,0,0\n0.1,a,Infinite,2,3,1,0,0,0\n") ==
           p + ":3: bad number 'Infinite' in column x");
   }
@@ -442,13 +436,11 @@ TEST_CASE("trajectory reader errors name file and line", "[trajectory]") {
   }
   SECTION("time going backwards") {
     CHECK(readError(dir, kHeader + "0.01,a,1,2,3,1,0,0,0\n0.02,a,1,2,3,1,0,0,0\n"
-                                   "0.01,b,1,2,3,1,0,0,0\n") ==
-          p + ":4: time 0.01 is before the previous time 0.02");
+                                   "0.01,b,1,2,3,1,0,0,0\n") == p + ":4: time 0.01 is before the previous time 0.02");
   }
   SECTION("duplicate row") {
     CHECK(readError(dir, kHeader + "0,a,1,2,3,1,0,0,0\n0,b,1,2,3,1,0,0,0\n"
-                                   "0,a,1,2,3,1,0,0,0\n") ==
-          p + ":4: duplicate row for body 'a' at time 0");
+                                   "0,a,1,2,3,1,0,0,0\n") == p + ":4: duplicate row for body 'a' at time 0");
   }
   SECTION("empty body key") {
     CHECK(readError(dir, kHeader + "0,,1,2,3,1,0,0,0\n") == p + ":2: empty body key");
@@ -456,10 +448,8 @@ TEST_CASE("trajectory reader errors name file and line", "[trajectory]") {
   }
   SECTION("quoting errors") {
     CHECK(readError(dir, kHeader + "0,\"a,1,2,3,1,0,0,0\n") == p + ":2: unterminated quoted field");
-    CHECK(readError(dir, kHeader + "0,\"a\"x,1,2,3,1,0,0,0\n") ==
-          p + ":2: unexpected character after closing quote");
-    CHECK(readError(dir, kHeader + "0,a\"b,1,2,3,1,0,0,0\n") ==
-          p + ":2: unexpected '\"' in unquoted field");
+    CHECK(readError(dir, kHeader + "0,\"a\"x,1,2,3,1,0,0,0\n") == p + ":2: unexpected character after closing quote");
+    CHECK(readError(dir, kHeader + "0,a\"b,1,2,3,1,0,0,0\n") == p + ":2: unexpected '\"' in unquoted field");
   }
   SECTION("line numbers count newlines inside quoted keys") {
     CHECK(readError(dir, kHeader + "0,\"two\nlines\",1,2,3,1,0,0,0\n0,b,1,2,3,1,0,0,zz\n") ==

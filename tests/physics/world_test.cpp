@@ -93,10 +93,8 @@ Vec3 normalized(const Vec3& a) {
 
 Quat conj(const Quat& q) { return {q[0], -q[1], -q[2], -q[3]}; }
 Quat mul(const Quat& a, const Quat& b) {
-  return {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
-          a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
-          a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
-          a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
+  return {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3], a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+          a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1], a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
 }
 Vec3 rotate(const Quat& q, const Vec3& v) {
   const Quat r = mul(mul(q, {0, v[0], v[1], v[2]}), conj(q));
@@ -119,8 +117,7 @@ double quatDistance(const Quat& a, const Quat& b) {
 
 // Drops a sphere (bottom 1 m above the plane) and returns the apex of the sphere bottom after
 // the first impact.
-double firstReboundApex(double ballBounce, double ballMinVel, double groundBounce,
-                        double groundMinVel) {
+double firstReboundApex(double ballBounce, double ballMinVel, double groundBounce, double groundMinVel) {
   const double r = 0.1;
   const double h = 1.0;
   Model m = baseModel();
@@ -182,16 +179,14 @@ TEST_CASE("physics: hinge pendulum period", "[physics]") {
   const double r = 0.05;
   const double theta0 = 5.0 * kPi / 180.0;
   Model m = baseModel();
-  const int b = addBody(m, {L * std::sin(theta0), -L * std::cos(theta0), 0}, mass,
-                        sphereInertia(mass, r));
+  const int b = addBody(m, {L * std::sin(theta0), -L * std::cos(theta0), 0}, mass, sphereInertia(mass, r));
   addGeom(m, b, GeomShape::Sphere, {r, 0, 0});
   addJoint(m, JointKind::Hinge, -1, b, {0, 0, 0}, {0, 0, 1});
   auto w = World::create(m, 1);
   REQUIRE(w);
 
   const double iPivot = 0.4 * mass * r * r + mass * L * L;
-  const double expected =
-      2 * kPi * std::sqrt(iPivot / (mass * kG * L)) * (1 + theta0 * theta0 / 16);
+  const double expected = 2 * kPi * std::sqrt(iPivot / (mass * kG * L)) * (1 + theta0 * theta0 / 16);
   std::vector<double> crossings;
   double prevX = w->body(0).pose.p[0];
   double maxRadiusErr = 0;
@@ -208,8 +203,7 @@ TEST_CASE("physics: hinge pendulum period", "[physics]") {
   }
   REQUIRE(crossings.size() >= 9);
   // Consecutive zero crossings are half a period apart.
-  const double period =
-      2 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+  const double period = 2 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
   INFO("period " << period << " expected " << expected << " radius err " << maxRadiusErr);
   // 0.5%: Euler's O(h) phase error is ~1e-4 relative at h = 1 ms, the series correction is
   // accurate to O(theta0^4) ~ 1e-5; the rest is margin.
@@ -241,8 +235,7 @@ TEST_CASE("physics: min bounce velocity follows the min rule", "[physics]") {
   CHECK(dead < 0.1 * expected);
 }
 
-TEST_CASE("physics: Coulomb sliding stops at v0^2 / (2 mu g) with the max friction rule",
-          "[physics]") {
+TEST_CASE("physics: Coulomb sliding stops at v0^2 / (2 mu g) with the max friction rule", "[physics]") {
   const double side = 0.2;
   const double v0 = 2.0;
   const double mu = 0.5;  // max(0.3, 0.5)
@@ -370,8 +363,7 @@ TEST_CASE("physics: identical model and seed give bit-identical runs", "[physics
   addGround(m);
   for (int i = 0; i < 5; ++i) {
     const Quat q = axisAngle({1.0 + i, 0.5, -0.3 * i}, 0.4 * i);
-    const int b = addBody(m, {0.15 * i, 0.3 + 0.35 * i, 0.05 * (i % 2)}, 1.0,
-                          boxInertia(1.0, 0.2, 0.2, 0.2), q);
+    const int b = addBody(m, {0.15 * i, 0.3 + 0.35 * i, 0.05 * (i % 2)}, 1.0, boxInertia(1.0, 0.2, 0.2, 0.2), q);
     addGeom(m, b, GeomShape::Box, {0.2, 0.2, 0.2});
   }
   auto run = [&m](long& contacts) {

@@ -78,8 +78,7 @@ Image loadPng(const std::string& path) {
   img.px.resize(static_cast<size_t>(img.width) * img.height);
   for (int y = 0; y < img.height; ++y) {
     const auto* row = reinterpret_cast<const uint32_t*>(data + static_cast<size_t>(y) * stride);
-    for (int x = 0; x < img.width; ++x)
-      img.px[static_cast<size_t>(y) * img.width + x] = row[x] & 0xFFFFFF;
+    for (int x = 0; x < img.width; ++x) img.px[static_cast<size_t>(y) * img.width + x] = row[x] & 0xFFFFFF;
   }
   cairo_surface_destroy(s);
   return img;
@@ -186,13 +185,11 @@ TEST_CASE("plot: a constant x is one horizontal band in the upper panel", "[plot
   opt.height = 900;
   Error err;
   // x = 1 for "low" and x = 2 for "high": the upper panel must put "high" above "low".
-  REQUIRE(
-      simbob::plotTrajectory(constantTraj({"low", "high"}, {1.0, 2.0}), nullptr, opt, out, &err));
+  REQUIRE(simbob::plotTrajectory(constantTraj({"low", "high"}, {1.0, 2.0}), nullptr, opt, out, &err));
   const Image img = loadPng(out);
   const int min_run = img.width / 2;  // a line across the panel, not the legend swatch
   const std::vector<int> low = rowsWithColor(img, simbob::plotColor(0), 0, img.height / 3, min_run);
-  const std::vector<int> high =
-      rowsWithColor(img, simbob::plotColor(1), 0, img.height / 3, min_run);
+  const std::vector<int> high = rowsWithColor(img, simbob::plotColor(1), 0, img.height / 3, min_run);
   REQUIRE_FALSE(low.empty());
   REQUIRE_FALSE(high.empty());
   CHECK(low.back() - low.front() <= 3);  // a 2 px line: one narrow band of rows
@@ -225,10 +222,8 @@ TEST_CASE("plot: a ramp rises from left to right", "[plot]") {
 
 TEST_CASE("plot: golden lines are drawn dashed and change the image", "[plot]") {
   PlotTempDir dir;
-  const Trajectory actual =
-      makeTraj({"a"}, 100, 1.0, [](size_t, double t, double* p) { p[0] = t; });
-  const Trajectory golden =
-      makeTraj({"a"}, 100, 1.0, [](size_t, double t, double* p) { p[0] = 1.0 - t; });
+  const Trajectory actual = makeTraj({"a"}, 100, 1.0, [](size_t, double t, double* p) { p[0] = t; });
+  const Trajectory golden = makeTraj({"a"}, 100, 1.0, [](size_t, double t, double* p) { p[0] = 1.0 - t; });
   PlotOptions opt;
   opt.width = 600;
   Error err;
@@ -243,14 +238,11 @@ TEST_CASE("plot: golden lines are drawn dashed and change the image", "[plot]") 
   // More line colour with the golden line than without, in the upper panel.
   const PlotColor c = simbob::plotColor(0);
   const int third = plain.height / 3;
-  CHECK(countColor(with, c, 0, with.width, 0, third) >
-        countColor(plain, c, 0, plain.width, 0, third) + 100);
+  CHECK(countColor(with, c, 0, with.width, 0, third) > countColor(plain, c, 0, plain.width, 0, third) + 100);
 
   SECTION("dashed: the golden line is broken into many runs along its row") {
-    const Trajectory flat =
-        makeTraj({"a"}, 100, 1.0, [](size_t, double, double* p) { p[0] = 5.0; });
-    const Trajectory flat_golden =
-        makeTraj({"a"}, 100, 1.0, [](size_t, double, double* p) { p[0] = 1.0; });
+    const Trajectory flat = makeTraj({"a"}, 100, 1.0, [](size_t, double, double* p) { p[0] = 5.0; });
+    const Trajectory flat_golden = makeTraj({"a"}, 100, 1.0, [](size_t, double, double* p) { p[0] = 1.0; });
     REQUIRE(simbob::plotTrajectory(flat, &flat_golden, opt, dir.file("dash.png"), &err));
     const Image img = loadPng(dir.file("dash.png"));
     // Antialiased 1.5 px dashes rarely hit the exact colour, so look for blue-tinted pixels.
@@ -295,13 +287,11 @@ TEST_CASE("plot: a single sample and missing rows", "[plot]") {
   PlotTempDir dir;
   Error err;
   SECTION("one sample draws a dot") {
-    const Trajectory one =
-        makeTraj({"solo"}, 1, 0.0, [](size_t, double, double* p) { p[0] = 0.25; });
+    const Trajectory one = makeTraj({"solo"}, 1, 0.0, [](size_t, double, double* p) { p[0] = 0.25; });
     REQUIRE(simbob::plotTrajectory(one, nullptr, PlotOptions(), dir.file("one.png"), &err));
     const Image img = loadPng(dir.file("one.png"));
     // Legend swatch (2 px x 28 px) plus a dot in each panel.
-    CHECK(countColor(img, simbob::plotColor(0), 0, img.width, img.height / 10, img.height) >=
-          3 * 15);
+    CHECK(countColor(img, simbob::plotColor(0), 0, img.width, img.height / 10, img.height) >= 3 * 15);
   }
   SECTION("a body with rows only in the first half has no line in the second half") {
     Trajectory tr = constantTraj({"part", "full"}, {1.0, 2.0});
@@ -309,8 +299,7 @@ TEST_CASE("plot: a single sample and missing rows", "[plot]") {
     REQUIRE(simbob::plotTrajectory(tr, nullptr, PlotOptions(), dir.file("part.png"), &err));
     const Image img = loadPng(dir.file("part.png"));
     const PlotColor c = simbob::plotColor(0);
-    CHECK(countColor(img, c, img.width / 10, img.width * 4 / 10, img.height / 10, img.height) >
-          300);
+    CHECK(countColor(img, c, img.width / 10, img.width * 4 / 10, img.height / 10, img.height) > 300);
     CHECK(countColor(img, c, img.width * 6 / 10, img.width, 0, img.height) == 0);
   }
 }
@@ -337,8 +326,7 @@ TEST_CASE("plot: long trajectories are decimated but keep spikes", "[plot]") {
   // The single-sample spike reaches the top of the upper panel's data range.
   const std::vector<int> flat = rowsWithColor(img, c, 0, img.height / 3, img.width / 2);
   REQUIRE_FALSE(flat.empty());
-  const int spike_pixels =
-      countColor(img, c, img.width / 3, img.width * 2 / 3, img.height / 10, flat.front() - 20);
+  const int spike_pixels = countColor(img, c, img.width / 3, img.width * 2 / 3, img.height / 10, flat.front() - 20);
   CHECK(spike_pixels > 100);
 }
 
@@ -352,8 +340,7 @@ TEST_CASE("plot: more than 8 bodies are capped, odd keys are drawable", "[plot]"
   }
   keys[3] = std::string("bad\xff\xfe utf8\nkey");  // invalid UTF-8 and a newline
   Error err;
-  REQUIRE(simbob::plotTrajectory(constantTraj(keys, xs), nullptr, PlotOptions(),
-                                 dir.file("many.png"), &err));
+  REQUIRE(simbob::plotTrajectory(constantTraj(keys, xs), nullptr, PlotOptions(), dir.file("many.png"), &err));
   const Image img = loadPng(dir.file("many.png"));
   // Text was drawn after the odd key (cairo did not stop): the last body's line is present.
   CHECK(countColor(img, simbob::plotColor(7), 0, img.width, 0, img.height) > 300);
@@ -361,8 +348,7 @@ TEST_CASE("plot: more than 8 bodies are capped, odd keys are drawable", "[plot]"
   SECTION("naming more than 8 is an error") {
     PlotOptions opt;
     opt.bodies.assign(keys.begin(), keys.begin() + 9);
-    CHECK_FALSE(
-        simbob::plotTrajectory(constantTraj(keys, xs), nullptr, opt, dir.file("nine.png"), &err));
+    CHECK_FALSE(simbob::plotTrajectory(constantTraj(keys, xs), nullptr, opt, dir.file("nine.png"), &err));
     CHECK(err.kind == ErrorKind::InvalidInput);
   }
 }
@@ -420,8 +406,7 @@ TEST_CASE("plot: errors", "[plot]") {
     CHECK(err.message.find("bodies: base, arm") != std::string::npos);
   }
   SECTION("empty trajectory") {
-    CHECK_FALSE(
-        simbob::plotTrajectory(Trajectory(), nullptr, PlotOptions(), dir.file("e.png"), &err));
+    CHECK_FALSE(simbob::plotTrajectory(Trajectory(), nullptr, PlotOptions(), dir.file("e.png"), &err));
     CHECK(err.kind == ErrorKind::InvalidInput);
   }
   SECTION("bad size") {
@@ -436,13 +421,12 @@ TEST_CASE("plot: errors", "[plot]") {
   }
   SECTION("too small for the legend and three panels") {
     std::vector<std::string> keys;
-    for (int i = 0; i < 8; ++i)
-      keys.push_back("a_rather_long_body_key_number_" + std::to_string(i));
+    for (int i = 0; i < 8; ++i) keys.push_back("a_rather_long_body_key_number_" + std::to_string(i));
     PlotOptions opt;
     opt.width = 200;
     opt.height = 300;
-    CHECK_FALSE(simbob::plotTrajectory(constantTraj(keys, std::vector<double>(8, 0.0)), nullptr,
-                                       opt, dir.file("small.png"), &err));
+    CHECK_FALSE(simbob::plotTrajectory(constantTraj(keys, std::vector<double>(8, 0.0)), nullptr, opt,
+                                       dir.file("small.png"), &err));
     CHECK(err.kind == ErrorKind::InvalidInput);
     CHECK(err.message.find("too small") != std::string::npos);
     CHECK_FALSE(fs::exists(dir.file("small.png")));

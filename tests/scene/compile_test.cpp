@@ -122,8 +122,7 @@ std::string mobile(const std::string& key, const std::string& pose, const std::s
 
 TEST_CASE("compile: Euler angles rotate about X, then Y, then Z (R = Rz Ry Rx, degrees)", "[scene][compile]") {
   Model m = mustCompile(scene(mobile("X90", globalPose("0 0 0 90 0 0")) + mobile("Z90", globalPose("0 0 0 0 0 90")) +
-                              mobile("Y90", globalPose("0 0 0 0 90 0")) +
-                              mobile("ABC", globalPose("1 -2 3 30 45 60")) +
+                              mobile("Y90", globalPose("0 0 0 0 90 0")) + mobile("ABC", globalPose("1 -2 3 30 45 60")) +
                               mobile("Neg", globalPose("0 0 0 -120 10 -200"))));
   // (90, 0, 0) turns local Y onto global Z and local Z onto global -Y.
   const Quat& x90 = bodyNamed(m, "X90").pose.q;
@@ -172,11 +171,11 @@ TEST_CASE("compile: transform.h agrees with the independent rotation matrices", 
 }
 
 TEST_CASE("compile: geoms of static bodies are placed globally", "[scene][compile]") {
-  Model m = mustCompile(scene(
-      "<RCStaticRigidBody Key=\"S\"><Pose>" + globalPose("1 2 3 0 0 90") +
-      "</Pose><Geom><RCTransformGeom><Pose>" + localPose("1 0 0 90 0 0") +
-      "</Pose><SubGeom><RCCuboidGeom><Width Value=\"2\"/><Height Value=\"3\"/><Depth Value=\"4\"/></RCCuboidGeom>"
-      "</SubGeom></RCTransformGeom></Geom></RCStaticRigidBody>"));
+  Model m = mustCompile(
+      scene("<RCStaticRigidBody Key=\"S\"><Pose>" + globalPose("1 2 3 0 0 90") +
+            "</Pose><Geom><RCTransformGeom><Pose>" + localPose("1 0 0 90 0 0") +
+            "</Pose><SubGeom><RCCuboidGeom><Width Value=\"2\"/><Height Value=\"3\"/><Depth Value=\"4\"/></RCCuboidGeom>"
+            "</SubGeom></RCTransformGeom></Geom></RCStaticRigidBody>"));
   CHECK(m.bodies.empty());
   const GeomDef& g = onlyGeom(m, "S");
   CHECK(g.body == -1);
@@ -189,17 +188,22 @@ TEST_CASE("compile: geoms of static bodies are placed globally", "[scene][compil
 
 TEST_CASE("compile: RCLocalCoordinates compose through construction -> joint -> body", "[scene][compile]") {
   Model m = mustCompile(scene(R"(<RCConstruction Key="C">
-  <Body><RCStaticRigidBody Key="Root"><Pose>)" + globalPose("1 2 3 0 0 90") + R"(</Pose></RCStaticRigidBody></Body>
+  <Body><RCStaticRigidBody Key="Root"><Pose>)" +
+                              globalPose("1 2 3 0 0 90") + R"(</Pose></RCStaticRigidBody></Body>
   <ChildList>
     <RCHingeJoint Key="J">
-      <Pose>)" + localPose("1 0 0 90 0 0") + R"(</Pose>
+      <Pose>)" + localPose("1 0 0 90 0 0") +
+                              R"(</Pose>
       <Body>
         <RCConstruction Key="Arm">
-          <Body>)" + mobile("Upper", localPose("0 1 0 0 0 0")) + R"(</Body>
+          <Body>)" + mobile("Upper", localPose("0 1 0 0 0 0")) +
+                              R"(</Body>
           <ChildList>
             <RCBallSocketJoint Key="Elbow">
-              <Pose>)" + localPose("0 0 2 0 -90 0") + R"(</Pose>
-              <Body>)" + mobile("Lower", localPose("0.5 0 0 0 0 0")) + R"(</Body>
+              <Pose>)" + localPose("0 0 2 0 -90 0") +
+                              R"(</Pose>
+              <Body>)" + mobile("Lower", localPose("0.5 0 0 0 0 0")) +
+                              R"(</Body>
             </RCBallSocketJoint>
           </ChildList>
         </RCConstruction>
@@ -244,9 +248,10 @@ TEST_CASE("compile: RCLocalCoordinates compose through construction -> joint -> 
   CHECK(g.body == bodyIndex(m, "C.J.Arm.Elbow.Lower"));
   checkVec(g.offset.p, {0, 0, 0});
   // A global pose inside a construction ignores the parent frame.
-  Model g2 = mustCompile(scene("<RCConstruction Key=\"C\"><Body><RCStaticRigidBody><Pose>" + globalPose("5 5 5 0 0 45") +
-                               "</Pose></RCStaticRigidBody></Body><ChildList><RCFixJoint Key=\"F\"><Body>" +
-                               mobile("B", globalPose("0 1 0 0 0 0")) + "</Body></RCFixJoint></ChildList></RCConstruction>"));
+  Model g2 =
+      mustCompile(scene("<RCConstruction Key=\"C\"><Body><RCStaticRigidBody><Pose>" + globalPose("5 5 5 0 0 45") +
+                        "</Pose></RCStaticRigidBody></Body><ChildList><RCFixJoint Key=\"F\"><Body>" +
+                        mobile("B", globalPose("0 1 0 0 0 0")) + "</Body></RCFixJoint></ChildList></RCConstruction>"));
   checkVec(bodyNamed(g2, "C.F.B").pose.p, {0, 1, 0});
   CHECK(jointNamed(g2, "C.F").kind == JointKind::Fixed);
   // The joint frame defaults to the parent body's frame.
@@ -292,14 +297,14 @@ TEST_CASE("compile: hinge anchor and axis from the Hinge pose's local Z", "[scen
 }
 
 TEST_CASE("compile: slider axis, ball-socket anchor, fixed joint", "[scene][compile]") {
-  Model m = mustCompile(scene(
-      "<RCConstruction Key=\"C\"><Body>" + mobile("Base", globalPose("0 0 0 0 0 0")) + "</Body><ChildList>" +
-      "<RCSliderJoint Key=\"S\"><Pose>" + localPose("1 0 0 0 0 90") + "</Pose><Axis>" + localPose("5 5 5 -90 0 0") +
-      "</Axis><Body>" + mobile("A", localPose("0 0 0 0 0 0")) + "</Body></RCSliderJoint>" +
-      "<RCBallSocketJoint Key=\"B\"><Pose>" + localPose("0 2 0 0 0 0") + "</Pose><Anchor>" + localPose("0 0 1 45 45 45") +
-      "</Anchor><Body>" + mobile("D", localPose("0 0 0 0 0 0")) + "</Body></RCBallSocketJoint>" +
-      "<RCFixJoint Key=\"F\"><Body>" + mobile("E", globalPose("0 -3 0 0 0 0")) + "</Body></RCFixJoint>" +
-      "</ChildList></RCConstruction>"));
+  Model m = mustCompile(
+      scene("<RCConstruction Key=\"C\"><Body>" + mobile("Base", globalPose("0 0 0 0 0 0")) + "</Body><ChildList>" +
+            "<RCSliderJoint Key=\"S\"><Pose>" + localPose("1 0 0 0 0 90") + "</Pose><Axis>" +
+            localPose("5 5 5 -90 0 0") + "</Axis><Body>" + mobile("A", localPose("0 0 0 0 0 0")) +
+            "</Body></RCSliderJoint>" + "<RCBallSocketJoint Key=\"B\"><Pose>" + localPose("0 2 0 0 0 0") +
+            "</Pose><Anchor>" + localPose("0 0 1 45 45 45") + "</Anchor><Body>" +
+            mobile("D", localPose("0 0 0 0 0 0")) + "</Body></RCBallSocketJoint>" + "<RCFixJoint Key=\"F\"><Body>" +
+            mobile("E", globalPose("0 -3 0 0 0 0")) + "</Body></RCFixJoint>" + "</ChildList></RCConstruction>"));
   const JointDef& s = jointNamed(m, "C.S");
   CHECK(s.kind == JointKind::Slider);
   // Axis: Rz(90) Rx(-90) applied to Z = Rz(90) (0,1,0) = (-1,0,0); its position does not matter.
@@ -319,8 +324,8 @@ TEST_CASE("compile: slider axis, ball-socket anchor, fixed joint", "[scene][comp
 }
 
 TEST_CASE("compile: a joint's Body may be a Ref to an existing body", "[scene][compile]") {
-  Model m = mustCompile(scene(mobile("Free", globalPose("0 5 0 0 0 0")) +
-                              "<RCConstruction Key=\"C\"><Body>" + mobile("Base", globalPose("0 0 0 0 0 0")) +
+  Model m = mustCompile(scene(mobile("Free", globalPose("0 5 0 0 0 0")) + "<RCConstruction Key=\"C\"><Body>" +
+                              mobile("Base", globalPose("0 0 0 0 0 0")) +
                               "</Body><ChildList><RCBallSocketJoint Key=\"J\"><Body Ref=\"Free\"/></RCBallSocketJoint>"
                               "</ChildList></RCConstruction>"));
   REQUIRE(m.bodies.size() == 2);  // the referred body is not created twice
@@ -370,22 +375,29 @@ void checkPrincipal(const BodyDef& b, const Principal& p) {
   for (int k : {1, 2, 3, 5, 6, 7}) CHECK(b.inertia[k] == Approx(0).margin(1e-9 * p.ixx));
 }
 
-std::string byGeom(const std::string& params) { return "<Inertia><RCInertiaByGeom>" + params + "</RCInertiaByGeom></Inertia>"; }
+std::string byGeom(const std::string& params) {
+  return "<Inertia><RCInertiaByGeom>" + params + "</RCInertiaByGeom></Inertia>";
+}
 
 }  // namespace
 
 TEST_CASE("compile: RCInertiaByGeom for box, sphere, cylinder and capsule", "[scene][compile]") {
   const std::string origin = globalPose("0 0 0 0 0 0");
-  Model m = mustCompile(scene(
-      mobile("Box", origin, "<RCCuboidGeom><Width Value=\"1\"/><Height Value=\"2\"/><Depth Value=\"3\"/></RCCuboidGeom>") +
-      mobile("Sphere", origin, "<RCSphereGeom><Radius Value=\"0.5\"/></RCSphereGeom>", byGeom("<Density Value=\"7800\"/>")) +
-      mobile("Cyl", origin, "<RCCylinderGeom><Radius Value=\"0.5\"/><Length Value=\"2\"/></RCCylinderGeom>") +
-      mobile("Cap", origin, "<RCCappedCylinderGeom><Radius Value=\"0.25\"/><Length Value=\"1.5\"/></RCCappedCylinderGeom>",
-             byGeom("<Density Value=\"500\"/>")) +
-      mobile("BoxMass", origin, "<RCCuboidGeom><Width Value=\"1\"/><Height Value=\"2\"/><Depth Value=\"3\"/></RCCuboidGeom>",
-             byGeom("<Mass Value=\"12\"/><Density Value=\"1\"/>")) +
-      mobile("Generic", origin, "<RCSphereGeom/>",
-             "<Inertia><RCGenericInertia><Mass Value=\"3\"/><Inertia Value=\"1 0.1 0 0.1 2 0 0 0 3\"/></RCGenericInertia></Inertia>")));
+  Model m = mustCompile(
+      scene(mobile("Box", origin,
+                   "<RCCuboidGeom><Width Value=\"1\"/><Height Value=\"2\"/><Depth Value=\"3\"/></RCCuboidGeom>") +
+            mobile("Sphere", origin, "<RCSphereGeom><Radius Value=\"0.5\"/></RCSphereGeom>",
+                   byGeom("<Density Value=\"7800\"/>")) +
+            mobile("Cyl", origin, "<RCCylinderGeom><Radius Value=\"0.5\"/><Length Value=\"2\"/></RCCylinderGeom>") +
+            mobile("Cap", origin,
+                   "<RCCappedCylinderGeom><Radius Value=\"0.25\"/><Length Value=\"1.5\"/></RCCappedCylinderGeom>",
+                   byGeom("<Density Value=\"500\"/>")) +
+            mobile("BoxMass", origin,
+                   "<RCCuboidGeom><Width Value=\"1\"/><Height Value=\"2\"/><Depth Value=\"3\"/></RCCuboidGeom>",
+                   byGeom("<Mass Value=\"12\"/><Density Value=\"1\"/>")) +
+            mobile("Generic", origin, "<RCSphereGeom/>",
+                   "<Inertia><RCGenericInertia><Mass Value=\"3\"/><Inertia Value=\"1 0.1 0 0.1 2 0 0 0 "
+                   "3\"/></RCGenericInertia></Inertia>")));
   // Default density 1000 kg/m^3.
   checkPrincipal(bodyNamed(m, "Box"), boxP(1000, 1, 2, 3));
   CHECK(bodyNamed(m, "Box").mass == Approx(6000));
@@ -486,10 +498,12 @@ TEST_CASE("compile: RCRodBody midpoint, orientation and length for Capped x Hull
 }
 
 TEST_CASE("compile: RCRodBody ends in local coordinates of a joint", "[scene][compile]") {
-  Model m = mustCompile(scene("<RCConstruction Key=\"C\"><Body><RCStaticRigidBody><Pose>" + globalPose("0 1 0 0 0 90") +
-                              "</Pose></RCStaticRigidBody></Body><ChildList><RCHingeJoint Key=\"J\"><Body><RCRodBody Key=\"R\">"
-                              "<Pos1>" + localPose("0 0 0 0 0 0") + "</Pos1><Pos2>" + localPose("2 0 0 0 0 0") +
-                              "</Pos2></RCRodBody></Body></RCHingeJoint></ChildList></RCConstruction>"));
+  Model m = mustCompile(
+      scene("<RCConstruction Key=\"C\"><Body><RCStaticRigidBody><Pose>" + globalPose("0 1 0 0 0 90") +
+            "</Pose></RCStaticRigidBody></Body><ChildList><RCHingeJoint Key=\"J\"><Body><RCRodBody Key=\"R\">"
+            "<Pos1>" +
+            localPose("0 0 0 0 0 0") + "</Pos1><Pos2>" + localPose("2 0 0 0 0 0") +
+            "</Pos2></RCRodBody></Body></RCHingeJoint></ChildList></RCConstruction>"));
   // The frame is turned 90 deg about Z: local X is global Y.
   const BodyDef& r = bodyNamed(m, "C.J.R");
   checkVec(r.pose.p, {0, 2, 0});
@@ -509,10 +523,13 @@ std::string pendulum() {
     <Geom><RCCuboidGeom/></Geom></RCStaticRigidBody></Body>
   <ChildList>
     <RCHingeJoint Key="H">
-      <Pose>)" + localPose("0 0 0 0 0 30") + R"(</Pose>
-      <Body>)" + mobile("Bob", localPose("0 -1 0 0 0 0"), "<RCSphereGeom><Radius Value=\"0.1\"/></RCSphereGeom>",
-                        "<Motion><RCGlobalMotion><LinVelocity Value=\"1 0 0\"/><AngVelocity Value=\"0 0 2\"/>"
-                        "</RCGlobalMotion></Motion>") + R"(</Body>
+      <Pose>)" +
+         localPose("0 0 0 0 0 30") + R"(</Pose>
+      <Body>)" +
+         mobile("Bob", localPose("0 -1 0 0 0 0"), "<RCSphereGeom><Radius Value=\"0.1\"/></RCSphereGeom>",
+                "<Motion><RCGlobalMotion><LinVelocity Value=\"1 0 0\"/><AngVelocity Value=\"0 0 2\"/>"
+                "</RCGlobalMotion></Motion>") +
+         R"(</Body>
     </RCHingeJoint>
   </ChildList>
 </RCConstruction>)";
@@ -597,21 +614,30 @@ TEST_CASE("compile: RCImportBody pose and motion override", "[scene][compile][im
                                    "<Motion><RCGlobalMotion><LinVelocity Value=\"0 3 0\"/></RCGlobalMotion></Motion>") +
                             "</Body>");
   dir.write("arm.xml", "<Body><RCConstruction Key=\"Arm\"><Body><RCStaticRigidBody Key=\"Base\"><Pose>" +
-                           globalPose("0 1 0 0 0 0") + "</Pose></RCStaticRigidBody></Body><ChildList><RCHingeJoint "
-                           "Key=\"J\"><Body>" + mobile("Link", localPose("1 0 0 0 0 0")) +
+                           globalPose("0 1 0 0 0 0") +
+                           "</Pose></RCStaticRigidBody></Body><ChildList><RCHingeJoint "
+                           "Key=\"J\"><Body>" +
+                           mobile("Link", localPose("1 0 0 0 0 0")) +
                            "</Body></RCHingeJoint></ChildList></RCConstruction></Body>");
   dir.write("joint.xml", "<Joint><RCHingeJoint Key=\"H\"><Pose>" + localPose("0 0 1 0 0 0") + "</Pose><Body>" +
                              mobile("B", localPose("0 -1 0 0 0 0")) + "</Body></RCHingeJoint></Joint>");
-  std::string main = dir.write("main.xml", scene(
-      "<RCImportBody Key=\"Plain\"><File Value=\"ball.xml\"/></RCImportBody>"
-      "<RCImportBody Key=\"Moved\"><File Value=\"ball.xml\"/><Pose>" + globalPose("5 0 0 0 0 90") + "</Pose>"
-      "<Motion><RCGlobalMotion><LinVelocity Value=\"0 0 1\"/><AngVelocity Value=\"0 2 0\"/></RCGlobalMotion></Motion>"
-      "</RCImportBody>"
-      "<RCImportBody Key=\"Arm2\"><File Value=\"arm.xml\"/><Pose>" + globalPose("0 1 10 0 0 0") + "</Pose></RCImportBody>"
-      "<RCConstruction Key=\"C\"><Body><RCStaticRigidBody/></Body><ChildList>"
-      "<RCImportJoint Key=\"IJ\"><File Value=\"joint.xml\"/></RCImportJoint>"
-      "<RCImportJoint Key=\"IJ2\"><File Value=\"joint.xml\"/><Pose>" + localPose("3 0 0 0 90 0") + "</Pose></RCImportJoint>"
-      "</ChildList></RCConstruction>"));
+  std::string main =
+      dir.write("main.xml", scene("<RCImportBody Key=\"Plain\"><File Value=\"ball.xml\"/></RCImportBody>"
+                                  "<RCImportBody Key=\"Moved\"><File Value=\"ball.xml\"/><Pose>" +
+                                  globalPose("5 0 0 0 0 90") +
+                                  "</Pose>"
+                                  "<Motion><RCGlobalMotion><LinVelocity Value=\"0 0 1\"/><AngVelocity Value=\"0 2 "
+                                  "0\"/></RCGlobalMotion></Motion>"
+                                  "</RCImportBody>"
+                                  "<RCImportBody Key=\"Arm2\"><File Value=\"arm.xml\"/><Pose>" +
+                                  globalPose("0 1 10 0 0 0") +
+                                  "</Pose></RCImportBody>"
+                                  "<RCConstruction Key=\"C\"><Body><RCStaticRigidBody/></Body><ChildList>"
+                                  "<RCImportJoint Key=\"IJ\"><File Value=\"joint.xml\"/></RCImportJoint>"
+                                  "<RCImportJoint Key=\"IJ2\"><File Value=\"joint.xml\"/><Pose>" +
+                                  localPose("3 0 0 0 90 0") +
+                                  "</Pose></RCImportJoint>"
+                                  "</ChildList></RCConstruction>"));
   Scene s;
   Diagnostics d;
   REQUIRE(loadScene(main, builtinRegistry(), &s, d));
@@ -646,8 +672,9 @@ TEST_CASE("compile: RCImportBody pose and motion override", "[scene][compile][im
 // ---------------------------------------------------------------------------------- globals (6.2)
 
 TEST_CASE("compile: RCGround, RCSky and RCSandBox planes", "[scene][compile]") {
-  Model m = mustCompile(scene("<RCGround/><RCSky><Height Value=\"7\"/></RCSky>"
-                              "<RCSandBox><Width Value=\"4\"/><Depth Value=\"6\"/></RCSandBox>"));
+  Model m =
+      mustCompile(scene("<RCGround/><RCSky><Height Value=\"7\"/></RCSky>"
+                        "<RCSandBox><Width Value=\"4\"/><Depth Value=\"6\"/></RCSandBox>"));
   REQUIRE(m.geoms.size() == 6);
   for (const GeomDef& g : m.geoms) {
     CHECK(g.shape == GeomShape::Plane);
@@ -677,9 +704,10 @@ TEST_CASE("compile: RCGround, RCSky and RCSandBox planes", "[scene][compile]") {
 }
 
 TEST_CASE("compile: scene settings reach the model", "[scene][compile]") {
-  Model m = mustCompile("<Simulation><SceneSettings><Gravity Value=\"0 0 -1.62\"/><MaxTimeStep Value=\"0.004\"/>"
-                        "<MinTimeStep Value=\"1e-5\"/><Solver Value=\"Step\"/><SolverIterations Value=\"7\"/>"
-                        "<ERP Value=\"0.5\"/><CFM Value=\"1e-6\"/><MaxContacts Value=\"9\"/></SceneSettings></Simulation>");
+  Model m = mustCompile(
+      "<Simulation><SceneSettings><Gravity Value=\"0 0 -1.62\"/><MaxTimeStep Value=\"0.004\"/>"
+      "<MinTimeStep Value=\"1e-5\"/><Solver Value=\"Step\"/><SolverIterations Value=\"7\"/>"
+      "<ERP Value=\"0.5\"/><CFM Value=\"1e-6\"/><MaxContacts Value=\"9\"/></SceneSettings></Simulation>");
   CHECK(m.settings.gravity == Vec3{0, 0, -1.62});
   CHECK(m.settings.max_time_step == 0.004);
   CHECK(m.settings.min_time_step == 1e-5);
@@ -698,17 +726,19 @@ TEST_CASE("compile: scene settings reach the model", "[scene][compile]") {
 // ---------------------------------------------------------------------------------- materials (6.7)
 
 TEST_CASE("compile: material data per geom", "[scene][compile]") {
-  Model m = mustCompile(scene(
-      "<RCGenericMaterial Key=\"Ice\"><Friction Value=\"0.05\"/><Bounceness Value=\"0.1\"/>"
-      "<MinBounceVel Value=\"0.2\"/></RCGenericMaterial>"
-      "<RCGenericMaterial Key=\"Rubber\"><Friction Value=\"1.2\"/><Bounceness Value=\"0.8\"/></RCGenericMaterial>"
-      "<RCGround><Material Ref=\"Ice\"/></RCGround>" +
-      mobile("A", globalPose("0 1 0 0 0 0"), "<RCSphereGeom/>", "<Material Ref=\"Rubber\"/>") +
-      mobile("B", globalPose("2 1 0 0 0 0"), "<RCSphereGeom/>", "<Material Ref=\"Rubber\"/>") +
-      mobile("C", globalPose("4 1 0 0 0 0"), "<RCSphereGeom/>") +
-      mobile("D", globalPose("6 1 0 0 0 0"), "<RCSphereGeom/>",
-             "<Material><RCGenericMaterial><Friction Value=\"1.2\"/><Bounceness Value=\"0.8\"/></RCGenericMaterial></Material>") +
-      "<RCStaticRigidBody Key=\"S\"><Geom><RCCuboidGeom/></Geom><Material Macro=\"DefaultMaterial\"/></RCStaticRigidBody>"));
+  Model m = mustCompile(
+      scene("<RCGenericMaterial Key=\"Ice\"><Friction Value=\"0.05\"/><Bounceness Value=\"0.1\"/>"
+            "<MinBounceVel Value=\"0.2\"/></RCGenericMaterial>"
+            "<RCGenericMaterial Key=\"Rubber\"><Friction Value=\"1.2\"/><Bounceness Value=\"0.8\"/></RCGenericMaterial>"
+            "<RCGround><Material Ref=\"Ice\"/></RCGround>" +
+            mobile("A", globalPose("0 1 0 0 0 0"), "<RCSphereGeom/>", "<Material Ref=\"Rubber\"/>") +
+            mobile("B", globalPose("2 1 0 0 0 0"), "<RCSphereGeom/>", "<Material Ref=\"Rubber\"/>") +
+            mobile("C", globalPose("4 1 0 0 0 0"), "<RCSphereGeom/>") +
+            mobile("D", globalPose("6 1 0 0 0 0"), "<RCSphereGeom/>",
+                   "<Material><RCGenericMaterial><Friction Value=\"1.2\"/><Bounceness "
+                   "Value=\"0.8\"/></RCGenericMaterial></Material>") +
+            "<RCStaticRigidBody Key=\"S\"><Geom><RCCuboidGeom/></Geom><Material "
+            "Macro=\"DefaultMaterial\"/></RCStaticRigidBody>"));
   auto mat = [&](const std::string& key) -> const MaterialDef& {
     const GeomDef& g = onlyGeom(m, key);
     REQUIRE(g.material >= 0);
@@ -751,10 +781,13 @@ TEST_CASE("compile: RCModelMatchGeom matches cuboid, sphere and cylinder models"
                  "</Pose><Cuboid Value=\"0 0 0 2 1 1\"/></RCCuboidModel></Model>") +
       mobile("Tree", globalPose("0 0 0 0 0 0"), "<RCModelMatchGeom/>",
              "<Model><RCEllipsoidModel><RadiusX Value=\"0.3\"/><RadiusY Value=\"0.3\"/><RadiusZ Value=\"0.3\"/>"
-             "<ChildList><RCCylinderModel Key=\"Capsule\"><Pose>" + localPose("0 1 0 0 0 0") +
+             "<ChildList><RCCylinderModel Key=\"Capsule\"><Pose>" +
+                 localPose("0 1 0 0 0 0") +
                  "</Pose><Radius Value=\"0.2\"/><Length Value=\"1\"/><ComponentMask Value=\"CappedCylinder\"/>"
-                 "</RCCylinderModel><RCCylinderModel Key=\"Cylinder\"><Pose>" + localPose("0 -1 0 0 0 0") +
-                 "</Pose><Radius Value=\"0.1\"/></RCCylinderModel><RCEmptyModel/></ChildList></RCEllipsoidModel></Model>") +
+                 "</RCCylinderModel><RCCylinderModel Key=\"Cylinder\"><Pose>" +
+                 localPose("0 -1 0 0 0 0") +
+                 "</Pose><Radius "
+                 "Value=\"0.1\"/></RCCylinderModel><RCEmptyModel/></ChildList></RCEllipsoidModel></Model>") +
       mobile("Root", globalPose("0 0 0 0 0 0"), "<RCModelMatchGeom><IgnoreChilds Value=\"true\"/></RCModelMatchGeom>",
              "<Model><RCCuboidModel><ChildList><RCCuboidModel><Pose>" + localPose("0 5 0 0 0 0") +
                  "</Pose></RCCuboidModel></ChildList></RCCuboidModel></Model>")));
@@ -794,10 +827,11 @@ TEST_CASE("compile: RCModelMatchGeom matches cuboid, sphere and cylinder models"
 }
 
 TEST_CASE("compile: RCModelMatchGeom on a static body and with a shared model", "[scene][compile]") {
-  Model m = mustCompile(scene("<RCCuboidModel Key=\"Crate\"><Cuboid Value=\"0 0 0 1 1 1\"/></RCCuboidModel>"
-                              "<RCStaticRigidBody Key=\"S\"><Pose>" + globalPose("10 0 0 0 0 0") +
-                              "</Pose><Geom><RCModelMatchGeom/></Geom><Model Ref=\"Crate\"/></RCStaticRigidBody>" +
-                              mobile("M", globalPose("0 3 0 0 0 0"), "<RCModelMatchGeom/>", "<Model Ref=\"Crate\"/>")));
+  Model m = mustCompile(scene(
+      "<RCCuboidModel Key=\"Crate\"><Cuboid Value=\"0 0 0 1 1 1\"/></RCCuboidModel>"
+      "<RCStaticRigidBody Key=\"S\"><Pose>" +
+      globalPose("10 0 0 0 0 0") + "</Pose><Geom><RCModelMatchGeom/></Geom><Model Ref=\"Crate\"/></RCStaticRigidBody>" +
+      mobile("M", globalPose("0 3 0 0 0 0"), "<RCModelMatchGeom/>", "<Model Ref=\"Crate\"/>")));
   const GeomDef& s = onlyGeom(m, "S");
   CHECK(s.body == -1);
   checkVec(s.offset.p, {10.5, 0.5, 0.5});
@@ -807,10 +841,10 @@ TEST_CASE("compile: RCModelMatchGeom on a static body and with a shared model", 
 }
 
 TEST_CASE("compile: RCModelMatchGeom errors for models without a matching geom", "[scene][compile]") {
-  Scene s = mustLoad(scene(mobile("E", globalPose("0 0 0 0 0 0"), "<RCModelMatchGeom/>",
-                                  "<Model><RCEllipsoidModel><RadiusX Value=\"1\"/></RCEllipsoidModel></Model>") +
-                           mobile("C", globalPose("0 0 0 0 0 0"), "<RCModelMatchGeom/>",
-                                  "<Model><RCConeModel/></Model>")));
+  Scene s =
+      mustLoad(scene(mobile("E", globalPose("0 0 0 0 0 0"), "<RCModelMatchGeom/>",
+                            "<Model><RCEllipsoidModel><RadiusX Value=\"1\"/></RCEllipsoidModel></Model>") +
+                     mobile("C", globalPose("0 0 0 0 0 0"), "<RCModelMatchGeom/>", "<Model><RCConeModel/></Model>")));
   Model m;
   Diagnostics d;
   CHECK_FALSE(compileScene(s, &m, d));
@@ -848,10 +882,10 @@ bool inside(const GeomDef& g, const Vec3& p, double tol = 1e-9) {
 TEST_CASE("compile: RCModelWrapGeom wraps a cuboid model", "[scene][compile]") {
   const std::string model = "<Model><RCCuboidModel><Cuboid Value=\"-1 -0.5 0 1 0.5 3\"/></RCCuboidModel></Model>";
   auto wrap = [&](const std::string& key, const std::string& type, const std::string& align) {
-    return mobile(key, globalPose("0 0 0 0 0 0"),
-                  "<RCModelWrapGeom><GeomType Value=\"" + type + "\"/><Alignment Value=\"" + align +
-                      "\"/></RCModelWrapGeom>",
-                  model);
+    return mobile(
+        key, globalPose("0 0 0 0 0 0"),
+        "<RCModelWrapGeom><GeomType Value=\"" + type + "\"/><Alignment Value=\"" + align + "\"/></RCModelWrapGeom>",
+        model);
   };
   Model m = mustCompile(scene(wrap("Box", "Cuboid", "ZAligned") + wrap("Sphere", "Sphere", "ZAligned") +
                               wrap("CylZ", "Cylinder", "ZAligned") + wrap("CylX", "Cylinder", "XAligned") +
@@ -916,11 +950,11 @@ TEST_CASE("compile: RCModelWrapGeom wraps a model tree unless IgnoreChilds", "[s
 
 TEST_CASE("compile: RCModelWrapGeom of round models is as small as the model allows", "[scene][compile][!mayfail]") {
   // A sphere model wrapped by a sphere is that sphere; a cylinder model by a cylinder is that cylinder.
-  Model m = mustCompile(scene(
-      mobile("S", globalPose("0 0 0 0 0 0"), "<RCModelWrapGeom><GeomType Value=\"Sphere\"/></RCModelWrapGeom>",
-             "<Model><RCEllipsoidModel/></Model>") +
-      mobile("C", globalPose("0 0 0 0 0 0"), "<RCModelWrapGeom><GeomType Value=\"Cylinder\"/></RCModelWrapGeom>",
-             "<Model><RCCylinderModel/></Model>")));
+  Model m = mustCompile(
+      scene(mobile("S", globalPose("0 0 0 0 0 0"), "<RCModelWrapGeom><GeomType Value=\"Sphere\"/></RCModelWrapGeom>",
+                   "<Model><RCEllipsoidModel/></Model>") +
+            mobile("C", globalPose("0 0 0 0 0 0"), "<RCModelWrapGeom><GeomType Value=\"Cylinder\"/></RCModelWrapGeom>",
+                   "<Model><RCCylinderModel/></Model>")));
   CHECK(onlyGeom(m, "S").size[0] == Approx(0.5));
   CHECK(onlyGeom(m, "C").size[0] == Approx(0.5));
   CHECK(onlyGeom(m, "C").size[1] == Approx(1));
@@ -993,8 +1027,7 @@ TEST_CASE("compile: a clone renames only keys below the original", "[scene][comp
   for (const BodyDef& b : m.bodies) CHECK(b.key.find("Ball2ast") == std::string::npos);
 }
 
-TEST_CASE("compile: a clone before the original does not move bodies outside the original",
-          "[scene][compile]") {
+TEST_CASE("compile: a clone before the original does not move bodies outside the original", "[scene][compile]") {
   // Top-level clones are built after every other top-level body, so a joint's Body Ref from
   // inside the original to a body outside it finds that body already built in place.
   checkCloneWithOutsideBody(mustCompile(cloneWithOutsideBody(true)));

@@ -35,8 +35,8 @@ Result run(const std::string& text, Format format = Format::Xml, const std::stri
 /// Some error reads exactly `expected` ("file:line: message").
 void expectExact(const Result& r, const std::string& expected) {
   INFO("errors:\n" << errorText(r.diag));
-  bool found = std::any_of(r.diag.errors().begin(), r.diag.errors().end(),
-                           [&](const Error& e) { return e.str() == expected; });
+  bool found =
+      std::any_of(r.diag.errors().begin(), r.diag.errors().end(), [&](const Error& e) { return e.str() == expected; });
   CHECK(found);
 }
 
@@ -96,10 +96,11 @@ TEST_CASE("errors: wrong root element", "[scene][errors]") {
 }
 
 TEST_CASE("errors: unknown component types with did-you-mean", "[scene][errors]") {
-  Result r = run(inList("<RCGrond/>\n"                                                    // line 3
-                        "<RCStaticRigidBody><Geom><RCSphereGeon/></Geom></RCStaticRigidBody>\n"  // 4
-                        "<RCStaticRigidBody Key=\"B\"><Geom><Zzzzzzzz/></Geom></RCStaticRigidBody>\n"  // 5
-                        "<Component><RCMobilRigidBody/></Component>\n"));  // 6
+  Result r =
+      run(inList("<RCGrond/>\n"                                                                 // line 3
+                 "<RCStaticRigidBody><Geom><RCSphereGeon/></Geom></RCStaticRigidBody>\n"        // 4
+                 "<RCStaticRigidBody Key=\"B\"><Geom><Zzzzzzzz/></Geom></RCStaticRigidBody>\n"  // 5
+                 "<Component><RCMobilRigidBody/></Component>\n"));                              // 6
   CHECK_FALSE(r.loaded);
   expectError(r, "bad.xml:3: ", {"unknown component type 'RCGrond' (did you mean 'RCGround'?)"});
   expectError(r, "bad.xml:4: ", {"unknown component type 'RCSphereGeon' (did you mean 'RCSphereGeom'?)"});
@@ -112,10 +113,12 @@ TEST_CASE("errors: unknown component types with did-you-mean", "[scene][errors]"
 }
 
 TEST_CASE("errors: a component of the wrong family for its parameter", "[scene][errors]") {
-  Result r = run(inList("<RCStaticRigidBody Key=\"S\"><Geom><RCHingeJoint/></Geom></RCStaticRigidBody>\n"
-                        "<RCHingeJoint/>\n"));
-  expectExact(r, "bad.xml:3: RCStaticRigidBody 'S': parameter 'Geom' needs a GeomComponent, got RCHingeJoint (a "
-                 "JointComponent)");
+  Result r =
+      run(inList("<RCStaticRigidBody Key=\"S\"><Geom><RCHingeJoint/></Geom></RCStaticRigidBody>\n"
+                 "<RCHingeJoint/>\n"));
+  expectExact(r,
+              "bad.xml:3: RCStaticRigidBody 'S': parameter 'Geom' needs a GeomComponent, got RCHingeJoint (a "
+              "JointComponent)");
   expectError(r, "bad.xml:4: ", {"parameter 'ComponentList' needs a BodyComponent", "got RCHingeJoint"});
   // Struct types are no components.
   Result s = run(inList("<SceneSettings/>\n"));
@@ -123,10 +126,11 @@ TEST_CASE("errors: a component of the wrong family for its parameter", "[scene][
 }
 
 TEST_CASE("errors: unknown parameter names with did-you-mean", "[scene][errors]") {
-  Result r = run(inList("<RCConstruction Key=\"C\"><Body><RCStaticRigidBody/></Body><ChildList>\n"
-                        "<RCHingeJoint Key=\"J\"><Hing/></RCHingeJoint>\n"
-                        "<RCSliderJoint Key=\"S\"><Axiss><RCLocalCoordinates/></Axiss><Color Value=\"1\"/></RCSliderJoint>\n"
-                        "</ChildList></RCConstruction>\n"));
+  Result r =
+      run(inList("<RCConstruction Key=\"C\"><Body><RCStaticRigidBody/></Body><ChildList>\n"
+                 "<RCHingeJoint Key=\"J\"><Hing/></RCHingeJoint>\n"
+                 "<RCSliderJoint Key=\"S\"><Axiss><RCLocalCoordinates/></Axiss><Color Value=\"1\"/></RCSliderJoint>\n"
+                 "</ChildList></RCConstruction>\n"));
   CHECK_FALSE(r.loaded);
   expectExact(r, "bad.xml:4: RCHingeJoint 'C.J': parameter 'Hing' unknown (did you mean 'Hinge'?)");
   expectExact(r, "bad.xml:5: RCSliderJoint 'C.S': parameter 'Axiss' unknown (did you mean 'Axis'?)");
@@ -145,15 +149,16 @@ TEST_CASE("errors: unknown parameter names with did-you-mean", "[scene][errors]"
 }
 
 TEST_CASE("errors: malformed parameter elements", "[scene][errors]") {
-  Result r = run(inList("<RCSky Key=\"A\"><Height/></RCSky>\n"                                   // 3
-                        "<RCSky Key=\"B\"><Height Value=\"1\" Unit=\"m\"/></RCSky>\n"            // 4
-                        "<RCSky Key=\"C\"><Height Value=\"1\"><X/></Height></RCSky>\n"           // 5
-                        "<RCSky Key=\"D\"><Material><RCGenericMaterial/><RCGenericMaterial/></Material></RCSky>\n"  // 6
-                        "<RCSky Key=\"E\"><Material/></RCSky>\n"                                 // 7
-                        "<RCSky Key=\"F\"><Material Ref=\"\"/></RCSky>\n"                        // 8
-                        "<RCSky Key=\"G\"><Material Ref=\"x\" Macro=\"DefaultMaterial\"/></RCSky>\n"  // 9
-                        "<RCSky Key=\"H\"><Material><RCGenericMaterial Key=\"a.b\"/></Material></RCSky>\n"  // 10
-                        "<RCSky Key=\"I\"><Material><RCGenericMaterial Name=\"x\"/></Material></RCSky>\n"));  // 11
+  Result r =
+      run(inList("<RCSky Key=\"A\"><Height/></RCSky>\n"                                                      // 3
+                 "<RCSky Key=\"B\"><Height Value=\"1\" Unit=\"m\"/></RCSky>\n"                               // 4
+                 "<RCSky Key=\"C\"><Height Value=\"1\"><X/></Height></RCSky>\n"                              // 5
+                 "<RCSky Key=\"D\"><Material><RCGenericMaterial/><RCGenericMaterial/></Material></RCSky>\n"  // 6
+                 "<RCSky Key=\"E\"><Material/></RCSky>\n"                                                    // 7
+                 "<RCSky Key=\"F\"><Material Ref=\"\"/></RCSky>\n"                                           // 8
+                 "<RCSky Key=\"G\"><Material Ref=\"x\" Macro=\"DefaultMaterial\"/></RCSky>\n"                // 9
+                 "<RCSky Key=\"H\"><Material><RCGenericMaterial Key=\"a.b\"/></Material></RCSky>\n"          // 10
+                 "<RCSky Key=\"I\"><Material><RCGenericMaterial Name=\"x\"/></Material></RCSky>\n"));        // 11
   CHECK_FALSE(r.loaded);
   expectError(r, "bad.xml:3: ", {"'Height' needs a Value attribute"});
   expectError(r, "bad.xml:4: ", {"'Height'", "unknown attribute 'Unit'"});
@@ -168,23 +173,26 @@ TEST_CASE("errors: malformed parameter elements", "[scene][errors]") {
 }
 
 TEST_CASE("errors: unknown Macro and Macro of the wrong family", "[scene][errors]") {
-  Result r = run(inList("<RCStaticRigidBody Key=\"S\"><Geom Macro=\"NoGeon\"/><Model Macro=\"NoGeom\"/></RCStaticRigidBody>\n"));
+  Result r = run(
+      inList("<RCStaticRigidBody Key=\"S\"><Geom Macro=\"NoGeon\"/><Model Macro=\"NoGeom\"/></RCStaticRigidBody>\n"));
   expectExact(r, "bad.xml:3: RCStaticRigidBody 'S': unknown Macro 'NoGeon' (did you mean 'NoGeom'?)");
-  expectExact(r, "bad.xml:3: RCStaticRigidBody 'S': Macro 'NoGeom' makes a GeomComponent, parameter 'Model' needs a "
-                 "ModelComponent");
+  expectExact(r,
+              "bad.xml:3: RCStaticRigidBody 'S': Macro 'NoGeom' makes a GeomComponent, parameter 'Model' needs a "
+              "ModelComponent");
 }
 
 // ---------------------------------------------------------------------------------- values
 
 TEST_CASE("errors: wrong value syntax", "[scene][errors]") {
-  Result r = run(inList("<RCStaticRigidBody Key=\"S\">\n"                                        // 3
-                        "<Geom><RCSphereGeom><Radius Value=\"abc\"/></RCSphereGeom></Geom>\n"   // 4
-                        "</RCStaticRigidBody>\n"
-                        "<RCCuboidModel Key=\"M\"><Wire Value=\"maybe\"/></RCCuboidModel>\n"   // 6
-                        "<RCEllipsoidModel Key=\"E\"><Accuracy Value=\"2.5\"/></RCEllipsoidModel>\n"  // 7
-                        "<RCCuboidModel Key=\"N\"><SideMask Value=\"Top|Sideways\"/></RCCuboidModel>\n"  // 8
-                        "<RCColoredSkin Key=\"K\"><ColorMode Value=\"Glow\"/></RCColoredSkin>\n"  // 9
-                        "<RCGround Key=\"G\"><Extension Value=\"1,5\"/></RCGround>\n"));  // 10
+  Result r =
+      run(inList("<RCStaticRigidBody Key=\"S\">\n"                                      // 3
+                 "<Geom><RCSphereGeom><Radius Value=\"abc\"/></RCSphereGeom></Geom>\n"  // 4
+                 "</RCStaticRigidBody>\n"
+                 "<RCCuboidModel Key=\"M\"><Wire Value=\"maybe\"/></RCCuboidModel>\n"             // 6
+                 "<RCEllipsoidModel Key=\"E\"><Accuracy Value=\"2.5\"/></RCEllipsoidModel>\n"     // 7
+                 "<RCCuboidModel Key=\"N\"><SideMask Value=\"Top|Sideways\"/></RCCuboidModel>\n"  // 8
+                 "<RCColoredSkin Key=\"K\"><ColorMode Value=\"Glow\"/></RCColoredSkin>\n"         // 9
+                 "<RCGround Key=\"G\"><Extension Value=\"1,5\"/></RCGround>\n"));                 // 10
   CHECK_FALSE(r.loaded);
   expectExact(r, "bad.xml:4: RCSphereGeom 'S.Geom': parameter 'Radius': expected a number, got 'abc'");
   expectError(r, "bad.xml:6: ", {"RCCuboidModel 'M': parameter 'Wire': expected a boolean", "'maybe'"});
@@ -196,32 +204,36 @@ TEST_CASE("errors: wrong value syntax", "[scene][errors]") {
 }
 
 TEST_CASE("errors: wrong arity", "[scene][errors]") {
-  Result r = run(inList("<RCStaticRigidBody Key=\"S\">\n"                                                        // 3
-                        "<Pose><RCGlobalCoordinates><Pose Value=\"1 2 3\"/></RCGlobalCoordinates></Pose>\n"  // 4
-                        "</RCStaticRigidBody>\n"
-                        "<RCMobileRigidBody Key=\"M\"><Motion><RCGlobalMotion>\n"                            // 6
-                        "<AngVelocity Value=\"1 2 3 4\"/></RCGlobalMotion></Motion>\n"                      // 7
-                        "<Inertia><RCGenericInertia><Inertia Value=\"1 2 3 4 5\"/></RCGenericInertia></Inertia>\n"  // 8
-                        "</RCMobileRigidBody>\n"
-                        "<RCCuboidModel Key=\"C\"><Cuboid Value=\"0 0 0 1 1\"/></RCCuboidModel>\n"));  // 10
+  Result r =
+      run(inList("<RCStaticRigidBody Key=\"S\">\n"                                                    // 3
+                 "<Pose><RCGlobalCoordinates><Pose Value=\"1 2 3\"/></RCGlobalCoordinates></Pose>\n"  // 4
+                 "</RCStaticRigidBody>\n"
+                 "<RCMobileRigidBody Key=\"M\"><Motion><RCGlobalMotion>\n"                                   // 6
+                 "<AngVelocity Value=\"1 2 3 4\"/></RCGlobalMotion></Motion>\n"                              // 7
+                 "<Inertia><RCGenericInertia><Inertia Value=\"1 2 3 4 5\"/></RCGenericInertia></Inertia>\n"  // 8
+                 "</RCMobileRigidBody>\n"
+                 "<RCCuboidModel Key=\"C\"><Cuboid Value=\"0 0 0 1 1\"/></RCCuboidModel>\n"));  // 10
   CHECK_FALSE(r.loaded);
   expectExact(r, "bad.xml:4: RCGlobalCoordinates 'S.Pose': parameter 'Pose': expected 6 numbers for a Pose, got 3");
-  expectExact(r, "bad.xml:7: RCGlobalMotion 'M.Motion': parameter 'AngVelocity': expected 1 to 3 numbers for a "
-                 "Triple, got 4");
-  expectExact(r, "bad.xml:8: RCGenericInertia 'M.Inertia': parameter 'Inertia': matrix needs 3, 9, 12 or 16 numbers, got 5");
+  expectExact(r,
+              "bad.xml:7: RCGlobalMotion 'M.Motion': parameter 'AngVelocity': expected 1 to 3 numbers for a "
+              "Triple, got 4");
+  expectExact(
+      r, "bad.xml:8: RCGenericInertia 'M.Inertia': parameter 'Inertia': matrix needs 3, 9, 12 or 16 numbers, got 5");
   expectExact(r, "bad.xml:10: RCCuboidModel 'C': parameter 'Cuboid': expected 6 numbers for a Cuboid, got 5");
   CHECK(r.diag.errors().size() == 4);
 }
 
 TEST_CASE("errors: NaN and infinities", "[scene][errors]") {
-  Result r = run(inList("<RCMobileRigidBody Key=\"M\"><Motion><RCGlobalMotion>\n"   // 3
-                        "<LinVelocity Value=\"1 nan 0\"/>\n"                       // 4
-                        "</RCGlobalMotion></Motion>\n"
-                        "<Geom><RCSphereGeom><Radius Value=\"NaN\"/></RCSphereGeom></Geom>\n"  // 6
-                        "</RCMobileRigidBody>\n"
-                        "<RCSky Key=\"S\"><Height Value=\"Infinite\"/></RCSky>\n"            // 8
-                        "<RCSky Key=\"T\"><Height Value=\"-1e400\"/></RCSky>\n"              // 9
-                        "<RCGround Key=\"G\"><Extension Value=\"inf\"/></RCGround>\n"));     // 10
+  Result r =
+      run(inList("<RCMobileRigidBody Key=\"M\"><Motion><RCGlobalMotion>\n"  // 3
+                 "<LinVelocity Value=\"1 nan 0\"/>\n"                       // 4
+                 "</RCGlobalMotion></Motion>\n"
+                 "<Geom><RCSphereGeom><Radius Value=\"NaN\"/></RCSphereGeom></Geom>\n"  // 6
+                 "</RCMobileRigidBody>\n"
+                 "<RCSky Key=\"S\"><Height Value=\"Infinite\"/></RCSky>\n"         // 8
+                 "<RCSky Key=\"T\"><Height Value=\"-1e400\"/></RCSky>\n"           // 9
+                 "<RCGround Key=\"G\"><Extension Value=\"inf\"/></RCGround>\n"));  // 10
   CHECK_FALSE(r.loaded);
   expectExact(r, "bad.xml:4: RCGlobalMotion 'M.Motion': parameter 'LinVelocity': NaN is not allowed: 'nan'");
   expectExact(r, "bad.xml:6: RCSphereGeom 'M.Geom': parameter 'Radius': NaN is not allowed: 'NaN'");
@@ -230,23 +242,25 @@ TEST_CASE("errors: NaN and infinities", "[scene][errors]") {
   expectExact(r, "bad.xml:10: RCGround 'G': parameter 'Extension': expected a number, got 'inf'");
   CHECK(r.diag.errors().size() == 5);
   // Drive limits are the documented exception.
-  Result ok = run(inList("<RCConstruction Key=\"C\"><ChildList><RCGenericServo Key=\"D\">"
-                         "<MinPos Value=\"-Infinite\"/><MaxPos Value=\"Infinite\"/></RCGenericServo></ChildList>"
-                         "</RCConstruction>\n"));
+  Result ok =
+      run(inList("<RCConstruction Key=\"C\"><ChildList><RCGenericServo Key=\"D\">"
+                 "<MinPos Value=\"-Infinite\"/><MaxPos Value=\"Infinite\"/></RCGenericServo></ChildList>"
+                 "</RCConstruction>\n"));
   CHECK(ok.loaded);
 }
 
 TEST_CASE("errors: values out of their range", "[scene][errors]") {
-  Result r = run(inList("<RCMobileRigidBody Key=\"A\">\n"                                             // 3
-                        "<Geom><RCSphereGeom><Radius Value=\"0\"/></RCSphereGeom></Geom>\n"          // 4
-                        "<Inertia><RCGenericInertia><Mass Value=\"-1\"/></RCGenericInertia></Inertia>\n"  // 5
-                        "<Material><RCGenericMaterial><Bounceness Value=\"1.5\"/>\n"                 // 6
-                        "<Friction Value=\"-0.1\"/></RCGenericMaterial></Material>\n"               // 7
-                        "</RCMobileRigidBody>\n"
-                        "<RCStaticRigidBody Key=\"B\"><Geom><RCCuboidGeom><Width Value=\"-2\"/>"     // 9
-                        "</RCCuboidGeom></Geom></RCStaticRigidBody>\n"
-                        "<RCRodBody Key=\"R\"><Mass Value=\"0\"/><Radius Value=\"-0\"/></RCRodBody>\n"  // 10
-                        "<RCEllipsoidModel Key=\"E\"><Accuracy Value=\"0\"/></RCEllipsoidModel>\n"));  // 11
+  Result r =
+      run(inList("<RCMobileRigidBody Key=\"A\">\n"                                                 // 3
+                 "<Geom><RCSphereGeom><Radius Value=\"0\"/></RCSphereGeom></Geom>\n"               // 4
+                 "<Inertia><RCGenericInertia><Mass Value=\"-1\"/></RCGenericInertia></Inertia>\n"  // 5
+                 "<Material><RCGenericMaterial><Bounceness Value=\"1.5\"/>\n"                      // 6
+                 "<Friction Value=\"-0.1\"/></RCGenericMaterial></Material>\n"                     // 7
+                 "</RCMobileRigidBody>\n"
+                 "<RCStaticRigidBody Key=\"B\"><Geom><RCCuboidGeom><Width Value=\"-2\"/>"  // 9
+                 "</RCCuboidGeom></Geom></RCStaticRigidBody>\n"
+                 "<RCRodBody Key=\"R\"><Mass Value=\"0\"/><Radius Value=\"-0\"/></RCRodBody>\n"  // 10
+                 "<RCEllipsoidModel Key=\"E\"><Accuracy Value=\"0\"/></RCEllipsoidModel>\n"));   // 11
   CHECK_FALSE(r.loaded);
   expectExact(r, "bad.xml:4: RCSphereGeom 'A.Geom': parameter 'Radius' must be > 0, got '0'");
   expectExact(r, "bad.xml:5: RCGenericInertia 'A.Inertia': parameter 'Mass' must be > 0, got '-1'");
@@ -260,28 +274,30 @@ TEST_CASE("errors: values out of their range", "[scene][errors]") {
 }
 
 TEST_CASE("errors: RCInertiaByGeom with Mass 0", "[scene][errors]") {
-  Result r = run(inList("<RCMobileRigidBody Key=\"A\">\n"
-                        "<Geom><RCSphereGeom/></Geom>\n"
-                        "<Inertia><RCInertiaByGeom><Mass Value=\"0\"/></RCInertiaByGeom></Inertia>\n"
-                        "</RCMobileRigidBody>\n"));
+  Result r =
+      run(inList("<RCMobileRigidBody Key=\"A\">\n"
+                 "<Geom><RCSphereGeom/></Geom>\n"
+                 "<Inertia><RCInertiaByGeom><Mass Value=\"0\"/></RCInertiaByGeom></Inertia>\n"
+                 "</RCMobileRigidBody>\n"));
   CHECK(r.loaded);
   CHECK_FALSE(r.compiled);
   expectError(r, "bad.xml:5: ", {"RCInertiaByGeom 'A.Inertia'", "'Mass' must be > 0"});
 }
 
 TEST_CASE("errors: inertia tensors that are not positive definite or not symmetric", "[scene][errors]") {
-  Result r = run(inList("<RCMobileRigidBody Key=\"A\"><Inertia><RCGenericInertia>\n"   // 3
-                        "<Inertia Value=\"1 1 -1\"/>\n"                               // 4
-                        "</RCGenericInertia></Inertia></RCMobileRigidBody>\n"
-                        "<RCMobileRigidBody Key=\"B\"><Inertia><RCGenericInertia>\n"   // 6
-                        "<Inertia Value=\"1 0.5 0 0 1 0 0 0 1\"/>\n"                  // 7
-                        "</RCGenericInertia></Inertia></RCMobileRigidBody>\n"
-                        "<RCMobileRigidBody Key=\"C\"><Inertia><RCGenericInertia>\n"   // 9
-                        "<Inertia Value=\"1 2 0 2 1 0 0 0 1\"/>\n"                    // 10: symmetric, indefinite
-                        "</RCGenericInertia></Inertia></RCMobileRigidBody>\n"
-                        "<RCMobileRigidBody Key=\"D\"><Inertia><RCGenericInertia>\n"   // 12
-                        "<Inertia Value=\"0 0 0\"/>\n"                                // 13
-                        "</RCGenericInertia></Inertia></RCMobileRigidBody>\n"));
+  Result r =
+      run(inList("<RCMobileRigidBody Key=\"A\"><Inertia><RCGenericInertia>\n"  // 3
+                 "<Inertia Value=\"1 1 -1\"/>\n"                               // 4
+                 "</RCGenericInertia></Inertia></RCMobileRigidBody>\n"
+                 "<RCMobileRigidBody Key=\"B\"><Inertia><RCGenericInertia>\n"  // 6
+                 "<Inertia Value=\"1 0.5 0 0 1 0 0 0 1\"/>\n"                  // 7
+                 "</RCGenericInertia></Inertia></RCMobileRigidBody>\n"
+                 "<RCMobileRigidBody Key=\"C\"><Inertia><RCGenericInertia>\n"  // 9
+                 "<Inertia Value=\"1 2 0 2 1 0 0 0 1\"/>\n"                    // 10: symmetric, indefinite
+                 "</RCGenericInertia></Inertia></RCMobileRigidBody>\n"
+                 "<RCMobileRigidBody Key=\"D\"><Inertia><RCGenericInertia>\n"  // 12
+                 "<Inertia Value=\"0 0 0\"/>\n"                                // 13
+                 "</RCGenericInertia></Inertia></RCMobileRigidBody>\n"));
   CHECK(r.loaded);
   CHECK_FALSE(r.compiled);
   expectExact(r, "bad.xml:4: RCGenericInertia 'A.Inertia': parameter 'Inertia' is not positive definite");
@@ -294,10 +310,11 @@ TEST_CASE("errors: inertia tensors that are not positive definite or not symmetr
 // ---------------------------------------------------------------------------------- references
 
 TEST_CASE("errors: dangling Ref with did-you-mean", "[scene][errors]") {
-  Result r = run(inList("<RCGenericMaterial Key=\"Rubber\"/>\n"
-                        "<RCStaticRigidBody Key=\"S\"><Material Ref=\"Rubbr\"/></RCStaticRigidBody>\n"       // 4
-                        "<RCStaticRigidBody Key=\"T\"><Material Ref=\"Nothing.Here\"/></RCStaticRigidBody>\n"  // 5
-                        "<RCCuboidModel Key=\"M\"><ChildList><Child Ref=\"Gone\"/></ChildList></RCCuboidModel>\n"));  // 6
+  Result r =
+      run(inList("<RCGenericMaterial Key=\"Rubber\"/>\n"
+                 "<RCStaticRigidBody Key=\"S\"><Material Ref=\"Rubbr\"/></RCStaticRigidBody>\n"                // 4
+                 "<RCStaticRigidBody Key=\"T\"><Material Ref=\"Nothing.Here\"/></RCStaticRigidBody>\n"         // 5
+                 "<RCCuboidModel Key=\"M\"><ChildList><Child Ref=\"Gone\"/></ChildList></RCCuboidModel>\n"));  // 6
   CHECK_FALSE(r.loaded);
   expectExact(r, "bad.xml:4: RCStaticRigidBody 'S': Ref 'Rubbr' names no component (did you mean 'Rubber'?)");
   expectExact(r, "bad.xml:5: RCStaticRigidBody 'T': Ref 'Nothing.Here' names no component");
@@ -306,19 +323,23 @@ TEST_CASE("errors: dangling Ref with did-you-mean", "[scene][errors]") {
 }
 
 TEST_CASE("errors: Ref to the wrong kind of component", "[scene][errors]") {
-  Result r = run(inList("<RCMobileRigidBody Key=\"Ball\"><Geom><RCSphereGeom/></Geom>"
-                        "<Material><RCGenericMaterial/></Material></RCMobileRigidBody>\n"
-                        "<RCStaticRigidBody Key=\"S\"><Material Ref=\"Ball\"/></RCStaticRigidBody>\n"     // 4
-                        "<RCStaticRigidBody Key=\"T\"><Geom Ref=\"Ball.Material\"/></RCStaticRigidBody>\n"  // 5
-                        "<Component Ref=\"Ball.Geom\"/>\n"));                                                   // 6
+  Result r =
+      run(inList("<RCMobileRigidBody Key=\"Ball\"><Geom><RCSphereGeom/></Geom>"
+                 "<Material><RCGenericMaterial/></Material></RCMobileRigidBody>\n"
+                 "<RCStaticRigidBody Key=\"S\"><Material Ref=\"Ball\"/></RCStaticRigidBody>\n"       // 4
+                 "<RCStaticRigidBody Key=\"T\"><Geom Ref=\"Ball.Material\"/></RCStaticRigidBody>\n"  // 5
+                 "<Component Ref=\"Ball.Geom\"/>\n"));                                               // 6
   CHECK_FALSE(r.loaded);
-  expectExact(r, "bad.xml:4: RCStaticRigidBody 'S': Ref 'Ball' names a RCMobileRigidBody, parameter 'Material' "
-                 "needs a MaterialComponent");
-  expectExact(r, "bad.xml:5: RCStaticRigidBody 'T': Ref 'Ball.Material' names a RCGenericMaterial, parameter "
-                 "'Geom' needs a GeomComponent");
-  expectError(r, "bad.xml:6: ", {"Ref 'Ball.Geom' names a RCSphereGeom, parameter 'ComponentList' needs a "
-                                 "BodyComponent, GlobalSimComponent, MaterialComponent, SkinComponent or "
-                                 "ModelComponent"});
+  expectExact(r,
+              "bad.xml:4: RCStaticRigidBody 'S': Ref 'Ball' names a RCMobileRigidBody, parameter 'Material' "
+              "needs a MaterialComponent");
+  expectExact(r,
+              "bad.xml:5: RCStaticRigidBody 'T': Ref 'Ball.Material' names a RCGenericMaterial, parameter "
+              "'Geom' needs a GeomComponent");
+  expectError(r, "bad.xml:6: ",
+              {"Ref 'Ball.Geom' names a RCSphereGeom, parameter 'ComponentList' needs a "
+               "BodyComponent, GlobalSimComponent, MaterialComponent, SkinComponent or "
+               "ModelComponent"});
   CHECK(r.diag.errors().size() == 3);
 }
 
@@ -330,33 +351,37 @@ TEST_CASE("errors: cyclic Refs", "[scene][errors]") {
     expectError(r, "bad.xml:4: ", {"RCCuboidModel 'M': cyclic Ref 'M'"});
   }
   SECTION("a model whose child refers to an ancestor") {
-    Result r = run(inList("<RCCuboidModel Key=\"P\"><ChildList>\n"
-                          "<RCConeModel Key=\"Q\"><ChildList><RCConeModel Key=\"R\"><ChildList>\n"
-                          "<Child Ref=\"P\"/>\n"  // line 5
-                          "</ChildList></RCConeModel></ChildList></RCConeModel></ChildList></RCCuboidModel>\n"));
+    Result r =
+        run(inList("<RCCuboidModel Key=\"P\"><ChildList>\n"
+                   "<RCConeModel Key=\"Q\"><ChildList><RCConeModel Key=\"R\"><ChildList>\n"
+                   "<Child Ref=\"P\"/>\n"  // line 5
+                   "</ChildList></RCConeModel></ChildList></RCConeModel></ChildList></RCCuboidModel>\n"));
     CHECK_FALSE(r.loaded);
     REQUIRE(r.diag.errors().size() == 1);
     expectError(r, "bad.xml:5: ", {"RCConeModel 'P.Q.R': cyclic Ref 'P'"});
   }
   SECTION("two top-level models referring to each other") {
-    Result r = run(inList("<RCCuboidModel Key=\"A\"><ChildList><Child Ref=\"B\"/></ChildList></RCCuboidModel>\n"
-                          "<RCCuboidModel Key=\"B\"><ChildList><Child Ref=\"A\"/></ChildList></RCCuboidModel>\n"));
+    Result r =
+        run(inList("<RCCuboidModel Key=\"A\"><ChildList><Child Ref=\"B\"/></ChildList></RCCuboidModel>\n"
+                   "<RCCuboidModel Key=\"B\"><ChildList><Child Ref=\"A\"/></ChildList></RCCuboidModel>\n"));
     CHECK_FALSE(r.loaded);
     REQUIRE(r.diag.errors().size() == 1);
     expectError(r, "bad.xml:", {"cyclic Ref"});
   }
   SECTION("a transform geom whose SubGeom is itself") {
-    Result r = run(inList("<RCStaticRigidBody Key=\"S\"><Geom><RCTransformGeom Key=\"T\">\n"
-                          "<SubGeom Ref=\"S.T\"/></RCTransformGeom></Geom></RCStaticRigidBody>\n"));
+    Result r =
+        run(inList("<RCStaticRigidBody Key=\"S\"><Geom><RCTransformGeom Key=\"T\">\n"
+                   "<SubGeom Ref=\"S.T\"/></RCTransformGeom></Geom></RCStaticRigidBody>\n"));
     CHECK_FALSE(r.loaded);
     expectError(r, "bad.xml:4: ", {"RCTransformGeom 'S.T': cyclic Ref 'S.T'"});
   }
   SECTION("shared models are no cycle") {
-    Result r = run(inList("<RCCuboidModel Key=\"Leaf\"/>\n"
-                          "<RCCuboidModel Key=\"A\"><ChildList><Child Ref=\"Leaf\"/><Child Ref=\"Leaf\"/></ChildList>"
-                          "</RCCuboidModel>\n"
-                          "<RCStaticRigidBody Key=\"S\"><Model Ref=\"A\"/></RCStaticRigidBody>\n"
-                          "<RCStaticRigidBody Key=\"T\"><Model Ref=\"A\"/></RCStaticRigidBody>\n"));
+    Result r =
+        run(inList("<RCCuboidModel Key=\"Leaf\"/>\n"
+                   "<RCCuboidModel Key=\"A\"><ChildList><Child Ref=\"Leaf\"/><Child Ref=\"Leaf\"/></ChildList>"
+                   "</RCCuboidModel>\n"
+                   "<RCStaticRigidBody Key=\"S\"><Model Ref=\"A\"/></RCStaticRigidBody>\n"
+                   "<RCStaticRigidBody Key=\"T\"><Model Ref=\"A\"/></RCStaticRigidBody>\n"));
     CHECK(r.loaded);
     CHECK(r.compiled);
   }
@@ -366,9 +391,10 @@ TEST_CASE("errors: cyclic Refs", "[scene][errors]") {
     expectError(r, "bad.xml:3: ", {"RCConstruction 'Self'", "part of its own construction"});
   }
   SECTION("a joint whose Body is the construction's root") {
-    Result r = run(inList("<RCConstruction Key=\"C\"><Body><RCMobileRigidBody Key=\"R\"><Geom><RCSphereGeom/></Geom>"
-                          "</RCMobileRigidBody></Body>\n<ChildList><RCFixJoint Key=\"J\"><Body Ref=\"C.R\"/>"
-                          "</RCFixJoint></ChildList></RCConstruction>\n"));
+    Result r =
+        run(inList("<RCConstruction Key=\"C\"><Body><RCMobileRigidBody Key=\"R\"><Geom><RCSphereGeom/></Geom>"
+                   "</RCMobileRigidBody></Body>\n<ChildList><RCFixJoint Key=\"J\"><Body Ref=\"C.R\"/>"
+                   "</RCFixJoint></ChildList></RCConstruction>\n"));
     CHECK(r.loaded);
     CHECK_FALSE(r.compiled);
     expectError(r, "bad.xml:4: ", {"RCFixJoint 'C.J'", "connects a body with itself"});
@@ -376,20 +402,23 @@ TEST_CASE("errors: cyclic Refs", "[scene][errors]") {
 }
 
 TEST_CASE("errors: duplicate keys", "[scene][errors]") {
-  Result r = run(inList("<RCStaticRigidBody Key=\"A\"/>\n"
-                        "<RCGenericMaterial Key=\"A\"/>\n"));  // line 4
+  Result r =
+      run(inList("<RCStaticRigidBody Key=\"A\"/>\n"
+                 "<RCGenericMaterial Key=\"A\"/>\n"));  // line 4
   CHECK_FALSE(r.loaded);
   expectExact(r, "bad.xml:4: RCGenericMaterial: duplicate key 'A' (first used at bad.xml:3); give it a different Key");
   // A Key that collides with the key a keyless component takes from its parameter name.
-  Result d = run(inList("<RCStaticRigidBody Key=\"S\"><Pose><RCGlobalCoordinates/></Pose>"
-                        "<Geom><RCSphereGeom Key=\"Pose\"/></Geom></RCStaticRigidBody>\n"));
+  Result d =
+      run(inList("<RCStaticRigidBody Key=\"S\"><Pose><RCGlobalCoordinates/></Pose>"
+                 "<Geom><RCSphereGeom Key=\"Pose\"/></Geom></RCStaticRigidBody>\n"));
   expectError(d, "bad.xml:3: ", {"duplicate key 'S.Pose'"});
   // List items without Key are keyed by their type name.
   Result t = run(inList("<RCGround/>\n<RCGround/>\n"));
   expectError(t, "bad.xml:4: ", {"duplicate key 'RCGround'"});
   // The same key below different parents is fine.
-  Result ok = run(inList("<RCStaticRigidBody Key=\"A\"><Geom><RCSphereGeom Key=\"G\"/></Geom></RCStaticRigidBody>\n"
-                         "<RCStaticRigidBody Key=\"B\"><Geom><RCSphereGeom Key=\"G\"/></Geom></RCStaticRigidBody>\n"));
+  Result ok =
+      run(inList("<RCStaticRigidBody Key=\"A\"><Geom><RCSphereGeom Key=\"G\"/></Geom></RCStaticRigidBody>\n"
+                 "<RCStaticRigidBody Key=\"B\"><Geom><RCSphereGeom Key=\"G\"/></Geom></RCStaticRigidBody>\n"));
   CHECK(ok.loaded);
 }
 
@@ -402,12 +431,13 @@ TEST_CASE("errors: a duplicate key is reported once, not once per default child"
 }
 
 TEST_CASE("errors: a parameter given twice", "[scene][errors]") {
-  Result r = run(inList("<RCStaticRigidBody Key=\"S\"><Geom><RCSphereGeom>\n"
-                        "<Radius Value=\"1\"/>\n"
-                        "<Radius Value=\"2\"/>\n"  // line 5
-                        "</RCSphereGeom></Geom>\n"
-                        "<Geom Macro=\"NoGeom\"/>\n"  // line 7
-                        "</RCStaticRigidBody>\n"));
+  Result r =
+      run(inList("<RCStaticRigidBody Key=\"S\"><Geom><RCSphereGeom>\n"
+                 "<Radius Value=\"1\"/>\n"
+                 "<Radius Value=\"2\"/>\n"  // line 5
+                 "</RCSphereGeom></Geom>\n"
+                 "<Geom Macro=\"NoGeom\"/>\n"  // line 7
+                 "</RCStaticRigidBody>\n"));
   CHECK_FALSE(r.loaded);
   expectExact(r, "bad.xml:5: RCSphereGeom 'S.Geom': parameter 'Radius' given twice");
   expectExact(r, "bad.xml:7: RCStaticRigidBody 'S': parameter 'Geom' given twice");
@@ -419,20 +449,22 @@ TEST_CASE("errors: a parameter given twice", "[scene][errors]") {
 }
 
 TEST_CASE("errors: a Ref with child elements", "[scene][errors]") {
-  Result r = run(inList("<RCStaticRigidBody Key=\"S\">\n"
-                        "<Material Ref=\"M\"><RCGenericMaterial/></Material>\n"  // line 4
-                        "</RCStaticRigidBody>\n"
-                        "<RCGenericMaterial Key=\"M\"/>\n"
-                        "<RCCuboidModel Key=\"C\"><ChildList><Child Ref=\"C2\"><RCConeModel/></Child></ChildList>"
-                        "</RCCuboidModel>\n"  // line 7
-                        "<RCCuboidModel Key=\"C2\"/>\n"));
+  Result r =
+      run(inList("<RCStaticRigidBody Key=\"S\">\n"
+                 "<Material Ref=\"M\"><RCGenericMaterial/></Material>\n"  // line 4
+                 "</RCStaticRigidBody>\n"
+                 "<RCGenericMaterial Key=\"M\"/>\n"
+                 "<RCCuboidModel Key=\"C\"><ChildList><Child Ref=\"C2\"><RCConeModel/></Child></ChildList>"
+                 "</RCCuboidModel>\n"  // line 7
+                 "<RCCuboidModel Key=\"C2\"/>\n"));
   CHECK_FALSE(r.loaded);
   expectExact(r, "bad.xml:4: RCStaticRigidBody 'S': <Material> with Ref or Macro takes no child elements");
   expectExact(r, "bad.xml:7: RCCuboidModel 'C': <Child> with Ref or Macro takes no child elements");
   CHECK(r.diag.errors().size() == 2);
-  Result ini = run("ComponentCount = 1\nComponent0.Type = RCSky\nComponent0.Material.Ref = X\n"
-                   "Component0.Material.Friction = 1\n",
-                   Format::Ini, "bad.ini");
+  Result ini =
+      run("ComponentCount = 1\nComponent0.Type = RCSky\nComponent0.Material.Ref = X\n"
+          "Component0.Material.Friction = 1\n",
+          Format::Ini, "bad.ini");
   expectError(ini, "bad.ini:", {"'Material' with Ref or Macro takes no other entries"});
 }
 
@@ -441,7 +473,8 @@ TEST_CASE("errors: a Ref with child elements", "[scene][errors]") {
 TEST_CASE("errors: cyclic import", "[scene][errors][import]") {
   TempDir dir;
   dir.write("a.xml", "<Body>\n<RCImportBody Key=\"X\"><File Value=\"sub/b.xml\"/></RCImportBody>\n</Body>\n");
-  std::string b = dir.write("sub/b.xml", "<Body>\n\n<RCImportBody Key=\"Y\"><File Value=\"../a.xml\"/></RCImportBody>\n</Body>\n");
+  std::string b =
+      dir.write("sub/b.xml", "<Body>\n\n<RCImportBody Key=\"Y\"><File Value=\"../a.xml\"/></RCImportBody>\n</Body>\n");
   std::string main = dir.write("main.xml", inList("<RCImportBody Key=\"I\"><File Value=\"a.xml\"/></RCImportBody>\n"));
   Scene s;
   Diagnostics d;
@@ -457,7 +490,8 @@ TEST_CASE("errors: cyclic import", "[scene][errors][import]") {
   CHECK(e.message.find("a.xml -> ") != std::string::npos);
 
   // A scene importing itself (through a Body import of a Simulation file) is a cycle too.
-  std::string self = dir.write("self.xml", inList("<RCImportBody Key=\"I\"><File Value=\"self.xml\"/></RCImportBody>\n"));
+  std::string self =
+      dir.write("self.xml", inList("<RCImportBody Key=\"I\"><File Value=\"self.xml\"/></RCImportBody>\n"));
   Diagnostics d2;
   CHECK_FALSE(loadScene(self, builtinRegistry(), &s, d2));
   REQUIRE(d2.errors().size() == 1);
@@ -466,9 +500,10 @@ TEST_CASE("errors: cyclic import", "[scene][errors][import]") {
 
 TEST_CASE("errors: missing import and import without File", "[scene][errors][import]") {
   TempDir dir;
-  std::string main = dir.write("main.xml", inList("<RCImportBody Key=\"M\"><File Value=\"missing.xml\"/></RCImportBody>\n"
-                                                  "<RCImportBody Key=\"E\"/>\n"
-                                                  "<RCImportRefList Key=\"D\"><File Value=\".\"/></RCImportRefList>\n"));
+  std::string main =
+      dir.write("main.xml", inList("<RCImportBody Key=\"M\"><File Value=\"missing.xml\"/></RCImportBody>\n"
+                                   "<RCImportBody Key=\"E\"/>\n"
+                                   "<RCImportRefList Key=\"D\"><File Value=\".\"/></RCImportRefList>\n"));
   Scene s;
   Diagnostics d;
   CHECK_FALSE(loadScene(main, builtinRegistry(), &s, d));
@@ -476,8 +511,8 @@ TEST_CASE("errors: missing import and import without File", "[scene][errors][imp
   REQUIRE(d.errors().size() == 3);
   const Error& missing = d.errors()[0];
   CHECK(missing.kind == ErrorKind::MissingInput);
-  CHECK(missing.str() == main + ":3: RCImportBody 'M': cannot read import '" +
-                             (dir.path() / "missing.xml").string() + "': No such file or directory");
+  CHECK(missing.str() == main + ":3: RCImportBody 'M': cannot read import '" + (dir.path() / "missing.xml").string() +
+                             "': No such file or directory");
   CHECK(d.errors()[1].str() == main + ":4: RCImportBody 'E': parameter 'File' is required");
   CHECK(d.errors()[1].kind == ErrorKind::InvalidInput);
   CHECK(d.errors()[2].kind == ErrorKind::MissingInput);
@@ -494,16 +529,18 @@ TEST_CASE("errors: missing import and import without File", "[scene][errors][imp
 TEST_CASE("errors: imported files with the wrong root or bad content", "[scene][errors][import]") {
   TempDir dir;
   dir.write("joint.xml", "<Joint><RCFixJoint/></Joint>");
-  dir.write("bad.xml", "<Body>\n<RCStaticRigidBody Key=\"B\">\n<Geom><RCSphereGeom><Radius Value=\"x\"/></RCSphereGeom>"
-                       "</Geom></RCStaticRigidBody></Body>");
+  dir.write("bad.xml",
+            "<Body>\n<RCStaticRigidBody Key=\"B\">\n<Geom><RCSphereGeom><Radius Value=\"x\"/></RCSphereGeom>"
+            "</Geom></RCStaticRigidBody></Body>");
   dir.write("broken.xml", "<Body>\n<RCStaticRigidBody>\n</Body>");
   dir.write("ref.xml", "<Body Ref=\"Other\"/>");
   dir.write("list.xml", "<RefList>\n<Item Ref=\"X\"/>\n<RCGenericMaterial Key=\"M\"/>\n<RCHingeJoint/>\n</RefList>");
-  std::string main = dir.write("main.xml", inList("<RCImportBody Key=\"W\"><File Value=\"joint.xml\"/></RCImportBody>\n"
-                                                  "<RCImportBody Key=\"B\"><File Value=\"bad.xml\"/></RCImportBody>\n"
-                                                  "<RCImportBody Key=\"C\"><File Value=\"broken.xml\"/></RCImportBody>\n"
-                                                  "<RCImportBody Key=\"R\"><File Value=\"ref.xml\"/></RCImportBody>\n"
-                                                  "<RCImportRefList Key=\"L\"><File Value=\"list.xml\"/></RCImportRefList>\n"));
+  std::string main =
+      dir.write("main.xml", inList("<RCImportBody Key=\"W\"><File Value=\"joint.xml\"/></RCImportBody>\n"
+                                   "<RCImportBody Key=\"B\"><File Value=\"bad.xml\"/></RCImportBody>\n"
+                                   "<RCImportBody Key=\"C\"><File Value=\"broken.xml\"/></RCImportBody>\n"
+                                   "<RCImportBody Key=\"R\"><File Value=\"ref.xml\"/></RCImportBody>\n"
+                                   "<RCImportRefList Key=\"L\"><File Value=\"list.xml\"/></RCImportRefList>\n"));
   Scene s;
   Diagnostics d;
   CHECK_FALSE(loadScene(main, builtinRegistry(), &s, d));
@@ -522,21 +559,24 @@ TEST_CASE("errors: imported files with the wrong root or bad content", "[scene][
 // ---------------------------------------------------------------------------------- compile
 
 TEST_CASE("errors: RCLocalCoordinates at the top level", "[scene][errors]") {
-  Result r = run(inList("<RCMobileRigidBody Key=\"B\">\n<Pose><RCLocalCoordinates/></Pose>\n"
-                        "<Geom><RCSphereGeom/></Geom></RCMobileRigidBody>\n"
-                        "<RCStaticRigidBody Key=\"S\">\n<Pose Macro=\"Origin\"/></RCStaticRigidBody>\n"));
+  Result r =
+      run(inList("<RCMobileRigidBody Key=\"B\">\n<Pose><RCLocalCoordinates/></Pose>\n"
+                 "<Geom><RCSphereGeom/></Geom></RCMobileRigidBody>\n"
+                 "<RCStaticRigidBody Key=\"S\">\n<Pose Macro=\"Origin\"/></RCStaticRigidBody>\n"));
   CHECK(r.loaded);
   CHECK_FALSE(r.compiled);
-  expectExact(r, "bad.xml:4: RCMobileRigidBody 'B': RCLocalCoordinates needs a parent frame (a joint, construction or "
-                 "body); use RCGlobalCoordinates at the top level");
+  expectExact(r,
+              "bad.xml:4: RCMobileRigidBody 'B': RCLocalCoordinates needs a parent frame (a joint, construction or "
+              "body); use RCGlobalCoordinates at the top level");
   expectError(r, "bad.xml:7: ", {"RCStaticRigidBody 'S': RCLocalCoordinates needs a parent frame"});
 }
 
 TEST_CASE("errors: a plane geom on a mobile body", "[scene][errors]") {
-  Result r = run(inList("<RCMobileRigidBody Key=\"C\">\n<Geom><RCPlaneGeom/></Geom>\n"
-                        "<Inertia><RCGenericInertia/></Inertia></RCMobileRigidBody>\n"
-                        "<RCMobileRigidBody Key=\"D\"><Geom><RCTransformGeom><SubGeom><RCPlaneGeom/></SubGeom>"
-                        "</RCTransformGeom></Geom><Inertia><RCGenericInertia/></Inertia></RCMobileRigidBody>\n"));
+  Result r =
+      run(inList("<RCMobileRigidBody Key=\"C\">\n<Geom><RCPlaneGeom/></Geom>\n"
+                 "<Inertia><RCGenericInertia/></Inertia></RCMobileRigidBody>\n"
+                 "<RCMobileRigidBody Key=\"D\"><Geom><RCTransformGeom><SubGeom><RCPlaneGeom/></SubGeom>"
+                 "</RCTransformGeom></Geom><Inertia><RCGenericInertia/></Inertia></RCMobileRigidBody>\n"));
   CHECK_FALSE(r.compiled);
   expectExact(r, "bad.xml:4: RCPlaneGeom 'C.Geom': a plane is infinite and can only belong to a static body");
   expectError(r, "bad.xml:6: ", {"RCPlaneGeom 'D.Geom.SubGeom'", "only belong to a static body"});
@@ -544,37 +584,42 @@ TEST_CASE("errors: a plane geom on a mobile body", "[scene][errors]") {
 }
 
 TEST_CASE("errors: a joint without Body", "[scene][errors]") {
-  Result r = run(inList("<RCConstruction Key=\"K\"><Body><RCStaticRigidBody/></Body><ChildList>\n"
-                        "<RCHingeJoint Key=\"J\"/>\n"
-                        "</ChildList></RCConstruction>\n"));
+  Result r =
+      run(inList("<RCConstruction Key=\"K\"><Body><RCStaticRigidBody/></Body><ChildList>\n"
+                 "<RCHingeJoint Key=\"J\"/>\n"
+                 "</ChildList></RCConstruction>\n"));
   CHECK(r.loaded);
   CHECK_FALSE(r.compiled);
   expectExact(r, "bad.xml:4: RCHingeJoint 'K.J': parameter 'Body' (the body the joint connects to) is required");
   Result nb = run(inList("<RCConstruction Key=\"K\"/>\n"));
   expectExact(nb, "bad.xml:3: RCConstruction 'K': parameter 'Body' (the root body) is required");
-  Result statics = run(inList("<RCConstruction Key=\"K\"><Body><RCStaticRigidBody/></Body><ChildList>\n"
-                              "<RCFixJoint Key=\"J\"><Body><RCStaticRigidBody Key=\"S\"/></Body></RCFixJoint>\n"
-                              "</ChildList></RCConstruction>\n"));
+  Result statics =
+      run(inList("<RCConstruction Key=\"K\"><Body><RCStaticRigidBody/></Body><ChildList>\n"
+                 "<RCFixJoint Key=\"J\"><Body><RCStaticRigidBody Key=\"S\"/></Body></RCFixJoint>\n"
+                 "</ChildList></RCConstruction>\n"));
   expectExact(statics, "bad.xml:4: RCFixJoint 'K.J': connects two static bodies; one of them must be mobile");
 }
 
 TEST_CASE("errors: a mobile body without volume and the default RCInertiaByGeom", "[scene][errors]") {
-  Result r = run(inList("<RCMobileRigidBody Key=\"N\">\n<Geom Macro=\"NoGeom\"/>\n</RCMobileRigidBody>\n"
-                        "<RCMobileRigidBody Key=\"E\"/>\n"));
+  Result r =
+      run(inList("<RCMobileRigidBody Key=\"N\">\n<Geom Macro=\"NoGeom\"/>\n</RCMobileRigidBody>\n"
+                 "<RCMobileRigidBody Key=\"E\"/>\n"));
   CHECK(r.loaded);
   CHECK_FALSE(r.compiled);
   // A left-out Inertia is the shared default RCInertiaByGeom: the error names the body.
-  expectExact(r, "bad.xml:3: RCMobileRigidBody 'N': RCInertiaByGeom needs a geom with volume on body 'N' (give "
-                 "it a Geom or use RCGenericInertia)");
+  expectExact(r,
+              "bad.xml:3: RCMobileRigidBody 'N': RCInertiaByGeom needs a geom with volume on body 'N' (give "
+              "it a Geom or use RCGenericInertia)");
   expectError(r, "bad.xml:6: ", {"RCMobileRigidBody 'E'", "needs a geom with volume on body 'E'"});
   CHECK(r.diag.errors().size() == 2);
 }
 
 TEST_CASE("errors: rods whose ends are too close", "[scene][errors]") {
-  Result r = run(inList("<RCRodBody Key=\"R\"><Capped Value=\"true\"/><Radius Value=\"0.5\"/>\n"
-                        "<Pos2><RCGlobalCoordinates><Pose Value=\"0 0.8 0 0 0 0\"/></RCGlobalCoordinates></Pos2>"
-                        "</RCRodBody>\n"
-                        "<RCRodBody Key=\"Z\"/>\n"));
+  Result r =
+      run(inList("<RCRodBody Key=\"R\"><Capped Value=\"true\"/><Radius Value=\"0.5\"/>\n"
+                 "<Pos2><RCGlobalCoordinates><Pose Value=\"0 0.8 0 0 0 0\"/></RCGlobalCoordinates></Pos2>"
+                 "</RCRodBody>\n"
+                 "<RCRodBody Key=\"Z\"/>\n"));
   CHECK(r.loaded);
   CHECK_FALSE(r.compiled);
   expectError(r, "bad.xml:3: ", {"RCRodBody 'R'", "too close"});
@@ -582,8 +627,9 @@ TEST_CASE("errors: rods whose ends are too close", "[scene][errors]") {
 }
 
 TEST_CASE("errors: RigidBodyClone of nothing", "[scene][errors]") {
-  Result r = run(inList("<RCStaticRigidBody Key=\"Wall\"/>\n<RigidBodyClone Key=\"C\">\n<Original Value=\"Wal\"/>\n"
-                        "</RigidBodyClone>\n<RigidBodyClone Key=\"D\"/>\n"));
+  Result r =
+      run(inList("<RCStaticRigidBody Key=\"Wall\"/>\n<RigidBodyClone Key=\"C\">\n<Original Value=\"Wal\"/>\n"
+                 "</RigidBodyClone>\n<RigidBodyClone Key=\"D\"/>\n"));
   CHECK(r.loaded);
   CHECK_FALSE(r.compiled);
   expectExact(r, "bad.xml:5: RigidBodyClone 'C': parameter 'Original' 'Wal' names no body (did you mean 'Wall'?)");
@@ -591,13 +637,15 @@ TEST_CASE("errors: RigidBodyClone of nothing", "[scene][errors]") {
 }
 
 TEST_CASE("errors: SceneSettings checks", "[scene][errors]") {
-  Result r = run("<Simulation><SceneSettings>\n<MaxTimeStep Value=\"0.001\"/>\n<MinTimeStep Value=\"0.01\"/>\n"
-                 "<ERP Value=\"2\"/>\n<SolverIterations Value=\"0\"/>\n</SceneSettings></Simulation>");
+  Result r =
+      run("<Simulation><SceneSettings>\n<MaxTimeStep Value=\"0.001\"/>\n<MinTimeStep Value=\"0.01\"/>\n"
+          "<ERP Value=\"2\"/>\n<SolverIterations Value=\"0\"/>\n</SceneSettings></Simulation>");
   CHECK_FALSE(r.loaded);
   expectError(r, "bad.xml:4: ", {"'ERP' must be in [0, 1], got '2'"});
   expectError(r, "bad.xml:5: ", {"'SolverIterations' must be > 0, got '0'"});
-  Result c = run("<Simulation><SceneSettings>\n<MaxTimeStep Value=\"0.001\"/>\n<MinTimeStep Value=\"0.01\"/>\n"
-                 "</SceneSettings></Simulation>");
+  Result c =
+      run("<Simulation><SceneSettings>\n<MaxTimeStep Value=\"0.001\"/>\n<MinTimeStep Value=\"0.01\"/>\n"
+          "</SceneSettings></Simulation>");
   CHECK(c.loaded);
   CHECK_FALSE(c.compiled);
   expectExact(c, "bad.xml:3: SceneSettings: MinTimeStep must not exceed MaxTimeStep");
@@ -612,17 +660,18 @@ TEST_CASE("errors: INI syntax", "[scene][errors][ini]") {
               "b.ini:2: expected 'key = value', got 'Component0.Type RCSky'");
   expectExact(run("\n\n = 3\n", Format::Ini, "b.ini"), "b.ini:3: empty key before '='");
   expectExact(run("Component0..Type = RCSky\n", Format::Ini, "b.ini"), "b.ini:1: empty name in key 'Component0..Type'");
-  expectError(run("ComponentCount = 2\nComponent0.Type = RCSky\n", Format::Ini, "b.ini"), "b.ini:1: ",
-              {"ComponentCount is 2 but Component1 is missing"});
-  expectError(run("ComponentCount = -1\n", Format::Ini, "b.ini"), "b.ini:1: ",
-              {"ComponentCount must be a whole number >= 0, got '-1'"});
-  expectError(run("ComponentCount = 1.5\n", Format::Ini, "b.ini"), "b.ini:1: ", {"ComponentCount must be a whole number"});
-  expectError(run("ComponentCount = 1\nComponent0 = RCSky\n", Format::Ini, "b.ini"), "b.ini:2: ",
-              {"'Component0' is a component: write Component0.Type = ..."});
+  expectError(run("ComponentCount = 2\nComponent0.Type = RCSky\n", Format::Ini, "b.ini"),
+              "b.ini:1: ", {"ComponentCount is 2 but Component1 is missing"});
+  expectError(run("ComponentCount = -1\n", Format::Ini, "b.ini"),
+              "b.ini:1: ", {"ComponentCount must be a whole number >= 0, got '-1'"});
+  expectError(run("ComponentCount = 1.5\n", Format::Ini, "b.ini"),
+              "b.ini:1: ", {"ComponentCount must be a whole number"});
+  expectError(run("ComponentCount = 1\nComponent0 = RCSky\n", Format::Ini, "b.ini"),
+              "b.ini:2: ", {"'Component0' is a component: write Component0.Type = ..."});
   expectError(run("ComponentCount = 1\nComponent0.Type = RCSky\nComponent0.Ref = X\n", Format::Ini, "b.ini"),
               "b.ini:", {"'Component0' needs exactly one of Component0.Type, Component0.Ref, Component0.Macro"});
-  expectError(run("ComponentCount = 1\nComponent0.Key = X\n", Format::Ini, "b.ini"), "b.ini:",
-              {"needs exactly one of"});
+  expectError(run("ComponentCount = 1\nComponent0.Key = X\n", Format::Ini, "b.ini"),
+              "b.ini:", {"needs exactly one of"});
   expectError(run("ComponentCount = 1\nComponent0.Type = RCSky\nComponent0.Height.X = 1\n", Format::Ini, "b.ini"),
               "b.ini:3: ", {"parameter 'Height' is a value: write 'Height = ...'"});
   expectError(run("ComponentCount = 1\nComponent0.Type = RCSky\nComponent7.Type = RCSky\n", Format::Ini, "b.ini"),
@@ -632,12 +681,13 @@ TEST_CASE("errors: INI syntax", "[scene][errors][ini]") {
 // ---------------------------------------------------------------------------------- many errors
 
 TEST_CASE("errors: independent errors are all collected in one pass", "[scene][errors]") {
-  Result r = run(inList("<RCStaticRigidBody Key=\"S\">\n"
-                        "<Geom><RCCuboidGeom><Width Value=\"wide\"/><Height Value=\"-1\"/></RCCuboidGeom></Geom>\n"  // 4
-                        "<Modle Macro=\"NoModel\"/>\n"                                                               // 5
-                        "</RCStaticRigidBody>\n"
-                        "<RCSky><Hieght Value=\"3\"/></RCSky>\n"                                                     // 7
-                        "<RCGrund/>\n"));                                                                           // 8
+  Result r =
+      run(inList("<RCStaticRigidBody Key=\"S\">\n"
+                 "<Geom><RCCuboidGeom><Width Value=\"wide\"/><Height Value=\"-1\"/></RCCuboidGeom></Geom>\n"  // 4
+                 "<Modle Macro=\"NoModel\"/>\n"                                                               // 5
+                 "</RCStaticRigidBody>\n"
+                 "<RCSky><Hieght Value=\"3\"/></RCSky>\n"  // 7
+                 "<RCGrund/>\n"));                         // 8
   CHECK_FALSE(r.loaded);
   INFO(errorText(r.diag));
   CHECK(r.diag.errors().size() == 5);
@@ -648,11 +698,12 @@ TEST_CASE("errors: independent errors are all collected in one pass", "[scene][e
   expectError(r, "bad.xml:8: ", {"unknown component type 'RCGrund' (did you mean 'RCGround'?)"});
 
   // Compile errors of independent bodies are collected as well.
-  Result c = run(inList("<RCMobileRigidBody Key=\"A\"><Geom><RCPlaneGeom/></Geom><Inertia><RCGenericInertia/>"
-                        "</Inertia></RCMobileRigidBody>\n"
-                        "<RCMobileRigidBody Key=\"B\"><Geom Macro=\"NoGeom\"/></RCMobileRigidBody>\n"
-                        "<RCConstruction Key=\"K\"><Body><RCStaticRigidBody/></Body><ChildList><RCFixJoint/>"
-                        "</ChildList></RCConstruction>\n"));
+  Result c =
+      run(inList("<RCMobileRigidBody Key=\"A\"><Geom><RCPlaneGeom/></Geom><Inertia><RCGenericInertia/>"
+                 "</Inertia></RCMobileRigidBody>\n"
+                 "<RCMobileRigidBody Key=\"B\"><Geom Macro=\"NoGeom\"/></RCMobileRigidBody>\n"
+                 "<RCConstruction Key=\"K\"><Body><RCStaticRigidBody/></Body><ChildList><RCFixJoint/>"
+                 "</ChildList></RCConstruction>\n"));
   CHECK(c.loaded);
   CHECK(c.diag.errors().size() == 3);
 }

@@ -25,8 +25,12 @@ std::vector<std::string> loadErrors(const std::string& xml, const std::string& n
 std::string sphereBody(const std::string& radius, const std::string& pose = "0 1 0 0 0 0") {
   return "<Simulation><ComponentList>\n"
          "<RCMobileRigidBody Key=\"B\">\n"
-         "<Pose><RCGlobalCoordinates><Pose Value=\"" + pose + "\"/></RCGlobalCoordinates></Pose>\n"
-         "<Geom><RCSphereGeom><Radius Value=\"" + radius + "\"/></RCSphereGeom></Geom>\n"
+         "<Pose><RCGlobalCoordinates><Pose Value=\"" +
+         pose +
+         "\"/></RCGlobalCoordinates></Pose>\n"
+         "<Geom><RCSphereGeom><Radius Value=\"" +
+         radius +
+         "\"/></RCSphereGeom></Geom>\n"
          "</RCMobileRigidBody></ComponentList></Simulation>\n";
 }
 
@@ -35,7 +39,8 @@ std::string sphereBody(const std::string& radius, const std::string& pose = "0 1
 TEST_CASE("absurd magnitudes are rejected at load time with file and line", "[scene][limits]") {
   auto e = loadErrors(sphereBody("1e300"));
   REQUIRE(e.size() == 1);
-  CHECK(e[0] == "limits.xml:4: RCSphereGeom 'B.Geom': parameter 'Radius': 1e+300 is beyond the supported magnitude 1e+09");
+  CHECK(e[0] ==
+        "limits.xml:4: RCSphereGeom 'B.Geom': parameter 'Radius': 1e+300 is beyond the supported magnitude 1e+09");
   e = loadErrors(sphereBody("0.1", "1e12 0 0 0 0 0"));
   REQUIRE(e.size() == 1);
   CHECK(e[0].rfind("limits.xml:3: RCGlobalCoordinates 'B.Pose': parameter 'Pose': 1e+12 is beyond", 0) == 0);
@@ -74,8 +79,9 @@ TEST_CASE("a long import chain ends with an error naming the file", "[scene][lim
     f << "<Body><RCConstruction Key=\"C\"><Body><RCImportBody Key=\"I\"><File Value=\"b" << (i + 1)
       << ".xml\"/></RCImportBody></Body></RCConstruction></Body>\n";
   }
-  std::string top = "<Simulation><ComponentList>\n<RCImportBody Key=\"Top\"><File Value=\"b0.xml\"/></RCImportBody>\n"
-                    "</ComponentList></Simulation>\n";
+  std::string top =
+      "<Simulation><ComponentList>\n<RCImportBody Key=\"Top\"><File Value=\"b0.xml\"/></RCImportBody>\n"
+      "</ComponentList></Simulation>\n";
   auto e = loadErrors(top, (dir / "top.xml").string());
   REQUIRE_FALSE(e.empty());
   CHECK(e[0].find("imports nested deeper than 16 files") != std::string::npos);

@@ -222,14 +222,15 @@ TEST_CASE("load: fully qualified keys of nested components", "[scene][load]") {
     </RCConstruction>
   </ComponentList>
 </Simulation>)");
-  for (const char* k : {"Robot", "Robot.Base", "Robot.Base.Geom", "Robot.Shoulder", "Robot.Shoulder.Arm",
-                        "Robot.Shoulder.Arm.Upper", "Robot.Shoulder.Arm.RCBallSocketJoint",
-                        "Robot.Shoulder.Arm.RCBallSocketJoint.Hand", "Robot.Motor"}) {
+  for (const char* k :
+       {"Robot", "Robot.Base", "Robot.Base.Geom", "Robot.Shoulder", "Robot.Shoulder.Arm", "Robot.Shoulder.Arm.Upper",
+        "Robot.Shoulder.Arm.RCBallSocketJoint", "Robot.Shoulder.Arm.RCBallSocketJoint.Hand", "Robot.Motor"}) {
     INFO(k);
     CHECK(s.by_qkey.count(k) == 1);
   }
   // Left-out parameters take one shared default component per type, which has no key.
-  for (const char* k : {"Robot.Base.Pose", "Robot.Base.Inertia", "Robot.Shoulder.Arm.RCBallSocketJoint.Hand.Material"}) {
+  for (const char* k :
+       {"Robot.Base.Pose", "Robot.Base.Inertia", "Robot.Shoulder.Arm.RCBallSocketJoint.Hand.Material"}) {
     INFO(k);
     CHECK(s.by_qkey.count(k) == 0);
   }
@@ -413,8 +414,9 @@ Pose = 1 0 0 0 0 0
 TEST_CASE("load: loadScene picks the format from the file name", "[scene][load][ini]") {
   TempDir dir;
   std::string ini = dir.write("scene.INI", "ComponentCount = 1\nComponent0.Type = RCSky\nComponent0.Height = 7\n");
-  std::string xml = dir.write("scene.xml", "<Simulation><ComponentList><RCSky><Height Value=\"7\"/></RCSky>"
-                                           "</ComponentList></Simulation>");
+  std::string xml = dir.write("scene.xml",
+                              "<Simulation><ComponentList><RCSky><Height Value=\"7\"/></RCSky>"
+                              "</ComponentList></Simulation>");
   Scene a, b;
   Diagnostics da, db;
   REQUIRE(loadScene(ini, builtinRegistry(), &a, da));
@@ -447,8 +449,8 @@ TEST_CASE("load: loadStructIni reads the global settings INI", "[scene][load][in
         bad + ":2: GlobalSettings: parameter 'TexturFolder' unknown (did you mean 'TextureFolder'?)");
 
   Diagnostics d3;
-  CHECK_FALSE(loadStructIni((dir.path() / "missing.ini").string(), builtinRegistry(), "GlobalSettings", &holder, &c,
-                            d3));
+  CHECK_FALSE(
+      loadStructIni((dir.path() / "missing.ini").string(), builtinRegistry(), "GlobalSettings", &holder, &c, d3));
   REQUIRE(d3.errors().size() == 1);
   CHECK(d3.errors()[0].kind == ErrorKind::MissingInput);
 }
@@ -653,9 +655,9 @@ std::string everyTypeScene() {
         break;
     }
   }
-  return "<Simulation><CameraList>" + cameras + "</CameraList><ComponentList>" + components + geoms + poses +
-         motions + inertias + "<RCConstruction Key=\"Root\"><Body><RCStaticRigidBody/></Body><ChildList>" + joints +
-         peripheries + "</ChildList></RCConstruction><RCRobot Key=\"Bot\"><ControllerList>" + controllers +
+  return "<Simulation><CameraList>" + cameras + "</CameraList><ComponentList>" + components + geoms + poses + motions +
+         inertias + "<RCConstruction Key=\"Root\"><Body><RCStaticRigidBody/></Body><ChildList>" + joints + peripheries +
+         "</ChildList></RCConstruction><RCRobot Key=\"Bot\"><ControllerList>" + controllers +
          "</ControllerList></RCRobot></ComponentList></Simulation>";
 }
 

@@ -28,35 +28,42 @@ const std::vector<GuideType>& guideTypes() {
       // 6.1 BodyComponents
       {"RCStaticRigidBody", Family::Body, {"Pose", "Geom", "Material", "Model"}},
       {"RCMobileRigidBody", Family::Body, {"Pose", "Motion", "Geom", "Inertia", "Material", "Model"}},
-      {"RCRodBody", Family::Body,
+      {"RCRodBody",
+       Family::Body,
        {"Pos1", "Pos2", "Radius", "Capped", "HullPositions", "Motion", "Mass", "Material", "Skin"}},
       {"RCConstruction", Family::Body, {"Body", "ChildList"}},
       {"RCImportBody", Family::Body, {"Pose", "Motion", "File"}},
       {"RigidBodyClone", Family::Body, {"Pose", "Original"}},
       // 6.2 GlobalSimComponents
       {"RCGround", Family::GlobalSim, {"Material", "Skin", "Extension", "TexScale", "MaxCellSize"}},
-      {"RCSky", Family::GlobalSim,
+      {"RCSky",
+       Family::GlobalSim,
        {"Material", "Skin", "Extension", "Height", "TexScale", "MaxCellSize", "MotionX", "MotionY"}},
       {"RCSandBox", Family::GlobalSim, {"Width", "Depth", "Thickness", "Height", "Wall", "TexScale", "Material"}},
       {"RCRobot", Family::GlobalSim, {"Construction", "ControllerList"}},
       {"RCImportRefList", Family::GlobalSim, {"File"}},
       // 6.3 ModelComponents (Pose, Skin, ChildList common to all)
       {"RCCuboidModel", Family::Model, {"Pose", "Skin", "ChildList", "Cuboid", "TexScale", "SideMask", "Wire"}},
-      {"RCPlaneModel", Family::Model,
+      {"RCPlaneModel",
+       Family::Model,
        {"Pose", "Skin", "ChildList", "ExtensionX", "ExtensionY", "IsShadowPlane", "TexScale", "MaxCellSize"}},
-      {"RCEllipsoidModel", Family::Model,
+      {"RCEllipsoidModel",
+       Family::Model,
        {"Pose", "Skin", "ChildList", "Triangles", "Accuracy", "RadiusX", "RadiusY", "RadiusZ"}},
-      {"RCCylinderModel", Family::Model,
-       {"Pose", "Skin", "ChildList", "Radius", "Length", "AngTexScale", "LinTexScale", "ComponentMask",
-        "Accuracy"}},
-      {"RCConeModel", Family::Model,
+      {"RCCylinderModel",
+       Family::Model,
+       {"Pose", "Skin", "ChildList", "Radius", "Length", "AngTexScale", "LinTexScale", "ComponentMask", "Accuracy"}},
+      {"RCConeModel",
+       Family::Model,
        {"Pose", "Skin", "ChildList", "Radius", "Length", "LinTexScale", "DrawBase", "Accuracy"}},
       {"RCEmptyModel", Family::Model, {"Pose", "Skin", "ChildList"}},
       // 6.4 SkinComponents
-      {"RCColoredSkin", Family::Skin,
+      {"RCColoredSkin",
+       Family::Skin,
        {"Color", "Ambient", "Diffuse", "Specular", "Emission", "ColorMode", "Shininess"}},
       {"RCTexturedSkin", Family::Skin, {"Texture", "ColorMode", "Shininess"}},
-      {"RCColTexSkin", Family::Skin,
+      {"RCColTexSkin",
+       Family::Skin,
        {"Color", "Ambient", "Diffuse", "Specular", "Emission", "Texture", "ColorMode", "Shininess"}},
       // 6.5 GeomComponents
       {"RCTransformGeom", Family::Geom, {"Pose", "SubGeom"}},
@@ -107,19 +114,32 @@ std::vector<std::string> paramNames(const TypeSpec& t) {
 
 bool holds(ValueType t, const Value& v) {
   switch (t) {
-    case ValueType::Bool: return std::holds_alternative<bool>(v);
-    case ValueType::Int: return std::holds_alternative<int64_t>(v);
-    case ValueType::Number: return std::holds_alternative<double>(v);
-    case ValueType::String: return std::holds_alternative<std::string>(v);
-    case ValueType::Triple: return std::holds_alternative<Triple>(v);
-    case ValueType::Vector: return std::holds_alternative<Vector4>(v);
-    case ValueType::Quaternion: return std::holds_alternative<Quaternion>(v);
-    case ValueType::Pose: return std::holds_alternative<Pose>(v);
-    case ValueType::Matrix: return std::holds_alternative<Matrix4>(v);
-    case ValueType::Cuboid: return std::holds_alternative<Cuboid>(v);
-    case ValueType::Color: return std::holds_alternative<Color>(v);
-    case ValueType::Enum: return std::holds_alternative<EnumValue>(v);
-    case ValueType::Bitmask: return std::holds_alternative<BitmaskValue>(v);
+    case ValueType::Bool:
+      return std::holds_alternative<bool>(v);
+    case ValueType::Int:
+      return std::holds_alternative<int64_t>(v);
+    case ValueType::Number:
+      return std::holds_alternative<double>(v);
+    case ValueType::String:
+      return std::holds_alternative<std::string>(v);
+    case ValueType::Triple:
+      return std::holds_alternative<Triple>(v);
+    case ValueType::Vector:
+      return std::holds_alternative<Vector4>(v);
+    case ValueType::Quaternion:
+      return std::holds_alternative<Quaternion>(v);
+    case ValueType::Pose:
+      return std::holds_alternative<Pose>(v);
+    case ValueType::Matrix:
+      return std::holds_alternative<Matrix4>(v);
+    case ValueType::Cuboid:
+      return std::holds_alternative<Cuboid>(v);
+    case ValueType::Color:
+      return std::holds_alternative<Color>(v);
+    case ValueType::Enum:
+      return std::holds_alternative<EnumValue>(v);
+    case ValueType::Bitmask:
+      return std::holds_alternative<BitmaskValue>(v);
   }
   return false;
 }
@@ -197,14 +217,14 @@ TEST_CASE("registry: the guide's enum and bitmask keys are accepted", "[scene][r
   CHECK(formatValue(mode.type, *parseValue(mode.type, "TransparentLighing", mode.table).value, mode.table) ==
         "TransparentLighting");
   const ParamSpec& sides = param("RCCuboidModel", "SideMask");
-  for (const char* k : {"Left", "MinX", "Right", "MaxX", "Bottom", "MinY", "Top", "MaxY", "Back", "MinZ",
-                        "Front", "MaxZ", "X", "Y", "Z", "All"})
+  for (const char* k : {"Left", "MinX", "Right", "MaxX", "Bottom", "MinY", "Top", "MaxY", "Back", "MinZ", "Front",
+                        "MaxZ", "X", "Y", "Z", "All"})
     parses(sides, k);
   CHECK(std::get<BitmaskValue>(*parses(sides, "Left|Top").value).bits == (1u | 8u));
   CHECK(std::get<BitmaskValue>(*parses(sides, "All").value).bits == 63u);
   const ParamSpec& mask = param("RCCylinderModel", "ComponentMask");
-  for (const char* k : {"None", "Jacket", "FlatFront", "FlatBack", "CappedFront", "CappedBack", "FlatCylinder",
-                        "CappedCylinder"})
+  for (const char* k :
+       {"None", "Jacket", "FlatFront", "FlatBack", "CappedFront", "CappedBack", "FlatCylinder", "CappedCylinder"})
     parses(mask, k);
   CHECK(std::get<BitmaskValue>(*parses(mask, "FlatCylinder").value).bits ==
         std::get<BitmaskValue>(*parses(mask, "Jacket|FlatFront|FlatBack").value).bits);

@@ -101,9 +101,7 @@ inline std::string readText(const std::string& path) {
   return ss.str();
 }
 
-inline bool sameLink(const Link& a, const Link& b) {
-  return a.comp == b.comp && a.ref == b.ref && a.macro == b.macro;
-}
+inline bool sameLink(const Link& a, const Link& b) { return a.comp == b.comp && a.ref == b.ref && a.macro == b.macro; }
 
 /// Structural equality of two graphs (everything but source locations and file lists).
 inline void requireSameGraph(const Scene& a, const Scene& b) {

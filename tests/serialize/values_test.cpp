@@ -34,8 +34,7 @@ const EnumTable kSideMask{"SideMask",
                            {"Z", 48},
                            {"All", 63}}};
 
-const EnumTable kDriveMode{"DriveMode",
-                           {{"Velocity", 0}, {"Vel", 0}, {"Position", 1}, {"Torque", 2}}};
+const EnumTable kDriveMode{"DriveMode", {{"Velocity", 0}, {"Vel", 0}, {"Position", 1}, {"Torque", 2}}};
 
 uint64_t bitsOf(double d) {
   uint64_t u = 0;
@@ -43,8 +42,7 @@ uint64_t bitsOf(double d) {
   return u;
 }
 
-Value parseOk(ValueType t, std::string_view text, const EnumTable* table = nullptr,
-              ParseOptions opts = {}) {
+Value parseOk(ValueType t, std::string_view text, const EnumTable* table = nullptr, ParseOptions opts = {}) {
   ParseResult r = parseValue(t, text, table, opts);
   INFO("parsing '" << std::string(text) << "' as " << valueTypeName(t) << ": " << r.error);
   REQUIRE(r);
@@ -52,8 +50,7 @@ Value parseOk(ValueType t, std::string_view text, const EnumTable* table = nullp
   return *r.value;
 }
 
-std::string parseErr(ValueType t, std::string_view text, const EnumTable* table = nullptr,
-                     ParseOptions opts = {}) {
+std::string parseErr(ValueType t, std::string_view text, const EnumTable* table = nullptr, ParseOptions opts = {}) {
   ParseResult r = parseValue(t, text, table, opts);
   INFO("parsing '" << std::string(text) << "' as " << valueTypeName(t));
   REQUIRE_FALSE(r);
@@ -62,8 +59,7 @@ std::string parseErr(ValueType t, std::string_view text, const EnumTable* table 
 }
 
 template <class T>
-T parseAs(ValueType t, std::string_view text, const EnumTable* table = nullptr,
-          ParseOptions opts = {}) {
+T parseAs(ValueType t, std::string_view text, const EnumTable* table = nullptr, ParseOptions opts = {}) {
   Value v = parseOk(t, text, table, opts);
   REQUIRE(std::holds_alternative<T>(v));
   return std::get<T>(v);
@@ -123,10 +119,8 @@ TEST_CASE("Bool parses every documented spelling", "[values][bool]") {
 TEST_CASE("Bool writes True/False and rejects other text", "[values][bool]") {
   CHECK(formatValue(ValueType::Bool, Value{true}) == "True");
   CHECK(formatValue(ValueType::Bool, Value{false}) == "False");
-  CHECK(parseErr(ValueType::Bool, "maybe") ==
-        "expected a boolean (True/False/1/0/On/Off/Enable/Disable), got 'maybe'");
-  CHECK(parseErr(ValueType::Bool, "") ==
-        "expected a boolean (True/False/1/0/On/Off/Enable/Disable), got ''");
+  CHECK(parseErr(ValueType::Bool, "maybe") == "expected a boolean (True/False/1/0/On/Off/Enable/Disable), got 'maybe'");
+  CHECK(parseErr(ValueType::Bool, "") == "expected a boolean (True/False/1/0/On/Off/Enable/Disable), got ''");
   parseErr(ValueType::Bool, "2");
   parseErr(ValueType::Bool, "yes");
   parseErr(ValueType::Bool, "Tru e");
@@ -158,10 +152,9 @@ TEST_CASE("parseNumber accepts the documented forms", "[values][number]") {
 }
 
 TEST_CASE("parseNumber rejects everything else", "[values][number]") {
-  for (const char* s :
-       {"", " ", "nan", "NaN", "-nan", "inf", "-inf", "infinity", "Infinite", "0x10", "1e",
-        "1e+", "e5", ".", "-", "+", "+-1", "-+1", "--1", "1.5.2", "1 2", "1,5", "abc", "1x",
-        "x1", "1_000", "\n1", "1\n", "(1)", "1f"}) {
+  for (const char* s : {"",    " ",   "nan", "NaN", "-nan", "inf",   "-inf", "infinity", "Infinite", "0x10",
+                        "1e",  "1e+", "e5",  ".",   "-",    "+",     "+-1",  "-+1",      "--1",      "1.5.2",
+                        "1 2", "1,5", "abc", "1x",  "x1",   "1_000", "\n1",  "1\n",      "(1)",      "1f"}) {
     INFO("text '" << s << "'");
     CHECK_FALSE(parseNumber(s).has_value());
   }
@@ -263,24 +256,20 @@ TEST_CASE("Int parses integral numbers into int64", "[values][int]") {
   CHECK(parseAs<int64_t>(ValueType::Int, "-0") == 0);
   CHECK(parseAs<int64_t>(ValueType::Int, "1e3") == 1000);
   CHECK(parseAs<int64_t>(ValueType::Int, "2.0") == 2);
-  CHECK(parseAs<int64_t>(ValueType::Int, "9223372036854775807") ==
-        std::numeric_limits<int64_t>::max());
-  CHECK(parseAs<int64_t>(ValueType::Int, "-9223372036854775808") ==
-        std::numeric_limits<int64_t>::min());
+  CHECK(parseAs<int64_t>(ValueType::Int, "9223372036854775807") == std::numeric_limits<int64_t>::max());
+  CHECK(parseAs<int64_t>(ValueType::Int, "-9223372036854775808") == std::numeric_limits<int64_t>::min());
   // Integer literals are exact even beyond 2^53, where a double would round.
   CHECK(parseAs<int64_t>(ValueType::Int, "9007199254740993") == 9007199254740993LL);
   CHECK(formatValue(ValueType::Int, Value{int64_t{-12}}) == "-12");
   CHECK(formatValue(ValueType::Int, Value{int64_t{1000000000000}}) == "1000000000000");
-  CHECK(formatValue(ValueType::Int, Value{std::numeric_limits<int64_t>::min()}) ==
-        "-9223372036854775808");
+  CHECK(formatValue(ValueType::Int, Value{std::numeric_limits<int64_t>::min()}) == "-9223372036854775808");
 }
 
 TEST_CASE("Int rejects fractions, junk and out-of-range values", "[values][int]") {
   CHECK(parseErr(ValueType::Int, "1.5") == "expected an integer, got '1.5'");
   CHECK(parseErr(ValueType::Int, "ten") == "expected an integer, got 'ten'");
   CHECK(parseErr(ValueType::Int, "+-5") == "expected an integer, got '+-5'");
-  CHECK(parseErr(ValueType::Int, "9223372036854775808") ==
-        "integer out of range: '9223372036854775808'");
+  CHECK(parseErr(ValueType::Int, "9223372036854775808") == "integer out of range: '9223372036854775808'");
   CHECK(parseErr(ValueType::Int, "-1e19") == "integer out of range: '-1e19'");
   CHECK(parseErr(ValueType::Int, "1e999") == "number out of range: '1e999'");
   CHECK(parseErr(ValueType::Int, "nan") == "NaN is not allowed: 'nan'");
@@ -312,8 +301,8 @@ TEST_CASE("String escapes of 4.3", "[values][string]") {
   CHECK(escapeString("\\") == "\\\\");
   CHECK(std::get<std::string>(parseOk(ValueType::String, "C:\\\\dir\\tx")) == "C:\\dir\tx");
   CHECK(formatValue(ValueType::String, Value{std::string("a\\b\n")}) == "a\\\\b\\n");
-  for (const char* s : {"", "x", "\\", "\\\\", "\t\n", "a\\tb", "end\\", " lead", "\\n literal",
-                        "mixed \\ \t \n stuff\\"}) {
+  for (const char* s :
+       {"", "x", "\\", "\\\\", "\t\n", "a\\tb", "end\\", " lead", "\\n literal", "mixed \\ \t \n stuff\\"}) {
     checkRoundTrip(ValueType::String, std::string(s));
   }
 }
@@ -370,10 +359,9 @@ TEST_CASE("Triple writing: '0', parentheses, dropped trailing zero", "[values][t
   // -0 is kept so the sign survives the round trip.
   CHECK(w({-0.0, 0, 0}) == "(-0, 0)");
   CHECK(w({1, 2, -0.0}) == "(1, 2, -0)");
-  for (Triple t : {Triple{0, 0, 0}, Triple{1, 0, 0}, Triple{0, 1, 0}, Triple{0, 0, 1},
-                   Triple{-0.0, 0, 0}, Triple{0, -0.0, -0.0}, Triple{kInf, -kInf, 0}}) {
-    const Triple back =
-        parseAs<Triple>(ValueType::Triple, w(t), nullptr, ParseOptions{true});
+  for (Triple t : {Triple{0, 0, 0}, Triple{1, 0, 0}, Triple{0, 1, 0}, Triple{0, 0, 1}, Triple{-0.0, 0, 0},
+                   Triple{0, -0.0, -0.0}, Triple{kInf, -kInf, 0}}) {
+    const Triple back = parseAs<Triple>(ValueType::Triple, w(t), nullptr, ParseOptions{true});
     CHECK(sameBits(back, t));
   }
 }
@@ -383,8 +371,7 @@ TEST_CASE("Vector parses 3 or 4 values and writes them normalised", "[values][ve
   // Parsing keeps the scale as written; only writing normalises.
   CHECK(parseAs<Vector4>(ValueType::Vector, "(2, 4, 6, 2)") == Vector4{{2, 4, 6, 2}});
   CHECK(parseErr(ValueType::Vector, "1 2") == "expected 3 or 4 numbers for a Vector, got 2");
-  CHECK(parseErr(ValueType::Vector, "1 2 3 4 5") ==
-        "expected 3 or 4 numbers for a Vector, got 5");
+  CHECK(parseErr(ValueType::Vector, "1 2 3 4 5") == "expected 3 or 4 numbers for a Vector, got 5");
   auto w = [](Vector4 v) { return formatValue(ValueType::Vector, Value{v}); };
   CHECK(w(Vector4{{1, 2, 3, 1}}) == "(1, 2, 3, 1)");
   CHECK(w(Vector4{{2, 4, 6, 2}}) == "(1, 2, 3, 1)");
@@ -416,12 +403,9 @@ TEST_CASE("Quaternion needs exactly four non-degenerate values", "[values][quate
   CHECK(parseAs<Quaternion>(ValueType::Quaternion, "(1, 0, 0, 0)") == Quaternion{{1, 0, 0, 0}});
   // Not normalised on parse.
   CHECK(parseAs<Quaternion>(ValueType::Quaternion, "2 0 0 0") == Quaternion{{2, 0, 0, 0}});
-  CHECK(formatValue(ValueType::Quaternion, Quaternion{{0.5, -0.5, 0.25, 1e-9}}) ==
-        "(0.5, -0.5, 0.25, 1e-09)");
-  CHECK(parseErr(ValueType::Quaternion, "1 0 0") ==
-        "expected 4 numbers for a Quaternion, got 3");
-  CHECK(parseErr(ValueType::Quaternion, "1 0 0 0 0") ==
-        "expected 4 numbers for a Quaternion, got 5");
+  CHECK(formatValue(ValueType::Quaternion, Quaternion{{0.5, -0.5, 0.25, 1e-9}}) == "(0.5, -0.5, 0.25, 1e-09)");
+  CHECK(parseErr(ValueType::Quaternion, "1 0 0") == "expected 4 numbers for a Quaternion, got 3");
+  CHECK(parseErr(ValueType::Quaternion, "1 0 0 0 0") == "expected 4 numbers for a Quaternion, got 5");
   CHECK(parseErr(ValueType::Quaternion, "(0, 0, 0, 0)") ==
         "a Quaternion must not be all zero (it describes no orientation)");
   CHECK(parseErr(ValueType::Quaternion, "0 -0 0 0") ==
@@ -439,8 +423,7 @@ TEST_CASE("Pose is six numbers written space-separated", "[values][pose]") {
 }
 
 TEST_CASE("Matrix parses the four documented forms", "[values][matrix]") {
-  CHECK(parseAs<Matrix4>(ValueType::Matrix, "2 3 4") ==
-        Matrix4{{2, 0, 0, 0, 0, 3, 0, 0, 0, 0, 4, 0, 0, 0, 0, 1}});
+  CHECK(parseAs<Matrix4>(ValueType::Matrix, "2 3 4") == Matrix4{{2, 0, 0, 0, 0, 3, 0, 0, 0, 0, 4, 0, 0, 0, 0, 1}});
   CHECK(parseAs<Matrix4>(ValueType::Matrix, "1 2 3 4 5 6 7 8 9") ==
         Matrix4{{1, 2, 3, 0, 4, 5, 6, 0, 7, 8, 9, 0, 0, 0, 0, 1}});
   CHECK(parseAs<Matrix4>(ValueType::Matrix, "1 2 3 4 5 6 7 8 9 10 11 12") ==
@@ -464,10 +447,8 @@ TEST_CASE("Matrix writes the shortest exact form", "[values][matrix]") {
   CHECK(w({1, 0, 0, 0, 0, 1, 0, 0, 0, 0.5, 1, 0, 0, 0, 0, 1}) == "1 0 0 0 1 0 0 0.5 1");
   CHECK(w({1, 0, 0, 5, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}) == "1 0 0 5 0 1 0 0 0 0 1 0");
   CHECK(w({1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 0, 0, 0, 1}) == "1 2 3 4 5 6 7 8 9 10 11 12");
-  CHECK(w({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 2}) ==
-        "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 2");
-  CHECK(w({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 1}) ==
-        "1 0 0 0 0 1 0 0 0 0 1 0 1 0 0 1");
+  CHECK(w({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 2}) == "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 2");
+  CHECK(w({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 1}) == "1 0 0 0 0 1 0 0 0 0 1 0 1 0 0 1");
   // -0 is not the implied +0, so it forces the longer form.
   CHECK(w({1, -0.0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}) == "1 -0 0 0 1 0 0 0 1");
   std::mt19937_64 rng(99);
@@ -508,10 +489,8 @@ TEST_CASE("Color: invalid, 3 or 4 components in [0, 1]", "[values][color]") {
   CHECK(formatValue(ValueType::Color, rgba) == "0 0.25 1 0");
   CHECK(parseErr(ValueType::Color, "1 0.5 1.5") == "color component 1.5 is outside [0, 1]");
   CHECK(parseErr(ValueType::Color, "-0.1 0 0") == "color component -0.1 is outside [0, 1]");
-  CHECK(parseErr(ValueType::Color, "1 1 1 Infinite", nullptr, {true}) ==
-        "color component Infinite is outside [0, 1]");
-  CHECK(parseErr(ValueType::Color, "1 1") ==
-        "expected 3 or 4 numbers (or 'invalid') for a Color, got 2");
+  CHECK(parseErr(ValueType::Color, "1 1 1 Infinite", nullptr, {true}) == "color component Infinite is outside [0, 1]");
+  CHECK(parseErr(ValueType::Color, "1 1") == "expected 3 or 4 numbers (or 'invalid') for a Color, got 2");
   CHECK(parseErr(ValueType::Color, "red") == "'red' is not a number");
   checkRoundTrip(ValueType::Color, Color{{0.1, 0.2, 0.3, 0.4}, true});
   checkRoundTrip(ValueType::Color, Color{{0, 0, 0, 1}, false});
@@ -537,13 +516,11 @@ TEST_CASE("Enum errors list the keys and suggest a close one", "[values][enum]")
         "Position, Torque)");
   CHECK(parseErr(ValueType::Enum, "Speed", &kDriveMode) ==
         "unknown DriveMode 'Speed' (valid: Velocity, Vel, Position, Torque)");
-  CHECK(parseErr(ValueType::Enum, "", &kDriveMode) ==
-        "unknown DriveMode '' (valid: Velocity, Vel, Position, Torque)");
+  CHECK(parseErr(ValueType::Enum, "", &kDriveMode) == "unknown DriveMode '' (valid: Velocity, Vel, Position, Torque)");
   // A number is accepted only if some key has that value.
   CHECK(parseErr(ValueType::Enum, "7", &kDriveMode) ==
         "unknown DriveMode '7' (valid: Velocity, Vel, Position, Torque)");
-  CHECK(parseErr(ValueType::Enum, "Torque", nullptr) ==
-        "internal error: no key table for an Enum");
+  CHECK(parseErr(ValueType::Enum, "Torque", nullptr) == "internal error: no key table for an Enum");
 }
 
 TEST_CASE("Bitmask parses keys, hex and decimal joined by '|'", "[values][bitmask]") {
@@ -558,16 +535,13 @@ TEST_CASE("Bitmask parses keys, hex and decimal joined by '|'", "[values][bitmas
   CHECK(p("12") == 12);
   CHECK(p("0") == 0);
   CHECK(p("X|X|Left") == 3);
-  CHECK(parseErr(ValueType::Bitmask, "Left||Right", &kSideMask) ==
-        "empty part in bitmask 'Left||Right'");
+  CHECK(parseErr(ValueType::Bitmask, "Left||Right", &kSideMask) == "empty part in bitmask 'Left||Right'");
   CHECK(parseErr(ValueType::Bitmask, "Left|", &kSideMask) == "empty part in bitmask 'Left|'");
   CHECK(parseErr(ValueType::Bitmask, "", &kSideMask) == "expected a SideMask bitmask, got ''");
   CHECK(parseErr(ValueType::Bitmask, "0xg", &kSideMask) == "'0xg' is not a hexadecimal number");
   CHECK(parseErr(ValueType::Bitmask, "0x", &kSideMask) == "'0x' is not a hexadecimal number");
-  CHECK(parseErr(ValueType::Bitmask, "0x100000000", &kSideMask) ==
-        "bitmask out of range (32 bits): '0x100000000'");
-  CHECK(parseErr(ValueType::Bitmask, "4294967296", &kSideMask) ==
-        "bitmask out of range (32 bits): '4294967296'");
+  CHECK(parseErr(ValueType::Bitmask, "0x100000000", &kSideMask) == "bitmask out of range (32 bits): '0x100000000'");
+  CHECK(parseErr(ValueType::Bitmask, "4294967296", &kSideMask) == "bitmask out of range (32 bits): '4294967296'");
   CHECK(parseErr(ValueType::Bitmask, "Left|Rigth", &kSideMask) ==
         "unknown SideMask 'Rigth', did you mean 'Right'? (valid: Left, MinX, Right, MaxX, "
         "Bottom, MinY, Top, MaxY, Back, MinZ, Front, MaxZ, X, Y, Z, All)");
@@ -606,13 +580,11 @@ TEST_CASE("Bitmask writes the minimal key combination plus a hex remainder", "[v
 
 TEST_CASE("Bitmask search stays correct on a large table", "[values][bitmask]") {
   EnumTable big{"Big", {}};
-  static const char* names[] = {"b0",  "b1",  "b2",  "b3",  "b4",  "b5",  "b6",  "b7",
-                                "b8",  "b9",  "b10", "b11", "b12", "b13", "b14", "b15",
-                                "b16", "b17", "b18", "b19", "b20", "b21", "b22", "b23"};
+  static const char* names[] = {"b0",  "b1",  "b2",  "b3",  "b4",  "b5",  "b6",  "b7",  "b8",  "b9",  "b10", "b11",
+                                "b12", "b13", "b14", "b15", "b16", "b17", "b18", "b19", "b20", "b21", "b22", "b23"};
   for (uint32_t i = 0; i < 24; ++i) big.keys.push_back({names[i], 1u << i});
   // 24 candidate keys exceed the exhaustive limit; the greedy fallback must still be exact.
-  CHECK(formatValue(ValueType::Bitmask, BitmaskValue{0xffffff}, &big).find("0x") ==
-        std::string::npos);
+  CHECK(formatValue(ValueType::Bitmask, BitmaskValue{0xffffff}, &big).find("0x") == std::string::npos);
   checkRoundTrip(ValueType::Bitmask, BitmaskValue{0xffffff}, &big);
   checkRoundTrip(ValueType::Bitmask, BitmaskValue{0xff00ffffu}, &big);
 }

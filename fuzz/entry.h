@@ -30,6 +30,16 @@
 
 namespace simbob::fuzz {
 
+/// The built-in types, registered once per fuzzing process.
+inline const Registry& fuzzRegistry() {
+  static const Registry reg = [] {
+    Registry r;
+    registerBuiltins(r);
+    return r;
+  }();
+  return reg;
+}
+
 /// The fuzz targets; the names are the directories under fuzz/corpus/ and tests/data/fuzz/.
 inline const std::vector<std::string>& targetNames() {
   static const std::vector<std::string> names{"scene_xml", "scene_ini", "values", "trajectory"};
@@ -84,7 +94,7 @@ inline std::string runScene(const uint8_t* data, size_t size, Format format) {
   const std::string name = sceneName(format);
   Scene scene;
   Diagnostics diag;
-  if (!loadSceneFromText(text, name, format, builtinRegistry(), &scene, diag)) {
+  if (!loadSceneFromText(text, name, format, fuzzRegistry(), &scene, diag)) {
     if (diag.errors().empty()) return "loadSceneFromText failed without an error message";
     return {};
   }
@@ -101,7 +111,7 @@ inline std::string runScene(const uint8_t* data, size_t size, Format format) {
       if (out.empty() && (f == Format::Xml || fill)) return what + " wrote nothing for a loaded scene";
       Scene again;
       Diagnostics adiag;
-      if (!loadSceneFromText(out, sceneName(f), f, builtinRegistry(), &again, adiag))
+      if (!loadSceneFromText(out, sceneName(f), f, fuzzRegistry(), &again, adiag))
         return what + " wrote a scene that does not load: " +
                (adiag.errors().empty() ? std::string("(no message)") : adiag.errors().front().str());
       if (writeScene(again, f, fill) != out) return what + " of the reloaded scene differs";
@@ -142,7 +152,7 @@ inline const std::vector<const EnumTable*>& fuzzTables() {
   static const std::vector<const EnumTable*> tables = [] {
     std::vector<const EnumTable*> v;
     std::set<const EnumTable*> seen;
-    for (const TypeSpec& t : builtinRegistry().types())
+    for (const TypeSpec& t : fuzzRegistry().types())
       for (const ParamSpec& p : t.params)
         if (p.table && seen.insert(p.table).second) v.push_back(p.table);
     v.push_back(&aliases);

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cstring>
 
+#include "components/families.h"
 #include "simbob/registry.h"
 
 namespace simbob::cli {
@@ -94,20 +95,25 @@ int setupLogging(const Common& c) {
   return 0;
 }
 
-int readSettings(Common& c) {
+int readSettings(Common& c, const Registry& reg) {
   if (c.settings.empty()) return 0;
   Scene holder;
   int comp = -1;
   Diagnostics d;
-  if (!loadStructIni(c.settings, builtinRegistry(), "GlobalSettings", &holder, &comp, d)) return report(d, true);
-  const std::string& log = holder.at(comp).string("LogFile");
+  if (!loadStructIni(c.settings, reg, "GlobalSettings", &holder, &comp, d)) return report(d, true);
+  const std::string& log = holder.at(comp).get(kLogFileParam);
   if (c.log_file.empty() && !log.empty()) c.log_file = log;
   return 0;
 }
 
-bool loadAndCompile(const std::string& path, Scene* scene, Model* model, int* code, bool warnings) {
+bool loadAndCompile(const std::string& path, const Registry& reg, Scene* scene, Model* model, int* code, bool warnings,
+                    bool collect_all) {
   Diagnostics d;
-  if (!loadScene(path, builtinRegistry(), scene, d) || !compileScene(*scene, model, d)) {
+  bool loaded = loadScene(path, reg, scene, d);
+  // A scene that failed to load is still a consistent graph (bad links are empty), so `check`
+  // compiles it too and reports what the compile step finds in the same pass.
+  bool compiled = (loaded || (collect_all && !scene->comps.empty())) && compileScene(*scene, model, d);
+  if (!loaded || !compiled) {
     *code = report(d, warnings);
     return false;
   }

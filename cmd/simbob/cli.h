@@ -59,10 +59,13 @@ struct Common {
 /// Prints every diagnostic; returns the exit status its errors call for (0 if none).
 int report(const Diagnostics& d, bool warnings);
 int setupLogging(const Common& c);
-int readSettings(Common& c);
+int readSettings(Common& c, const Registry& reg);
 
-/// Load and compile a scene, reporting problems; *code is the exit status on failure.
-bool loadAndCompile(const std::string& path, Scene* scene, Model* model, int* code, bool warnings);
+/// Load and compile a scene, reporting problems; *code is the exit status on failure. With
+/// `collect_all` (simbob check), a scene that failed to load is compiled too, so that one pass
+/// reports every problem the compile step can still see.
+bool loadAndCompile(const std::string& path, const Registry& reg, Scene* scene, Model* model, int* code, bool warnings,
+                    bool collect_all = false);
 
 /// JSON text of a report or summary; invalid UTF-8 (from keys in input files) is replaced, never
 /// thrown.

@@ -5,6 +5,10 @@
 #include <string>
 #include <vector>
 
+namespace simbob {
+class Registry;
+}
+
 namespace simbob::cli {
 
 struct RunArgs {
@@ -21,11 +25,11 @@ struct RunArgs {
   bool auto_disable = false;  ///< turns SceneSettings AutoDisable on
   int max_contacts = 0;       ///< overrides SceneSettings MaxContacts (0 = the scene's)
 };
-int cmdRun(RunArgs& a);
+int cmdRun(RunArgs& a, const Registry& reg);
 
-int cmdCheck(const std::string& scene);
-int cmdDump(const std::string& scene, const std::string& format);
-int cmdTypes(bool markdown);
+int cmdCheck(const std::string& scene, const Registry& reg);
+int cmdDump(const std::string& scene, const std::string& format, const Registry& reg);
+int cmdTypes(bool markdown, const Registry& reg);
 
 struct CompareArgs {
   std::string actual, golden, report;

@@ -116,13 +116,19 @@ int main(int argc, char** argv) {
     app.exit(e);
     return kExitUsage;
   }
+  // The one registry of component types: built here, passed down (plug-ins will add to it).
+  simbob::Registry reg;
+  if (!simbob::registerBuiltins(reg)) {
+    for (const std::string& p : reg.problems()) g_log.error({simbob::ErrorKind::Internal, {}, "internal error: " + p});
+    return kExitSoftware;
+  }
   try {
-    if (int c = readSettings(common)) return c;
+    if (int c = readSettings(common, reg)) return c;
     if (int c = setupLogging(common)) return c;
-    if (*run) return cmdRun(ra);
-    if (*check) return cmdCheck(check_scene);
-    if (*dump) return cmdDump(dump_scene, dump_format);
-    if (*types) return cmdTypes(markdown);
+    if (*run) return cmdRun(ra, reg);
+    if (*check) return cmdCheck(check_scene, reg);
+    if (*dump) return cmdDump(dump_scene, dump_format, reg);
+    if (*types) return cmdTypes(markdown, reg);
     if (*compare) return cmdCompare(ca);
     if (*batch) return cmdBatch(ba);
     if (*plot) return cmdPlot(pa);

@@ -119,11 +119,11 @@ bool checkDeterminism(const Model& model, const RunOptions& base, const std::vec
 
 }  // namespace
 
-int cmdRun(RunArgs& a) {
+int cmdRun(RunArgs& a, const Registry& reg) {
   Scene scene;
   Model model;
   int code = 0;
-  if (!loadAndCompile(a.scene, &scene, &model, &code, !a.batch_child)) return code;
+  if (!loadAndCompile(a.scene, reg, &scene, &model, &code, !a.batch_child)) return code;
   if (!(a.duration > 0) || !std::isfinite(a.duration) || a.duration > 1e9) {
     g_log.error({ErrorKind::InvalidInput, {}, "--duration must be a positive number of seconds (at most 1e9)"});
     return kExitUsage;

@@ -4,6 +4,7 @@
 
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -43,18 +44,28 @@ struct Component {
   std::vector<Slot> slots;    ///< parallel to type->params
   std::vector<int> imported;  ///< roots read from this component's File (imports)
 
+  /// The slot of parameter `param` (generic walks: loader, writers). Lowering code reads
+  /// through the typed names instead: `get(kWidth)`.
   const Slot& slot(std::string_view param) const;
   Slot& slot(std::string_view param);
-  double number(std::string_view param) const;
-  int64_t integer(std::string_view param) const;
-  bool boolean(std::string_view param) const;
-  const std::string& string(std::string_view param) const;
-  const Triple& triple(std::string_view param) const;
-  const Pose& pose(std::string_view param) const;
-  const Matrix4& matrix(std::string_view param) const;
-  uint32_t enumValue(std::string_view param) const;
-  const Link& link(std::string_view param) const;
-  const std::vector<Link>& list(std::string_view param) const;
+
+  /// Typed reads by the parameter names the family files declare (see registry.h). A name the
+  /// component's type does not have is a programming error: throws std::logic_error naming both.
+  template <class T>
+  const T& get(ValueParam<T> p) const {
+    return std::get<T>(typedSlot(p.name).value);
+  }
+  uint32_t get(EnumParam p) const;
+  const Link& get(LinkParam p) const { return typedSlot(p.name).link; }
+  const std::vector<Link>& get(ListParam p) const { return typedSlot(p.name).list; }
+  /// The slot behind a typed name (its source line, whether it was set).
+  template <class P>
+  const Slot& slotOf(P p) const {
+    return typedSlot(p.name);
+  }
+
+ private:
+  const Slot& typedSlot(const char* name) const;
 };
 
 /// A whole scene: components in document order (imports appended as they are read).
@@ -66,7 +77,8 @@ struct Scene {
   std::vector<Link> components;                     ///< ComponentList
   std::map<std::string, int, std::less<>> by_qkey;  ///< fully qualified key -> component
   std::vector<std::string> files;                   ///< every file read (scene first, then imports)
-  std::string content_hash;                         ///< FNV-1a 64 of all files' bytes, hex
+  std::set<int> load_failed;  ///< components with a load error in them (compile stays quiet on them)
+  std::string content_hash;   ///< FNV-1a 64 of all files' bytes, hex
 
   const Component& at(int i) const { return comps[static_cast<size_t>(i)]; }
   Component& at(int i) { return comps[static_cast<size_t>(i)]; }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <string>
 #include <string_view>
@@ -66,6 +67,26 @@ struct ParamSpec {
   std::string doc;               ///< one line for `simbob types`
 };
 
+/// Typed names of parameters. A family file declares each parameter once as one of these and
+/// builds both its table entry and every read from it (`c.get(kWidth)`), so a misspelled name
+/// does not compile, and a read returns the type the table stores.
+template <class T>
+struct ValueParam {
+  const char* name;
+};
+/// An Enum or Bitmask parameter; reads give the value (or bits).
+struct EnumParam {
+  const char* name;
+};
+/// One component (inline, Ref or Macro) or a Struct group; reads give the Link.
+struct LinkParam {
+  const char* name;
+};
+/// A list of components; reads give the Links in document order.
+struct ListParam {
+  const char* name;
+};
+
 struct TypeSpec {
   TypeSpec() = default;
   TypeSpec(std::string n, Family f, int k, std::vector<ParamSpec> ps, std::vector<std::string> al, std::string d,
@@ -85,9 +106,13 @@ struct TypeSpec {
   std::vector<ParamSpec> params;     ///< family (inherited) parameters first, then the type's own
   std::vector<std::string> aliases;  ///< other accepted spellings ("RCMoelMatchGeom")
   std::string doc;
-  bool finished_here = false;  ///< marked * (never finished) in the guide, finished in simbob
-  std::string import_root;     ///< non-empty: parameter File names an XML file with this root
-                               ///< element ("Body", "Joint", "RefList") read into the scene
+  bool finished_here = false;           ///< marked * (never finished) in the guide, finished in simbob
+  std::string import_root;              ///< non-empty: parameter File names an XML file with this root
+                                        ///< element ("Body", "Joint", "RefList") read into the scene
+  std::vector<std::string> interfaces;  ///< guide interfaces it offers controllers ("RCDriver", ...)
+
+  /// Whether it offers `interface`.
+  bool implements(std::string_view interface) const;
 
   /// Index of the parameter called `name` (exact case), or -1.
   int paramIndex(std::string_view name) const;
@@ -104,13 +129,17 @@ struct MacroSpec {
   std::string doc;
 };
 
+/// The list of component types. A value: `main` builds one (registerBuiltins, then plug-ins)
+/// and passes it down; nothing reaches a global one. Types keep their address for the
+/// registry's lifetime, so components may point at them.
 class Registry {
  public:
   /// Parameters every type of `family` inherits from its ComponentBaseType; call before add().
   void setFamilyParams(Family family, std::vector<ParamSpec> params);
-  /// Register a type; the family's parameters are put in front of spec.params.
-  void add(TypeSpec spec);
-  void addMacro(MacroSpec macro);
+  /// Register a type; the family's parameters are put in front of spec.params. A name or alias
+  /// already taken is refused: returns false and records why in problems().
+  bool add(TypeSpec spec);
+  bool addMacro(MacroSpec macro);
 
   /// By name or alias, exact case; nullptr if unknown.
   const TypeSpec* find(std::string_view name) const;
@@ -119,34 +148,42 @@ class Registry {
   const MacroSpec* findMacro(std::string_view name) const;
 
   /// Registration order (stable: the order of `simbob types`).
-  const std::vector<TypeSpec>& types() const { return types_; }
+  const std::deque<TypeSpec>& types() const { return types_; }
   const std::vector<MacroSpec>& macros() const { return macros_; }
+
+  /// Registrations refused (duplicate names), one line each; empty when all went in.
+  const std::vector<std::string>& problems() const { return problems_; }
 
   /// The closest registered type name within a small edit distance, or "".
   std::string suggestType(std::string_view name) const;
 
  private:
-  std::vector<TypeSpec> types_;
+  std::deque<TypeSpec> types_;
   std::vector<MacroSpec> macros_;
+  std::vector<std::string> problems_;
   std::map<Family, std::vector<ParamSpec>> family_params_;
   std::map<std::string, size_t, std::less<>> by_name_;  // names and aliases -> index
 };
 
-/// The built-in types; built once on first use (explicit registration, no static initialisers).
-const Registry& builtinRegistry();
-
-/// Registers every built-in family; each family file defines one of these.
-void registerBuiltins(Registry& r);
+/// Registers every built-in family into `r` (explicit registration, no static initialisers);
+/// returns false if any registration was refused (see Registry::problems()).
+bool registerBuiltins(Registry& r);
 
 /// Closest candidate to `word` within edit distance 2 (case-insensitive), or "".
 std::string didYouMean(std::string_view word, const std::vector<std::string>& candidates);
 
-// --- helpers for the parameter tables in lib/components/*.cpp ---
-ParamSpec valueParam(std::string name, ValueType type, Value def, std::string unit, std::string doc,
-                     Range range = Range::Any);
-ParamSpec enumParam(std::string name, ValueType type, const EnumTable* table, uint32_t def, std::string doc);
-ParamSpec componentParam(std::string name, std::vector<Family> families, std::string default_type, std::string doc);
-ParamSpec listParam(std::string name, std::vector<Family> families, std::string doc);
-ParamSpec structParam(std::string name, std::string struct_type, std::string doc);
+// --- helpers for the parameter tables in lib/components/*.cpp: each takes the typed name ---
+namespace detail {
+ParamSpec valueParam(const char* name, ValueType type, Value def, std::string unit, std::string doc, Range range);
+}
+template <class T>
+ParamSpec valueParam(ValueParam<T> name, ValueType type, Value def, std::string unit, std::string doc,
+                     Range range = Range::Any) {
+  return detail::valueParam(name.name, type, std::move(def), std::move(unit), std::move(doc), range);
+}
+ParamSpec enumParam(EnumParam name, ValueType type, const EnumTable* table, uint32_t def, std::string doc);
+ParamSpec componentParam(LinkParam name, std::vector<Family> families, std::string default_type, std::string doc);
+ParamSpec listParam(ListParam name, std::vector<Family> families, std::string doc);
+ParamSpec structParam(LinkParam name, std::string struct_type, std::string doc);
 
 }  // namespace simbob

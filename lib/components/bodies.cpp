@@ -1,14 +1,148 @@
-// BodyComponents (guide 6.1).
+// BodyComponents (guide 6.1): static and mobile rigid bodies, rods and constructions. Imported
+// and cloned bodies (RCImportBody, RigidBodyClone) live in clones.cpp.
+#include <cmath>
+
+#include "compile/context.h"
+#include "compile/mass.h"
+#include "components/bodies.h"
 #include "components/families.h"
+#include "simbob/transform.h"
 
 namespace simbob {
 
+namespace {
+
+// Bodies lowered inside one another (constructions chained through joints) recurse once per
+// link; this bounds the depth.
+constexpr size_t kMaxBodyChain = 500;
+// Bodies + geoms + joints of the whole model (clones of clones multiply).
+constexpr size_t kMaxModelItems = 100000;
+
+constexpr LinkParam kPose{"Pose"};
+constexpr LinkParam kMotion{"Motion"};
+constexpr LinkParam kGeom{"Geom"};
+constexpr LinkParam kMaterial{"Material"};
+constexpr LinkParam kModel{"Model"};
+constexpr LinkParam kInertia{"Inertia"};
+constexpr LinkParam kPos1{"Pos1"};
+constexpr LinkParam kPos2{"Pos2"};
+constexpr ValueParam<double> kRadius{"Radius"};
+constexpr ValueParam<bool> kCapped{"Capped"};
+constexpr ValueParam<bool> kHullPositions{"HullPositions"};
+constexpr ValueParam<double> kMass{"Mass"};
+constexpr LinkParam kSkin{"Skin"};
+constexpr LinkParam kBody{"Body"};
+constexpr ListParam kChildList{"ChildList"};
+
+Built rod(CompileContext& ctx, const Component& c, const Transform* parent) {
+  Built out;
+  Transform p1, p2;
+  if (!lowerPose(ctx, c.get(kPos1), c, parent, &p1) || !lowerPose(ctx, c.get(kPos2), c, parent, &p2)) return out;
+  Vec3 d = sub(p2.p, p1.p);
+  double dist = norm(d);
+  double r = c.get(kRadius);
+  bool capped = c.get(kCapped);
+  bool hull = c.get(kHullPositions);
+  // Cylinder length between the flat ends, or of the cylindrical part of a capsule.
+  double len = capped ? (hull ? dist - 2 * r : dist) : (hull ? dist : dist + 2 * r);
+  if (!(dist > 0) || !(len > 0)) {
+    ctx.error(c, "Pos1 and Pos2 are too close for a rod of Radius " + formatNumber(r) +
+                     (capped && hull ? " with caps inside the end points" : ""));
+    return out;
+  }
+  BodyDef b;
+  b.key = ctx.modelKey(c);
+  b.loc = c.loc;
+  b.pose.p = scale(add(p1.p, p2.p), 0.5);
+  b.pose.q = quatZTo(scale(d, 1.0 / dist));
+  lowerMotion(ctx, c.get(kMotion), &b);
+  int index = static_cast<int>(ctx.model.bodies.size());
+  GeomDef g;
+  g.key = b.key;
+  g.body = index;
+  g.shape = capped ? GeomShape::Capsule : GeomShape::Cylinder;
+  g.size = {r, len, 0};
+  g.material = lowerMaterial(ctx, c.get(kMaterial));
+  MassProps mp = geomMassProps(g);
+  b.mass = c.get(kMass);
+  for (int k = 0; k < 9; ++k) b.inertia[k] = mp.inertia[k] * b.mass / mp.volume;
+  ctx.model.geoms.push_back(g);
+  ctx.model.bodies.push_back(b);
+  ctx.recordBody(b.key, index);
+  out.index = index;
+  out.frame = b.pose;
+  out.ok = true;
+  return out;
+}
+
+Built lowerUncached(CompileContext& ctx, int ci, const Transform* parent) {
+  const Component& c = ctx.at(ci);
+  Built out;
+  switch (static_cast<BodyKind>(c.type->kind)) {
+    case BodyKind::StaticRigid: {
+      if (!lowerPose(ctx, c.get(kPose), c, parent, &out.frame)) return out;
+      checkModelTree(ctx, c.get(kModel));
+      GeomTarget t{&c, -1, out.frame, lowerMaterial(ctx, c.get(kMaterial)), &c.get(kModel)};
+      lowerGeom(ctx, c.get(kGeom), t, Transform{});
+      out.ok = true;
+      return out;
+    }
+    case BodyKind::MobileRigid: {
+      BodyDef b;
+      b.key = ctx.modelKey(c);
+      b.loc = c.loc;
+      if (!lowerPose(ctx, c.get(kPose), c, parent, &b.pose)) return out;
+      lowerMotion(ctx, c.get(kMotion), &b);
+      checkModelTree(ctx, c.get(kModel));
+      int index = static_cast<int>(ctx.model.bodies.size());
+      size_t first_geom = ctx.model.geoms.size();
+      GeomTarget t{&c, index, b.pose, lowerMaterial(ctx, c.get(kMaterial)), &c.get(kModel)};
+      lowerGeom(ctx, c.get(kGeom), t, Transform{});
+      // A bad inertia is reported and the body kept, so that what hangs on it is checked too.
+      lowerInertia(ctx, c.get(kInertia), c, first_geom, &b);
+      ctx.model.bodies.push_back(b);
+      ctx.recordBody(b.key, index);
+      out.index = index;
+      out.frame = b.pose;
+      out.ok = true;
+      return out;
+    }
+    case BodyKind::Rod:
+      return rod(ctx, c, parent);
+    case BodyKind::Construction: {
+      const Link& root = c.get(kBody);
+      if (root.comp < 0) {
+        if (!root.isRef()) ctx.error(c, "parameter 'Body' (the root body) is required");  // a bad Ref is reported
+        return out;
+      }
+      out = lowerBody(ctx, root.comp, parent);
+      if (!out.ok) return out;
+      // Joints first, then peripheries: a periphery refers to joints of any position in the list.
+      const std::vector<Link>& children = c.get(kChildList);
+      for (const Link& child : children)
+        if (child.comp >= 0 && ctx.at(child.comp).type->family == Family::Joint)
+          lowerJoint(ctx, child.comp, out, nullptr, nullptr);
+      for (const Link& child : children)
+        if (child.comp >= 0 && ctx.at(child.comp).type->family == Family::Periphery)
+          lowerPeriphery(ctx, ctx.at(child.comp), out);
+      return out;
+    }
+    case BodyKind::Import:
+      return lowerImportBody(ctx, c, parent);
+    case BodyKind::Clone:
+      return lowerClone(ctx, c, parent);
+  }
+  return out;
+}
+
+}  // namespace
+
 void registerBodies(Registry& r) {
-  const ParamSpec pose = componentParam("Pose", {Family::Pose}, "RCGlobalCoordinates", "initial pose");
-  const ParamSpec motion = componentParam("Motion", {Family::Motion}, "RCGlobalMotion", "initial motion");
-  const ParamSpec geom = componentParam("Geom", {Family::Geom}, "RCEmptyGeom", "collision shape");
-  const ParamSpec material = componentParam("Material", {Family::Material}, "RCGenericMaterial", "contact properties");
-  const ParamSpec model = componentParam("Model", {Family::Model}, "RCEmptyModel", "visible hull");
+  const ParamSpec pose = componentParam(kPose, {Family::Pose}, "RCGlobalCoordinates", "initial pose");
+  const ParamSpec motion = componentParam(kMotion, {Family::Motion}, "RCGlobalMotion", "initial motion");
+  const ParamSpec geom = componentParam(kGeom, {Family::Geom}, "RCEmptyGeom", "collision shape");
+  const ParamSpec material = componentParam(kMaterial, {Family::Material}, "RCGenericMaterial", "contact properties");
+  const ParamSpec model = componentParam(kModel, {Family::Model}, "RCEmptyModel", "visible hull");
   r.add({"RCStaticRigidBody",
          Family::Body,
          int(BodyKind::StaticRigid),
@@ -18,48 +152,57 @@ void registerBodies(Registry& r) {
   r.add({"RCMobileRigidBody",
          Family::Body,
          int(BodyKind::MobileRigid),
-         {pose, motion, geom,
-          componentParam("Inertia", {Family::Inertia}, "RCInertiaByGeom", "mass and inertia tensor"), material, model},
+         {pose, motion, geom, componentParam(kInertia, {Family::Inertia}, "RCInertiaByGeom", "mass and inertia tensor"),
+          material, model},
          {},
          "A moving rigid body."});
   r.add({"RCRodBody",
          Family::Body,
          int(BodyKind::Rod),
-         {componentParam("Pos1", {Family::Pose}, "RCGlobalCoordinates", "one end (orientation ignored)"),
-          componentParam("Pos2", {Family::Pose}, "RCGlobalCoordinates", "other end (orientation ignored)"),
-          number("Radius", 0.05, "m", "radius of the rod", Range::Positive),
-          flag("Capped", false, "spherical caps instead of flat ends"),
-          flag("HullPositions", true, "Pos1/Pos2 are the outermost points (else the rod extends Radius beyond them)"),
-          motion, number("Mass", 1.0, "kg", "mass; inertia from the shape", Range::Positive), material,
-          componentParam("Skin", {Family::Skin}, "", "appearance of the rod")},
+         {componentParam(kPos1, {Family::Pose}, "RCGlobalCoordinates", "one end (orientation ignored)"),
+          componentParam(kPos2, {Family::Pose}, "RCGlobalCoordinates", "other end (orientation ignored)"),
+          number(kRadius, 0.05, "m", "radius of the rod", Range::Positive),
+          flag(kCapped, false, "spherical caps instead of flat ends"),
+          flag(kHullPositions, true, "Pos1/Pos2 are the outermost points (else the rod extends Radius beyond them)"),
+          motion, number(kMass, 1.0, "kg", "mass; inertia from the shape", Range::Positive), material,
+          componentParam(kSkin, {Family::Skin}, "", "appearance of the rod")},
          {},
          "A mobile cylinder or capsule between two points.",
          true});
   r.add({"RCConstruction",
          Family::Body,
          int(BodyKind::Construction),
-         {componentParam("Body", {Family::Body}, "", "root body"),
-          listParam("ChildList", {Family::Joint, Family::Periphery}, "joints and peripheries on the root body")},
+         {componentParam(kBody, {Family::Body}, "", "root body"),
+          listParam(kChildList, {Family::Joint, Family::Periphery}, "joints and peripheries on the root body")},
          {},
          "A root body with joints (each joint's Body hangs on the root) and peripheries."});
-  r.add({"RCImportBody",
-         Family::Body,
-         int(BodyKind::Import),
-         {componentParam("Pose", {Family::Pose}, "", "replaces the imported body's pose"),
-          componentParam("Motion", {Family::Motion}, "", "replaces the imported body's motion"),
-          text("File", "", "XML file whose root element <Body> holds one body; relative to this file")},
-         {},
-         "A body read from another file.",
-         false,
-         "Body"});
-  r.add({"RigidBodyClone",
-         Family::Body,
-         int(BodyKind::Clone),
-         {componentParam("Pose", {Family::Pose}, "", "pose of the copy (default: the original's)"),
-          text("Original", "", "fully qualified key of the body to copy")},
-         {"RCRigidBodyClone"},
-         "A copy of another body (with its joints and children) at a new pose.",
-         true});
+}
+
+Built lowerBody(CompileContext& ctx, int ci, const Transform* parent) {
+  std::map<int, Built>& memo = ctx.clone.active && ctx.clone.inside.count(ci) ? ctx.clone.memo : ctx.memo;
+  auto it = memo.find(ci);
+  if (it != memo.end()) return it->second;
+  if (!ctx.in_progress.insert(ci).second) {
+    ctx.error(ctx.at(ci), "body is part of its own construction (a joint's Body refers back to it)");
+    return {};
+  }
+  auto giveUp = [&](const std::string& why) {
+    ctx.in_progress.erase(ci);
+    if (!ctx.too_big) ctx.error(ctx.at(ci), why);
+    ctx.too_big = true;
+    return Built{};
+  };
+  if (ctx.in_progress.size() > kMaxBodyChain)
+    return giveUp("bodies nested more than " + std::to_string(kMaxBodyChain) +
+                  " levels deep (constructions chained through joints)");
+  if (ctx.model.bodies.size() + ctx.model.geoms.size() + ctx.model.joints.size() > kMaxModelItems)
+    return giveUp("the scene makes more than " + std::to_string(kMaxModelItems) +
+                  " bodies, geoms and joints (clones of clones?)");
+  if (parent) ctx.recordParentFrame(ci, *parent);
+  Built b = lowerUncached(ctx, ci, parent);
+  ctx.in_progress.erase(ci);
+  memo[ci] = b;
+  return b;
 }
 
 }  // namespace simbob

@@ -3,21 +3,24 @@
 
 namespace simbob {
 
-void registerBuiltins(Registry& r) {
+bool registerBuiltins(Registry& r) {
   registerSettings(r);
   registerPoses(r);
   registerMotions(r);
   registerMaterials(r);
   registerInertias(r);
   registerGeoms(r);
+  registerModelGeoms(r);
   registerSkins(r);
   registerModels(r);
   registerBodies(r);
+  registerClones(r);
   registerJoints(r);
   registerGlobals(r);
   registerPeripheries(r);
   registerControllers(r);
   registerCameras(r);
+  return r.problems().empty();
 }
 
 }  // namespace simbob

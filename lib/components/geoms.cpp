@@ -1,71 +1,67 @@
 // GeomComponents (guide 6.5): collision shapes. Cylinders and capsules lie along local Z.
+// The model-derived geoms (RCModelMatchGeom, RCModelWrapGeom) live in model_geoms.cpp.
+#include "compile/context.h"
 #include "components/families.h"
+#include "components/geoms.h"
+#include "simbob/transform.h"
 
 namespace simbob {
 
-static const EnumTable kWrapGeomType{"GeomType",
-                                     {{"Cuboid", 0}, {"Sphere", 1}, {"Cylinder", 2}, {"CappedCylinder", 3}}};
-static const EnumTable kAlignment{"Alignment", {{"XAligned", 0}, {"YAligned", 1}, {"ZAligned", 2}}};
+namespace {
+
+constexpr LinkParam kPose{"Pose"};
+constexpr LinkParam kSubGeom{"SubGeom"};
+constexpr ValueParam<double> kWidth{"Width"};
+constexpr ValueParam<double> kHeight{"Height"};
+constexpr ValueParam<double> kDepth{"Depth"};
+constexpr ValueParam<double> kRadius{"Radius"};
+constexpr ValueParam<double> kLength{"Length"};
+
+}  // namespace
 
 void registerGeoms(Registry& r) {
   r.add({"RCTransformGeom",
          Family::Geom,
          int(GeomKind::Transform),
-         {componentParam("Pose", {Family::Pose}, "", "pose of SubGeom in the body frame"),
-          componentParam("SubGeom", {Family::Geom}, "", "the transformed geom")},
+         {componentParam(kPose, {Family::Pose}, "", "pose of SubGeom in the body frame"),
+          componentParam(kSubGeom, {Family::Geom}, "", "the transformed geom")},
          {},
          "Offsets another geom from the body origin."});
   r.add({"RCCuboidGeom",
          Family::Geom,
          int(GeomKind::Cuboid),
-         {number("Width", 1.0, "m", "extent along X", Range::Positive),
-          number("Height", 1.0, "m", "extent along Y", Range::Positive),
-          number("Depth", 1.0, "m", "extent along Z", Range::Positive)},
+         {number(kWidth, 1.0, "m", "extent along X", Range::Positive),
+          number(kHeight, 1.0, "m", "extent along Y", Range::Positive),
+          number(kDepth, 1.0, "m", "extent along Z", Range::Positive)},
          {},
          "Box centred on the body origin."});
   r.add({"RCPlaneGeom",
          Family::Geom,
          int(GeomKind::Plane),
-         {componentParam("Pose", {Family::Pose}, "", "a point of the plane; the local Y axis is its normal")},
+         {componentParam(kPose, {Family::Pose}, "", "a point of the plane; the local Y axis is its normal")},
          {},
          "Infinite plane; static bodies only."});
   r.add({"RCSphereGeom",
          Family::Geom,
          int(GeomKind::Sphere),
-         {number("Radius", 0.5, "m", "radius", Range::Positive)},
+         {number(kRadius, 0.5, "m", "radius", Range::Positive)},
          {},
          "Sphere."});
   r.add({"RCCylinderGeom",
          Family::Geom,
          int(GeomKind::Cylinder),
-         {number("Radius", 0.5, "m", "radius", Range::Positive),
-          number("Length", 1.0, "m", "length along local Z", Range::Positive)},
+         {number(kRadius, 0.5, "m", "radius", Range::Positive),
+          number(kLength, 1.0, "m", "length along local Z", Range::Positive)},
          {},
          "Flat-ended cylinder along local Z."});
   r.add({"RCCappedCylinderGeom",
          Family::Geom,
          int(GeomKind::CappedCylinder),
-         {number("Radius", 0.5, "m", "radius", Range::Positive),
-          number("Length", 1.0, "m", "length of the cylindrical part along local Z (caps add Radius at each end)",
+         {number(kRadius, 0.5, "m", "radius", Range::Positive),
+          number(kLength, 1.0, "m", "length of the cylindrical part along local Z (caps add Radius at each end)",
                  Range::Positive)},
          {},
          "Capsule along local Z."});
-  r.add({"RCModelMatchGeom",
-         Family::Geom,
-         int(GeomKind::ModelMatch),
-         {flag("IgnoreChilds", false, "use only the root model")},
-         {"RCMoelMatchGeom"},
-         "The geom that exactly matches the body's model (cuboid, sphere, cylinder, capped cylinder).",
-         true});
-  r.add({"RCModelWrapGeom",
-         Family::Geom,
-         int(GeomKind::ModelWrap),
-         {enumParam("GeomType", ValueType::Enum, &kWrapGeomType, 0, "shape that wraps the model"),
-          enumParam("Alignment", ValueType::Enum, &kAlignment, 2, "axis of a cylindric wrap"),
-          flag("IgnoreChilds", false, "wrap only the root model")},
-         {"RCMoelWrapGeom"},
-         "The smallest geom of GeomType that wraps the body's model.",
-         true});
   r.add({"RCEmptyGeom",
          Family::Geom,
          int(GeomKind::Empty),
@@ -73,6 +69,71 @@ void registerGeoms(Registry& r) {
          {},
          "No collision shape (what the NoGeom macro creates)."});
   r.addMacro({"NoGeom", Family::Geom, "RCEmptyGeom", {}, "a body without collision shape"});
+}
+
+void addPlane(CompileContext& ctx, Vec3 n, const Vec3& point, int material, const std::string& key) {
+  n = scale(n, 1.0 / norm(n));
+  GeomDef g;
+  g.key = key;
+  g.shape = GeomShape::Plane;
+  g.body = -1;
+  g.material = material;
+  g.plane = {n[0], n[1], n[2], dot(n, point)};
+  ctx.model.geoms.push_back(g);
+}
+
+void lowerGeom(CompileContext& ctx, const Link& l, const GeomTarget& t, const Transform& offset) {
+  if (l.comp < 0) return;
+  const Component& c = ctx.at(l.comp);
+  GeomDef g;
+  g.key = ctx.modelKey(*t.owner);
+  g.body = t.body;
+  g.material = t.material;
+  g.offset = offset;
+  switch (static_cast<GeomKind>(c.type->kind)) {
+    case GeomKind::Transform: {
+      Transform sub;
+      lowerPose(ctx, c.get(kPose), c, &offset, &sub);
+      lowerGeom(ctx, c.get(kSubGeom), t, sub);
+      return;
+    }
+    case GeomKind::Cuboid:
+      g.shape = GeomShape::Box;
+      g.size = {c.get(kWidth), c.get(kHeight), c.get(kDepth)};
+      break;
+    case GeomKind::Sphere:
+      g.shape = GeomShape::Sphere;
+      g.size = {c.get(kRadius), 0, 0};
+      break;
+    case GeomKind::Cylinder:
+      g.shape = GeomShape::Cylinder;
+      g.size = {c.get(kRadius), c.get(kLength), 0};
+      break;
+    case GeomKind::CappedCylinder:
+      g.shape = GeomShape::Capsule;
+      g.size = {c.get(kRadius), c.get(kLength), 0};
+      break;
+    case GeomKind::Plane: {
+      if (t.body >= 0) {
+        ctx.error(c, "a plane is infinite and can only belong to a static body");
+        return;
+      }
+      Transform p;
+      lowerPose(ctx, c.get(kPose), c, &offset, &p);
+      Transform global = compose(t.frame, p);
+      addPlane(ctx, rotate(global.q, {0, 1, 0}), global.p, t.material, g.key);
+      return;
+    }
+    case GeomKind::ModelMatch:
+    case GeomKind::ModelWrap:
+      lowerModelGeom(ctx, c, t, offset);
+      return;
+    case GeomKind::Empty:
+      return;
+  }
+  // A static geom's offset is its global pose.
+  if (t.body < 0) g.offset = compose(t.frame, offset);
+  ctx.model.geoms.push_back(g);
 }
 
 }  // namespace simbob

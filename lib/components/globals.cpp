@@ -1,14 +1,36 @@
-// GlobalSimComponents (guide 6.2).
+// GlobalSimComponents (guide 6.2): ground, sky and sandbox planes, robots, shared RefLists.
+#include "compile/context.h"
 #include "components/families.h"
 
 namespace simbob {
 
+namespace {
+
+enum class GlobalKind { Ground, Sky, SandBox, Robot, ImportRefList };
+
+constexpr LinkParam kMaterial{"Material"};
+constexpr LinkParam kSkin{"Skin"};
+constexpr ValueParam<double> kExtension{"Extension"};
+constexpr ValueParam<double> kTexScale{"TexScale"};
+constexpr ValueParam<double> kMaxCellSize{"MaxCellSize"};
+constexpr ValueParam<double> kHeight{"Height"};
+constexpr ValueParam<double> kMotionX{"MotionX"};
+constexpr ValueParam<double> kMotionY{"MotionY"};
+constexpr ValueParam<double> kWidth{"Width"};
+constexpr ValueParam<double> kDepth{"Depth"};
+constexpr ValueParam<double> kThickness{"Thickness"};
+constexpr LinkParam kWall{"Wall"};
+constexpr LinkParam kConstruction{"Construction"};
+constexpr ListParam kControllerList{"ControllerList"};
+
+}  // namespace
+
 void registerGlobals(Registry& r) {
-  const ParamSpec material = componentParam("Material", {Family::Material}, "RCGenericMaterial", "contact properties");
-  const ParamSpec skin = componentParam("Skin", {Family::Skin}, "", "surface appearance");
-  const ParamSpec extension = number("Extension", 100.0, "m", "visible extension (physics: infinite)", Range::Positive);
-  const ParamSpec tex = number("TexScale", 1.0, "", "texture scale (negative: relative to the extension)");
-  const ParamSpec cell = number("MaxCellSize", -1.0, "m", "largest cell (negative: one cell)");
+  const ParamSpec material = componentParam(kMaterial, {Family::Material}, "RCGenericMaterial", "contact properties");
+  const ParamSpec skin = componentParam(kSkin, {Family::Skin}, "", "surface appearance");
+  const ParamSpec extension = number(kExtension, 100.0, "m", "visible extension (physics: infinite)", Range::Positive);
+  const ParamSpec tex = number(kTexScale, 1.0, "", "texture scale (negative: relative to the extension)");
+  const ParamSpec cell = number(kMaxCellSize, -1.0, "m", "largest cell (negative: one cell)");
   r.add({"RCGround",
          Family::GlobalSim,
          int(GlobalKind::Ground),
@@ -18,36 +40,70 @@ void registerGlobals(Registry& r) {
   r.add({"RCSky",
          Family::GlobalSim,
          int(GlobalKind::Sky),
-         {material, skin, extension, number("Height", 10.0, "m", "y of the plane"), tex, cell,
-          number("MotionX", 0.0, "m/s", "texture motion (visual only)"),
-          number("MotionY", 0.0, "m/s", "texture motion (visual only)")},
+         {material, skin, extension, number(kHeight, 10.0, "m", "y of the plane"), tex, cell,
+          number(kMotionX, 0.0, "m/s", "texture motion (visual only)"),
+          number(kMotionY, 0.0, "m/s", "texture motion (visual only)")},
          {},
          "Static horizontal plane at Height facing down; cuts off everything above."});
   r.add({"RCSandBox",
          Family::GlobalSim,
          int(GlobalKind::SandBox),
-         {number("Width", 10.0, "m", "extent along X", Range::Positive),
-          number("Depth", 10.0, "m", "extent along Z", Range::Positive),
-          number("Thickness", 0.1, "m", "visible wall thickness (physics: none)", Range::Positive),
-          number("Height", 1.0, "m", "visible wall height (physics: infinite)", Range::Positive),
-          componentParam("Wall", {Family::Skin}, "", "wall appearance"), tex, material},
+         {number(kWidth, 10.0, "m", "extent along X", Range::Positive),
+          number(kDepth, 10.0, "m", "extent along Z", Range::Positive),
+          number(kThickness, 0.1, "m", "visible wall thickness (physics: none)", Range::Positive),
+          number(kHeight, 1.0, "m", "visible wall height (physics: infinite)", Range::Positive),
+          componentParam(kWall, {Family::Skin}, "", "wall appearance"), tex, material},
          {},
          "Four vertical planes at x = +-Width/2 and z = +-Depth/2 facing inwards."});
   r.add({"RCRobot",
          Family::GlobalSim,
          int(GlobalKind::Robot),
-         {componentParam("Construction", {Family::Body}, "", "mechanics and peripheries"),
-          listParam("ControllerList", {Family::Controller}, "software of the robot")},
+         {componentParam(kConstruction, {Family::Body}, "", "mechanics and peripheries"),
+          listParam(kControllerList, {Family::Controller}, "software of the robot")},
          {},
          "Hardware plus the controllers that drive it."});
   r.add({"RCImportRefList",
          Family::GlobalSim,
          int(GlobalKind::ImportRefList),
-         {text("File", "", "XML file with root <RefList> of materials, skins and models; relative to this file")},
+         {text(kFileParam, "", "XML file with root <RefList> of materials, skins and models; relative to this file")},
          {},
          "Components to Ref from several scenes; their keys are <this Key>.<their Key>.",
          false,
          "RefList"});
+}
+
+void lowerGlobal(CompileContext& ctx, int gi) {
+  const Component& c = ctx.at(gi);
+  switch (static_cast<GlobalKind>(c.type->kind)) {
+    case GlobalKind::Ground:
+      addPlane(ctx, {0, 1, 0}, {0, 0, 0}, lowerMaterial(ctx, c.get(kMaterial)), c.qkey);
+      break;
+    case GlobalKind::Sky:
+      addPlane(ctx, {0, -1, 0}, {0, c.get(kHeight), 0}, lowerMaterial(ctx, c.get(kMaterial)), c.qkey);
+      break;
+    case GlobalKind::SandBox: {
+      int mat = lowerMaterial(ctx, c.get(kMaterial));
+      double w = c.get(kWidth) / 2, d = c.get(kDepth) / 2;
+      addPlane(ctx, {1, 0, 0}, {-w, 0, 0}, mat, c.qkey);
+      addPlane(ctx, {-1, 0, 0}, {w, 0, 0}, mat, c.qkey);
+      addPlane(ctx, {0, 0, 1}, {0, 0, -d}, mat, c.qkey);
+      addPlane(ctx, {0, 0, -1}, {0, 0, d}, mat, c.qkey);
+      break;
+    }
+    case GlobalKind::Robot: {
+      const Link& l = c.get(kConstruction);
+      if (l.comp < 0) {
+        if (!l.isRef()) ctx.error(c, "parameter 'Construction' is required");
+        break;
+      }
+      lowerBody(ctx, l.comp, nullptr);
+      for (const Link& ctl : c.get(kControllerList))
+        if (ctl.comp >= 0) lowerController(ctx, ctx.at(ctl.comp));
+      break;
+    }
+    case GlobalKind::ImportRefList:
+      break;  // its components are there to be referred to
+  }
 }
 
 }  // namespace simbob

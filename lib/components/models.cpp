@@ -1,90 +1,242 @@
-// ModelComponents (guide 6.3): visual hulls, no physical effect. Kept for the renderer and for
-// RCModelMatchGeom / RCModelWrapGeom.
+// ModelComponents (guide 6.3): visual hulls, no physical effect. The renderer draws them;
+// RCModelMatchGeom / RCModelWrapGeom (model_geoms.cpp) derive collision shapes from them
+// through the functions at the bottom.
+#include <cmath>
+
+#include "compile/context.h"
 #include "components/families.h"
+#include "simbob/transform.h"
 
 namespace simbob {
 
-static const EnumTable kSideMask{"SideMask",
-                                 {{"Left", 1},
-                                  {"MinX", 1},
-                                  {"Right", 2},
-                                  {"MaxX", 2},
-                                  {"Bottom", 4},
-                                  {"MinY", 4},
-                                  {"Top", 8},
-                                  {"MaxY", 8},
-                                  {"Back", 16},
-                                  {"MinZ", 16},
-                                  {"Front", 32},
-                                  {"MaxZ", 32},
-                                  {"X", 3},
-                                  {"Y", 12},
-                                  {"Z", 48},
-                                  {"All", 63}}};
-static const EnumTable kCylinderMask{"ComponentMask",
-                                     {{"None", 0},
-                                      {"Jacket", 1},
-                                      {"FlatFront", 2},
-                                      {"FlatBack", 4},
-                                      {"CappedFront", 8},
-                                      {"CappedBack", 16},
-                                      {"FlatCylinder", 7},
-                                      {"CappedCylinder", 25}}};
+namespace {
+
+enum class ModelKind { Cuboid, Plane, Ellipsoid, Cylinder, Cone, Empty };
+
+const EnumTable kSideMask{"SideMask",
+                          {{"Left", 1},
+                           {"MinX", 1},
+                           {"Right", 2},
+                           {"MaxX", 2},
+                           {"Bottom", 4},
+                           {"MinY", 4},
+                           {"Top", 8},
+                           {"MaxY", 8},
+                           {"Back", 16},
+                           {"MinZ", 16},
+                           {"Front", 32},
+                           {"MaxZ", 32},
+                           {"X", 3},
+                           {"Y", 12},
+                           {"Z", 48},
+                           {"All", 63}}};
+const EnumTable kCylinderMask{"ComponentMask",
+                              {{"None", 0},
+                               {"Jacket", 1},
+                               {"FlatFront", 2},
+                               {"FlatBack", 4},
+                               {"CappedFront", 8},
+                               {"CappedBack", 16},
+                               {"FlatCylinder", 7},
+                               {"CappedCylinder", 25}}};
+constexpr uint32_t kCapBits = 8u | 16u;
+
+// Every model
+constexpr LinkParam kPose{"Pose"};
+constexpr LinkParam kSkin{"Skin"};
+constexpr ListParam kChildList{"ChildList"};
+// Type parameters
+constexpr ValueParam<Cuboid> kCuboid{"Cuboid"};
+constexpr ValueParam<double> kTexScale{"TexScale"};
+constexpr EnumParam kSideMaskParam{"SideMask"};
+constexpr ValueParam<bool> kWire{"Wire"};
+constexpr ValueParam<double> kExtensionX{"ExtensionX"};
+constexpr ValueParam<double> kExtensionY{"ExtensionY"};
+constexpr ValueParam<bool> kIsShadowPlane{"IsShadowPlane"};
+constexpr ValueParam<double> kMaxCellSize{"MaxCellSize"};
+constexpr ValueParam<bool> kTriangles{"Triangles"};
+constexpr ValueParam<int64_t> kAccuracy{"Accuracy"};
+constexpr ValueParam<double> kRadiusX{"RadiusX"};
+constexpr ValueParam<double> kRadiusY{"RadiusY"};
+constexpr ValueParam<double> kRadiusZ{"RadiusZ"};
+constexpr ValueParam<double> kRadius{"Radius"};
+constexpr ValueParam<double> kLength{"Length"};
+constexpr ValueParam<double> kAngTexScale{"AngTexScale"};
+constexpr ValueParam<double> kLinTexScale{"LinTexScale"};
+constexpr EnumParam kComponentMask{"ComponentMask"};
+constexpr ValueParam<bool> kDrawBase{"DrawBase"};
+
+ModelKind kindOf(const Component& c) { return static_cast<ModelKind>(c.type->kind); }
+
+}  // namespace
 
 void registerModels(Registry& r) {
   r.setFamilyParams(Family::Model,
-                    {componentParam("Pose", {Family::Pose}, "", "pose in the frame of the body (or parent model)"),
-                     componentParam("Skin", {Family::Skin}, "", "surface appearance"),
-                     listParam("ChildList", {Family::Model}, "child models")});
-  const ParamSpec tex = number("TexScale", 1.0, "", "texture scale (negative: relative to the extension)");
-  const ParamSpec accuracy = integer("Accuracy", 2, "tessellation level", Range::Positive);
+                    {componentParam(kPose, {Family::Pose}, "",
+                                    "pose relative to the body (root model; local coordinates only) or the parent "
+                                    "model (children; global coordinates: relative to the body)"),
+                     componentParam(kSkin, {Family::Skin}, "", "surface appearance"),
+                     listParam(kChildList, {Family::Model}, "child models")});
+  const ParamSpec tex = number(kTexScale, 1.0, "", "texture scale (negative: relative to the extension)");
+  const ParamSpec accuracy = integer(kAccuracy, 2, "tessellation level", Range::Positive);
   r.add({"RCCuboidModel",
          Family::Model,
          int(ModelKind::Cuboid),
-         {valueParam("Cuboid", ValueType::Cuboid, Cuboid{{-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}}, "m",
+         {valueParam(kCuboid, ValueType::Cuboid, Cuboid{{-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}}, "m",
                      "two opposite corners"),
-          tex, enumParam("SideMask", ValueType::Bitmask, &kSideMask, 63, "visible sides"),
-          flag("Wire", false, "always drawn as wire frame")},
+          tex, enumParam(kSideMaskParam, ValueType::Bitmask, &kSideMask, 63, "visible sides"),
+          flag(kWire, false, "always drawn as wire frame")},
          {},
          "A cuboid."});
   r.add({"RCPlaneModel",
          Family::Model,
          int(ModelKind::Plane),
-         {number("ExtensionX", 1.0, "m", "extension along local X", Range::Positive),
-          number("ExtensionY", 1.0, "m", "extension along local Y", Range::Positive),
-          flag("IsShadowPlane", false, "shadows are projected on it"), tex,
-          number("MaxCellSize", -1.0, "m", "largest cell (negative: one cell)")},
+         {number(kExtensionX, 1.0, "m", "extension along local X", Range::Positive),
+          number(kExtensionY, 1.0, "m", "extension along local Y", Range::Positive),
+          flag(kIsShadowPlane, false, "shadows are projected on it"), tex,
+          number(kMaxCellSize, -1.0, "m", "largest cell (negative: one cell)")},
          {},
          "A bounded plane perpendicular to local Z."});
   r.add({"RCEllipsoidModel",
          Family::Model,
          int(ModelKind::Ellipsoid),
-         {flag("Triangles", false, "triangles instead of quadrangles"), accuracy,
-          number("RadiusX", 0.5, "m", "radius along local X", Range::Positive),
-          number("RadiusY", 0.5, "m", "radius along local Y", Range::Positive),
-          number("RadiusZ", 0.5, "m", "radius along local Z", Range::Positive)},
+         {flag(kTriangles, false, "triangles instead of quadrangles"), accuracy,
+          number(kRadiusX, 0.5, "m", "radius along local X", Range::Positive),
+          number(kRadiusY, 0.5, "m", "radius along local Y", Range::Positive),
+          number(kRadiusZ, 0.5, "m", "radius along local Z", Range::Positive)},
          {},
          "An ellipsoid."});
   r.add({"RCCylinderModel",
          Family::Model,
          int(ModelKind::Cylinder),
-         {number("Radius", 0.5, "m", "radius", Range::Positive),
-          number("Length", 1.0, "m", "length along local Z", Range::Positive),
-          number("AngTexScale", 1.0, "", "texture scale along the perimeter"),
-          number("LinTexScale", 1.0, "", "texture scale along the axis"),
-          enumParam("ComponentMask", ValueType::Bitmask, &kCylinderMask, 7, "visible parts"), accuracy},
+         {number(kRadius, 0.5, "m", "radius", Range::Positive),
+          number(kLength, 1.0, "m", "length along local Z", Range::Positive),
+          number(kAngTexScale, 1.0, "", "texture scale along the perimeter"),
+          number(kLinTexScale, 1.0, "", "texture scale along the axis"),
+          enumParam(kComponentMask, ValueType::Bitmask, &kCylinderMask, 7, "visible parts"), accuracy},
          {},
          "A cylinder along local Z."});
   r.add({"RCConeModel",
          Family::Model,
          int(ModelKind::Cone),
-         {number("Radius", 0.5, "m", "base radius", Range::Positive),
-          number("Length", 1.0, "m", "length along local Z", Range::Positive),
-          number("LinTexScale", 1.0, "", "texture scale"), flag("DrawBase", true, "base visible"), accuracy},
+         {number(kRadius, 0.5, "m", "base radius", Range::Positive),
+          number(kLength, 1.0, "m", "length along local Z", Range::Positive),
+          number(kLinTexScale, 1.0, "", "texture scale"), flag(kDrawBase, true, "base visible"), accuracy},
          {},
          "A cone along local Z."});
   r.add({"RCEmptyModel", Family::Model, int(ModelKind::Empty), {}, {}, "An invisible model."});
   r.addMacro({"NoModel", Family::Model, "RCEmptyModel", {}, "an invisible model"});
+}
+
+bool collectModelParts(CompileContext& ctx, const Link& root, const Transform& base, bool children,
+                       std::vector<ModelPart>* out) {
+  // Iterative walk in document order (depth first); `base` is the body frame the root model's
+  // pose is relative to.
+  struct Item {
+    const Link* link;
+    Transform parent;
+    bool is_root;
+  };
+  std::vector<Item> stack{{&root, base, true}};
+  while (!stack.empty()) {
+    Item it = stack.back();
+    stack.pop_back();
+    if (it.link->comp < 0 || it.link->comp >= static_cast<int>(ctx.scene.comps.size())) continue;
+    if (out->size() >= kMaxModelParts) return false;
+    const Component& c = ctx.at(it.link->comp);
+    const Link& pl = c.get(kPose);
+    Transform t = it.parent;
+    if (pl.comp >= 0) {
+      // Guide 6.3: a child's "global" coordinates are the root's frame, i.e. the body's. (A
+      // root model's global pose is an error reported by checkModelTree.)
+      bool global = !isLocalPose(ctx, pl);
+      t = compose(global && !it.is_root ? base : it.parent, poseValue(ctx, pl));
+    }
+    out->push_back({&c, t});
+    if (!children) continue;
+    const std::vector<Link>& kids = c.get(kChildList);
+    for (auto k = kids.rbegin(); k != kids.rend(); ++k) stack.push_back({&*k, t, false});
+  }
+  return true;
+}
+
+void checkModelTree(CompileContext& ctx, const Link& root) {
+  if (root.comp < 0 || !ctx.firstCheck(root.comp)) return;  // a shared model is checked once
+  const Component& c = ctx.at(root.comp);
+  const Link& pl = c.get(kPose);
+  if (pl.comp >= 0 && !isLocalPose(ctx, pl))
+    ctx.error(pl, c,
+              "a root model's Pose must be RCLocalCoordinates: a model may be drawn for several bodies, so global "
+              "coordinates have no meaning for it (guide 6.3)");
+}
+
+bool modelBounds(const Component& m, Vec3* center, Vec3* half) {
+  *center = {0, 0, 0};
+  switch (kindOf(m)) {
+    case ModelKind::Cuboid: {
+      const Cuboid& cb = m.get(kCuboid);
+      for (int i = 0; i < 3; ++i) {
+        (*center)[i] = (cb.a[i] + cb.b[i]) / 2;
+        (*half)[i] = std::fabs(cb.b[i] - cb.a[i]) / 2;
+      }
+      return true;
+    }
+    case ModelKind::Ellipsoid:
+      *half = {m.get(kRadiusX), m.get(kRadiusY), m.get(kRadiusZ)};
+      return true;
+    case ModelKind::Cylinder: {
+      double r = m.get(kRadius), l = m.get(kLength);
+      bool capped = (m.get(kComponentMask) & kCapBits) != 0;
+      *half = {r, r, l / 2 + (capped ? r : 0)};
+      return true;
+    }
+    case ModelKind::Cone: {
+      double r = m.get(kRadius), l = m.get(kLength);
+      *half = {r, r, l / 2};
+      *center = {0, 0, l / 2};
+      return true;
+    }
+    case ModelKind::Plane:
+      *half = {m.get(kExtensionX) / 2, m.get(kExtensionY) / 2, 0};
+      return true;
+    case ModelKind::Empty:
+      return false;
+  }
+  return false;
+}
+
+ModelShape modelShape(const Component& m) {
+  ModelShape s;
+  switch (kindOf(m)) {
+    case ModelKind::Cuboid: {
+      const Cuboid& cb = m.get(kCuboid);
+      s.kind = ModelShape::Box;
+      for (int i = 0; i < 3; ++i) {
+        s.center[i] = (cb.a[i] + cb.b[i]) / 2;
+        s.size[i] = std::fabs(cb.b[i] - cb.a[i]);
+      }
+      return s;
+    }
+    case ModelKind::Ellipsoid:
+      s.kind = ModelShape::Ellipsoid;
+      s.size = {m.get(kRadiusX), m.get(kRadiusY), m.get(kRadiusZ)};
+      return s;
+    case ModelKind::Cylinder:
+      s.kind = (m.get(kComponentMask) & kCapBits) != 0 ? ModelShape::Capsule : ModelShape::Cylinder;
+      s.size = {m.get(kRadius), m.get(kLength), 0};
+      return s;
+    case ModelKind::Cone:
+      s.kind = ModelShape::Cone;
+      s.size = {m.get(kRadius), m.get(kLength), 0};
+      return s;
+    case ModelKind::Plane:
+      s.kind = ModelShape::Plane;
+      s.size = {m.get(kExtensionX), m.get(kExtensionY), 0};
+      return s;
+    case ModelKind::Empty:
+      return s;
+  }
+  return s;
 }
 
 }  // namespace simbob

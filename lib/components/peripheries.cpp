@@ -1,52 +1,140 @@
-// PeripheryComponents (guide 6.11). Parsed and kept; they act once robots land.
+// PeripheryComponents (guide 6.11): drives, servos and sensors on the joints of a construction,
+// and the socket communicator. Each type names the interfaces it offers to controllers
+// (guide 6.12): RCDriver, RCPosControl, RCVelControl, RCContactSensor.
+// Lowering checks what the guide requires of each; they do not act on the physics yet.
+#include <cmath>
 #include <limits>
 
+#include "compile/context.h"
 #include "components/families.h"
 
 namespace simbob {
 
+namespace {
+
+enum class PeripheryKind { GenericDrive, GenericServo, VelControlledDrive, ProximitySensor, LocalSocketCommunicator };
+
+constexpr LinkParam kJoint{"Joint"};
+constexpr ValueParam<double> kMaxPower{"MaxPower"};
+constexpr ValueParam<double> kMaxVelocity{"MaxVelocity"};
+constexpr ValueParam<double> kMinPos{"MinPos"};
+constexpr ValueParam<double> kMaxPos{"MaxPos"};
+constexpr ValueParam<double> kStall{"Stall"};
+constexpr ValueParam<double> kSmooth{"Smooth"};
+constexpr LinkParam kPose{"Pose"};
+constexpr LinkParam kGeom{"Geom"};
+constexpr ValueParam<bool> kIsServer{"IsServer"};
+constexpr ValueParam<int64_t> kPort{"Port"};
+
+constexpr int64_t kMaxPort = 65535;
+
+PeripheryKind kindOf(const Component& c) { return static_cast<PeripheryKind>(c.type->kind); }
+
+TypeSpec offering(TypeSpec t, std::vector<std::string> interfaces) {
+  t.interfaces = std::move(interfaces);
+  return t;
+}
+
+/// Drives and servos: the Joint must be a hinge (angular) or a slider (linear); limits ordered.
+void checkJointDrive(CompileContext& ctx, const Component& c) {
+  const Link& jl = c.get(kJoint);
+  if (jl.comp < 0) {
+    if (!jl.isRef()) ctx.error(c, "parameter 'Joint' is required (a Ref to the hinge or slider joint it drives)");
+    return;
+  }
+  const Component& joint = ctx.at(jl.comp);
+  JointKind kind;
+  if (joint.type->family != Family::Joint || !jointKindOf(ctx, joint, &kind)) return;  // reported by the loader
+  if (kind != JointKind::Hinge && kind != JointKind::Slider)
+    ctx.error(jl, c,
+              "parameter 'Joint' must be a hinge or slider joint, but " + CompileContext::describe(joint) +
+                  " is not (guide 6.11)");
+  double lo = c.get(kMinPos), hi = c.get(kMaxPos);
+  if (std::isfinite(lo) && std::isfinite(hi) && lo > hi)
+    ctx.errorAt(c.slotOf(kMaxPos), c,
+                "MinPos (" + formatNumber(lo) + ") is greater than MaxPos (" + formatNumber(hi) + ")");
+}
+
+}  // namespace
+
 void registerPeripheries(Registry& r) {
-  const ParamSpec joint = componentParam("Joint", {Family::Joint}, "", "hinge or slider joint (Ref)");
-  const ParamSpec power = number("MaxPower", 10.0, "N or N m", "largest force or torque", Range::NonNegative);
-  const ParamSpec vel = number("MaxVelocity", 1.0, "m/s or rad/s", "largest velocity", Range::NonNegative);
+  const ParamSpec joint = componentParam(kJoint, {Family::Joint}, "", "hinge or slider joint (Ref)");
+  const ParamSpec power = number(kMaxPower, 10.0, "N or N m", "largest force or torque", Range::NonNegative);
+  const ParamSpec vel = number(kMaxVelocity, 1.0, "m/s or rad/s", "largest velocity", Range::NonNegative);
   const ParamSpec minpos =
-      limit(number("MinPos", -std::numeric_limits<double>::infinity(), "m or rad", "lower limit (-Infinite: none)"));
+      limit(number(kMinPos, -std::numeric_limits<double>::infinity(), "m or rad", "lower limit (-Infinite: none)"));
   const ParamSpec maxpos =
-      limit(number("MaxPos", std::numeric_limits<double>::infinity(), "m or rad", "upper limit (Infinite: none)"));
-  r.add({"RCGenericDrive",
-         Family::Periphery,
-         int(PeripheryKind::GenericDrive),
-         {joint, power, vel, minpos, maxpos,
-          number("Stall", 0.8, "", "fraction of MaxVelocity where power starts to fade", Range::Unit)},
-         {},
-         "Voltage-controlled drive on a joint."});
-  r.add({"RCGenericServo",
-         Family::Periphery,
-         int(PeripheryKind::GenericServo),
-         {joint, power, vel, minpos, maxpos,
-          number("Smooth", 1.0, "", "velocity reduction near the target", Range::Positive)},
-         {},
-         "Position-controlled drive on a joint."});
-  r.add({"RCGenericVelControlledDrive",
-         Family::Periphery,
-         int(PeripheryKind::VelControlledDrive),
-         {joint, power, vel, minpos, maxpos},
-         {},
-         "Velocity-controlled drive on a joint."});
-  r.add({"RCProximitySensor",
-         Family::Periphery,
-         int(PeripheryKind::ProximitySensor),
-         {componentParam("Pose", {Family::Pose}, "", "sensor pose"),
-          componentParam("Geom", {Family::Geom}, "", "sensing volume (no contact forces)")},
-         {},
-         "Reports whether its geom touches anything."});
+      limit(number(kMaxPos, std::numeric_limits<double>::infinity(), "m or rad", "upper limit (Infinite: none)"));
+  r.add(offering({"RCGenericDrive",
+                  Family::Periphery,
+                  int(PeripheryKind::GenericDrive),
+                  {joint, power, vel, minpos, maxpos,
+                   number(kStall, 0.8, "", "fraction of MaxVelocity where power starts to fade", Range::Unit)},
+                  {},
+                  "Voltage-controlled drive on a joint."},
+                 {"RCDriver"}));
+  r.add(offering({"RCGenericServo",
+                  Family::Periphery,
+                  int(PeripheryKind::GenericServo),
+                  {joint, power, vel, minpos, maxpos,
+                   number(kSmooth, 1.0, "", "velocity reduction near the target", Range::Positive)},
+                  {},
+                  "Position-controlled drive on a joint."},
+                 {"RCPosControl"}));
+  r.add(offering({"RCGenericVelControlledDrive",
+                  Family::Periphery,
+                  int(PeripheryKind::VelControlledDrive),
+                  {joint, power, vel, minpos, maxpos},
+                  {},
+                  "Velocity-controlled drive on a joint."},
+                 {"RCVelControl"}));
+  r.add(offering({"RCProximitySensor",
+                  Family::Periphery,
+                  int(PeripheryKind::ProximitySensor),
+                  {componentParam(kPose, {Family::Pose}, "", "sensor pose"),
+                   componentParam(kGeom, {Family::Geom}, "", "sensing volume (no contact forces)")},
+                  {},
+                  "Reports whether its geom touches anything."},
+                 {"RCContactSensor"}));
   r.add({"RCLocalSocketCommunicator",
          Family::Periphery,
          int(PeripheryKind::LocalSocketCommunicator),
-         {flag("IsServer", false, "wait for a client instead of connecting"),
-          integer("Port", 5000, "TCP port on localhost", Range::Positive)},
+         {flag(kIsServer, false, "wait for a client instead of connecting"),
+          integer(kPort, 5000, "TCP port on localhost (1 to 65535)", Range::Positive)},
          {},
          "Talks to another program over a local socket."});
+}
+
+bool peripheryLimits(const Component& c, double* lo, double* hi) {
+  switch (kindOf(c)) {
+    case PeripheryKind::GenericDrive:
+    case PeripheryKind::GenericServo:
+    case PeripheryKind::VelControlledDrive:
+      *lo = c.get(kMinPos);
+      *hi = c.get(kMaxPos);
+      return true;
+    case PeripheryKind::ProximitySensor:
+    case PeripheryKind::LocalSocketCommunicator:
+      return false;
+  }
+  return false;
+}
+
+void lowerPeriphery(CompileContext& ctx, const Component& c, const Built& /*parent*/) {
+  switch (kindOf(c)) {
+    case PeripheryKind::GenericDrive:
+    case PeripheryKind::GenericServo:
+    case PeripheryKind::VelControlledDrive:
+      checkJointDrive(ctx, c);
+      break;
+    case PeripheryKind::ProximitySensor:
+      break;
+    case PeripheryKind::LocalSocketCommunicator:
+      if (c.get(kPort) > kMaxPort)
+        ctx.errorAt(c.slotOf(kPort), c, "parameter 'Port' must be at most 65535, got " + std::to_string(c.get(kPort)));
+      break;
+  }
+  ctx.warning(c, "peripheries are read but have no effect on the physics yet");
 }
 
 }  // namespace simbob

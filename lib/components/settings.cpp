@@ -1,22 +1,58 @@
 // Struct types: SceneSettings (chapter 5.2 / 3.3.4 plus the physics settings of 7.2),
-// FogSettings, and the global settings INI (3.3.1).
+// FogSettings, the scene root (Simulation) and the global settings INI (3.3.1).
+#include <algorithm>
+
+#include "compile/context.h"
 #include "components/families.h"
 
 namespace simbob {
 
-static const EnumTable kFogMode{"FogMode", {{"Off", 0}, {"Linear", 1}, {"Exponential", 2}, {"Exponential2", 3}}};
-static const EnumTable kSolver{"Solver", {{"QuickStep", 0}, {"Step", 1}}};
-static const EnumTable kSpace{"Space", {{"Hash", 0}, {"SweepAndPrune", 1}, {"QuadTree", 2}, {"Simple", 3}}};
+namespace {
+
+enum class StructKind { SceneSettings, FogSettings, GlobalSettings, Simulation };
+
+const EnumTable kFogMode{"FogMode", {{"Off", 0}, {"Linear", 1}, {"Exponential", 2}, {"Exponential2", 3}}};
+const EnumTable kSolver{"Solver", {{"QuickStep", 0}, {"Step", 1}}};
+const EnumTable kSpace{"Space", {{"Hash", 0}, {"SweepAndPrune", 1}, {"QuadTree", 2}, {"Simple", 3}}};
+
+// FogSettings
+constexpr EnumParam kMode{"Mode"};
+constexpr ValueParam<double> kDensity{"Density"};
+constexpr ValueParam<double> kStart{"Start"};
+constexpr ValueParam<double> kEnd{"End"};
+constexpr ValueParam<Color> kColor{"Color"};
+// SceneSettings
+constexpr ValueParam<Triple> kGravity{"Gravity"};
+constexpr ValueParam<double> kMaxTimeStep{"MaxTimeStep"};
+constexpr ValueParam<double> kMinTimeStep{"MinTimeStep"};
+constexpr ValueParam<double> kMaxAccessTime{"MaxAccessTime"};
+constexpr EnumParam kSolverParam{"Solver"};
+constexpr ValueParam<int64_t> kSolverIterations{"SolverIterations"};
+constexpr ValueParam<double> kERP{"ERP"};
+constexpr ValueParam<double> kCFM{"CFM"};
+constexpr ValueParam<int64_t> kMaxContacts{"MaxContacts"};
+constexpr EnumParam kSpaceParam{"Space"};
+constexpr ValueParam<bool> kAutoDisable{"AutoDisable"};
+constexpr ValueParam<Vector4> kLightPos{"LightPos"};
+constexpr ValueParam<Color> kLightColor{"LightColor"};
+constexpr ValueParam<Color> kClearColor{"ClearColor"};
+constexpr ValueParam<double> kShadowIntensity{"ShadowIntensity"};
+constexpr LinkParam kFogSettings{"FogSettings"};
+
+constexpr int64_t kMaxSolverIterations = 100000;
+constexpr int64_t kMaxContactsLimit = 64;
+
+}  // namespace
 
 void registerSettings(Registry& r) {
   r.add({"FogSettings",
          Family::Struct,
          int(StructKind::FogSettings),
-         {enumParam("Mode", ValueType::Enum, &kFogMode, 0, "blending formula (Off, Linear, Exponential, Exponential2)"),
-          number("Density", 0.01, "1/m", "density in the exponential formulas", Range::NonNegative),
-          number("Start", 10, "m", "start distance of linear fog", Range::NonNegative),
-          number("End", 100, "m", "end distance of linear fog", Range::NonNegative),
-          color("Color", rgba(0.5, 0.5, 0.5), "fog colour")},
+         {enumParam(kMode, ValueType::Enum, &kFogMode, 0, "blending formula (Off, Linear, Exponential, Exponential2)"),
+          number(kDensity, 0.01, "1/m", "density in the exponential formulas", Range::NonNegative),
+          number(kStart, 10, "m", "start distance of linear fog", Range::NonNegative),
+          number(kEnd, 100, "m", "end distance of linear fog", Range::NonNegative),
+          color(kColor, rgba(0.5, 0.5, 0.5), "fog colour")},
          {},
          "Fog of the rendered views (guide 3.3.4)."});
 
@@ -24,47 +60,68 @@ void registerSettings(Registry& r) {
       {"SceneSettings",
        Family::Struct,
        int(StructKind::SceneSettings),
-       {triple("Gravity", {0, -9.81, 0}, "m/s^2", "gravity; Y is up"),
-        number("MaxTimeStep", 0.001, "s", "largest physics step; the step size (--dt overrides)", Range::Positive),
-        number("MinTimeStep", 1e-6, "s", "a requested time this close to the clock counts as reached", Range::Positive),
-        number("MaxAccessTime", 1.0, "s", "wall-clock limit of one access to the simulation (no effect in batch runs)",
+       {triple(kGravity, {0, -9.81, 0}, "m/s^2", "gravity; Y is up"),
+        number(kMaxTimeStep, 0.001, "s", "largest physics step; the step size (--dt overrides)", Range::Positive),
+        number(kMinTimeStep, 1e-6, "s", "a requested time this close to the clock counts as reached", Range::Positive),
+        number(kMaxAccessTime, 1.0, "s", "wall-clock limit of one access to the simulation (no effect in batch runs)",
                Range::Positive),
-        enumParam("Solver", ValueType::Enum, &kSolver, 0, "QuickStep (iterative) or Step (exact LCP)"),
-        integer("SolverIterations", 20, "QuickStep iterations per step", Range::Positive),
-        number("ERP", 0.2, "", "error reduction parameter of joints and contacts", Range::Unit),
-        number("CFM", 1e-10, "", "constraint force mixing (softness)", Range::NonNegative),
-        integer("MaxContacts", 4, "contact points per colliding pair of geoms", Range::Positive),
-        enumParam("Space", ValueType::Enum, &kSpace, 0,
+        enumParam(kSolverParam, ValueType::Enum, &kSolver, 0, "QuickStep (iterative) or Step (exact LCP)"),
+        integer(kSolverIterations, 20, "QuickStep iterations per step", Range::Positive),
+        number(kERP, 0.2, "", "error reduction parameter of joints and contacts", Range::Unit),
+        number(kCFM, 1e-10, "", "constraint force mixing (softness)", Range::NonNegative),
+        integer(kMaxContacts, 4, "contact points per colliding pair of geoms", Range::Positive),
+        enumParam(kSpaceParam, ValueType::Enum, &kSpace, 0,
                   "collision space: Hash, SweepAndPrune, QuadTree, Simple (--space)"),
-        flag("AutoDisable", false, "let ODE put resting bodies to sleep (--auto-disable)"),
-        valueParam("LightPos", ValueType::Vector, Vector4{{10, 10, 10, 1}}, "m", "light position"),
-        color("LightColor", rgba(1, 1, 1), "light colour"),
-        color("ClearColor", rgba(0.3, 0.3, 0.5), "background colour"),
-        number("ShadowIntensity", 0.5, "", "intensity of projected shadows", Range::Unit),
-        structParam("FogSettings", "FogSettings", "fog")},
+        flag(kAutoDisable, false, "let ODE put resting bodies to sleep (--auto-disable)"),
+        valueParam(kLightPos, ValueType::Vector, Vector4{{10, 10, 10, 1}}, "m", "light position"),
+        color(kLightColor, rgba(1, 1, 1), "light colour"), color(kClearColor, rgba(0.3, 0.3, 0.5), "background colour"),
+        number(kShadowIntensity, 0.5, "", "intensity of projected shadows", Range::Unit),
+        structParam(kFogSettings, "FogSettings", "fog")},
        {},
        "Scene and physics settings (guide 3.3.4, 5.2, 7.2)."});
 
-  r.add({"Simulation",
-         Family::Struct,
-         int(StructKind::Simulation),
-         {listParam("CameraList", {Family::Camera}, "cameras of the views"),
-          structParam("SceneSettings", "SceneSettings", "scene and physics settings"),
-          listParam("ComponentList", {Family::Body, Family::GlobalSim, Family::Material, Family::Skin, Family::Model},
-                    "the simulated components")},
-         {},
-         "Root of a scene file (guide chapter 5)."});
+  r.add(
+      {"Simulation",
+       Family::Struct,
+       int(StructKind::Simulation),
+       {listParam(kCameraListParam, {Family::Camera}, "cameras of the views"),
+        structParam(kSceneSettingsParam, "SceneSettings", "scene and physics settings"),
+        listParam(kComponentListParam, {Family::Body, Family::GlobalSim, Family::Material, Family::Skin, Family::Model},
+                  "the simulated components")},
+       {},
+       "Root of a scene file (guide chapter 5)."});
 
   r.add({"GlobalSettings",
          Family::Struct,
          int(StructKind::GlobalSettings),
-         {flag("DocumentIni", false, "read camera settings from an INI beside the scene"),
-          text("LogFile", "", "also write log messages to this file"),
-          text("DocumentFolder", "", "initial folder of file dialogs (unused headless)"),
-          text("ExtensionFolder", "", "folder of extension plug-ins"),
-          text("TextureFolder", "", "folder of texture images")},
+         {flag(kDocumentIniParam, false, "read camera settings from an INI beside the scene"),
+          text(kLogFileParam, "", "also write log messages to this file"),
+          text(kDocumentFolderParam, "", "initial folder of file dialogs (unused headless)"),
+          text(kExtensionFolderParam, "", "folder of extension plug-ins"),
+          text(kTextureFolderParam, "", "folder of texture images")},
          {},
          "Global settings INI, --settings FILE (guide 3.3.1)."});
+}
+
+void lowerSettings(CompileContext& ctx, int comp) {
+  SolverSettings& s = ctx.model.settings;
+  if (comp < 0) return;
+  const Component& c = ctx.at(comp);
+  const Triple& g = c.get(kGravity);
+  s.gravity = {g[0], g[1], g[2]};
+  s.max_time_step = c.get(kMaxTimeStep);
+  s.min_time_step = c.get(kMinTimeStep);
+  s.quickstep = c.get(kSolverParam) == 0;
+  if (c.get(kSolverIterations) > kMaxSolverIterations || c.get(kMaxContacts) > kMaxContactsLimit)
+    ctx.diag.error(c.loc, "SceneSettings: SolverIterations must be at most 100000 and MaxContacts at most 64");
+  s.iterations = static_cast<int>(std::min(c.get(kSolverIterations), kMaxSolverIterations));
+  s.erp = c.get(kERP);
+  s.cfm = c.get(kCFM);
+  s.max_contacts = static_cast<int>(std::min(c.get(kMaxContacts), kMaxContactsLimit));
+  s.space = static_cast<SpaceKind>(c.get(kSpaceParam));
+  s.auto_disable = c.get(kAutoDisable);
+  if (s.min_time_step > s.max_time_step)
+    ctx.diag.error(c.slotOf(kMinTimeStep).loc, "SceneSettings: MinTimeStep must not exceed MaxTimeStep");
 }
 
 }  // namespace simbob

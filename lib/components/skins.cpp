@@ -3,31 +3,46 @@
 
 namespace simbob {
 
-static const EnumTable kColorMode{
+namespace {
+
+enum class SkinKind { Colored, Textured, ColTex };
+
+constexpr ValueParam<Color> kColor{"Color"};
+constexpr ValueParam<Color> kAmbient{"Ambient"};
+constexpr ValueParam<Color> kDiffuse{"Diffuse"};
+constexpr ValueParam<Color> kSpecular{"Specular"};
+constexpr ValueParam<Color> kEmission{"Emission"};
+constexpr EnumParam kColorModeParam{"ColorMode"};
+constexpr ValueParam<double> kShininess{"Shininess"};
+constexpr ValueParam<std::string> kTexture{"Texture"};
+
+const EnumTable kColorMode{
     "ColorMode",
     {{"Color", 0}, {"Shading", 1}, {"TransparentColor", 2}, {"TransparentLighting", 3}, {"TransparentLighing", 3}}};
 
-static std::vector<ParamSpec> coloredParams() {
-  return {color("Color", rgba(0.8, 0.8, 0.8), "base colour"),
-          color("Ambient", noColor(), "ambient reflection (invalid = Color/2)"),
-          color("Diffuse", noColor(), "diffuse reflection (invalid = Color/2)"),
-          color("Specular", noColor(), "specular reflection (invalid = 2*Color)"),
-          color("Emission", noColor(), "emitted light (invalid = black)")};
+std::vector<ParamSpec> coloredParams() {
+  return {color(kColor, rgba(0.8, 0.8, 0.8), "base colour"),
+          color(kAmbient, noColor(), "ambient reflection (invalid = Color/2)"),
+          color(kDiffuse, noColor(), "diffuse reflection (invalid = Color/2)"),
+          color(kSpecular, noColor(), "specular reflection (invalid = 2*Color)"),
+          color(kEmission, noColor(), "emitted light (invalid = black)")};
 }
 
-static std::vector<ParamSpec> commonParams() {
-  return {
-      enumParam("ColorMode", ValueType::Enum, &kColorMode, 1, "Color, Shading, TransparentColor, TransparentLighting"),
-      number("Shininess", 0.0, "", "specular exponent", Range::NonNegative)};
+std::vector<ParamSpec> commonParams() {
+  return {enumParam(kColorModeParam, ValueType::Enum, &kColorMode, 1,
+                    "Color, Shading, TransparentColor, TransparentLighting"),
+          number(kShininess, 0.0, "", "specular exponent", Range::NonNegative)};
 }
 
-static std::vector<ParamSpec> concat(std::vector<ParamSpec> a, const std::vector<ParamSpec>& b) {
+std::vector<ParamSpec> concat(std::vector<ParamSpec> a, const std::vector<ParamSpec>& b) {
   a.insert(a.end(), b.begin(), b.end());
   return a;
 }
 
+}  // namespace
+
 void registerSkins(Registry& r) {
-  const ParamSpec texture = text("Texture", "", "image file name in the TextureFolder");
+  const ParamSpec texture = text(kTexture, "", "image file name in the TextureFolder");
   r.add({"RCColoredSkin",
          Family::Skin,
          int(SkinKind::Colored),

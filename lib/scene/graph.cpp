@@ -6,6 +6,7 @@
 
 #include <pugixml.hpp>
 #include <sstream>
+#include <stdexcept>
 
 namespace simbob {
 
@@ -24,20 +25,16 @@ Slot& Component::slot(std::string_view param) {
   int i = type->paramIndex(param);
   return slots.at(static_cast<size_t>(i));
 }
-double Component::number(std::string_view p) const { return std::get<double>(slot(p).value); }
-int64_t Component::integer(std::string_view p) const { return std::get<int64_t>(slot(p).value); }
-bool Component::boolean(std::string_view p) const { return std::get<bool>(slot(p).value); }
-const std::string& Component::string(std::string_view p) const { return std::get<std::string>(slot(p).value); }
-const Triple& Component::triple(std::string_view p) const { return std::get<Triple>(slot(p).value); }
-const Pose& Component::pose(std::string_view p) const { return std::get<Pose>(slot(p).value); }
-const Matrix4& Component::matrix(std::string_view p) const { return std::get<Matrix4>(slot(p).value); }
-uint32_t Component::enumValue(std::string_view p) const {
-  const Value& v = slot(p).value;
+const Slot& Component::typedSlot(const char* name) const {
+  int i = type->paramIndex(name);
+  if (i < 0) throw std::logic_error("internal: " + type->name + " has no parameter '" + name + "'");
+  return slots[static_cast<size_t>(i)];
+}
+uint32_t Component::get(EnumParam p) const {
+  const Value& v = typedSlot(p.name).value;
   if (auto* e = std::get_if<EnumValue>(&v)) return e->value;
   return std::get<BitmaskValue>(v).bits;
 }
-const Link& Component::link(std::string_view p) const { return slot(p).link; }
-const std::vector<Link>& Component::list(std::string_view p) const { return slot(p).list; }
 
 namespace {
 

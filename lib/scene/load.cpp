@@ -158,6 +158,7 @@ class Builder {
       return -1;
     }
     int index = static_cast<int>(scene_.comps.size());
+    const size_t errors_before = diag_.errors().size();
     {
       Component c;
       c.type = t;
@@ -247,6 +248,7 @@ class Builder {
       }
     }
     if (!t->import_root.empty()) readImport(index, loc);
+    if (diag_.errors().size() > errors_before) scene_.load_failed.insert(index);
     --depth_;
     return index;
   }

@@ -55,16 +55,38 @@ void Registry::setFamilyParams(Family family, std::vector<ParamSpec> params) {
   family_params_[family] = std::move(params);
 }
 
-void Registry::add(TypeSpec spec) {
+bool TypeSpec::implements(std::string_view interface) const {
+  for (const auto& i : interfaces)
+    if (i == interface) return true;
+  return false;
+}
+
+bool Registry::add(TypeSpec spec) {
+  std::vector<std::string> names{spec.name};
+  names.insert(names.end(), spec.aliases.begin(), spec.aliases.end());
+  for (const auto& n : names) {
+    if (n.empty() || findIgnoreCase(n) || findMacro(n)) {
+      problems_.push_back("component type '" + spec.name + "': the name '" + n +
+                          (n.empty() ? "' is empty" : "' is already registered"));
+      return false;
+    }
+  }
   auto it = family_params_.find(spec.family);
   if (it != family_params_.end()) spec.params.insert(spec.params.begin(), it->second.begin(), it->second.end());
   size_t index = types_.size();
-  by_name_[spec.name] = index;
-  for (const auto& a : spec.aliases) by_name_[a] = index;
+  for (const auto& n : names) by_name_[n] = index;
   types_.push_back(std::move(spec));
+  return true;
 }
 
-void Registry::addMacro(MacroSpec macro) { macros_.push_back(std::move(macro)); }
+bool Registry::addMacro(MacroSpec macro) {
+  if (findMacro(macro.name) || findIgnoreCase(macro.name)) {
+    problems_.push_back("macro '" + macro.name + "': the name is already registered");
+    return false;
+  }
+  macros_.push_back(std::move(macro));
+  return true;
+}
 
 const TypeSpec* Registry::find(std::string_view name) const {
   auto it = by_name_.find(name);
@@ -122,9 +144,10 @@ std::string didYouMean(std::string_view word, const std::vector<std::string>& ca
   return best;
 }
 
-ParamSpec valueParam(std::string name, ValueType type, Value def, std::string unit, std::string doc, Range range) {
+ParamSpec detail::valueParam(const char* name, ValueType type, Value def, std::string unit, std::string doc,
+                             Range range) {
   ParamSpec p;
-  p.name = std::move(name);
+  p.name = name;
   p.kind = ParamKind::Value;
   p.type = type;
   p.default_value = std::move(def);
@@ -134,9 +157,9 @@ ParamSpec valueParam(std::string name, ValueType type, Value def, std::string un
   return p;
 }
 
-ParamSpec enumParam(std::string name, ValueType type, const EnumTable* table, uint32_t def, std::string doc) {
+ParamSpec enumParam(EnumParam name, ValueType type, const EnumTable* table, uint32_t def, std::string doc) {
   ParamSpec p;
-  p.name = std::move(name);
+  p.name = name.name;
   p.kind = ParamKind::Value;
   p.type = type;
   p.table = table;
@@ -148,9 +171,9 @@ ParamSpec enumParam(std::string name, ValueType type, const EnumTable* table, ui
   return p;
 }
 
-ParamSpec componentParam(std::string name, std::vector<Family> families, std::string default_type, std::string doc) {
+ParamSpec componentParam(LinkParam name, std::vector<Family> families, std::string default_type, std::string doc) {
   ParamSpec p;
-  p.name = std::move(name);
+  p.name = name.name;
   p.kind = ParamKind::Component;
   p.families = std::move(families);
   p.default_type = std::move(default_type);
@@ -158,32 +181,23 @@ ParamSpec componentParam(std::string name, std::vector<Family> families, std::st
   return p;
 }
 
-ParamSpec listParam(std::string name, std::vector<Family> families, std::string doc) {
+ParamSpec listParam(ListParam name, std::vector<Family> families, std::string doc) {
   ParamSpec p;
-  p.name = std::move(name);
+  p.name = name.name;
   p.kind = ParamKind::List;
   p.families = std::move(families);
   p.doc = std::move(doc);
   return p;
 }
 
-ParamSpec structParam(std::string name, std::string struct_type, std::string doc) {
+ParamSpec structParam(LinkParam name, std::string struct_type, std::string doc) {
   ParamSpec p;
-  p.name = std::move(name);
+  p.name = name.name;
   p.kind = ParamKind::Struct;
   p.struct_type = std::move(struct_type);
   p.default_type = p.struct_type;
   p.doc = std::move(doc);
   return p;
-}
-
-const Registry& builtinRegistry() {
-  static const Registry reg = [] {
-    Registry r;
-    registerBuiltins(r);
-    return r;
-  }();
-  return reg;
 }
 
 }  // namespace simbob

@@ -2,6 +2,7 @@
 // must still report the body origin.
 #include <catch2/catch.hpp>
 
+#include "test_registry.h"
 #include "simbob/compile.h"
 #include "simbob/physics.h"
 #include "simbob/transform.h"
@@ -14,7 +15,7 @@ Model compileText(const std::string& xml) {
   Scene scene;
   Diagnostics d;
   Model m;
-  REQUIRE(loadSceneFromText(xml, "com.xml", Format::Xml, builtinRegistry(), &scene, d));
+  REQUIRE(loadSceneFromText(xml, "com.xml", Format::Xml, testRegistry(), &scene, d));
   REQUIRE(compileScene(scene, &m, d));
   return m;
 }

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <set>
 
+#include "compile/mass.h"
+#include "test_registry.h"
 #include "scene/scene_helpers.h"
 #include "simbob/transform.h"
 
@@ -640,7 +642,7 @@ TEST_CASE("compile: RCImportBody pose and motion override", "[scene][compile][im
                                   "</ChildList></RCConstruction>"));
   Scene s;
   Diagnostics d;
-  REQUIRE(loadScene(main, builtinRegistry(), &s, d));
+  REQUIRE(loadScene(main, testRegistry(), &s, d));
   Model m;
   bool ok = compileScene(s, &m, d);
   INFO(errorText(d));
@@ -979,7 +981,7 @@ TEST_CASE("compile: peripheries and controllers are kept with a warning", "[scen
 TEST_CASE("compile: the example pendulum", "[scene][compile]") {
   Scene s;
   Diagnostics d;
-  REQUIRE(loadScene(std::string(SIMBOB_SOURCE_DIR) + "/scenes/pendulum.xml", builtinRegistry(), &s, d));
+  REQUIRE(loadScene(std::string(SIMBOB_SOURCE_DIR) + "/scenes/pendulum.xml", testRegistry(), &s, d));
   Model m;
   REQUIRE(compileScene(s, &m, d));
   REQUIRE(m.bodies.size() == 1);

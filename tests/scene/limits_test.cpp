@@ -5,6 +5,7 @@
 #include <fstream>
 #include <unistd.h>
 
+#include "test_registry.h"
 #include "simbob/compile.h"
 #include "simbob/graph.h"
 
@@ -16,7 +17,7 @@ std::vector<std::string> loadErrors(const std::string& xml, const std::string& n
   Scene scene;
   Diagnostics d;
   Model model;
-  if (loadSceneFromText(xml, name, Format::Xml, builtinRegistry(), &scene, d)) compileScene(scene, &model, d);
+  if (loadSceneFromText(xml, name, Format::Xml, testRegistry(), &scene, d)) compileScene(scene, &model, d);
   std::vector<std::string> out;
   for (const auto& e : d.errors()) out.push_back(e.str());
   return out;

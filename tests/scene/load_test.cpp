@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "test_registry.h"
 #include "scene/scene_helpers.h"
 
 using namespace simbob;
@@ -60,48 +61,48 @@ TEST_CASE("load: XML value parameters, set flags and defaults", "[scene][load]")
   REQUIRE(s.settings >= 0);
   const Component& ss = s.at(s.settings);
   CHECK(ss.type->name == "SceneSettings");
-  CHECK(ss.triple("Gravity") == Triple{0, 0, -9.81});
+  CHECK(ss.get(ValueParam<Triple>{"Gravity"}) == Triple{0, 0, -9.81});
   CHECK(ss.slot("Gravity").set);
   CHECK(ss.slot("Gravity").loc.line == 4);
-  CHECK(ss.number("MaxTimeStep") == 0.002);
-  CHECK(ss.enumValue("Solver") == 1);  // enum keys are case-insensitive
-  CHECK(ss.integer("SolverIterations") == 50);
+  CHECK(ss.get(ValueParam<double>{"MaxTimeStep"}) == 0.002);
+  CHECK(ss.get(EnumParam{"Solver"}) == 1);  // enum keys are case-insensitive
+  CHECK(ss.get(ValueParam<int64_t>{"SolverIterations"}) == 50);
   CHECK(std::get<Color>(ss.slot("ClearColor").value) == Color{{0.1, 0.2, 0.3, 1}, true});
   // Unset parameters keep their defaults and are marked unset.
   CHECK_FALSE(ss.slot("ERP").set);
-  CHECK(ss.number("ERP") == 0.2);
-  CHECK(ss.integer("MaxContacts") == 4);
-  const Component& fog = s.at(ss.link("FogSettings").comp);
+  CHECK(ss.get(ValueParam<double>{"ERP"}) == 0.2);
+  CHECK(ss.get(ValueParam<int64_t>{"MaxContacts"}) == 4);
+  const Component& fog = s.at(ss.get(LinkParam{"FogSettings"}).comp);
   CHECK(fog.type->name == "FogSettings");
-  CHECK(fog.enumValue("Mode") == 1);
-  CHECK(fog.number("End") == 250);
-  CHECK(fog.number("Start") == 10);
+  CHECK(fog.get(EnumParam{"Mode"}) == 1);
+  CHECK(fog.get(ValueParam<double>{"End"}) == 250);
+  CHECK(fog.get(ValueParam<double>{"Start"}) == 10);
 
   const Component& ball = comp(s, "Ball");
   CHECK(ball.type->name == "RCMobileRigidBody");
   CHECK(ball.has_key);
   const Component& pose = comp(s, "Ball.Pose");
   CHECK(pose.type->name == "RCGlobalCoordinates");
-  CHECK(pose.pose("Pose") == Pose{{1, 2, 3}, {10, 20, 30}});
+  CHECK(pose.get(ValueParam<Pose>{"Pose"}) == Pose{{1, 2, 3}, {10, 20, 30}});
   CHECK_FALSE(pose.has_key);
-  CHECK(comp(s, "Ball.Geom").number("Radius") == 0.25);
-  CHECK(comp(s, "Ball.Inertia").number("Density") == 2000);
-  CHECK(comp(s, "Ball.Inertia").number("Mass") == -1);
+  CHECK(comp(s, "Ball.Geom").get(ValueParam<double>{"Radius"}) == 0.25);
+  CHECK(comp(s, "Ball.Inertia").get(ValueParam<double>{"Density"}) == 2000);
+  CHECK(comp(s, "Ball.Inertia").get(ValueParam<double>{"Mass"}) == -1);
 
   const Component& egg = comp(s, "Egg");
-  CHECK(egg.boolean("Triangles"));
-  CHECK(egg.integer("Accuracy") == 3);
-  CHECK(egg.number("RadiusX") == 1.5);
-  CHECK(egg.number("RadiusY") == 0.5);
+  CHECK(egg.get(ValueParam<bool>{"Triangles"}));
+  CHECK(egg.get(ValueParam<int64_t>{"Accuracy"}) == 3);
+  CHECK(egg.get(ValueParam<double>{"RadiusX"}) == 1.5);
+  CHECK(egg.get(ValueParam<double>{"RadiusY"}) == 0.5);
   const Component& red = comp(s, "Red");
   CHECK(std::get<Color>(red.slot("Color").value) == Color{{1, 0, 0, 1}, true});
   CHECK_FALSE(std::get<Color>(red.slot("Ambient").value).valid);
-  CHECK(red.enumValue("ColorMode") == 3);
+  CHECK(red.get(EnumParam{"ColorMode"}) == 3);
   const Component& box = comp(s, "Box");
   CHECK(std::get<Cuboid>(box.slot("Cuboid").value) == Cuboid{{-1, -2, -3}, {1, 2, 3}});
-  CHECK(box.enumValue("SideMask") == (4u | 8u));
+  CHECK(box.get(EnumParam{"SideMask"}) == (4u | 8u));
   // String escapes of 4.3: \t is a tab, \\ a backslash.
-  CHECK(comp(s, "Wood").string("Texture") == "wood\tgrain\\1.bmp");
+  CHECK(comp(s, "Wood").get(ValueParam<std::string>{"Texture"}) == "wood\tgrain\\1.bmp");
 }
 
 TEST_CASE("load: component parameters inline, by Ref and by Macro", "[scene][load]") {
@@ -124,43 +125,43 @@ TEST_CASE("load: component parameters inline, by Ref and by Macro", "[scene][loa
 </Simulation>)");
   const Component& ball = comp(s, "Ball");
   // Ref: the link names the target, no component is created for the slot.
-  const Link& mat = ball.link("Material");
+  const Link& mat = ball.get(LinkParam{"Material"});
   CHECK(mat.ref == "Rubber");
   CHECK(mat.isRef());
   CHECK(mat.comp == s.by_qkey.at("Rubber"));
   CHECK(s.by_qkey.count("Ball.Material") == 0);
   CHECK(ball.slot("Material").set);
   // Macro: a component of the macro's type, keyed like an inline component without Key.
-  const Link& geom = ball.link("Geom");
+  const Link& geom = ball.get(LinkParam{"Geom"});
   CHECK(geom.macro == "NoGeom");
   CHECK_FALSE(geom.isRef());
   REQUIRE(geom.comp >= 0);
   CHECK(s.at(geom.comp).type->name == "RCEmptyGeom");
   CHECK(s.at(geom.comp).qkey == "Ball.Geom");
   CHECK(s.at(geom.comp).parent == s.by_qkey.at("Ball"));
-  CHECK(s.at(ball.link("Model").comp).type->name == "RCEmptyModel");
-  CHECK(s.at(ball.link("Motion").comp).type->name == "RCGlobalMotion");
+  CHECK(s.at(ball.get(LinkParam{"Model"}).comp).type->name == "RCEmptyModel");
+  CHECK(s.at(ball.get(LinkParam{"Motion"}).comp).type->name == "RCGlobalMotion");
   // Inline.
-  const Component& inertia = s.at(ball.link("Inertia").comp);
+  const Component& inertia = s.at(ball.get(LinkParam{"Inertia"}).comp);
   CHECK(inertia.type->name == "RCGenericInertia");
-  CHECK(inertia.number("Mass") == 2);
+  CHECK(inertia.get(ValueParam<double>{"Mass"}) == 2);
   CHECK(inertia.qkey == "Ball.Inertia");
   // An inline component without Key is keyed by the parameter name.
   const Component& pose = comp(s, "Ball.Pose");
   CHECK(pose.type->name == "RCGlobalCoordinates");
   CHECK(ball.slot("Pose").set);
   // Unset component parameters link to the shared default of their type (no key).
-  const Component& wallModel = s.at(comp(s, "Wall").link("Model").comp);
+  const Component& wallModel = s.at(comp(s, "Wall").get(LinkParam{"Model"}).comp);
   CHECK(wallModel.type->name == "RCEmptyModel");
   CHECK(wallModel.qkey.empty());
-  CHECK(ball.link("Model").comp != comp(s, "Wall").link("Model").comp);  // Ball's came from a Macro
+  CHECK(ball.get(LinkParam{"Model"}).comp != comp(s, "Wall").get(LinkParam{"Model"}).comp);  // Ball's came from a Macro
   CHECK_FALSE(comp(s, "Wall").slot("Model").set);
   // An inline component with a Key is known under it; a Ref names any keyed component.
   const Component& wall = comp(s, "Wall");
-  CHECK(comp(s, "Wall.Shape").number("Width") == 3);
-  CHECK(wall.link("Geom").comp == s.by_qkey.at("Wall.Shape"));
+  CHECK(comp(s, "Wall.Shape").get(ValueParam<double>{"Width"}) == 3);
+  CHECK(wall.get(LinkParam{"Geom"}).comp == s.by_qkey.at("Wall.Shape"));
   CHECK(s.by_qkey.count("Wall.Geom") == 0);
-  CHECK(wall.link("Pose").comp == s.by_qkey.at("Ball.Pose"));
+  CHECK(wall.get(LinkParam{"Pose"}).comp == s.by_qkey.at("Ball.Pose"));
   CHECK(s.by_qkey.count("Wall.Pose") == 0);
 }
 
@@ -185,7 +186,7 @@ TEST_CASE("load: list items as type elements, wrappers around a type element, an
   CHECK(s.at(s.components[1].comp).qkey == "RCGround");  // no Key: the type name
   CHECK_FALSE(s.at(s.components[1].comp).has_key);
   CHECK(s.at(s.components[2].comp).qkey == "Other");
-  const std::vector<Link>& kids = comp(s, "M").list("ChildList");
+  const std::vector<Link>& kids = comp(s, "M").get(ListParam{"ChildList"});
   REQUIRE(kids.size() == 4);
   CHECK(s.at(kids[0].comp).type->name == "RCEllipsoidModel");
   CHECK(s.at(kids[0].comp).qkey == "M.RCEllipsoidModel");
@@ -236,7 +237,7 @@ TEST_CASE("load: fully qualified keys of nested components", "[scene][load]") {
   }
   // The joint's Pose has no default: nothing is created for it.
   CHECK(s.by_qkey.count("Robot.Shoulder.Pose") == 0);
-  CHECK(comp(s, "Robot.Motor").link("Joint").comp == s.by_qkey.at("Robot.Shoulder"));
+  CHECK(comp(s, "Robot.Motor").get(LinkParam{"Joint"}).comp == s.by_qkey.at("Robot.Shoulder"));
   // by_qkey and the components agree; parents are the owning components.
   for (const auto& [k, i] : s.by_qkey) CHECK(s.at(i).qkey == k);
   const Component& hand = comp(s, "Robot.Shoulder.Arm.RCBallSocketJoint.Hand");
@@ -261,12 +262,12 @@ TEST_CASE("load: CameraList with RC names and the guide's aliases", "[scene][loa
   const Component& front = s.at(s.cameras[0].comp);
   CHECK(front.type->name == "RCStaticCamera");
   CHECK(front.qkey == "Front");
-  CHECK(front.number("ViewAngle") == 45);
-  CHECK(front.number("FarClip") == 1000);
+  CHECK(front.get(ValueParam<double>{"ViewAngle"}) == 45);
+  CHECK(front.get(ValueParam<double>{"FarClip"}) == 1000);
   const Component& chase = s.at(s.cameras[1].comp);
   CHECK(chase.type->name == "RCTrackingCamera");
-  CHECK(chase.link("Body").comp == s.by_qkey.at("Ball"));
-  CHECK(chase.number("Distance") == 3);
+  CHECK(chase.get(LinkParam{"Body"}).comp == s.by_qkey.at("Ball"));
+  CHECK(chase.get(ValueParam<double>{"Distance"}) == 3);
 }
 
 TEST_CASE("load: a scene without settings, cameras or components", "[scene][load]") {
@@ -274,7 +275,7 @@ TEST_CASE("load: a scene without settings, cameras or components", "[scene][load
   CHECK(s.components.empty());
   CHECK(s.cameras.empty());
   REQUIRE(s.settings >= 0);  // defaults apply
-  CHECK(s.at(s.settings).number("MaxTimeStep") == 0.001);
+  CHECK(s.at(s.settings).get(ValueParam<double>{"MaxTimeStep"}) == 0.001);
   CHECK(s.files == std::vector<std::string>{"test.xml"});
   CHECK(s.content_hash.size() == 16);
 }
@@ -354,16 +355,16 @@ Key = Other
   requireSameGraph(s, x);
 
   CHECK(comp(s, "Ball.Geom").type->name == "RCSphereGeom");
-  CHECK(comp(s, "Ball.Geom").number("Radius") == 0.25);
-  CHECK(comp(s, "Ball").link("Material").comp == s.by_qkey.at("Rubber"));
-  CHECK(s.at(s.settings).triple("Gravity") == Triple{0, 0, -9.81});
-  CHECK(s.at(s.at(s.settings).link("FogSettings").comp).enumValue("Mode") == 1);
-  CHECK(comp(s, "M.Cone").number("Radius") == 2);
-  CHECK(comp(s, "M").list("ChildList")[1].comp == s.by_qkey.at("Other"));
+  CHECK(comp(s, "Ball.Geom").get(ValueParam<double>{"Radius"}) == 0.25);
+  CHECK(comp(s, "Ball").get(LinkParam{"Material"}).comp == s.by_qkey.at("Rubber"));
+  CHECK(s.at(s.settings).get(ValueParam<Triple>{"Gravity"}) == Triple{0, 0, -9.81});
+  CHECK(s.at(s.at(s.settings).get(LinkParam{"FogSettings"}).comp).get(EnumParam{"Mode"}) == 1);
+  CHECK(comp(s, "M.Cone").get(ValueParam<double>{"Radius"}) == 2);
+  CHECK(comp(s, "M").get(ListParam{"ChildList"})[1].comp == s.by_qkey.at("Other"));
   // Quotes keep leading and trailing blanks and allow empty values.
   const Component& skin = comp(s, " padded key ");
   CHECK(skin.slot("Texture").set);
-  CHECK(skin.string("Texture").empty());
+  CHECK(skin.get(ValueParam<std::string>{"Texture"}).empty());
   // Lines are the lines of the assignments.
   CHECK(comp(s, "Ball.Geom").slot("Radius").loc.line == 16);
   CHECK(comp(s, "Ball.Geom").slot("Radius").loc.file == "test.ini");
@@ -380,11 +381,11 @@ SceneSettings.ERP = 0.5
 )",
                      Format::Ini, "flat.ini");
   REQUIRE(s.components.size() == 1);
-  CHECK(comp(s, "RCGround").number("Extension") == 50);
+  CHECK(comp(s, "RCGround").get(ValueParam<double>{"Extension"}) == 50);
   REQUIRE(s.cameras.size() == 1);
   CHECK(s.at(s.cameras[0].comp).type->name == "RCStaticCamera");
   CHECK(comp(s, "Main").type->name == "RCStaticCamera");
-  CHECK(s.at(s.settings).number("ERP") == 0.5);
+  CHECK(s.at(s.settings).get(ValueParam<double>{"ERP"}) == 0.5);
 }
 
 TEST_CASE("load: INI sections may name nested components and come in any order", "[scene][load][ini]") {
@@ -401,9 +402,9 @@ Pose = 1 0 0 0 0 0
 )",
                      Format::Ini, "sections.ini");
   CHECK(comp(s, "Wall.Geom").type->name == "RCSphereGeom");
-  CHECK(comp(s, "Wall.Geom").number("Radius") == 0.3);
+  CHECK(comp(s, "Wall.Geom").get(ValueParam<double>{"Radius"}) == 0.3);
   CHECK(comp(s, "Wall.Geom").slot("Radius").loc.line == 3);
-  CHECK(comp(s, "Wall.Pose").pose("Pose") == Pose{{1, 0, 0}, {0, 0, 0}});
+  CHECK(comp(s, "Wall.Pose").get(ValueParam<Pose>{"Pose"}) == Pose{{1, 0, 0}, {0, 0, 0}});
   Scene x = mustLoad(R"(<Simulation><ComponentList><RCStaticRigidBody Key="Wall">
     <Pose><RCGlobalCoordinates><Pose Value="1 0 0 0 0 0"/></RCGlobalCoordinates></Pose>
     <Geom><RCSphereGeom><Radius Value="0.3"/></RCSphereGeom></Geom>
@@ -419,10 +420,10 @@ TEST_CASE("load: loadScene picks the format from the file name", "[scene][load][
                               "</ComponentList></Simulation>");
   Scene a, b;
   Diagnostics da, db;
-  REQUIRE(loadScene(ini, builtinRegistry(), &a, da));
-  REQUIRE(loadScene(xml, builtinRegistry(), &b, db));
+  REQUIRE(loadScene(ini, testRegistry(), &a, da));
+  REQUIRE(loadScene(xml, testRegistry(), &b, db));
   requireSameGraph(a, b);
-  CHECK(comp(a, "RCSky").number("Height") == 7);
+  CHECK(comp(a, "RCSky").get(ValueParam<double>{"Height"}) == 7);
   CHECK(a.path == ini);
   CHECK(a.files == std::vector<std::string>{ini});
   // Different bytes, different hash.
@@ -435,22 +436,21 @@ TEST_CASE("load: loadStructIni reads the global settings INI", "[scene][load][in
   Scene holder;
   int c = -1;
   Diagnostics d;
-  REQUIRE(loadStructIni(path, builtinRegistry(), "GlobalSettings", &holder, &c, d));
+  REQUIRE(loadStructIni(path, testRegistry(), "GlobalSettings", &holder, &c, d));
   REQUIRE(c >= 0);
-  CHECK(holder.at(c).string("TextureFolder") == " textures ");
-  CHECK(holder.at(c).boolean("DocumentIni"));
-  CHECK(holder.at(c).string("LogFile").empty());
+  CHECK(holder.at(c).get(ValueParam<std::string>{"TextureFolder"}) == " textures ");
+  CHECK(holder.at(c).get(ValueParam<bool>{"DocumentIni"}));
+  CHECK(holder.at(c).get(ValueParam<std::string>{"LogFile"}).empty());
 
   std::string bad = dir.write("bad.ini", "TextureFolder = x\nTexturFolder = y\n");
   Diagnostics d2;
-  CHECK_FALSE(loadStructIni(bad, builtinRegistry(), "GlobalSettings", &holder, &c, d2));
+  CHECK_FALSE(loadStructIni(bad, testRegistry(), "GlobalSettings", &holder, &c, d2));
   REQUIRE(d2.errors().size() == 1);
   CHECK(d2.errors()[0].str() ==
         bad + ":2: GlobalSettings: parameter 'TexturFolder' unknown (did you mean 'TextureFolder'?)");
 
   Diagnostics d3;
-  CHECK_FALSE(
-      loadStructIni((dir.path() / "missing.ini").string(), builtinRegistry(), "GlobalSettings", &holder, &c, d3));
+  CHECK_FALSE(loadStructIni((dir.path() / "missing.ini").string(), testRegistry(), "GlobalSettings", &holder, &c, d3));
   REQUIRE(d3.errors().size() == 1);
   CHECK(d3.errors()[0].kind == ErrorKind::MissingInput);
 }
@@ -523,7 +523,7 @@ TEST_CASE("load: RCImportBody, RCImportJoint and RCImportRefList read their file
   ImportFixture fx;
   Scene s;
   Diagnostics d;
-  bool ok = loadScene(fx.main, builtinRegistry(), &s, d);
+  bool ok = loadScene(fx.main, testRegistry(), &s, d);
   INFO(errorText(d));
   REQUIRE(ok);
 
@@ -533,7 +533,7 @@ TEST_CASE("load: RCImportBody, RCImportJoint and RCImportRefList read their file
   CHECK(s.at(mats.imported[0]).qkey == "Materials.Rubber");
   CHECK(s.at(mats.imported[1]).qkey == "Materials.Red");
   CHECK(s.at(mats.imported[2]).qkey == "Materials.Crate");  // wrapper element around a type element
-  CHECK(comp(s, "Materials.Rubber").number("Friction") == 1.5);
+  CHECK(comp(s, "Materials.Rubber").get(ValueParam<double>{"Friction"}) == 1.5);
   CHECK(comp(s, "Materials.Rubber").parent == s.by_qkey.at("Materials"));
   CHECK(comp(s, "Materials.Rubber").loc.file == (fx.dir.path() / "lib/materials.xml").string());
   CHECK(comp(s, "Materials.Rubber").loc.line == 3);
@@ -541,13 +541,13 @@ TEST_CASE("load: RCImportBody, RCImportJoint and RCImportRefList read their file
   const Component& b1 = comp(s, "Ball1");
   REQUIRE(b1.imported.size() == 1);
   CHECK(b1.imported[0] == s.by_qkey.at("Ball1.Ball"));
-  CHECK(comp(s, "Ball1.Ball.Geom").number("Radius") == 0.1);
+  CHECK(comp(s, "Ball1.Ball.Geom").get(ValueParam<double>{"Radius"}) == 0.1);
   // The same file imported twice gives two independent copies.
   CHECK(s.by_qkey.count("Ball2.Ball") == 1);
   CHECK(s.by_qkey.at("Ball2.Ball") != s.by_qkey.at("Ball1.Ball"));
   // Refs into an imported RefList, from the scene and from another import.
-  CHECK(comp(s, "Floor").link("Material").comp == s.by_qkey.at("Materials.Rubber"));
-  CHECK(comp(s, "Ball1.Ball").link("Material").comp == s.by_qkey.at("Materials.Rubber"));
+  CHECK(comp(s, "Floor").get(LinkParam{"Material"}).comp == s.by_qkey.at("Materials.Rubber"));
+  CHECK(comp(s, "Ball1.Ball").get(LinkParam{"Material"}).comp == s.by_qkey.at("Materials.Rubber"));
 
   const Component& j = comp(s, "Arm.J");
   REQUIRE(j.imported.size() == 1);
@@ -574,7 +574,7 @@ TEST_CASE("load: RCImportBody, RCImportJoint and RCImportRefList read their file
   fx.dir.write("parts/sub/link.xml", readText((fx.dir.path() / "parts/sub/link.xml").string()) + "\n");
   Scene s2;
   Diagnostics d2;
-  REQUIRE(loadScene(fx.main, builtinRegistry(), &s2, d2));
+  REQUIRE(loadScene(fx.main, testRegistry(), &s2, d2));
   CHECK(s2.content_hash != hash);
   requireSameGraph(s, s2);
 }
@@ -583,8 +583,8 @@ TEST_CASE("load: loadSceneFromText resolves imports relative to the given name",
   ImportFixture fx;
   Scene a, b;
   Diagnostics da, db;
-  REQUIRE(loadScene(fx.main, builtinRegistry(), &a, da));
-  REQUIRE(loadSceneFromText(readText(fx.main), fx.main, Format::Xml, builtinRegistry(), &b, db));
+  REQUIRE(loadScene(fx.main, testRegistry(), &a, da));
+  REQUIRE(loadSceneFromText(readText(fx.main), fx.main, Format::Xml, testRegistry(), &b, db));
   requireSameGraph(a, b);
   CHECK(a.content_hash == b.content_hash);
 }
@@ -596,7 +596,7 @@ TEST_CASE("load: absolute import paths", "[scene][load][import]") {
                                                       part + "\"/></RCImportBody></ComponentList></Simulation>");
   Scene s;
   Diagnostics d;
-  REQUIRE(loadScene(main, builtinRegistry(), &s, d));
+  REQUIRE(loadScene(main, testRegistry(), &s, d));
   CHECK(comp(s, "I.P").type->name == "RCStaticRigidBody");
 }
 
@@ -607,7 +607,7 @@ namespace {
 /// A scene with one component of every registered type that needs no file (imports are tested
 /// with files), each in a place where its family is accepted.
 std::string everyTypeScene() {
-  const Registry& reg = builtinRegistry();
+  const Registry& reg = testRegistry();
   std::string cameras, components, geoms, joints, peripheries, controllers, poses, motions, inertias;
   int n = 0;
   for (const TypeSpec& t : reg.types()) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "test_registry.h"
 #include "simbob/registry.h"
 #include "simbob/values.h"
 
@@ -147,7 +148,7 @@ bool holds(ValueType t, const Value& v) {
 }  // namespace
 
 TEST_CASE("registry: every type of guide chapter 6 and 3.5 is registered in its family", "[scene][registry]") {
-  const Registry& reg = builtinRegistry();
+  const Registry& reg = testRegistry();
   for (const GuideType& g : guideTypes()) {
     INFO("type " << g.name);
     const TypeSpec* t = reg.find(g.name);
@@ -162,7 +163,7 @@ TEST_CASE("registry: every type of guide chapter 6 and 3.5 is registered in its 
 }
 
 TEST_CASE("registry: the guide's misspelled geom names are aliases of the corrected ones", "[scene][registry]") {
-  const Registry& reg = builtinRegistry();
+  const Registry& reg = testRegistry();
   const TypeSpec* match = reg.find("RCModelMatchGeom");
   const TypeSpec* wrap = reg.find("RCModelWrapGeom");
   REQUIRE(match);
@@ -180,7 +181,7 @@ TEST_CASE("registry: the guide's misspelled geom names are aliases of the correc
 }
 
 TEST_CASE("registry: lookups are exact-case, findIgnoreCase is not", "[scene][registry]") {
-  const Registry& reg = builtinRegistry();
+  const Registry& reg = testRegistry();
   CHECK(reg.find("rcspheregeom") == nullptr);
   CHECK(reg.find("RCSphereGeom ") == nullptr);
   CHECK(reg.find("") == nullptr);
@@ -190,7 +191,7 @@ TEST_CASE("registry: lookups are exact-case, findIgnoreCase is not", "[scene][re
 }
 
 TEST_CASE("registry: the guide's enum and bitmask keys are accepted", "[scene][registry]") {
-  const Registry& reg = builtinRegistry();
+  const Registry& reg = testRegistry();
   auto param = [&](const char* type, const char* name) -> const ParamSpec& {
     const TypeSpec* t = reg.find(type);
     REQUIRE(t);
@@ -231,7 +232,7 @@ TEST_CASE("registry: the guide's enum and bitmask keys are accepted", "[scene][r
 }
 
 TEST_CASE("registry: family parameters are inherited, first and in order", "[scene][registry]") {
-  const Registry& reg = builtinRegistry();
+  const Registry& reg = testRegistry();
   size_t models = 0, joints = 0, cameras = 0;
   for (const TypeSpec& t : reg.types()) {
     INFO("type " << t.name);
@@ -281,8 +282,13 @@ TEST_CASE("registry: family parameters are inherited, first and in order", "[sce
 
 TEST_CASE("registry: family parameters of a custom registry go in front of the type's own", "[scene][registry]") {
   Registry r;
-  r.setFamilyParams(Family::Geom, {valueParam("Common", ValueType::Number, 1.0, "", "")});
-  r.add({"MyGeom", Family::Geom, 0, {valueParam("Own", ValueType::Number, 2.0, "", "")}, {"MyAlias"}, "doc"});
+  r.setFamilyParams(Family::Geom, {valueParam(ValueParam<double>{"Common"}, ValueType::Number, 1.0, "", "")});
+  r.add({"MyGeom",
+         Family::Geom,
+         0,
+         {valueParam(ValueParam<double>{"Own"}, ValueType::Number, 2.0, "", "")},
+         {"MyAlias"},
+         "doc"});
   const TypeSpec* t = r.find("MyGeom");
   REQUIRE(t);
   REQUIRE(t->params.size() == 2);
@@ -297,7 +303,7 @@ TEST_CASE("registry: family parameters of a custom registry go in front of the t
 }
 
 TEST_CASE("registry: parameter names are unique per type and every table is consistent", "[scene][registry]") {
-  const Registry& reg = builtinRegistry();
+  const Registry& reg = testRegistry();
   std::set<std::string> type_names;
   for (const TypeSpec& t : reg.types()) {
     INFO("type " << t.name);
@@ -354,7 +360,7 @@ TEST_CASE("registry: parameter names are unique per type and every table is cons
 }
 
 TEST_CASE("registry: macros create components of a registered type of their family", "[scene][registry]") {
-  const Registry& reg = builtinRegistry();
+  const Registry& reg = testRegistry();
   for (const char* name : {"NoGeom", "NoModel", "NoMotion", "Origin", "DefaultMaterial"}) {
     INFO("macro " << name);
     const MacroSpec* m = reg.findMacro(name);
@@ -371,7 +377,7 @@ TEST_CASE("registry: macros create components of a registered type of their fami
 }
 
 TEST_CASE("registry: every default value formats and re-parses to itself", "[scene][registry]") {
-  const Registry& reg = builtinRegistry();
+  const Registry& reg = testRegistry();
   size_t checked = 0;
   for (const TypeSpec& t : reg.types()) {
     for (const ParamSpec& p : t.params) {
@@ -393,7 +399,7 @@ TEST_CASE("registry: every default value formats and re-parses to itself", "[sce
 }
 
 TEST_CASE("registry: selected defaults match the documented values", "[scene][registry]") {
-  const Registry& reg = builtinRegistry();
+  const Registry& reg = testRegistry();
   auto def = [&](const char* type, const char* name) {
     const TypeSpec* t = reg.find(type);
     REQUIRE(t);
@@ -420,7 +426,7 @@ TEST_CASE("registry: selected defaults match the documented values", "[scene][re
 }
 
 TEST_CASE("registry: did-you-mean suggestions", "[scene][registry]") {
-  const Registry& reg = builtinRegistry();
+  const Registry& reg = testRegistry();
   CHECK(reg.suggestType("RCSphereGeon") == "RCSphereGeom");
   CHECK(reg.suggestType("RCMobilRigidBody") == "RCMobileRigidBody");
   CHECK(reg.suggestType("rcground") == "RCGround");  // case does not count
@@ -460,7 +466,7 @@ TEST_CASE("registry: family names are the guide's ComponentBaseTypes", "[scene][
 }
 
 TEST_CASE("registry: the scene root and settings structs", "[scene][registry]") {
-  const Registry& reg = builtinRegistry();
+  const Registry& reg = testRegistry();
   const TypeSpec* sim = reg.find("Simulation");
   REQUIRE(sim);
   CHECK(sim->family == Family::Struct);

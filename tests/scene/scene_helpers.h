@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "test_registry.h"
 #include "simbob/compile.h"
 #include "simbob/graph.h"
 #include "simbob/registry.h"
@@ -29,7 +30,7 @@ inline std::string errorText(const Diagnostics& d) {
 
 inline bool loadText(const std::string& text, Scene* scene, Diagnostics& diag, Format format = Format::Xml,
                      const std::string& name = "test.xml") {
-  return loadSceneFromText(text, name, format, builtinRegistry(), scene, diag);
+  return loadSceneFromText(text, name, format, testRegistry(), scene, diag);
 }
 
 /// Load text that must be valid; fails the test with the messages otherwise.

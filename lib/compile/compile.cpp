@@ -1,0 +1,80 @@
+// The compile step's walk: component graph -> Model. Each family lowers its own components
+// (lib/components/<family>.cpp, through compile/context.h); this file only decides the order:
+// settings, then the ComponentList in document order (clones last, so the bodies their
+// originals join to exist outside the copy), then the cameras, then whole-model checks.
+#include "simbob/compile.h"
+
+#include <map>
+
+#include "compile/context.h"
+
+namespace simbob {
+
+namespace {
+
+void lowerComponentList(CompileContext& ctx) {
+  std::vector<int> clones;
+  for (const Link& l : ctx.scene.components) {
+    if (l.comp < 0) continue;
+    const Component& c = ctx.at(l.comp);
+    switch (c.type->family) {
+      case Family::Body:
+        if (l.isRef()) break;  // listed elsewhere: lowered where it is written
+        if (isClone(c))
+          clones.push_back(l.comp);
+        else
+          lowerBody(ctx, l.comp, nullptr);
+        break;
+      case Family::GlobalSim:
+        lowerGlobal(ctx, l.comp);
+        break;
+      case Family::Material:
+      case Family::Skin:
+      case Family::Model:
+        break;  // listed to be referred to
+      case Family::Geom:
+      case Family::Joint:
+      case Family::Pose:
+      case Family::Motion:
+      case Family::Inertia:
+      case Family::Periphery:
+      case Family::Controller:
+      case Family::Camera:
+      case Family::Struct:
+        ctx.error(c, "a " + std::string(familyName(c.type->family)) + " cannot stand in the ComponentList");
+        break;
+    }
+  }
+  for (int ci : clones) lowerBody(ctx, ci, nullptr);
+}
+
+/// Every body and joint of the Model needs a key of its own: the trajectory names bodies by it.
+void checkUniqueKeys(CompileContext& ctx) {
+  std::map<std::string, size_t> seen;
+  for (size_t i = 0; i < ctx.model.bodies.size(); ++i) {
+    const BodyDef& b = ctx.model.bodies[i];
+    auto [it, fresh] = seen.emplace(b.key, i);
+    if (!fresh)
+      ctx.diag.error(b.loc, "two bodies get the key '" + b.key +
+                                "' (the second from here); give the copy a Key of "
+                                "its own");
+  }
+}
+
+}  // namespace
+
+bool compileScene(const Scene& scene, Model* model, Diagnostics& diag) {
+  *model = Model{};
+  CompileContext ctx(scene, *model, diag);
+  lowerSettings(ctx, scene.settings);
+  // [0]: the registry's defaults, for geoms made without a material (none today: every body
+  // and global has a Material parameter with a default).
+  model->materials.push_back(MaterialDef{});
+  lowerComponentList(ctx);
+  for (const Link& l : scene.cameras)
+    if (l.comp >= 0) lowerCamera(ctx, l.comp);
+  checkUniqueKeys(ctx);
+  return diag.ok() && !ctx.failedQuietly();
+}
+
+}  // namespace simbob

@@ -1,0 +1,185 @@
+// The compile step's shared context: what every family's lowering (component graph -> Model)
+// needs, and the one function per family that lowers it. The family files
+// (lib/components/<family>.cpp) never include each other: a body lowers its geoms and joints by
+// calling the functions declared here, which the geom and joint family files define.
+#pragma once
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "simbob/graph.h"
+#include "simbob/model.h"
+
+namespace simbob {
+
+/// What lowering a body produced: its index in Model::bodies (-1 = static, part of the world)
+/// and its global frame.
+struct Built {
+  int index = -1;
+  Transform frame;
+  bool ok = false;
+};
+
+/// Where a geom lands: the body that owns it and the frames its pose is relative to.
+struct GeomTarget {
+  const Component* owner = nullptr;  ///< the body component (for keys and messages)
+  int body = -1;                     ///< Model::bodies index; -1 = static geom (global pose)
+  Transform frame;                   ///< the owner's global frame
+  int material = 0;                  ///< Model::materials index
+  const Link* model = nullptr;       ///< the owner's Model (for model-derived geoms)
+};
+
+class CompileContext {
+ public:
+  CompileContext(const Scene& s, Model& m, Diagnostics& d) : scene(s), model(m), diag(d) {}
+
+  const Scene& scene;
+  Model& model;
+  Diagnostics& diag;
+
+  const Component& at(int i) const { return scene.at(i); }
+
+  /// "RCHingeJoint 'Arm.Elbow'": how messages name a component.
+  static std::string describe(const Component& c) { return c.type->name + " '" + c.qkey + "'"; }
+  /// An error at the component's line.
+  /// Errors about a component that failed to load are left out: its load error says it all, and
+  /// what follows from it (a missing geom leaves no volume) would only be noise (`check` compiles
+  /// scenes that failed to load to report every other problem in the same pass).
+  void error(const Component& c, const std::string& msg) { report(c, c.loc, msg); }
+  /// An error at the line of a link (a parameter's element) when it has one, else the owner's.
+  void error(const Link& l, const Component& owner, const std::string& msg) {
+    report(owner, l.loc.line ? l.loc : owner.loc, msg);
+  }
+  /// An error at the line of one parameter of `c` (its slot), else the component's.
+  void errorAt(const Slot& s, const Component& c, const std::string& msg) {
+    report(c, s.loc.line ? s.loc : c.loc, msg);
+  }
+  void warning(const Component& c, const std::string& msg) { diag.warning(c.loc, describe(c) + ": " + msg); }
+
+  /// The key a body or joint gets in the Model: inside a RigidBodyClone, the original's prefix
+  /// is replaced by the clone's key ("Ball" renames "Ball.Arm", not "Ballast").
+  std::string modelKey(const Component& c) const;
+
+  /// Model index of the body or joint lowered under `model_key` (modelKey of its component),
+  /// or -1. Peripheries find their joints and controllers their bodies through these.
+  int bodyIndex(const std::string& model_key) const;
+  int jointIndex(const std::string& model_key) const;
+  void recordBody(const std::string& model_key, int index) { body_index_[model_key] = index; }
+  /// The frame body component `comp` was first lowered in (its parent's), or nullptr.
+  const Transform* parentFrame(int comp) const {
+    auto it = parent_frame_.find(comp);
+    return it == parent_frame_.end() ? nullptr : &it->second;
+  }
+  void recordParentFrame(int comp, const Transform& t) { parent_frame_.emplace(comp, t); }
+  /// Whether an error was left out because its component failed to load.
+  bool failedQuietly() const { return failed_quietly_; }
+  /// True the first time it is asked about `comp`: checks of shared components report once.
+  bool firstCheck(int comp) { return checked_.insert(comp).second; }
+  /// Index of a component of the scene.
+  int indexOf(const Component& c) const { return static_cast<int>(&c - scene.comps.data()); }
+  void recordJoint(const std::string& model_key, int index) { joint_index_[model_key] = index; }
+
+  /// Lowering state of bodies (bodies.cpp, clones.cpp): bodies already lowered (memo), bodies
+  /// being lowered (cycle and depth checks), and the clone being copied.
+  struct CloneScope {
+    bool active = false;
+    /// original key prefix -> copy key prefix, outermost clone first
+    std::vector<std::pair<std::string, std::string>> renames;
+    std::map<int, Built> memo;  ///< bodies lowered inside this copy
+    std::set<int> inside;       ///< components that belong to the original
+  };
+  CloneScope clone;
+  int clone_depth = 0;
+  std::map<int, Built> memo;
+  std::set<int> in_progress;
+  bool too_big = false;  ///< a size bound was hit (reported once)
+
+ private:
+  void report(const Component& c, const SourceLoc& loc, const std::string& msg) {
+    if (scene.load_failed.empty() || !scene.load_failed.count(indexOf(c)))
+      diag.error(loc, describe(c) + ": " + msg);
+    else
+      failed_quietly_ = true;
+  }
+
+  bool failed_quietly_ = false;
+  std::map<std::string, int> body_index_;
+  std::map<std::string, int> joint_index_;
+  std::map<int, Transform> parent_frame_;
+  std::set<int> checked_;
+};
+
+// --- one lowering per family; each is defined in lib/components/<family>.cpp -----------------
+
+/// settings.cpp: SceneSettings -> Model::settings.
+void lowerSettings(CompileContext& ctx, int comp);
+/// poses.cpp: the frame a pose link gives, relative to `parent` for local coordinates. An empty
+/// link is the parent frame itself (the origin at the top level). False after an error.
+bool lowerPose(CompileContext& ctx, const Link& l, const Component& owner, const Transform* parent, Transform* out);
+/// poses.cpp: whether a pose link is in local coordinates (an empty link counts as local), and
+/// the transform it holds as written (not resolved against any frame).
+bool isLocalPose(const CompileContext& ctx, const Link& l);
+Transform poseValue(const CompileContext& ctx, const Link& l);
+/// materials.cpp: the Model::materials index of a material link (0 = the default).
+int lowerMaterial(CompileContext& ctx, const Link& l);
+/// motions.cpp: initial velocities from a motion link (none: at rest).
+void lowerMotion(CompileContext& ctx, const Link& l, BodyDef* b);
+/// geoms.cpp: the geoms of a geom link, at `offset` in the owner's frame.
+void lowerGeom(CompileContext& ctx, const Link& l, const GeomTarget& t, const Transform& offset);
+/// geoms.cpp: a static plane n.p = n.point (n need not be unit).
+void addPlane(CompileContext& ctx, Vec3 n, const Vec3& point, int material, const std::string& key);
+/// model_geoms.cpp: RCModelMatchGeom / RCModelWrapGeom, derived from the owner's model tree.
+void lowerModelGeom(CompileContext& ctx, const Component& geom, const GeomTarget& t, const Transform& offset);
+/// models.cpp: the models of a body's model tree in document order, each with its frame in the
+/// body frame `base` (the root's pose is relative to it; children's local poses to their parent,
+/// their global poses to `base`). False after an error or past kMaxModelParts parts.
+struct ModelPart {
+  const Component* model;
+  Transform frame;
+};
+constexpr size_t kMaxModelParts = 10000;
+bool collectModelParts(CompileContext& ctx, const Link& root, const Transform& base, bool children,
+                       std::vector<ModelPart>* out);
+/// models.cpp: checks a body's model tree (a root model's Pose must be local, guide 6.3).
+void checkModelTree(CompileContext& ctx, const Link& root);
+/// models.cpp: axis-aligned bounds of one model in its own frame (false: it has no extent).
+bool modelBounds(const Component& model, Vec3* center, Vec3* half);
+/// models.cpp: the primitive a model is, in its own frame: Box (size = extents, at center),
+/// Ellipsoid (size = radii), Cylinder/Capsule/Cone (size = radius, length along Z), Plane
+/// (size = extensions), None (nothing visible).
+struct ModelShape {
+  enum Kind { None, Box, Ellipsoid, Cylinder, Capsule, Cone, Plane } kind = None;
+  Vec3 center{0, 0, 0};
+  Vec3 size{0, 0, 0};
+};
+ModelShape modelShape(const Component& model);
+/// inertias.cpp: mass, centre of mass and inertia of a mobile body whose geoms start at
+/// Model::geoms[first_geom]. False after an error.
+bool lowerInertia(CompileContext& ctx, const Link& l, const Component& owner, size_t first_geom, BodyDef* b);
+/// bodies.cpp: a body component (memoised: a body Ref'd twice is built once), `parent` the
+/// frame local coordinates refer to (nullptr at the top level).
+Built lowerBody(CompileContext& ctx, int comp, const Transform* parent);
+/// clones.cpp: RCImportBody and RigidBodyClone (a rigid copy of another body's subtree).
+Built lowerImportBody(CompileContext& ctx, const Component& c, const Transform* parent);
+Built lowerClone(CompileContext& ctx, const Component& c, const Transform* parent);
+bool isClone(const Component& c);
+/// joints.cpp: a joint of a construction whose root is `parent`; the overrides come from an
+/// RCImportJoint's own Pose and Body.
+void lowerJoint(CompileContext& ctx, int comp, const Built& parent, const Link* pose_override,
+                const Link* body_override);
+/// joints.cpp: the kind of a joint component (following RCImportJoint); false if unknown.
+bool jointKindOf(const CompileContext& ctx, const Component& joint, JointKind* kind);
+/// peripheries.cpp: a periphery in a construction's ChildList (after its joints).
+void lowerPeriphery(CompileContext& ctx, const Component& c, const Built& parent);
+/// peripheries.cpp: the position limits (m or rad; infinite: none) of a drive or servo.
+bool peripheryLimits(const Component& periphery, double* lo, double* hi);
+/// controllers.cpp: a controller in an RCRobot's ControllerList.
+void lowerController(CompileContext& ctx, const Component& c);
+/// globals.cpp: a GlobalSimComponent of the ComponentList.
+void lowerGlobal(CompileContext& ctx, int comp);
+/// cameras.cpp: checks of a camera of the CameraList.
+void lowerCamera(CompileContext& ctx, int comp);
+
+}  // namespace simbob

@@ -1,5 +1,5 @@
 // The physics layer: builds an ODE world from a compiled Model and steps it.
-// This header exposes no ODE type; only lib/physics/*.cpp include <ode/ode.h>.
+// This header exposes no ODE type; only lib/physics (its .cpp files and world_impl.h) includes <ode/ode.h>.
 #pragma once
 
 #include <cstdint>

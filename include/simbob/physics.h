@@ -1,5 +1,5 @@
 // The physics layer: builds an ODE world from a compiled Model and steps it.
-// This header exposes no ODE type; only lib/physics/*.cpp include <ode/ode.h>.
+// This header exposes no ODE type; only lib/physics (its .cpp files and world_impl.h) includes <ode/ode.h>.
 #pragma once
 
 #include <cstdint>
@@ -20,6 +20,21 @@ struct BodyState {
   Vec3 ang_vel{0, 0, 0};
 };
 
+/// State of one joint: the motion of its child body (JointDef::body2) relative to its parent
+/// (JointDef::body1; -1 is the static world), measured about (hinge) or along (slider) the joint
+/// axis (JointDef::axis, global at the start; it moves with the parent). Zero at the pose the
+/// scene starts in.
+/// - Hinge: rad and rad/s, positive by the right-hand rule about the axis; the position is
+///   wrapped into [-pi, pi] (a wheel turning for ever does not grow without bound).
+/// - Slider: m and m/s, positive along the axis.
+/// - BallSocket, Fixed: always 0, 0 (no single axis).
+struct JointState {
+  double position = 0.0;  ///< rad (hinge) or m (slider)
+  double velocity = 0.0;  ///< rad/s (hinge) or m/s (slider)
+};
+
+struct WorldImpl;  // ODE handles; private to lib/physics (world_impl.h)
+
 /// An ODE world built from a Model. ODE keeps process-wide state (its random generator among
 /// it), so only one World may exist per process at a time; creating a second one while the
 /// first lives is an Internal error.
@@ -35,8 +50,15 @@ class World {
   /// Advance by h seconds: collide, add contacts per the material rules, step, clear contacts.
   void step(double h);
 
+  /// Mobile bodies, in Model::bodies order.
   int bodyCount() const;
+  /// State of body i (0 <= i < bodyCount()) at its origin, global frame.
   BodyState body(int i) const;
+
+  /// Joints, in Model::joints order.
+  int jointCount() const;
+  /// State of joint i (0 <= i < jointCount()); see JointState for units and signs.
+  JointState joint(int i) const;
 
   /// Index of the first body whose state is non-finite or beyond `limit` (m or m/s, rad/s),
   /// or -1 when all are fine.
@@ -47,8 +69,7 @@ class World {
 
  private:
   World();
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
+  std::unique_ptr<WorldImpl> impl_;
 };
 
 }  // namespace simbob

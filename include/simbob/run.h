@@ -1,27 +1,33 @@
-// One batch run: build the world from a Model, step it to the duration on the clock, sample
-// poses into a trajectory, and check every step for a non-finite or runaway state.
+// One batch run: build the world from a Model and step it to the duration on the clock, serving
+// the parties that need the simulation at given times (guide 7.2): the trajectory sampler today;
+// controllers, recorders and external peers later, each a Party of its own. Every step is
+// checked for a non-finite or runaway state.
 #pragma once
 
 #include <csignal>
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
+#include "simbob/clock.h"
 #include "simbob/error.h"
 #include "simbob/model.h"
 #include "simbob/trajectory.h"
 
 namespace simbob {
 
+class World;
+
 struct RunOptions {
   double duration = 10.0;         ///< s of simulated time
   double dt = 0.0;                ///< s; 0 = the scene's MaxTimeStep
-  double sample_interval = 0.01;  ///< s of simulated time between trajectory samples
+  double sample_interval = 0.01;  ///< s of simulated time between trajectory samples (runModel)
   uint32_t seed = 0;              ///< ODE's random generator (QuickStep constraint order)
   double runaway_limit = 1e6;     ///< |position| in m or |velocity| in m/s, rad/s beyond which a run diverged
   /// Called about every 1% of the run with the simulated time reached.
   std::function<void(double)> progress;
-  /// Called with every sample: time and kPoseSize doubles per body (x y z qw qx qy qz).
+  /// Called with every sample: time and kPoseSize doubles per body (x y z qw qx qy qz) (runModel).
   std::function<void(double, const double*)> on_sample;
   /// Set asynchronously (SIGINT/SIGTERM) to stop at the next step.
   const volatile std::sig_atomic_t* stop = nullptr;
@@ -34,13 +40,73 @@ struct RunResult {
   Error error;  ///< set unless Completed
   uint64_t steps = 0;
   double sim_time = 0.0;  ///< s reached
-  uint64_t samples = 0;
+  uint64_t samples = 0;   ///< trajectory samples (runModel; 0 from runParties)
   double wall_seconds = 0.0;
   double dt = 0.0;  ///< step size used
 };
 
-/// Runs the model. Samples go to `writer` (may be null: no trajectory). The caller commits
-/// or keeps the writer's output according to the result.
+/// Something that needs the simulation at given simulated times (guide 7.2): a sampler, a
+/// controller, a recorder, an external peer. It says when it next needs the world; the run loop
+/// grants it the world at that time, alone: nothing else runs while it acts.
+class Party {
+ public:
+  virtual ~Party();
+  /// Its first request (ns of simulated time), or kNever. Called once, after the world is built.
+  virtual SimTime first() = 0;
+  /// The clock reached `now`, within MinTimeStep of its request. It may read the world and act
+  /// on it (never step it). Returns its next request (> now), or kNever to ask no more.
+  virtual SimTime onGrant(SimTime now, World& world) = 0;
+  /// Called once when the run completes (reached its duration `end`), after the last grant;
+  /// not when it fails.
+  virtual void finish(SimTime end, World& world);
+  /// Non-null once the party cannot go on (its output failed, ...): the run stops with status
+  /// Failed and this error. Checked after the grants of each instant before the end.
+  virtual const Error* failure() const;
+};
+
+/// Runs the model to opts.duration, serving `parties` (ignores sample_interval and on_sample).
+/// Requests are served in time order; requests for the same time in the order of `parties`
+/// (document order, so the sampler first). A request within MinTimeStep of the time reached is
+/// granted without another step; otherwise the world steps towards the earliest request (or
+/// the end) in steps of at most dt. A party is granted at most once per instant: a request
+/// it returns within MinTimeStep of that instant is granted after the next step.
+/// Times that do not fit the clock (toSimTime) fail the run (status Failed, InvalidInput).
+RunResult runParties(const Model& model, const RunOptions& opts, const std::vector<Party*>& parties);
+
+/// The trajectory sampler: records every body's pose at t = 0, interval, 2 interval, ... (each
+/// sample at the time the clock reached, within MinTimeStep of the request; the next request
+/// is the first multiple of the interval beyond MinTimeStep from it), and once more at the end
+/// of a completed run unless a sample was just taken there.
+class TrajectorySampler : public Party {
+ public:
+  /// `interval` >= 1 ns, `min_step` the scene's MinTimeStep in ns. Samples go to `writer`
+  /// (may be null) and `on_sample` (may be empty).
+  TrajectorySampler(int body_count, SimTime interval, SimTime min_step, TrajectoryWriter* writer,
+                    std::function<void(double, const double*)> on_sample);
+  SimTime first() override;
+  SimTime onGrant(SimTime now, World& world) override;
+  void finish(SimTime end, World& world) override;
+  /// IoError naming the output once a trajectory write failed.
+  const Error* failure() const override;
+  uint64_t samples() const { return samples_; }
+
+ private:
+  void sample(SimTime now, const World& world);
+
+  SimTime interval_;
+  SimTime min_step_;
+  TrajectoryWriter* writer_;
+  std::function<void(double, const double*)> on_sample_;
+  std::vector<double> poses_;
+  SimTime next_ = 0;
+  SimTime last_ = -1;  ///< time of the last sample, -1 before the first
+  uint64_t samples_ = 0;
+  Error error_;
+};
+
+/// Runs the model with the trajectory sampler as its only party. Samples go to `writer` (may be
+/// null: no trajectory) and opts.on_sample. The caller commits or keeps the writer's output
+/// according to the result.
 RunResult runModel(const Model& model, const RunOptions& opts, TrajectoryWriter* writer);
 
 /// "out.csv" -> "out.partial.csv" (the trajectory kept by a failed or interrupted run).

@@ -2,34 +2,59 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace simbob {
 
-SimTime toSimTime(double seconds) { return static_cast<SimTime>(std::llround(seconds * 1e9)); }
+std::optional<SimTime> toSimTime(double seconds) {
+  const double ns = seconds * 1e9;
+  // 2^63 is exact in a double; every double below it in magnitude rounds to a value that fits
+  // (the largest double under 2^63 is an integer). NaN fails both comparisons.
+  constexpr double kLimit = 9223372036854775808.0;
+  if (!(ns < kLimit && ns > -kLimit)) return std::nullopt;
+  return static_cast<SimTime>(std::llround(ns));
+}
 
-int Clock::addPeriodic(SimTime first, SimTime period) {
-  requests_.push_back({first, std::max<SimTime>(period, 1)});
+int Clock::addParty(SimTime first) {
+  requests_.push_back({first, false});
   return static_cast<int>(requests_.size() - 1);
 }
 
+int Clock::grantable() const {
+  int best = -1;
+  for (size_t i = 0; i < requests_.size(); ++i) {
+    const Request& r = requests_[i];
+    // Strictly earlier wins, so equal times keep the lowest id.
+    if (!r.waits && due(r.next) && (best < 0 || r.next < requests_[static_cast<size_t>(best)].next))
+      best = static_cast<int>(i);
+  }
+  return best;
+}
+
+void Clock::granted(int party, SimTime next) {
+  Request& r = requests_[static_cast<size_t>(party)];
+  r.next = next;
+  r.waits = due(next);
+  any_waiting_ = any_waiting_ || r.waits;
+}
+
 SimTime Clock::nextRequest() const {
-  SimTime t = std::numeric_limits<SimTime>::max();
-  for (const auto& r : requests_) t = std::min(t, r.next);
+  SimTime t = kNever;
+  for (const Request& r : requests_)
+    if (!r.waits) t = std::min(t, r.next);
   return t;
 }
 
-bool Clock::due(int id) const { return requests_[static_cast<size_t>(id)].next - now_ <= min_step_; }
-
-void Clock::served(int id) {
-  Request& r = requests_[static_cast<size_t>(id)];
-  while (r.next - now_ <= min_step_) r.next += r.period;
+SimTime Clock::stepToward(SimTime until) const {
+  if (due(until)) return 0;
+  return std::min(until - now_, max_step_);
 }
 
-SimTime Clock::stepToward(SimTime until) const {
-  SimTime gap = until - now_;
-  if (gap <= min_step_) return 0;
-  return std::min(gap, max_step_);
+void Clock::advance(SimTime h) {
+  now_ += h;
+  if (h > 0 && any_waiting_) {
+    for (Request& r : requests_) r.waits = false;
+    any_waiting_ = false;
+  }
 }
 
 }  // namespace simbob

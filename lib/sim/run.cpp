@@ -1,7 +1,9 @@
 #include "simbob/run.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "simbob/clock.h"
@@ -10,6 +12,10 @@
 
 namespace simbob {
 
+Party::~Party() = default;
+void Party::finish(SimTime, World&) {}
+const Error* Party::failure() const { return nullptr; }
+
 std::string partialPath(const std::string& out) {
   const std::string ext = ".csv";
   if (out.size() > ext.size() && out.compare(out.size() - ext.size(), ext.size(), ext) == 0)
@@ -17,66 +23,69 @@ std::string partialPath(const std::string& out) {
   return out + ".partial.csv";
 }
 
-RunResult runModel(const Model& model, const RunOptions& opts, TrajectoryWriter* writer) {
+namespace {
+
+// Converts `seconds` for the clock, or sets *err naming `what` when it does not fit.
+SimTime clockTime(double seconds, const char* what, Error* err) {
+  const std::optional<SimTime> t = toSimTime(seconds);
+  if (t) return *t;
+  if (err->message.empty())
+    *err = {ErrorKind::InvalidInput,
+            {},
+            std::string(what) + " " + formatNumber(seconds) +
+                " s does not fit the clock (integer nanoseconds: at most about 9.2e9 s)"};
+  return 0;
+}
+
+}  // namespace
+
+RunResult runParties(const Model& model, const RunOptions& opts, const std::vector<Party*>& parties) {
   RunResult res;
   auto wall0 = std::chrono::steady_clock::now();
   const double dt = opts.dt > 0 ? opts.dt : model.settings.max_time_step;
   res.dt = dt;
+  const SimTime end = clockTime(opts.duration, "the duration", &res.error);
+  const SimTime step = clockTime(dt, "the step", &res.error);
+  const SimTime min_step = clockTime(model.settings.min_time_step, "MinTimeStep", &res.error);
+  if (!res.error.message.empty()) return res;
   std::unique_ptr<World> world = World::create(model, opts.seed);
   if (!world) {
     res.error = {ErrorKind::Internal, {}, "cannot create the physics world (another one is alive in this process)"};
     return res;
   }
-  const SimTime end = toSimTime(opts.duration);
-  Clock clock(std::max<SimTime>(toSimTime(dt), 1), toSimTime(model.settings.min_time_step));
-  const int sampler = clock.addPeriodic(0, std::max<SimTime>(toSimTime(opts.sample_interval), 1));
-  const int n = world->bodyCount();
-  std::vector<double> poses(static_cast<size_t>(n) * kPoseSize);
-
-  auto sample = [&]() {
-    for (int i = 0; i < n; ++i) {
-      BodyState s = world->body(i);
-      double* p = &poses[static_cast<size_t>(i) * kPoseSize];
-      p[0] = s.pose.p[0];
-      p[1] = s.pose.p[1];
-      p[2] = s.pose.p[2];
-      p[3] = s.pose.q[0];
-      p[4] = s.pose.q[1];
-      p[5] = s.pose.q[2];
-      p[6] = s.pose.q[3];
-    }
-    if (writer) writer->addSample(toSeconds(clock.now()), poses.data());
-    if (opts.on_sample) opts.on_sample(toSeconds(clock.now()), poses.data());
-    ++res.samples;
-  };
+  Clock clock(std::max<SimTime>(step, 1), min_step);
+  for (Party* p : parties) clock.addParty(p->first());
 
   const SimTime progress_every = std::max<SimTime>(end / 100, 1);
   SimTime next_progress = progress_every;
-  SimTime last_sample = -1;
   while (true) {
-    if (clock.due(sampler) && clock.now() <= end) {
-      sample();
-      last_sample = clock.now();
-      clock.served(sampler);
+    // Grant every due request, earliest first, ties in list order; nothing else runs meanwhile.
+    bool granted = false;
+    int id = -1;
+    while ((id = clock.grantable()) >= 0) {
+      clock.granted(id, parties[static_cast<size_t>(id)]->onGrant(clock.now(), *world));
+      granted = true;
     }
-    if (clock.now() >= end || end - clock.now() <= 0) break;
-    if (writer && !writer->ok()) {
-      // A full disk is reported when it happens, not after simulating the rest for nothing.
-      res.status = RunStatus::Failed;
-      res.error = {ErrorKind::IoError,
-                   {writer->finalPath(), 0},
-                   "writing the trajectory failed at t=" + formatNumber(toSeconds(clock.now())) + " s"};
-      break;
+    if (clock.now() >= end) break;
+    if (granted) {
+      for (const Party* p : parties)
+        if (const Error* e = p->failure()) {
+          res.status = RunStatus::Failed;
+          res.error = *e;
+          break;
+        }
+      if (!res.error.message.empty()) break;
     }
     if (opts.stop && *opts.stop) {
       res.status = RunStatus::Interrupted;
       res.error = {ErrorKind::Diverged, {}, "interrupted at t=" + formatNumber(toSeconds(clock.now())) + " s"};
       break;
     }
-    SimTime h = clock.stepToward(std::min(clock.nextRequest(), end));
+    const SimTime until = std::min(clock.nextRequest(), end);
+    const SimTime h = clock.stepToward(until);
     if (h == 0) {
       // The end is within MinTimeStep: it counts as reached.
-      clock.advance(std::min(clock.nextRequest(), end) - clock.now());
+      clock.advance(until - clock.now());
       continue;
     }
     world->step(toSeconds(h));
@@ -98,12 +107,28 @@ RunResult runModel(const Model& model, const RunOptions& opts, TrajectoryWriter*
     }
   }
   if (res.status == RunStatus::Failed && res.error.message.empty()) {
-    // The final state is always recorded, even when the duration is not a multiple of the interval.
-    if (last_sample != clock.now()) sample();
+    for (Party* p : parties) p->finish(clock.now(), *world);
     res.status = RunStatus::Completed;
   }
   res.sim_time = toSeconds(clock.now());
   res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return res;
+}
+
+RunResult runModel(const Model& model, const RunOptions& opts, TrajectoryWriter* writer) {
+  Error err;
+  const SimTime interval = clockTime(opts.sample_interval, "the sample interval", &err);
+  const SimTime min_step = clockTime(model.settings.min_time_step, "MinTimeStep", &err);
+  if (!err.message.empty()) {
+    RunResult res;
+    res.dt = opts.dt > 0 ? opts.dt : model.settings.max_time_step;
+    res.error = err;
+    return res;
+  }
+  TrajectorySampler sampler(static_cast<int>(model.bodies.size()), std::max<SimTime>(interval, 1), min_step, writer,
+                            opts.on_sample);
+  RunResult res = runParties(model, opts, {&sampler});
+  res.samples = sampler.samples();
   return res;
 }
 

@@ -1,0 +1,85 @@
+// Private to lib/physics: the ODE handles behind a World and the functions that build and step
+// it, one file per concern. World::create calls them in a fixed order; that order is the order
+// of ODE calls, which is part of reproducibility (golden trajectories, bench/bare_ode.cpp).
+//
+//   bodies.cpp    mobile bodies, centre-of-mass offset, body state
+//   geoms.cpp     the collision space, geoms and their contact data
+//   joints.cpp    joints and joint state (simbob's sign convention)
+//   contacts.cpp  the near callback: contact joints per the material rules of guide 7.1
+//   world.cpp     World: create, step, accessors
+//
+// Actuators and sensors join as files of their own: a create function called by World::create
+// after createJoints, which may append to WorldImpl::beforeStep what it must do every step.
+#pragma once
+
+#include <ode/ode.h>
+
+#include <functional>
+#include <vector>
+
+#include "simbob/physics.h"
+
+namespace simbob {
+
+static_assert(sizeof(dReal) == sizeof(double), "simbob needs ODE built in double precision");
+
+/// Contact-relevant data of one geom, looked up by the index stored with dGeomSetData.
+struct GeomInfo {
+  double friction;      ///< Coulomb coefficient mu
+  double bounceness;    ///< restitution in [0,1]
+  double minBounceVel;  ///< m/s
+  bool sensor;          ///< creates no contact joints
+};
+
+/// What joint state needs beyond the ODE joint: its kind and ODE's reading at the start pose.
+struct JointInfo {
+  JointKind kind;
+  double zero;  ///< ODE's position (rad or m) at creation, subtracted so that the start pose reads 0
+};
+
+struct WorldImpl {
+  dWorldID world = nullptr;
+  dSpaceID space = nullptr;
+  dJointGroupID contactGroup = nullptr;
+  std::vector<dBodyID> bodies;
+  std::vector<Vec3> com;  ///< centre of mass in the body frame, per body (m)
+  std::vector<dGeomID> geoms;
+  std::vector<GeomInfo> geomInfo;
+  std::vector<dJointID> joints;
+  std::vector<JointInfo> jointInfo;
+  std::vector<dContact> contactBuffer;  ///< sized max_contacts once; reused by every collision
+  int lastContacts = 0;
+  bool quickstep = true;
+  /// Run in order at the start of every step (before collision) with the step size in s: where
+  /// motors, applied forces and sensors that act every step hook in. Empty today.
+  std::vector<std::function<void(WorldImpl&, double)>> beforeStep;
+
+  WorldImpl() = default;
+  WorldImpl(const WorldImpl&) = delete;
+  WorldImpl& operator=(const WorldImpl&) = delete;
+  ~WorldImpl();
+};
+
+// bodies.cpp
+/// Creates one ODE body per Model body, in Model order, at its centre of mass.
+void createBodies(WorldImpl& im, const Model& model);
+/// Body i's state at its origin (not ODE's centre-of-mass frame).
+BodyState bodyState(const WorldImpl& im, int i);
+
+// geoms.cpp
+/// The collision space chosen by the scene (SceneSettings Space, --space).
+dSpaceID createSpace(const Model& model);
+/// Creates one ODE geom per Model geom, in Model order, with its contact data.
+void createGeoms(WorldImpl& im, const Model& model);
+
+// joints.cpp
+/// Creates one ODE joint per Model joint, in Model order, and records its zero position.
+void createJoints(WorldImpl& im, const Model& model);
+/// Joint i's state in simbob's convention (see World::joint).
+JointState jointState(const WorldImpl& im, int i);
+
+// contacts.cpp
+/// Collides the space and creates this step's contact joints (guide 7.1); counts them in lastContacts.
+void collide(WorldImpl& im);
+
+}  // namespace simbob

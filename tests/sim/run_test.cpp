@@ -1,0 +1,242 @@
+// The run loop and its parties (guide 7.2): who is granted the world when, how many steps the
+// clock takes, and the trajectory sampler's times.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "physics/model_builder.h"
+#include "simbob/physics.h"
+#include "simbob/run.h"
+
+using namespace simbob;
+using namespace simbob::test;
+
+namespace {
+
+constexpr SimTime kMs = 1000000;  // ns
+constexpr SimTime kUs = 1000;     // ns
+
+using Grants = std::vector<std::pair<std::string, SimTime>>;
+
+// One falling ball (MaxTimeStep 1 ms, MinTimeStep 1 us).
+Model ballModel() {
+  Model m = baseModel(0.001);
+  addBody(m, {0, 10, 0}, 1.0, sphereInertia(1.0, 0.1));
+  return m;
+}
+
+// Asks first at `first`, then every `period` after each grant; stops asking after `grants` grants.
+class Periodic : public Party {
+ public:
+  Periodic(std::string name, SimTime first, SimTime period, Grants* log, int grants = -1)
+      : name_(std::move(name)), first_(first), period_(period), log_(log), left_(grants) {}
+  SimTime first() override { return first_; }
+  SimTime onGrant(SimTime now, World& world) override {
+    log_->push_back({name_, now});
+    heights.push_back(world.body(0).pose.p[1]);
+    if (left_ > 0 && --left_ == 0) return kNever;
+    return now + period_;
+  }
+  void finish(SimTime end, World&) override { finished_at = end; }
+  std::vector<double> heights;
+  SimTime finished_at = -1;
+
+ private:
+  std::string name_;
+  SimTime first_, period_;
+  Grants* log_;
+  int left_;
+};
+
+RunOptions options(double duration, double dt = 0) {
+  RunOptions o;
+  o.duration = duration;
+  o.dt = dt;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("run: two parties are served in time order, ties in list order", "[sim][run]") {
+  const Model m = ballModel();
+  const Grants expected = {{"3ms", 0},        {"5ms", 0},       {"3ms", 3 * kMs},  {"5ms", 5 * kMs},
+                           {"3ms", 6 * kMs},  {"3ms", 9 * kMs}, {"5ms", 10 * kMs}, {"3ms", 12 * kMs},
+                           {"3ms", 15 * kMs}, {"5ms", 15 * kMs}};
+  for (double dt : {0.001, 0.002}) {
+    Grants log;
+    Periodic a("3ms", 0, 3 * kMs, &log), b("5ms", 0, 5 * kMs, &log);
+    const RunResult r = runParties(m, options(0.015, dt), {&a, &b});
+    INFO("dt " << dt);
+    REQUIRE(r.status == RunStatus::Completed);
+    CHECK(log == expected);
+    // Steps land on every request: 15 of 1 ms; at 2 ms 0-2-3-5-6-8-9-10-12-14-15, 10 steps.
+    CHECK(r.steps == (dt == 0.001 ? 15u : 10u));
+    CHECK(r.sim_time == 0.015);
+    CHECK(a.finished_at == 15 * kMs);
+    CHECK(b.finished_at == 15 * kMs);
+  }
+  // The other list order swaps the ties only.
+  Grants log;
+  Periodic a("3ms", 0, 3 * kMs, &log), b("5ms", 0, 5 * kMs, &log);
+  REQUIRE(runParties(m, options(0.015), {&b, &a}).status == RunStatus::Completed);
+  Grants swapped = expected;
+  std::swap(swapped[0], swapped[1]);
+  std::swap(swapped[8], swapped[9]);
+  CHECK(log == swapped);
+}
+
+TEST_CASE("run: a party acts on the world at its time, alone", "[sim][run]") {
+  // The ball's height at each grant is free fall at exactly that time: the world stood still
+  // while the parties acted (semi-implicit Euler: y = 10 - g h^2 n (n + 1) / 2).
+  const Model m = ballModel();
+  Grants log;
+  Periodic a("a", 0, 3 * kMs, &log), b("b", 0, 5 * kMs, &log);
+  REQUIRE(runParties(m, options(0.015), {&a, &b}).status == RunStatus::Completed);
+  auto y = [](SimTime t) {
+    const double n = static_cast<double>(t / kMs), h = 0.001;
+    return 10 - 9.81 * h * h * n * (n + 1) / 2;
+  };
+  size_t ia = 0, ib = 0;
+  for (const auto& [name, t] : log) {
+    const double got = name == "a" ? a.heights[ia++] : b.heights[ib++];
+    CHECK(std::fabs(got - y(t)) < 1e-12);
+  }
+}
+
+TEST_CASE("run: a request within MinTimeStep is granted without another step", "[sim][run]") {
+  const Model m = ballModel();  // MinTimeStep 1 us
+  {
+    Grants log;
+    Periodic p("p", 1 * kMs + 500, kNever, &log, 1);  // 0.5 us past the first step
+    const RunResult r = runParties(m, options(0.002), {&p});
+    CHECK(log == Grants{{"p", 1 * kMs}});
+    CHECK(r.steps == 2u);  // 0 -> 1 ms -> 2 ms
+  }
+  {
+    Grants log;
+    Periodic p("p", 1 * kMs + 1500, kNever, &log, 1);  // 1.5 us past: one extra short step
+    const RunResult r = runParties(m, options(0.002), {&p});
+    CHECK(log == Grants{{"p", 1 * kMs + 1500}});
+    CHECK(r.steps == 3u);  // 0 -> 1 ms -> 1.0015 ms -> 2 ms
+  }
+  {
+    // Asking again within MinTimeStep of the grant: once per instant, again after each step;
+    // the clock neither stalls nor takes extra steps.
+    Grants log;
+    Periodic p("p", 0, 1, &log);
+    const RunResult r = runParties(m, options(0.003), {&p});
+    CHECK(log == Grants{{"p", 0}, {"p", 1 * kMs}, {"p", 2 * kMs}, {"p", 3 * kMs}});
+    CHECK(r.steps == 3u);
+  }
+}
+
+TEST_CASE("run: a party returning kNever stops asking", "[sim][run]") {
+  const Model m = ballModel();
+  Grants log;
+  Periodic twice("twice", 0, 2 * kMs, &log, 2), never("never", kNever, kMs, &log), late("late", 20 * kMs, kMs, &log);
+  const RunResult r = runParties(m, options(0.01), {&twice, &never, &late});
+  REQUIRE(r.status == RunStatus::Completed);
+  CHECK(log == Grants{{"twice", 0}, {"twice", 2 * kMs}});  // "late" asks beyond the end
+  CHECK(r.steps == 10u);
+  CHECK(never.finished_at == 10 * kMs);  // every party hears of the end
+}
+
+TEST_CASE("run: the run ends at the duration", "[sim][run]") {
+  const Model m = ballModel();
+  for (const auto& [duration, steps] : std::vector<std::pair<double, uint64_t>>{{0.0025, 3}, {0.01, 10}, {0.0, 0}}) {
+    Grants log;
+    Periodic p("p", 0, 2 * kMs, &log);
+    const RunResult r = runParties(m, options(duration), {&p});
+    INFO("duration " << duration);
+    REQUIRE(r.status == RunStatus::Completed);
+    CHECK(r.sim_time == duration);
+    CHECK(r.steps == steps);  // 2.5 ms: 1 + 1 + 0.5 ms
+    CHECK(p.finished_at == *toSimTime(duration));
+    CHECK(r.samples == 0u);  // no sampler among the parties
+  }
+  // The end within MinTimeStep of a step counts as reached, without a step.
+  Grants log;
+  Periodic p("p", 0, kNever, &log, 1);
+  const RunResult r = runParties(m, options(0.0020005), {&p});
+  CHECK(r.steps == 2u);
+  CHECK(r.sim_time == 0.0020005);
+  // Without parties the world still runs to the end.
+  const RunResult none = runParties(m, options(0.005), {});
+  CHECK(none.status == RunStatus::Completed);
+  CHECK(none.steps == 5u);
+}
+
+TEST_CASE("run: a failing party stops the run", "[sim][run]") {
+  class Failing : public Party {
+   public:
+    SimTime first() override { return 0; }
+    SimTime onGrant(SimTime now, World&) override {
+      if (now == 2 * kMs) error_ = {ErrorKind::IoError, {"out.csv", 0}, "cannot write"};
+      return now + kMs;
+    }
+    const Error* failure() const override { return error_.message.empty() ? nullptr : &error_; }
+    Error error_;
+  } failing;
+  const RunResult r = runParties(ballModel(), options(0.01), {&failing});
+  CHECK(r.status == RunStatus::Failed);
+  CHECK(r.error.kind == ErrorKind::IoError);
+  CHECK(r.error.message == "cannot write");
+  CHECK(r.sim_time == 0.002);
+  CHECK(r.steps == 2u);
+}
+
+TEST_CASE("run: times beyond the clock fail the run instead of wrapping", "[sim][run]") {
+  Grants log;
+  Periodic p("p", 0, kMs, &log);
+  for (double bad : {1e10, -1e10, std::numeric_limits<double>::quiet_NaN()}) {
+    const RunResult r = runParties(ballModel(), options(bad), {&p});
+    CHECK(r.status == RunStatus::Failed);
+    CHECK(r.error.kind == ErrorKind::InvalidInput);
+    CHECK(r.error.message.find("the duration") != std::string::npos);
+    CHECK(r.error.message.find("does not fit the clock") != std::string::npos);
+  }
+  RunOptions o = options(1);
+  o.sample_interval = 1e12;
+  const RunResult r = runModel(ballModel(), o, nullptr);
+  CHECK(r.status == RunStatus::Failed);
+  CHECK(r.error.message.find("the sample interval") != std::string::npos);
+  CHECK(log.empty());
+  CHECK(r.steps == 0u);
+}
+
+TEST_CASE("run: the sampler keeps its times", "[sim][run]") {
+  auto times = [](Model m, RunOptions o, RunResult* res = nullptr) {
+    std::vector<double> t;
+    o.on_sample = [&t](double time, const double*) { t.push_back(time); };
+    RunResult r = runModel(m, o, nullptr);
+    REQUIRE(r.status == RunStatus::Completed);
+    CHECK(r.samples == t.size());
+    if (res) *res = r;
+    return t;
+  };
+  RunOptions o = options(0.25);
+  o.sample_interval = 0.1;
+  // The final state is recorded even when the duration is no multiple of the interval.
+  CHECK(times(ballModel(), o) == std::vector<double>{0, 0.1, 0.2, 0.25});
+  o.duration = 0.3;
+  CHECK(times(ballModel(), o) == std::vector<double>{0, 0.1, 0.2, 0.3});
+  // The clock steps onto the sample times: 3 ms samples with 2 ms steps, 0-2-3-4-6-8-9-10.
+  RunResult r;
+  o = options(0.01, 0.002);
+  o.sample_interval = 0.003;
+  CHECK(times(ballModel(), o, &r) == std::vector<double>{0, 0.003, 0.006, 0.009, 0.01});
+  CHECK(r.steps == 7u);
+  // MinTimeStep 1.5 ms: a sample is taken up to 1.5 ms early, the next request is the first
+  // multiple of the interval more than 1.5 ms later.
+  Model m = ballModel();
+  m.settings.min_time_step = 0.0015;
+  o = options(0.01, 0.001);
+  o.sample_interval = 0.002;
+  CHECK(times(m, o, &r) == std::vector<double>{0, 0.001, 0.003, 0.005, 0.007, 0.009, 0.01});
+  // At 9 ms the end is within MinTimeStep: reached without a tenth step.
+  CHECK(r.steps == 9u);
+}

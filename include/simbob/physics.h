@@ -57,6 +57,10 @@ class World {
 
   /// Joints, in Model::joints order.
   int jointCount() const;
+  /// Index of the first ball or hinge joint whose anchor, seen from its two bodies, is more than
+  /// `limit` m apart (the joint came apart: the solver could not hold it), or -1. *separation
+  /// gets that distance.
+  int firstBrokenJoint(double limit, double* separation) const;
   /// State of joint i (0 <= i < jointCount()); see JointState for units and signs.
   JointState joint(int i) const;
 

@@ -20,11 +20,12 @@ namespace simbob {
 class World;
 
 struct RunOptions {
-  double duration = 10.0;         ///< s of simulated time
-  double dt = 0.0;                ///< s; 0 = the scene's MaxTimeStep
-  double sample_interval = 0.01;  ///< s of simulated time between trajectory samples (runModel)
-  uint32_t seed = 0;              ///< ODE's random generator (QuickStep constraint order)
-  double runaway_limit = 1e6;     ///< |position| in m or |velocity| in m/s, rad/s beyond which a run diverged
+  double duration = 10.0;          ///< s of simulated time
+  double dt = 0.0;                 ///< s; 0 = the scene's MaxTimeStep
+  double sample_interval = 0.01;   ///< s of simulated time between trajectory samples (runModel)
+  uint32_t seed = 0;               ///< ODE's random generator (QuickStep constraint order)
+  double runaway_limit = 1e6;      ///< |position| in m or |velocity| in m/s, rad/s beyond which a run diverged
+  double joint_apart_limit = 0.1;  ///< m between a joint's anchors on its two bodies beyond which it came apart
   /// Called about every 1% of the run with the simulated time reached.
   std::function<void(double)> progress;
   /// Called with every sample: time and kPoseSize doubles per body (x y z qw qx qy qz) (runModel).

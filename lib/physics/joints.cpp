@@ -85,6 +85,25 @@ void createJoints(WorldImpl& im, const Model& model) {
   }
 }
 
+double jointSeparation(const WorldImpl& im, int i) {
+  dJointID j = im.joints[static_cast<size_t>(i)];
+  dVector3 a, b;
+  switch (im.jointInfo[static_cast<size_t>(i)].kind) {
+    case JointKind::BallSocket:
+      dJointGetBallAnchor(j, a);
+      dJointGetBallAnchor2(j, b);
+      break;
+    case JointKind::Hinge:
+      dJointGetHingeAnchor(j, a);
+      dJointGetHingeAnchor2(j, b);
+      break;
+    case JointKind::Slider:
+    case JointKind::Fixed:
+      return 0;  // no shared anchor point to compare
+  }
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
 JointState jointState(const WorldImpl& im, int i) {
   dJointID j = im.joints[static_cast<size_t>(i)];
   const JointInfo& info = im.jointInfo[static_cast<size_t>(i)];

@@ -92,6 +92,18 @@ int World::jointCount() const { return static_cast<int>(impl_->joints.size()); }
 
 JointState World::joint(int i) const { return jointState(*impl_, i); }
 
+int World::firstBrokenJoint(double limit, double* separation) const {
+  const int n = jointCount();
+  for (int i = 0; i < n; ++i) {
+    double d = jointSeparation(*impl_, i);
+    if (!(d <= limit)) {
+      if (separation) *separation = d;
+      return i;
+    }
+  }
+  return -1;
+}
+
 int World::firstBadBody(double limit) const {
   // Runs after every step: read ODE's arrays in place. `!(|x| <= limit)` is also true for NaN;
   // an infinite limit still catches infinities through isfinite.

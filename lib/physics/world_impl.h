@@ -77,6 +77,9 @@ void createGeoms(WorldImpl& im, const Model& model);
 void createJoints(WorldImpl& im, const Model& model);
 /// Joint i's state in simbob's convention (see World::joint).
 JointState jointState(const WorldImpl& im, int i);
+/// Distance (m) between where joint i's anchor is on its first and on its second body; 0 for
+/// joints without a shared anchor (slider, fixed).
+double jointSeparation(const WorldImpl& im, int i);
 
 // contacts.cpp
 /// Collides the space and creates this step's contact joints (guide 7.1); counts them in lastContacts.

@@ -6,6 +6,8 @@
 #include <map>
 #include <set>
 
+#include <Eigen/Eigenvalues>
+
 #include "simbob/compile.h"
 #include "simbob/transform.h"
 #include "simbob/values.h"
@@ -15,6 +17,7 @@ namespace simbob {
 namespace {
 
 constexpr double kMassRatio = 100.0;      // QuickStep converges poorly beyond this
+constexpr double kInertiaRatio = 1e-5;    // own inertia below this fraction of m d^2: joints come apart
 constexpr double kStepsPerPeriod = 20.0;  // fewer steps per swing loses energy visibly
 constexpr double kAnchorFar = 10.0;       // anchor farther than this many body sizes
 constexpr double kAnchorFarMin = 2.0;     // m; pendulum rods up to this length are normal
@@ -122,6 +125,7 @@ class Linter {
   void run() {
     place();
     massRatios();
+    inertiaRatios();
     pendulums();
     anchors();
     tunneling();
@@ -180,6 +184,31 @@ class Linter {
                  approx(std::round(ratio)) + " > " + approx(kMassRatio) +
                  "): QuickStep converges slowly and joints stretch; bring the masses closer, raise "
                  "SolverIterations or use Solver Step");
+    }
+  }
+
+  // A body swinging at distance d from a joint with an inertia far below m d^2 makes the joint's
+  // effective-mass matrix nearly singular: QuickStep then lets the joint drift apart.
+  void inertiaRatios() {
+    for (const JointDef& j : m_.joints) {
+      if (j.kind != JointKind::Hinge && j.kind != JointKind::BallSocket) continue;
+      for (int bi : {j.body1, j.body2}) {
+        if (bi < 0) continue;
+        const BodyDef& b = body(bi);
+        Vec3 com = add(b.pose.p, rotate(b.pose.q, b.com));
+        double d = norm(sub(com, j.anchor));
+        Eigen::Matrix3d inertia = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(b.inertia.data());
+        double smallest =
+            Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia, Eigen::EigenvaluesOnly).eigenvalues()[0];
+        double reference = b.mass * d * d;
+        if (reference > 0 && smallest < kInertiaRatio * reference)
+          warn("inertia ratio", b.loc,
+               "body '" + b.key + "' (" + approx(b.mass) + " kg) sits " + approx(d) + " m from joint '" + j.key +
+                   "' but its smallest moment of inertia is " + approx(smallest) + " kg m^2, " +
+                   approx(smallest / reference) + " of m*d^2 (below " + approx(kInertiaRatio) +
+                   "): the solver cannot hold the joint together; give the body a realistic inertia "
+                   "(RCInertiaByGeom computes it from the geoms) or use Solver Step");
+      }
     }
   }
 

@@ -101,6 +101,17 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
                        " m or m/s); a smaller step (--dt) or softer joints (ERP/CFM) may help"};
       break;
     }
+    double apart = 0;
+    int broken = world->firstBrokenJoint(opts.joint_apart_limit, &apart);
+    if (broken >= 0) {
+      res.status = RunStatus::Diverged;
+      const JointDef& j = model.joints[static_cast<size_t>(broken)];
+      res.error = {ErrorKind::Diverged, j.loc,
+                   "joint '" + j.key + "' came apart at t=" + formatNumber(toSeconds(clock.now())) +
+                       " s: its anchor on the two bodies is " + formatNumber(apart) + " m apart (more than " +
+                       formatNumber(opts.joint_apart_limit) + " m)"};
+      break;
+    }
     if (opts.progress && clock.now() >= next_progress) {
       opts.progress(toSeconds(clock.now()));
       next_progress += progress_every;

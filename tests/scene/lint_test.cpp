@@ -140,3 +140,26 @@ TEST_CASE("a joint anchored far from its body is reported", "[scene][lint]") {
   m.joints[0].anchor = {0, 2, 0};  // a 1 m pendulum rod is normal
   CHECK_FALSE(anyContains(warnings(m), "anchor"));
 }
+
+TEST_CASE("a body whose inertia is tiny against m*d^2 at its joint is reported", "[scene][lint]") {
+  // The audit's case: a 1 kg bob 1 m from its hinge with inertia 1e-6 kg m^2. Its own inertia
+  // is 1e-6 of m*d^2 = 1 kg m^2, so QuickStep lets the hinge drift apart (tests/sim/run_test).
+  Model m = base();
+  int bob = addBody(m, "Bob", {1, 2, 0}, GeomShape::Sphere, {0.01, 0, 0}, 1.0);
+  m.bodies[static_cast<size_t>(bob)].inertia = {1e-6, 0, 0, 0, 1e-6, 0, 0, 0, 1e-6};
+  JointDef j;
+  j.key = "Hinge";
+  j.loc = {"lint.xml", 41};
+  j.kind = JointKind::Hinge;
+  j.body1 = -1;
+  j.body2 = bob;
+  j.anchor = {0, 2, 0};
+  j.axis = {0, 0, 1};
+  m.joints.push_back(j);
+  CHECK(anyContains(warnings(m),
+                    "lint.xml:10: body 'Bob' (1 kg) sits 1 m from joint 'Hinge' but its smallest moment of inertia is "
+                    "1e-06 kg m^2, 1e-06 of m*d^2 (below 1e-05)"));
+  // A solid 1 cm ball's own inertia (4e-5 kg m^2) is 4e-5 of m*d^2: fine.
+  m.bodies[static_cast<size_t>(bob)].inertia = {4e-5, 0, 0, 0, 4e-5, 0, 0, 0, 4e-5};
+  CHECK_FALSE(anyContains(warnings(m), "smallest moment of inertia"));
+}

@@ -1,4 +1,4 @@
-// Warnings about legal scenes that make ODE unstable or wrong. They work on the compiled Model
+// Model checks (simbob check): warnings about legal scenes that make ODE unstable or wrong. They work on the compiled Model
 // (plain data), so they see exactly what the physics layer will get.
 #include <algorithm>
 #include <cstdio>

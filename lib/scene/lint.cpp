@@ -60,7 +60,7 @@ double thickness(const GeomDef& g) {
 
 // Half extents of the geom's axis-aligned bounds in the global frame.
 Vec3 halfExtents(const GeomDef& g, const Quat& q) {
-  Vec3 local;
+  Vec3 local{0, 0, 0};  // every shape sets it; the switch has no default
   switch (g.shape) {
     case GeomShape::Box:
       local = scale(g.size, 0.5);

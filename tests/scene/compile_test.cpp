@@ -6,6 +6,7 @@
 #include <cmath>
 #include <set>
 
+#include "compile/mass.h"
 #include "scene/scene_helpers.h"
 #include "simbob/transform.h"
 

@@ -138,9 +138,6 @@ const Registry& builtinRegistry();
 /// Registers every built-in family; each family file defines one of these.
 void registerBuiltins(Registry& r);
 
-/// Closest candidate to `word` within edit distance 2 (case-insensitive), or "".
-std::string didYouMean(std::string_view word, const std::vector<std::string>& candidates);
-
 // --- helpers for the parameter tables in lib/components/*.cpp ---
 ParamSpec valueParam(std::string name, ValueType type, Value def, std::string unit, std::string doc,
                      Range range = Range::Any);

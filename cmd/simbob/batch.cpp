@@ -93,12 +93,6 @@ std::string fixed(double v, int decimals) {
   return buf;
 }
 
-std::string sci(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
-
 pid_t startWorker(const Job& j, const BatchArgs& a) {
   std::vector<std::string> args = {"simbob", "run", j.scene, "--quiet", "--out", j.out};
   args.emplace_back("--duration");
@@ -183,8 +177,8 @@ void finish(Job& j, int wstatus, const BatchArgs& a) {
     writeFileAtomically(report, "actual: " + j.out + "\ngolden: " + golden + "\n" + r.text(), &werr);
     if (r.first_divergence)
       j.divergence = "first divergence at t=" + formatNumber(r.first_divergence->time) + " s, body '" +
-                     r.first_divergence->body + "' (" + sci(r.first_divergence->pos_err) + " m, " +
-                     sci(r.first_divergence->rot_err) + " rad)";
+                     r.first_divergence->body + "' (" + formatApprox(r.first_divergence->pos_err) + " m, " +
+                     formatApprox(r.first_divergence->rot_err) + " rad)";
     else
       j.divergence = "bodies or sample times differ";
     j.error = j.divergence + "; report: " + report;
@@ -345,8 +339,8 @@ int cmdBatch(const BatchArgs& a) {
     char buf[512];
     std::snprintf(buf, sizeof buf, "%-40s %-12s %7.2f   %-11s %-12s %s\n", j.scene.c_str(), j.status.c_str(), j.wall,
                   j.golden_status.empty() ? "-" : j.golden_status.c_str(),
-                  j.golden_status.empty() ? "-" : sci(j.max_pos).c_str(),
-                  j.golden_status.empty() ? "-" : sci(j.max_rot).c_str());
+                  j.golden_status.empty() ? "-" : formatApprox(j.max_pos).c_str(),
+                  j.golden_status.empty() ? "-" : formatApprox(j.max_rot).c_str());
     table += buf;
   }
   table += "\n" + std::to_string(jobs.size() - failed) + " of " + std::to_string(jobs.size()) + " scenes ok (" +

@@ -169,9 +169,6 @@ class Registry {
 /// returns false if any registration was refused (see Registry::problems()).
 bool registerBuiltins(Registry& r);
 
-/// Closest candidate to `word` within edit distance 2 (case-insensitive), or "".
-std::string didYouMean(std::string_view word, const std::vector<std::string>& candidates);
-
 // --- helpers for the parameter tables in lib/components/*.cpp: each takes the typed name ---
 namespace detail {
 ParamSpec valueParam(const char* name, ValueType type, Value def, std::string unit, std::string doc, Range range);

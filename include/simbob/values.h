@@ -127,6 +127,19 @@ std::string formatNumber(double d);
 /// Append the shortest round-trip form of d to out (no allocation beyond out's growth).
 void appendNumber(std::string& out, double d);
 
+/// Three significant digits, as printf's "%.3g" writes them ("0.00123", "1.23e+06"), for
+/// numbers people read in messages. Never locale-dependent.
+std::string formatApprox(double d);
+
+/// Edit distance, ASCII case-insensitive; swapping two neighbours costs 1 (restricted
+/// Damerau-Levenshtein).
+size_t editDistance(std::string_view a, std::string_view b);
+
+/// The "did you mean" of every message: the candidate closest to `word` if it is within
+/// max(2, |word| / 3) edits and fewer edits than the candidate is long; otherwise "". Ties go to
+/// the first candidate.
+std::string didYouMean(std::string_view word, const std::vector<std::string>& candidates);
+
 /// Strict number: optional sign, digits, '.', exponent. Whole text must be consumed.
 std::optional<double> parseNumber(std::string_view text, bool allow_infinite = false);
 

@@ -1,7 +1,6 @@
 // Model checks (simbob check): warnings about legal scenes that make ODE unstable or wrong. They work on the compiled Model
 // (plain data), so they see exactly what the physics layer will get.
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
 #include <map>
 #include <set>
@@ -23,13 +22,6 @@ constexpr double kAnchorFar = 10.0;       // anchor farther than this many body 
 constexpr double kAnchorFarMin = 2.0;     // m; pendulum rods up to this length are normal
 constexpr double kOverlap = 1e-3;         // m of penetration that counts as overlap
 constexpr int kMaxPerKind = 20;
-
-// Three significant digits: messages are for people.
-std::string approx(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
 
 double boundingRadius(const GeomDef& g) {
   switch (g.shape) {
@@ -63,7 +55,7 @@ double thickness(const GeomDef& g) {
 
 // Half extents of the geom's axis-aligned bounds in the global frame.
 Vec3 halfExtents(const GeomDef& g, const Quat& q) {
-  Vec3 local;
+  Vec3 local{0, 0, 0};  // every shape sets it; the switch has no default
   switch (g.shape) {
     case GeomShape::Box:
       local = scale(g.size, 0.5);
@@ -180,8 +172,8 @@ class Linter {
       double ratio = std::max(a, b) / std::min(a, b);
       if (ratio > kMassRatio)
         warn("mass ratio", j.loc,
-             "joint '" + j.key + "' connects masses " + approx(a) + " kg and " + approx(b) + " kg (ratio " +
-                 approx(std::round(ratio)) + " > " + approx(kMassRatio) +
+             "joint '" + j.key + "' connects masses " + formatApprox(a) + " kg and " + formatApprox(b) + " kg (ratio " +
+                 formatApprox(std::round(ratio)) + " > " + formatApprox(kMassRatio) +
                  "): QuickStep converges slowly and joints stretch; bring the masses closer, raise "
                  "SolverIterations or use Solver Step");
     }
@@ -203,9 +195,9 @@ class Linter {
         double reference = b.mass * d * d;
         if (reference > 0 && smallest < kInertiaRatio * reference)
           warn("inertia ratio", b.loc,
-               "body '" + b.key + "' (" + approx(b.mass) + " kg) sits " + approx(d) + " m from joint '" + j.key +
-                   "' but its smallest moment of inertia is " + approx(smallest) + " kg m^2, " +
-                   approx(smallest / reference) + " of m*d^2 (below " + approx(kInertiaRatio) +
+               "body '" + b.key + "' (" + formatApprox(b.mass) + " kg) sits " + formatApprox(d) + " m from joint '" + j.key +
+                   "' but its smallest moment of inertia is " + formatApprox(smallest) + " kg m^2, " +
+                   formatApprox(smallest / reference) + " of m*d^2 (below " + formatApprox(kInertiaRatio) +
                    "): the solver cannot hold the joint together; give the body a realistic inertia "
                    "(RCInertiaByGeom computes it from the geoms) or use Solver Step");
       }
@@ -250,10 +242,10 @@ class Linter {
       double period = 2 * kPi * std::sqrt(i_pivot / (b.mass * g_eff * lever));
       if (dt() > period / kStepsPerPeriod)
         warn("step size", j.loc,
-             "joint '" + j.key + "' makes a pendulum of period " + approx(period) + " s but the step is " +
-                 approx(dt()) + " s (fewer than " + approx(kStepsPerPeriod) +
+             "joint '" + j.key + "' makes a pendulum of period " + formatApprox(period) + " s but the step is " +
+                 formatApprox(dt()) + " s (fewer than " + formatApprox(kStepsPerPeriod) +
                  " steps per swing): the motion loses energy or blows up; use --dt " +
-                 approx(period / kStepsPerPeriod / 2) + " or smaller");
+                 formatApprox(period / kStepsPerPeriod / 2) + " or smaller");
     }
   }
 
@@ -267,8 +259,8 @@ class Linter {
         double dist = norm(sub(b.pose.p, j.anchor));
         if (dist > kAnchorFar * size && dist > kAnchorFarMin)
           warn("anchor far", j.loc,
-               "joint '" + j.key + "' has its anchor " + approx(dist) + " m from body '" + b.key + "' (about " +
-                   approx(size) +
+               "joint '" + j.key + "' has its anchor " + formatApprox(dist) + " m from body '" + b.key + "' (about " +
+                   formatApprox(size) +
                    " m in size): check the joint's Pose and Hinge/Anchor "
                    "(RCLocalCoordinates are relative to the joint frame)");
       }
@@ -292,11 +284,11 @@ class Linter {
       double travel = speed * dt();
       if (travel > 0.5 * thin_[i])
         warn("tunneling", b.loc,
-             "body '" + b.key + "' is " + approx(thin_[i]) + " m thin and may move " + approx(speed) + " m/s, " +
-                 approx(travel) +
+             "body '" + b.key + "' is " + formatApprox(thin_[i]) + " m thin and may move " + formatApprox(speed) +
+                 " m/s, " + formatApprox(travel) +
                  " m per step: it can pass through other bodies in one step; "
                  "use a step below " +
-                 approx(0.5 * thin_[i] / speed) + " s or a thicker geom");
+                 formatApprox(0.5 * thin_[i] / speed) + " s or a thicker geom");
     }
   }
 
@@ -317,7 +309,7 @@ class Linter {
         double c = planeClearance(*p.g, p.t, plane->plane);
         if (c < -kOverlap)
           warn("overlap", loc(*p.g),
-               "body '" + owner(*p.g) + "' starts " + approx(-c) + " m inside the plane of '" + owner(*plane) +
+               "body '" + owner(*p.g) + "' starts " + formatApprox(-c) + " m inside the plane of '" + owner(*plane) +
                    "': ODE pushes it out violently at the first step; move it out");
       }
     }
@@ -347,7 +339,7 @@ class Linter {
         if (!reported.insert(key).second) continue;
         const GeomDef& mob = a.g->body >= 0 ? *a.g : *b.g;
         warn("overlap", loc(mob),
-             "bodies '" + owner(*a.g) + "' and '" + owner(*b.g) + "' overlap by about " + approx(depth) +
+             "bodies '" + owner(*a.g) + "' and '" + owner(*b.g) + "' overlap by about " + formatApprox(depth) +
                  " m at t = 0: ODE pushes them apart violently at the first step; move them apart (or join "
                  "them with a joint)");
       }

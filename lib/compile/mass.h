@@ -1,4 +1,5 @@
-// Mass properties of geoms (for RCInertiaByGeom and rods) and the inertia check.
+// Mass properties of geoms and the positive-definiteness check of inertia tensors (Eigen inside;
+// plain arrays at the interface so the compiled Model stays plain data).
 #pragma once
 
 #include "simbob/model.h"
@@ -14,7 +15,7 @@ struct MassProps {
 };
 MassProps geomMassProps(const GeomDef& g);
 
-/// Whether a symmetric 3x3 matrix is positive definite (Cholesky).
+/// Whether a symmetric 3x3 matrix (its lower triangle is read) is finite and positive definite.
 bool isPositiveDefinite(const Mat3& m);
 
 }  // namespace simbob

@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include <cmath>
-#include <cstdio>
 #include <unordered_map>
 #include <utility>
 
@@ -12,13 +11,6 @@
 namespace simbob {
 
 namespace {
-
-/// "%.3g": short, and locale-independent in the C locale the program runs in.
-std::string fmtErr(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
 
 /// Times print exactly (shortest round-trip) so they can be found in the CSV files.
 std::string fmtTime(double t) {
@@ -204,14 +196,14 @@ std::string CompareResult::text() const {
   rows.push_back({"body", "max pos err (m)", "max rot err (rad)", "first exceed (s)", "status"});
   for (const BodyDiff& d : bodies) {
     const bool any = d.compared > 0;
-    rows.push_back({d.body, any ? fmtErr(d.max_pos_err) : "-", any ? fmtErr(d.max_rot_err) : "-",
+    rows.push_back({d.body, any ? formatApprox(d.max_pos_err) : "-", any ? formatApprox(d.max_rot_err) : "-",
                     d.first_exceed_time ? fmtTime(*d.first_exceed_time) : "-", statusOf(d)});
   }
   for (const std::string& b : only_actual) rows.push_back({b, "-", "-", "-", "only in actual"});
   for (const std::string& b : only_golden) rows.push_back({b, "-", "-", "-", "only in golden"});
   std::string out = renderTable(rows);
 
-  out += "\ntolerances: pos " + fmtErr(options.tol_pos) + " m, rot " + fmtErr(options.tol_rot) + " rad\n";
+  out += "\ntolerances: pos " + formatApprox(options.tol_pos) + " m, rot " + formatApprox(options.tol_rot) + " rad\n";
   out += "samples: " + std::to_string(actual_samples) + " actual, " + std::to_string(golden_samples) + " golden, " +
          std::to_string(shared_samples) + " shared\n";
   auto timesLine = [&out](const char* which, const TimeMismatch& m) {
@@ -230,8 +222,8 @@ std::string CompareResult::text() const {
   }
   if (first_divergence) {
     const Divergence& v = *first_divergence;
-    out += "first divergence: t=" + fmtTime(v.time) + " body " + v.body + ": pos err " + fmtErr(v.pos_err) + " m" +
-           (v.pos_exceeded ? " (exceeds)" : "") + ", rot err " + fmtErr(v.rot_err) + " rad" +
+    out += "first divergence: t=" + fmtTime(v.time) + " body " + v.body + ": pos err " + formatApprox(v.pos_err) +
+           " m" + (v.pos_exceeded ? " (exceeds)" : "") + ", rot err " + formatApprox(v.rot_err) + " rad" +
            (v.rot_exceeded ? " (exceeds)" : "") + "\n";
   }
   out += pass ? "result: PASS\n" : "result: FAIL\n";

@@ -1,13 +1,54 @@
 #include "simbob/files.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 
 namespace simbob {
+
+bool readFile(const std::string& path, size_t max_bytes, std::string* out, std::string* reason) {
+  out->clear();
+  auto fail = [&](std::string why) {
+    out->clear();
+    out->shrink_to_fit();
+    if (reason) *reason = std::move(why);
+    return false;
+  };
+  auto tooLarge = [&] { return fail("larger than " + std::to_string(max_bytes >> 20) + " MiB"); };
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return fail(std::strerror(errno));
+  struct stat st;
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) {
+    if (static_cast<uint64_t>(st.st_size) > max_bytes) {
+      ::close(fd);
+      return tooLarge();
+    }
+    out->reserve(static_cast<size_t>(st.st_size));
+  }
+  char chunk[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fd, chunk, sizeof chunk);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int e = errno;
+      ::close(fd);
+      return fail(std::strerror(e));
+    }
+    if (n == 0) break;
+    if (out->size() + static_cast<size_t>(n) > max_bytes) {
+      ::close(fd);
+      return tooLarge();
+    }
+    out->append(chunk, static_cast<size_t>(n));
+  }
+  ::close(fd);
+  return true;
+}
 
 int writeAll(int fd, const char* data, size_t size) {
   while (size > 0) {

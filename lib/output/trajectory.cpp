@@ -221,30 +221,6 @@ void Trajectory::finalize() {
 
 namespace {
 
-/// Reads a whole file. Returns 0 or an errno value; *what says which step failed.
-int slurp(const std::string& path, std::string* out, const char** what) {
-  *what = "cannot open";
-  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return errno;
-  *what = "cannot read";
-  struct stat st;
-  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) out->reserve(static_cast<size_t>(st.st_size));
-  char chunk[1 << 16];
-  for (;;) {
-    ssize_t n = ::read(fd, chunk, sizeof chunk);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      int e = errno;
-      ::close(fd);
-      return e;
-    }
-    if (n == 0) break;
-    out->append(chunk, static_cast<size_t>(n));
-  }
-  ::close(fd);
-  return 0;
-}
-
 bool looksLikeNan(std::string_view f) {
   if (!f.empty() && (f[0] == '-' || f[0] == '+')) f.remove_prefix(1);
   return f.size() == 3 && (f[0] == 'n' || f[0] == 'N') && (f[1] == 'a' || f[1] == 'A') && (f[2] == 'n' || f[2] == 'N');
@@ -475,11 +451,9 @@ bool CsvParser::run(Trajectory* out, Error* err) {
 }  // namespace
 
 bool readTrajectory(const std::string& path, Trajectory* out, Error* err) {
-  std::string text;
-  const char* what = nullptr;
-  int e = slurp(path, &text, &what);
-  if (e != 0) {
-    setError(err, makeError(ErrorKind::MissingInput, path, 0, std::string(what) + ": " + std::strerror(e)));
+  std::string text, reason;
+  if (!readFile(path, kMaxTrajectoryFileBytes, &text, &reason)) {
+    setError(err, makeError(ErrorKind::MissingInput, path, 0, "cannot read: " + reason));
     return false;
   }
   Trajectory t;

@@ -1,6 +1,7 @@
 #include "simbob/plot.h"
 
 #include "simbob/files.h"
+#include "simbob/values.h"
 
 #include <cairo-svg.h>
 #include <cairo.h>
@@ -87,36 +88,10 @@ void setError(Error* err, ErrorKind kind, std::string file, std::string message)
 
 char lowerAscii(char c) { return (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c; }
 
-// Levenshtein distance, ASCII case-insensitive; two rows keep it O(min) in memory.
-size_t editDistance(std::string_view a, std::string_view b) {
-  std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    cur[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      const size_t sub = prev[j - 1] + (lowerAscii(a[i - 1]) == lowerAscii(b[j - 1]) ? 0 : 1);
-      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, sub});
-    }
-    std::swap(prev, cur);
-  }
-  return prev[b.size()];
-}
-
 // "(did you mean 'k'?)" for a close key, else a short list of what exists.
 std::string bodySuggestion(const std::string& wanted, const std::vector<std::string>& keys) {
-  const std::string* best = nullptr;
-  size_t best_dist = SIZE_MAX;
-  for (const std::string& k : keys) {
-    const size_t d = editDistance(wanted, k);
-    if (d < best_dist) {
-      best = &k;
-      best_dist = d;
-    }
-  }
-  const size_t limit = std::max<size_t>(2, wanted.size() / 3);
-  if (best && best_dist <= limit && best_dist < best->size()) {
-    return " (did you mean '" + *best + "'?)";
-  }
+  const std::string best = didYouMean(wanted, keys);
+  if (!best.empty()) return " (did you mean '" + best + "'?)";
   std::string out = " (bodies: ";
   const size_t shown = std::min<size_t>(keys.size(), 5);
   for (size_t i = 0; i < shown; ++i) {

@@ -1,16 +1,13 @@
 // Builds the component graph from a Source, driven only by the registry's parameter tables:
 // no type-specific code here. Then reads imports, resolves Refs and checks for cycles.
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 
 #include "scene/source.h"
+#include "simbob/files.h"
 #include "simbob/graph.h"
 
 namespace simbob {
@@ -19,38 +16,6 @@ namespace {
 
 constexpr int kMaxImportDepth = 16;
 constexpr int kMaxNesting = 200;
-// Scene and import files are read whole; /dev/zero or a runaway generator must not eat memory.
-constexpr size_t kMaxFileBytes = size_t{64} << 20;
-
-bool readFile(const std::string& path, std::string* out, std::string* error) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    *error = "is a directory";
-    return false;
-  }
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) {
-    *error = std::strerror(errno);
-    return false;
-  }
-  out->clear();
-  char buf[65536];
-  size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) {
-    if (out->size() + n > kMaxFileBytes) {
-      std::fclose(f);
-      out->clear();
-      *error = "larger than " + std::to_string(kMaxFileBytes >> 20) + " MiB";
-      return false;
-    }
-    out->append(buf, n);
-  }
-  bool bad = std::ferror(f) != 0;
-  std::fclose(f);
-  if (bad) *error = "read error";
-  return !bad;
-}
-
 uint64_t fnv1a(uint64_t h, const std::string& bytes) {
   for (unsigned char c : bytes) {
     h ^= c;
@@ -283,7 +248,7 @@ class Builder {
     std::string text, err;
     // A device, FIFO or socket (/dev/stdout, /dev/zero) would block or never end.
     if (std::filesystem::is_other(std::filesystem::status(path, ec))) err = "not a regular file";
-    if (!err.empty() || !readFile(path, &text, &err)) {
+    if (!err.empty() || !readFile(path, kMaxSceneFileBytes, &text, &err)) {
       diag_.error(at, prefix(what) + "cannot read import '" + path + "': " + err, ErrorKind::MissingInput);
       return;
     }
@@ -623,7 +588,7 @@ bool loadSceneFromText(const std::string& text, const std::string& name, Format 
 
 bool loadScene(const std::string& path, const Registry& reg, Scene* scene, Diagnostics& diag) {
   std::string text, err;
-  if (!readFile(path, &text, &err)) {
+  if (!readFile(path, kMaxSceneFileBytes, &text, &err)) {
     diag.error({path, 0}, "cannot read scene: " + err, ErrorKind::MissingInput);
     return false;
   }
@@ -634,7 +599,7 @@ bool loadScene(const std::string& path, const Registry& reg, Scene* scene, Diagn
 bool loadStructIni(const std::string& path, const Registry& reg, const std::string& struct_type, Scene* holder,
                    int* comp, Diagnostics& diag) {
   std::string text, err;
-  if (!readFile(path, &text, &err)) {
+  if (!readFile(path, kMaxSceneFileBytes, &text, &err)) {
     diag.error({path, 0}, "cannot read settings: " + err, ErrorKind::MissingInput);
     return false;
   }

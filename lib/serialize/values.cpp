@@ -92,26 +92,6 @@ std::string numberError(NumStatus st, std::string_view text, bool in_list) {
   return in_list ? quoted(s) + " is not a number" : "expected a number, got " + quoted(s);
 }
 
-// Restricted Damerau-Levenshtein (a swap of neighbours costs 1), ASCII case-insensitive.
-size_t editDistance(std::string_view a, std::string_view b) {
-  const size_t n = a.size();
-  const size_t m = b.size();
-  std::vector<std::vector<size_t>> d(n + 1, std::vector<size_t>(m + 1, 0));
-  for (size_t i = 0; i <= n; ++i) d[i][0] = i;
-  for (size_t j = 0; j <= m; ++j) d[0][j] = j;
-  for (size_t i = 1; i <= n; ++i) {
-    for (size_t j = 1; j <= m; ++j) {
-      const bool same = lowerAscii(a[i - 1]) == lowerAscii(b[j - 1]);
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (same ? 0 : 1)});
-      if (i > 1 && j > 1 && lowerAscii(a[i - 1]) == lowerAscii(b[j - 2]) &&
-          lowerAscii(a[i - 2]) == lowerAscii(b[j - 1])) {
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-      }
-    }
-  }
-  return d[n][m];
-}
-
 const char* tableName(const EnumTable& table) { return table.name ? table.name : "key"; }
 
 const EnumKey* findKey(const EnumTable& table, std::string_view s) {
@@ -121,24 +101,17 @@ const EnumKey* findKey(const EnumTable& table, std::string_view s) {
   return nullptr;
 }
 
-// "unknown X 'y', did you mean 'z'? (valid: a, b, c)"; suggests only close, non-trivial matches.
+// "unknown X 'y', did you mean 'z'? (valid: a, b, c)".
 std::string unknownKeyError(const EnumTable& table, std::string_view s) {
   std::string msg = "unknown ";
   msg += tableName(table);
   msg += ' ';
   msg += quoted(s);
-  const char* best = nullptr;
-  size_t best_dist = 3;  // suggest only within edit distance 2
-  for (const EnumKey& k : table.keys) {
-    if (!k.name || s.empty()) continue;
-    const size_t dist = editDistance(s, k.name);
-    // dist < key length: never "correct" a text into a key it shares nothing with.
-    if (dist < best_dist && dist < std::string_view(k.name).size()) {
-      best = k.name;
-      best_dist = dist;
-    }
-  }
-  if (best) msg += ", did you mean " + quoted(best) + "?";
+  std::vector<std::string> names;
+  for (const EnumKey& k : table.keys)
+    if (k.name) names.emplace_back(k.name);
+  const std::string best = didYouMean(s, names);
+  if (!best.empty()) msg += ", did you mean " + quoted(best) + "?";
   msg += " (valid: ";
   bool first = true;
   for (const EnumKey& k : table.keys) {
@@ -423,6 +396,48 @@ std::string formatNumber(double d) {
   std::string out;
   appendNumber(out, d);
   return out;
+}
+
+std::string formatApprox(double d) {
+  char buf[32];
+  const auto res = std::to_chars(buf, buf + sizeof buf, d, std::chars_format::general, 3);
+  return std::string(buf, res.ptr);
+}
+
+size_t editDistance(std::string_view a, std::string_view b) {
+  // Three rows (i - 2, i - 1, i): memory stays O(|b|) however long a misspelt name in a file is.
+  const size_t m = b.size();
+  std::vector<size_t> before(m + 1), prev(m + 1), cur(m + 1);
+  for (size_t j = 0; j <= m; ++j) prev[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (size_t j = 1; j <= m; ++j) {
+      const bool same = lowerAscii(a[i - 1]) == lowerAscii(b[j - 1]);
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (same ? 0 : 1)});
+      if (i > 1 && j > 1 && lowerAscii(a[i - 1]) == lowerAscii(b[j - 2]) &&
+          lowerAscii(a[i - 2]) == lowerAscii(b[j - 1]))
+        cur[j] = std::min(cur[j], before[j - 2] + 1);
+    }
+    std::swap(before, prev);
+    std::swap(prev, cur);
+  }
+  return prev[m];
+}
+
+std::string didYouMean(std::string_view word, const std::vector<std::string>& candidates) {
+  // Longer words tolerate more typos; a distance below the candidate's length keeps a text that
+  // shares nothing with a short candidate from being "corrected" into it.
+  const size_t limit = std::max<size_t>(2, word.size() / 3);
+  const std::string* best = nullptr;
+  size_t best_dist = limit + 1;
+  for (const std::string& c : candidates) {
+    const size_t d = editDistance(word, c);
+    if (d < best_dist && d < c.size()) {
+      best = &c;
+      best_dist = d;
+    }
+  }
+  return best ? *best : std::string();
 }
 
 std::optional<double> parseNumber(std::string_view text, bool allow_infinite) {

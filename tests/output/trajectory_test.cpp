@@ -399,7 +399,7 @@ TEST_CASE("trajectory reader errors name file and line", "[trajectory]") {
     Error err;
     CHECK_FALSE(simbob::readTrajectory(dir.file("nope.csv"), &t, &err));
     CHECK(err.kind == ErrorKind::MissingInput);
-    CHECK(err.str() == dir.file("nope.csv") + ": cannot open: No such file or directory");
+    CHECK(err.str() == dir.file("nope.csv") + ": cannot read: No such file or directory");
   }
   SECTION("a directory") {
     Trajectory t;

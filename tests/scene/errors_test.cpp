@@ -517,7 +517,7 @@ TEST_CASE("errors: missing import and import without File", "[scene][errors][imp
   CHECK(d.errors()[1].str() == main + ":4: RCImportBody 'E': parameter 'File' is required");
   CHECK(d.errors()[1].kind == ErrorKind::InvalidInput);
   CHECK(d.errors()[2].kind == ErrorKind::MissingInput);
-  CHECK(d.errors()[2].str().find("is a directory") != std::string::npos);
+  CHECK(d.errors()[2].str().find("Is a directory") != std::string::npos);
 
   // The scene itself missing.
   Diagnostics d2;

@@ -189,6 +189,41 @@ TEST_CASE("Number parse errors say what is wrong", "[values][number]") {
   CHECK(parseErr(ValueType::Number, "1e999", nullptr, {true}) == "number out of range: '1e999'");
 }
 
+TEST_CASE("formatApprox writes three significant digits like %.3g", "[values][number]") {
+  CHECK(formatApprox(0.0) == "0");
+  CHECK(formatApprox(1.0) == "1");
+  CHECK(formatApprox(100.0) == "100");
+  CHECK(formatApprox(1234.5) == "1.23e+03");
+  CHECK(formatApprox(0.0012345) == "0.00123");
+  CHECK(formatApprox(-2.0 / 3.0) == "-0.667");
+  CHECK(formatApprox(1e-7) == "1e-07");
+  CHECK(formatApprox(9.996) == "10");
+  CHECK(formatApprox(kInf) == "inf");
+}
+
+TEST_CASE("editDistance and didYouMean: one rule for every suggestion", "[values][suggest]") {
+  CHECK(editDistance("", "") == 0);
+  CHECK(editDistance("abc", "") == 3);
+  CHECK(editDistance("Hinge", "hinge") == 0);  // ASCII case does not count
+  CHECK(editDistance("kitten", "sitting") == 3);
+  CHECK(editDistance("POSITOIN", "Position") == 1);  // a swap of neighbours is one edit
+  CHECK(editDistance("ab", "ba") == 1);
+  CHECK(editDistance("abc", "ca") == 3);  // restricted: no edits inside a swapped pair
+  // Within 2 edits for short words, |word| / 3 for long ones (body keys, type names).
+  CHECK(didYouMean("Pendulm.Hinge.Bob", {"Pendulum.Hinge.Bob"}) == "Pendulum.Hinge.Bob");
+  CHECK(didYouMean("Pendlm.Hing.Bob", {"Pendulum.Hinge.Bob"}) == "Pendulum.Hinge.Bob");  // 3 edits, limit 5
+  CHECK(didYouMean("Pndlm.Hng.Bob", {"Pendulum.Hinge.Bob"}) == "");                      // 5 edits, limit 4
+  CHECK(didYouMean("Hnge", {"Hinge"}) == "Hinge");
+  CHECK(didYouMean("Hi", {"Hinge"}) == "");
+  // Never "corrects" a text into a short candidate it shares nothing with.
+  CHECK(didYouMean("xy", {"ab"}) == "");
+  CHECK(didYouMean("7", {"Vel"}) == "");
+  CHECK(didYouMean("", {"a", "ab"}) == "");
+  // The nearest wins; ties go to the first.
+  CHECK(didYouMean("Bx", {"Ba", "Bb", "B"}) == "Ba");
+  CHECK(didYouMean("Radius", {"RadiusX", "Radius"}) == "Radius");
+}
+
 TEST_CASE("formatNumber writes the shortest round-trip form", "[values][number]") {
   CHECK(formatNumber(0.0) == "0");
   CHECK(formatNumber(-0.0) == "-0");

@@ -1184,3 +1184,37 @@ TEST_CASE("compile: a clone of a joint's child body with a local Pose lands at t
   CHECK(m.joints[0].body2 == bodyIndex(m, "P.H.Bob"));
   CHECK(onlyGeom(m, "Bob2").body == bodyIndex(m, "Bob2"));
 }
+
+// ---------------------------------------------------------------------------------- audit #9: models
+
+TEST_CASE("compile: a child model's global Pose is relative to the body, not to its parent model (guide 6.3)",
+          "[scene][compile][model]") {
+  // Before: a child's RCGlobalCoordinates were composed onto the parent model's frame like local
+  // ones, so the child cuboid below landed at body + (3, 0, 0) instead of body + (2, 0, 0).
+  const std::string model = "<Model><RCCuboidModel><Pose>" + localPose("1 0 0 0 0 90") +
+                            "</Pose><ChildList>"
+                            "<RCCuboidModel Key=\"Global\"><Pose>" +
+                            globalPose("2 0 0 0 0 0") +
+                            "</Pose></RCCuboidModel>"
+                            "<RCCuboidModel Key=\"Local\"><Pose>" +
+                            localPose("2 0 0 0 0 0") + "</Pose></RCCuboidModel></ChildList></RCCuboidModel></Model>";
+  Model m = mustCompile(scene(mobile("A", globalPose("10 0 0 0 90 0"), "<RCModelMatchGeom/>", model) +
+                              "<RCStaticRigidBody Key=\"S\"><Pose>" + globalPose("10 0 0 0 0 0") +
+                              "</Pose><Geom><RCModelMatchGeom/></Geom>" + model + "</RCStaticRigidBody>"));
+  // Mobile body: geom offsets are in the body frame (document order: root, Global, Local).
+  std::vector<const GeomDef*> a = geomsOf(m, "A");
+  REQUIRE(a.size() == 3);
+  checkVec(a[0]->offset.p, {1, 0, 0});
+  checkRot(a[0]->offset.q, rz(90));
+  checkVec(a[1]->offset.p, {2, 0, 0});
+  checkRot(a[1]->offset.q, rz(0));
+  // A local child follows its parent: (1,0,0) + Rz(90)(2,0,0).
+  checkVec(a[2]->offset.p, {1, 2, 0});
+  checkRot(a[2]->offset.q, rz(90));
+  // Static body at (10,0,0): geoms are global.
+  std::vector<const GeomDef*> s = geomsOf(m, "S");
+  REQUIRE(s.size() == 3);
+  checkVec(s[0]->offset.p, {11, 0, 0});
+  checkVec(s[1]->offset.p, {12, 0, 0});
+  checkVec(s[2]->offset.p, {11, 2, 0});
+}

@@ -567,9 +567,22 @@ TEST_CASE("errors: RCLocalCoordinates at the top level", "[scene][errors]") {
   CHECK(r.loaded);
   CHECK_FALSE(r.compiled);
   expectExact(r,
-              "bad.xml:4: RCMobileRigidBody 'B': RCLocalCoordinates needs a parent frame (a joint, construction or "
-              "body); use RCGlobalCoordinates at the top level");
+              "bad.xml:4: RCMobileRigidBody 'B': RCLocalCoordinates needs a parent frame, which only a joint gives (to "
+              "its own poses and the body it carries); at the top level and for a construction's root body use "
+              "RCGlobalCoordinates");
   expectError(r, "bad.xml:7: ", {"RCStaticRigidBody 'S': RCLocalCoordinates needs a parent frame"});
+  // A construction's root body is at the top level too. The message used to name "construction"
+  // among the frames that RCLocalCoordinates can refer to, which was not true for its root.
+  Result root =
+      run(inList("<RCConstruction Key=\"K\"><Body><RCMobileRigidBody Key=\"R\">\n"
+                 "<Pose><RCLocalCoordinates/></Pose><Geom><RCSphereGeom/></Geom></RCMobileRigidBody></Body>"
+                 "</RCConstruction>\n"));
+  CHECK_FALSE(root.compiled);
+  REQUIRE(root.diag.errors().size() == 1);
+  expectExact(root,
+              "bad.xml:4: RCMobileRigidBody 'K.R': RCLocalCoordinates needs a parent frame, which only a joint gives "
+              "(to its own poses and the body it carries); at the top level and for a construction's root body use "
+              "RCGlobalCoordinates");
 }
 
 TEST_CASE("errors: a plane geom on a mobile body", "[scene][errors]") {
@@ -638,6 +651,20 @@ TEST_CASE("errors: RigidBodyClone of nothing", "[scene][errors]") {
   expectExact(r,
               "bad.xml:7: RigidBodyClone 'D': parameter 'Original' is required (the fully qualified key of the body "
               "to copy)");
+  // Written empty, and naming the clone itself.
+  Result e =
+      run(inList("<RCStaticRigidBody Key=\"E\"/>\n<RigidBodyClone Key=\"F\">\n<Original Value=\"\"/></RigidBodyClone>\n"
+                 "<RigidBodyClone Key=\"G\">\n<Original Value=\"G\"/></RigidBodyClone>\n"));
+  INFO(errorText(e.diag));
+  CHECK(e.diag.errors().size() == 2);
+  expectExact(e,
+              "bad.xml:5: RigidBodyClone 'F': parameter 'Original' is required (the fully qualified key of the body "
+              "to copy)");
+  // It used to say "'G' names no body (a clone cannot copy itself) (did you mean 'E'?)": G is a
+  // body, and E is no better.
+  expectExact(e,
+              "bad.xml:7: RigidBodyClone 'G': parameter 'Original' 'G' names the clone itself; a clone cannot "
+              "copy itself");
 }
 
 TEST_CASE("errors: SceneSettings checks", "[scene][errors]") {
@@ -680,6 +707,27 @@ TEST_CASE("errors: INI syntax", "[scene][errors][ini]") {
               "b.ini:3: ", {"parameter 'Height' is a value: write 'Height = ...'"});
   expectError(run("ComponentCount = 1\nComponent0.Type = RCSky\nComponent7.Type = RCSky\n", Format::Ini, "b.ini"),
               "b.ini:3: ", {"parameter 'Component7' unknown"});
+}
+
+TEST_CASE("errors: INI list items without their Count", "[scene][errors][ini][audit]") {
+  // Before: "b.ini:1: parameter 'Component0' unknown", which hid that ComponentCount was missing.
+  Result one = run("Component0.Type = RCSky\nComponent0.Height = 3\n", Format::Ini, "b.ini");
+  CHECK_FALSE(one.loaded);
+  REQUIRE(one.diag.errors().size() == 1);
+  expectExact(one, "b.ini:1: ComponentCount is missing: Component0 needs 'ComponentCount = 1'");
+  Result two = run("\n[Component0]\nType = RCSky\n[Component1]\nType = RCGround\n", Format::Ini, "b.ini");
+  REQUIRE(two.diag.errors().size() == 1);
+  expectExact(two, "b.ini:3: ComponentCount is missing: Component0 to Component1 need 'ComponentCount = 2'");
+  // Any list: a model's ChildList.
+  Result child =
+      run("ComponentCount = 1\nComponent0.Type = RCCuboidModel\nComponent0.Key = M\nComponent0.Child0.Type = "
+          "RCConeModel\n",
+          Format::Ini, "b.ini");
+  REQUIRE(child.diag.errors().size() == 1);
+  expectExact(child, "b.ini:4: RCCuboidModel 'M': ChildCount is missing: Child0 needs 'ChildCount = 1'");
+  // Items that do not start at 0 are still unknown names.
+  Result gap = run("Component1.Type = RCSky\n", Format::Ini, "b.ini");
+  expectExact(gap, "b.ini:1: parameter 'Component1' unknown");
 }
 
 // ---------------------------------------------------------------------------------- many errors

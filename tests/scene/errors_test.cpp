@@ -204,6 +204,27 @@ TEST_CASE("errors: wrong value syntax", "[scene][errors]") {
   CHECK(r.diag.errors().size() == 6);
 }
 
+TEST_CASE("errors: a number with blanks around it (guide 4.3)", "[scene][errors][audit]") {
+  // Before: " 7" and "3 " were trimmed and accepted.
+  Result r =
+      run(inList("<RCSky Key=\"S\"><Height Value=\" 7\"/></RCSky>\n"                                    // 3
+                 "<RCEllipsoidModel Key=\"E\"><Accuracy Value=\"3 \"/></RCEllipsoidModel>\n"            // 4
+                 "<RCCuboidModel Key=\"C\"><Cuboid Value=\" -1 -1 -1  1 1 1 \"/></RCCuboidModel>\n"));  // a list: fine
+  CHECK_FALSE(r.loaded);
+  INFO(errorText(r.diag));
+  CHECK(r.diag.errors().size() == 2);
+  expectExact(r,
+              "bad.xml:3: RCSky 'S': parameter 'Height': expected a number without blanks around it, got ' 7' (guide "
+              "4.3: a number starts with a sign, a digit or '.')");
+  expectExact(r,
+              "bad.xml:4: RCEllipsoidModel 'E': parameter 'Accuracy': expected an integer without blanks around it, "
+              "got '3 ' (guide 4.3: a number starts with a sign, a digit or '.')");
+  // INI values are trimmed around '='; a quoted value keeps its blanks (guide 4.1).
+  CHECK(run("ComponentCount = 1\nComponent0.Type = RCSky\nComponent0.Height =   7  \n", Format::Ini, "b.ini").loaded);
+  Result ini = run("ComponentCount = 1\nComponent0.Type = RCSky\nComponent0.Height = \" 7\"\n", Format::Ini, "b.ini");
+  expectError(ini, "b.ini:3: ", {"parameter 'Height': expected a number without blanks around it, got ' 7'"});
+}
+
 TEST_CASE("errors: wrong arity", "[scene][errors]") {
   Result r =
       run(inList("<RCStaticRigidBody Key=\"S\">\n"                                                    // 3

@@ -950,16 +950,74 @@ TEST_CASE("compile: RCModelWrapGeom wraps a model tree unless IgnoreChilds", "[s
   checkVec(root.offset.p, {0, 0, 0});
 }
 
-TEST_CASE("compile: RCModelWrapGeom of round models is as small as the model allows", "[scene][compile][!mayfail]") {
+TEST_CASE("compile: RCModelWrapGeom of round models is as small as the model allows", "[scene][compile]") {
   // A sphere model wrapped by a sphere is that sphere; a cylinder model by a cylinder is that cylinder.
+  // (This test was marked [!mayfail]: the wrap was the box bounds' half diagonal, 0.866.)
   Model m = mustCompile(
       scene(mobile("S", globalPose("0 0 0 0 0 0"), "<RCModelWrapGeom><GeomType Value=\"Sphere\"/></RCModelWrapGeom>",
                    "<Model><RCEllipsoidModel/></Model>") +
             mobile("C", globalPose("0 0 0 0 0 0"), "<RCModelWrapGeom><GeomType Value=\"Cylinder\"/></RCModelWrapGeom>",
                    "<Model><RCCylinderModel/></Model>")));
-  CHECK(onlyGeom(m, "S").size[0] == Approx(0.5));
-  CHECK(onlyGeom(m, "C").size[0] == Approx(0.5));
-  CHECK(onlyGeom(m, "C").size[1] == Approx(1));
+  CHECK(onlyGeom(m, "S").shape == GeomShape::Sphere);
+  CHECK(onlyGeom(m, "S").size[0] == 0.5);
+  CHECK(onlyGeom(m, "C").shape == GeomShape::Cylinder);
+  CHECK(onlyGeom(m, "C").size[0] == 0.5);
+  CHECK(onlyGeom(m, "C").size[1] == 1);
+}
+
+TEST_CASE("compile: RCModelWrapGeom is exact for one sphere, cylinder or box and for a turned cylinder",
+          "[scene][compile][model]") {
+  // Before: every wrap was taken from the axis-aligned bounds (a sphere of the bounds' half
+  // diagonal, a cylinder through the bounds' corners): a unit sphere got a wrap sphere of
+  // radius sqrt(3) = 1.732, and `check` warned it started inside the ground.
+  auto wrap = [](const std::string& key, const std::string& type, const std::string& align, const std::string& model) {
+    return mobile(
+        key, globalPose("0 0 0 0 0 0"),
+        "<RCModelWrapGeom><GeomType Value=\"" + type + "\"/><Alignment Value=\"" + align + "\"/></RCModelWrapGeom>",
+        "<Model>" + model + "</Model>");
+  };
+  const std::string unit_sphere =
+      "<RCEllipsoidModel><RadiusX Value=\"1\"/><RadiusY Value=\"1\"/><RadiusZ Value=\"1\"/></RCEllipsoidModel>";
+  const std::string cylinder = "<RCCylinderModel><Radius Value=\"0.3\"/><Length Value=\"2\"/></RCCylinderModel>";
+  // Half extents (a, b, c) = (0.5, 1, 1.5), centre (1, 2, 3).
+  const std::string box = "<RCCuboidModel><Cuboid Value=\"0.5 1 1.5 1.5 3 4.5\"/></RCCuboidModel>";
+  // The cylinder turned 30 deg about X: its axis lies in the Y-Z plane.
+  const std::string turned = "<RCCylinderModel><Pose>" + localPose("0 0 0 30 0 0") +
+                             "</Pose><Radius Value=\"0.3\"/><Length Value=\"2\"/></RCCylinderModel>";
+  Model m = mustCompile(
+      scene(wrap("Sphere", "Sphere", "ZAligned", unit_sphere) + wrap("SphereBox", "Cuboid", "ZAligned", unit_sphere) +
+            wrap("Cyl", "Cylinder", "ZAligned", cylinder) + wrap("CylCap", "CappedCylinder", "ZAligned", cylinder) +
+            wrap("Box", "Cuboid", "ZAligned", box) + wrap("BoxSphere", "Sphere", "ZAligned", box) +
+            wrap("Turned", "Cuboid", "ZAligned", turned)));
+  const GeomDef& sphere = onlyGeom(m, "Sphere");
+  CHECK(sphere.shape == GeomShape::Sphere);
+  CHECK(sphere.size[0] == 1);
+  checkVec(sphere.offset.p, {0, 0, 0});
+  checkVec(onlyGeom(m, "SphereBox").size, {2, 2, 2});
+  const GeomDef& cyl = onlyGeom(m, "Cyl");
+  CHECK(cyl.shape == GeomShape::Cylinder);
+  CHECK(cyl.size[0] == 0.3);
+  CHECK(cyl.size[1] == 2);
+  checkRot(cyl.offset.q, rz(0));
+  // A capsule wrap has the cylinder's radius and length; its caps reach beyond the model.
+  const GeomDef& cap = onlyGeom(m, "CylCap");
+  CHECK(cap.shape == GeomShape::Capsule);
+  CHECK(cap.size[0] == 0.3);
+  CHECK(cap.size[1] == 2);
+  const GeomDef& b = onlyGeom(m, "Box");
+  CHECK(b.shape == GeomShape::Box);
+  CHECK(b.size == Vec3{1, 2, 3});
+  CHECK(b.offset.p == Vec3{1, 2, 3});
+  const GeomDef& bs = onlyGeom(m, "BoxSphere");
+  CHECK(bs.shape == GeomShape::Sphere);
+  CHECK(bs.size[0] == Approx(std::sqrt(0.5 * 0.5 + 1 * 1 + 1.5 * 1.5)).epsilon(1e-15));
+  checkVec(bs.offset.p, {1, 2, 3});
+  // Turned cylinder: half extents r along X, |sin|.L/2 + r.|cos| along Y, |cos|.L/2 + r.|sin| along Z.
+  const double c30 = std::cos(30 * kDeg), s30 = std::sin(30 * kDeg), r = 0.3, h = 1.0;
+  const GeomDef& t = onlyGeom(m, "Turned");
+  CHECK(t.shape == GeomShape::Box);
+  checkVec(t.size, {2 * r, 2 * (s30 * h + r * c30), 2 * (c30 * h + r * s30)});
+  checkVec(t.offset.p, {0, 0, 0});
 }
 
 TEST_CASE("compile: peripheries and controllers are kept with a warning", "[scene][compile]") {

@@ -112,7 +112,8 @@ struct ParseResult {
 };
 
 /// Parse `text` as a value of type `t`. `table` is required for Enum and Bitmask.
-/// NaN is always rejected; infinities only with allow_infinite.
+/// NaN is always rejected; infinities only with allow_infinite. A Number or Int is the number
+/// alone (guide 4.3: it starts with a sign, a digit or '.'): " 7" and "7 " are errors.
 ParseResult parseValue(ValueType t, std::string_view text, const EnumTable* table = nullptr, ParseOptions opts = {});
 
 /// Write `v` (which must hold the alternative for `t`) in its canonical string form.
@@ -140,7 +141,8 @@ size_t editDistance(std::string_view a, std::string_view b);
 /// the first candidate.
 std::string didYouMean(std::string_view word, const std::vector<std::string>& candidates);
 
-/// Strict number: optional sign, digits, '.', exponent. Whole text must be consumed.
+/// Strict number: optional sign, digits, '.', exponent. Whole text must be consumed; blanks
+/// around it are ignored (for CSV fields and INI counts; scene values go through parseValue).
 std::optional<double> parseNumber(std::string_view text, bool allow_infinite = false);
 
 /// A numerical value list: numbers separated by any of " \t,;\\()" (guide 4.3).

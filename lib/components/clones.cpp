@@ -157,16 +157,19 @@ Built lowerClone(CompileContext& ctx, const Component& c, const Transform* paren
     return Built{};
   }
   auto f = ctx.scene.by_qkey.find(original);
-  if (f == ctx.scene.by_qkey.end() || ctx.at(f->second).type->family != Family::Body || f->second == ctx.indexOf(c)) {
+  if (f != ctx.scene.by_qkey.end() && f->second == ctx.indexOf(c)) {
+    // Not a misspelling: no "did you mean" another body.
+    ctx.errorAt(slot, c, "parameter 'Original' '" + original + "' names the clone itself; a clone cannot copy itself");
+    return Built{};
+  }
+  if (f == ctx.scene.by_qkey.end() || ctx.at(f->second).type->family != Family::Body) {
     std::vector<std::string> keys;
     for (const auto& [k, i] : ctx.scene.by_qkey)
       if (ctx.at(i).type->family == Family::Body && k != c.qkey) keys.push_back(k);
     std::string near = didYouMean(original, keys);
-    ctx.errorAt(
-        slot, c,
-        "parameter 'Original' '" + original + "' names no body" +
-            (f != ctx.scene.by_qkey.end() && f->second == ctx.indexOf(c) ? " (a clone cannot copy itself)" : "") +
-            (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+    ctx.errorAt(slot, c,
+                "parameter 'Original' '" + original + "' names no body" +
+                    (near.empty() ? "" : " (did you mean '" + near + "'?)"));
     return Built{};
   }
   return rigidCopy(ctx, c, f->second, parent, c.get(kPose), Link{}, true);

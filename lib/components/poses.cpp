@@ -44,9 +44,11 @@ bool lowerPose(CompileContext& ctx, const Link& l, const Component& owner, const
       return true;
     case PoseKind::Local:
       if (!parent) {
+        // Reached only at the top level: a construction's root body sits there too, only a joint
+        // gives a frame (to its own poses and to the body it carries).
         ctx.error(l, owner,
-                  "RCLocalCoordinates needs a parent frame (a joint, construction or body); use "
-                  "RCGlobalCoordinates at the top level");
+                  "RCLocalCoordinates needs a parent frame, which only a joint gives (to its own poses and the "
+                  "body it carries); at the top level and for a construction's root body use RCGlobalCoordinates");
         return false;
       }
       *out = compose(*parent, local);

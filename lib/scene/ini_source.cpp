@@ -77,7 +77,7 @@ class IniSource : public Source {
     const std::string base = listItemName(name);
     IniNode* count = take(base + "Count");
     *present = count != nullptr;
-    if (!count) return items;
+    if (!count) return missingCount(base, present, line);
     *line = count->line;
     auto n = parseNumber(trim(count->value));
     // Range first: casting a double beyond int64 to int64 is undefined behaviour.
@@ -121,6 +121,26 @@ class IniSource : public Source {
   }
 
  private:
+  /// Items Name0, Name1, ... written without NameCount: one error that says the count is
+  /// missing (else each item would be reported as an unknown parameter).
+  std::vector<SourceLink> missingCount(const std::string& base, bool* present, int* line) {
+    std::vector<SourceLink> items;
+    IniNode* first = take(base + "0");
+    if (!first) return items;
+    int64_t n = 1;
+    while (take(base + std::to_string(n))) ++n;
+    *present = true;
+    *line = first->line;
+    SourceLink missing;
+    missing.present = true;
+    missing.line = first->line;
+    missing.error = base + "Count is missing: " +
+                    (n == 1 ? base + "0 needs" : base + "0 to " + base + std::to_string(n - 1) + " need") + " '" +
+                    base + "Count = " + std::to_string(n) + "'";
+    items.push_back(std::move(missing));
+    return items;
+  }
+
   IniNode* take(const std::string& name) {
     std::string ln = lower(name);
     IniNode* c = node_->child(ln);

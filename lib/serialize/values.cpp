@@ -92,6 +92,14 @@ std::string numberError(NumStatus st, std::string_view text, bool in_list) {
   return in_list ? quoted(s) + " is not a number" : "expected a number, got " + quoted(s);
 }
 
+// A Number or Int value whose text is fine but for blanks around it. Guide 4.3: "The first
+// character needs to be a plus or minus sign, a digit or a '.'" (numerical value lists are
+// different: separators, blanks among them, may stand before, between and after the elements).
+std::string blanksError(const char* what, std::string_view text) {
+  return std::string("expected ") + what + " without blanks around it, got " + quoted(text) +
+         " (guide 4.3: a number starts with a sign, a digit or '.')";
+}
+
 const char* tableName(const EnumTable& table) { return table.name ? table.name : "key"; }
 
 const EnumKey* findKey(const EnumTable& table, std::string_view s) {
@@ -506,12 +514,16 @@ ParseResult parseValue(ValueType t, std::string_view text, const EnumTable* tabl
   switch (t) {
     case ValueType::Bool:
       return parseBool(text);
-    case ValueType::Int:
-      return parseInt(text);
+    case ValueType::Int: {
+      ParseResult r = parseInt(text);
+      if (r && trim(text).size() != text.size()) return fail(blanksError("an integer", text));
+      return r;
+    }
     case ValueType::Number: {
       double d = 0;
       NumStatus st = parseNumberImpl(text, inf, d);
       if (st != NumStatus::Ok) return fail(numberError(st, text, false));
+      if (trim(text).size() != text.size()) return fail(blanksError("a number", text));
       return ok(d);
     }
     case ValueType::String:

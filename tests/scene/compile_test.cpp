@@ -950,16 +950,74 @@ TEST_CASE("compile: RCModelWrapGeom wraps a model tree unless IgnoreChilds", "[s
   checkVec(root.offset.p, {0, 0, 0});
 }
 
-TEST_CASE("compile: RCModelWrapGeom of round models is as small as the model allows", "[scene][compile][!mayfail]") {
+TEST_CASE("compile: RCModelWrapGeom of round models is as small as the model allows", "[scene][compile]") {
   // A sphere model wrapped by a sphere is that sphere; a cylinder model by a cylinder is that cylinder.
+  // (This test was marked [!mayfail]: the wrap was the box bounds' half diagonal, 0.866.)
   Model m = mustCompile(
       scene(mobile("S", globalPose("0 0 0 0 0 0"), "<RCModelWrapGeom><GeomType Value=\"Sphere\"/></RCModelWrapGeom>",
                    "<Model><RCEllipsoidModel/></Model>") +
             mobile("C", globalPose("0 0 0 0 0 0"), "<RCModelWrapGeom><GeomType Value=\"Cylinder\"/></RCModelWrapGeom>",
                    "<Model><RCCylinderModel/></Model>")));
-  CHECK(onlyGeom(m, "S").size[0] == Approx(0.5));
-  CHECK(onlyGeom(m, "C").size[0] == Approx(0.5));
-  CHECK(onlyGeom(m, "C").size[1] == Approx(1));
+  CHECK(onlyGeom(m, "S").shape == GeomShape::Sphere);
+  CHECK(onlyGeom(m, "S").size[0] == 0.5);
+  CHECK(onlyGeom(m, "C").shape == GeomShape::Cylinder);
+  CHECK(onlyGeom(m, "C").size[0] == 0.5);
+  CHECK(onlyGeom(m, "C").size[1] == 1);
+}
+
+TEST_CASE("compile: RCModelWrapGeom is exact for one sphere, cylinder or box and for a turned cylinder",
+          "[scene][compile][model]") {
+  // Before: every wrap was taken from the axis-aligned bounds (a sphere of the bounds' half
+  // diagonal, a cylinder through the bounds' corners): a unit sphere got a wrap sphere of
+  // radius sqrt(3) = 1.732, and `check` warned it started inside the ground.
+  auto wrap = [](const std::string& key, const std::string& type, const std::string& align, const std::string& model) {
+    return mobile(
+        key, globalPose("0 0 0 0 0 0"),
+        "<RCModelWrapGeom><GeomType Value=\"" + type + "\"/><Alignment Value=\"" + align + "\"/></RCModelWrapGeom>",
+        "<Model>" + model + "</Model>");
+  };
+  const std::string unit_sphere =
+      "<RCEllipsoidModel><RadiusX Value=\"1\"/><RadiusY Value=\"1\"/><RadiusZ Value=\"1\"/></RCEllipsoidModel>";
+  const std::string cylinder = "<RCCylinderModel><Radius Value=\"0.3\"/><Length Value=\"2\"/></RCCylinderModel>";
+  // Half extents (a, b, c) = (0.5, 1, 1.5), centre (1, 2, 3).
+  const std::string box = "<RCCuboidModel><Cuboid Value=\"0.5 1 1.5 1.5 3 4.5\"/></RCCuboidModel>";
+  // The cylinder turned 30 deg about X: its axis lies in the Y-Z plane.
+  const std::string turned = "<RCCylinderModel><Pose>" + localPose("0 0 0 30 0 0") +
+                             "</Pose><Radius Value=\"0.3\"/><Length Value=\"2\"/></RCCylinderModel>";
+  Model m = mustCompile(
+      scene(wrap("Sphere", "Sphere", "ZAligned", unit_sphere) + wrap("SphereBox", "Cuboid", "ZAligned", unit_sphere) +
+            wrap("Cyl", "Cylinder", "ZAligned", cylinder) + wrap("CylCap", "CappedCylinder", "ZAligned", cylinder) +
+            wrap("Box", "Cuboid", "ZAligned", box) + wrap("BoxSphere", "Sphere", "ZAligned", box) +
+            wrap("Turned", "Cuboid", "ZAligned", turned)));
+  const GeomDef& sphere = onlyGeom(m, "Sphere");
+  CHECK(sphere.shape == GeomShape::Sphere);
+  CHECK(sphere.size[0] == 1);
+  checkVec(sphere.offset.p, {0, 0, 0});
+  checkVec(onlyGeom(m, "SphereBox").size, {2, 2, 2});
+  const GeomDef& cyl = onlyGeom(m, "Cyl");
+  CHECK(cyl.shape == GeomShape::Cylinder);
+  CHECK(cyl.size[0] == 0.3);
+  CHECK(cyl.size[1] == 2);
+  checkRot(cyl.offset.q, rz(0));
+  // A capsule wrap has the cylinder's radius and length; its caps reach beyond the model.
+  const GeomDef& cap = onlyGeom(m, "CylCap");
+  CHECK(cap.shape == GeomShape::Capsule);
+  CHECK(cap.size[0] == 0.3);
+  CHECK(cap.size[1] == 2);
+  const GeomDef& b = onlyGeom(m, "Box");
+  CHECK(b.shape == GeomShape::Box);
+  CHECK(b.size == Vec3{1, 2, 3});
+  CHECK(b.offset.p == Vec3{1, 2, 3});
+  const GeomDef& bs = onlyGeom(m, "BoxSphere");
+  CHECK(bs.shape == GeomShape::Sphere);
+  CHECK(bs.size[0] == Approx(std::sqrt(0.5 * 0.5 + 1 * 1 + 1.5 * 1.5)).epsilon(1e-15));
+  checkVec(bs.offset.p, {1, 2, 3});
+  // Turned cylinder: half extents r along X, |sin|.L/2 + r.|cos| along Y, |cos|.L/2 + r.|sin| along Z.
+  const double c30 = std::cos(30 * kDeg), s30 = std::sin(30 * kDeg), r = 0.3, h = 1.0;
+  const GeomDef& t = onlyGeom(m, "Turned");
+  CHECK(t.shape == GeomShape::Box);
+  checkVec(t.size, {2 * r, 2 * (s30 * h + r * c30), 2 * (c30 * h + r * s30)});
+  checkVec(t.offset.p, {0, 0, 0});
 }
 
 TEST_CASE("compile: peripheries and controllers are kept with a warning", "[scene][compile]") {
@@ -1033,4 +1091,188 @@ TEST_CASE("compile: a clone before the original does not move bodies outside the
   // Top-level clones are built after every other top-level body, so a joint's Body Ref from
   // inside the original to a body outside it finds that body already built in place.
   checkCloneWithOutsideBody(mustCompile(cloneWithOutsideBody(true)));
+}
+
+// ---------------------------------------------------------------------------------- audit #9: clones
+
+namespace {
+
+/// Construction B (mobile root, hinge Arm to Link) and clones C1 of B and C2 of C1.
+std::string cloneChain() {
+  return scene("<RCConstruction Key=\"B\"><Body>" + mobile("Root", globalPose("0 1 0 0 0 0")) +
+               "</Body><ChildList><RCHingeJoint Key=\"Arm\"><Body>" + mobile("Link", localPose("1 0 0 0 0 0")) +
+               "</Body></RCHingeJoint></ChildList></RCConstruction>"
+               "<RigidBodyClone Key=\"C1\"><Original Value=\"B\"/><Pose>" +
+               globalPose("0 1 5 0 0 0") +
+               "</Pose></RigidBodyClone>"
+               "<RigidBodyClone Key=\"C2\"><Original Value=\"C1\"/><Pose>" +
+               globalPose("0 1 10 0 90 0") + "</Pose></RigidBodyClone>");
+}
+
+void checkUniqueModelKeys(const Model& m) {
+  std::set<std::string> bodies, joints;
+  for (const auto& b : m.bodies) CHECK(bodies.insert(b.key).second);
+  for (const auto& j : m.joints) CHECK(joints.insert(j.key).second);
+}
+
+}  // namespace
+
+TEST_CASE("compile: a clone of a clone renames twice: every copy has keys of its own", "[scene][compile][clone]") {
+  // Before the fix, C2 (a clone of the clone C1) renamed only C1's own prefix, so C2's copy got
+  // the keys 'C1.Root' and 'C1.Arm.Link' a second time: `check` passed, `run` stopped at the
+  // CSV writer with "duplicate body key 'C1.Root'".
+  Model m = mustCompile(cloneChain());
+  REQUIRE(m.bodies.size() == 6);
+  REQUIRE(m.joints.size() == 3);
+  checkUniqueModelKeys(m);
+  checkVec(bodyNamed(m, "B.Root").pose.p, {0, 1, 0});
+  checkVec(bodyNamed(m, "B.Arm.Link").pose.p, {1, 1, 0});
+  checkVec(bodyNamed(m, "C1.Root").pose.p, {0, 1, 5});
+  checkVec(bodyNamed(m, "C1.Arm.Link").pose.p, {1, 1, 5});
+  // C2 copies C1 (whose root is at (0,1,5)) onto (0,1,10) turned 90 deg about Y.
+  checkVec(bodyNamed(m, "C2.Root").pose.p, {0, 1, 10});
+  checkVec(bodyNamed(m, "C2.Arm.Link").pose.p, add({0, 1, 10}, mat_apply(ry(90), {1, 0, 0})));
+  checkRot(bodyNamed(m, "C2.Arm.Link").pose.q, ry(90));
+  // Each copy's joint connects that copy's bodies.
+  for (const char* c : {"B", "C1", "C2"}) {
+    std::string p = c;
+    INFO("copy " << p);
+    const JointDef& j = jointNamed(m, p + ".Arm");
+    CHECK(j.body1 == bodyIndex(m, p + ".Root"));
+    CHECK(j.body2 == bodyIndex(m, p + ".Arm.Link"));
+  }
+  checkVec(jointNamed(m, "C2.Arm").anchor, {0, 1, 10});
+  checkVec(jointNamed(m, "C2.Arm").axis, mat_apply(ry(90), {0, 0, 1}));
+}
+
+TEST_CASE("compile: clones of an imported construction and of clones of it", "[scene][compile][clone][import]") {
+  // Before the fix IC2 (a clone of the clone IC of the import I) repeated IC's keys.
+  TempDir dir;
+  dir.write("arm.xml", "<Body><RCConstruction Key=\"Arm\"><Body><RCStaticRigidBody Key=\"Base\"><Pose>" +
+                           globalPose("0 1 0 0 0 0") +
+                           "</Pose><Geom><RCCuboidGeom/></Geom></RCStaticRigidBody></Body><ChildList>"
+                           "<RCHingeJoint Key=\"J\"><Body>" +
+                           mobile("Link", localPose("1 0 0 0 0 0")) +
+                           "</Body></RCHingeJoint></ChildList></RCConstruction></Body>");
+  auto clone = [](const std::string& key, const std::string& original, const std::string& pose) {
+    return "<RigidBodyClone Key=\"" + key + "\"><Original Value=\"" + original + "\"/><Pose>" + globalPose(pose) +
+           "</Pose></RigidBodyClone>";
+  };
+  std::string main = dir.write("main.xml", scene("<RCImportBody Key=\"I\"><File Value=\"arm.xml\"/></RCImportBody>" +
+                                                 clone("IC", "I", "0 1 5 0 0 0") + clone("IC2", "IC", "0 1 10 0 0 0") +
+                                                 clone("AC", "I.Arm", "0 1 -5 0 0 0")));
+  Scene s;
+  Diagnostics d;
+  REQUIRE(loadScene(main, testRegistry(), &s, d));
+  Model m;
+  bool ok = compileScene(s, &m, d);
+  INFO(errorText(d));
+  REQUIRE(ok);
+  REQUIRE(m.bodies.size() == 4);
+  REQUIRE(m.joints.size() == 4);
+  checkUniqueModelKeys(m);
+  checkVec(bodyNamed(m, "I.Arm.J.Link").pose.p, {1, 1, 0});
+  checkVec(bodyNamed(m, "IC.Arm.J.Link").pose.p, {1, 1, 5});
+  checkVec(bodyNamed(m, "IC2.Arm.J.Link").pose.p, {1, 1, 10});
+  checkVec(bodyNamed(m, "AC.J.Link").pose.p, {1, 1, -5});
+  checkVec(jointNamed(m, "IC2.Arm.J").anchor, {0, 1, 10});
+  CHECK(jointNamed(m, "IC2.Arm.J").body2 == bodyIndex(m, "IC2.Arm.J.Link"));
+  CHECK(jointNamed(m, "AC.J").body2 == bodyIndex(m, "AC.J.Link"));
+  // The static base of every copy moves with it.
+  checkVec(onlyGeom(m, "IC2.Arm.Base").offset.p, {0, 1, 10});
+  checkVec(onlyGeom(m, "AC.Base").offset.p, {0, 1, -5});
+}
+
+TEST_CASE("compile: clones nest up to 8 deep", "[scene][compile][clone]") {
+  auto chain = [](int n) {
+    std::string s = mobile("B", globalPose("0 1 0 0 0 0"));
+    std::string prev = "B";
+    for (int i = 1; i <= n; ++i) {
+      std::string key = "C" + std::to_string(i);
+      s += "\n<RigidBodyClone Key=\"" + key + "\"><Original Value=\"" + prev + "\"/><Pose>" +
+           globalPose("0 1 " + std::to_string(i) + " 0 0 0") + "</Pose></RigidBodyClone>";
+      prev = key;
+    }
+    return scene(s);
+  };
+  Model m = mustCompile(chain(8));
+  REQUIRE(m.bodies.size() == 9);
+  checkUniqueModelKeys(m);
+  checkVec(bodyNamed(m, "C8").pose.p, {0, 1, 8});
+  // One more is an error (on the clone lowered 9 deep: C1, inside the copy of C9).
+  Scene s = mustLoad(chain(9));
+  Model m9;
+  Diagnostics d;
+  CHECK_FALSE(compileScene(s, &m9, d));
+  INFO(errorText(d));
+  REQUIRE(d.errors().size() == 1);
+  CHECK(d.errors()[0].str() == "test.xml:3: RigidBodyClone 'C1': clones nested deeper than 8");
+}
+
+TEST_CASE("compile: two bodies with one key are an error at compile time", "[scene][compile][clone]") {
+  // Before, a duplicate body key (what clones of clones made) passed `check` and stopped `run`
+  // only when the CSV writer met it. Clones no longer make one, so force one into the graph.
+  Scene s = mustLoad(scene(mobile("A", globalPose("0 1 0 0 0 0")) + "\n" + mobile("B", globalPose("0 2 0 0 0 0"))));
+  auto it = s.by_qkey.find("B");
+  REQUIRE(it != s.by_qkey.end());
+  s.at(it->second).qkey = "A";
+  Model m;
+  Diagnostics d;
+  CHECK_FALSE(compileScene(s, &m, d));
+  INFO(errorText(d));
+  REQUIRE(d.errors().size() == 1);
+  CHECK(d.errors()[0].str() ==
+        "test.xml:3: two bodies get the key 'A' (the second from here); give the copy a Key of its own");
+}
+
+TEST_CASE("compile: a clone of a joint's child body with a local Pose lands at the clone's Pose",
+          "[scene][compile][clone]") {
+  // Before the fix the original was lowered again without its joint's frame: "RCLocalCoordinates
+  // needs a parent frame" on the original's Pose, and the scene did not compile.
+  Model m = mustCompile(scene(pendulum() + "<RigidBodyClone Key=\"Bob2\"><Original Value=\"P.H.Bob\"/><Pose>" +
+                              globalPose("5 3 0 0 0 90") + "</Pose></RigidBodyClone>"));
+  REQUIRE(m.bodies.size() == 2);
+  const BodyDef& bob = bodyNamed(m, "P.H.Bob");
+  checkVec(bob.pose.p, {0.5, 2 - std::cos(30 * kDeg), 0});
+  const BodyDef& copy = bodyNamed(m, "Bob2");
+  checkVec(copy.pose.p, {5, 3, 0});
+  checkRot(copy.pose.q, rz(90));
+  // The copy is the body alone: no joint comes with it, and the original keeps its joint.
+  REQUIRE(m.joints.size() == 1);
+  CHECK(m.joints[0].body2 == bodyIndex(m, "P.H.Bob"));
+  CHECK(onlyGeom(m, "Bob2").body == bodyIndex(m, "Bob2"));
+}
+
+// ---------------------------------------------------------------------------------- audit #9: models
+
+TEST_CASE("compile: a child model's global Pose is relative to the body, not to its parent model (guide 6.3)",
+          "[scene][compile][model]") {
+  // Before: a child's RCGlobalCoordinates were composed onto the parent model's frame like local
+  // ones, so the child cuboid below landed at body + (3, 0, 0) instead of body + (2, 0, 0).
+  const std::string model = "<Model><RCCuboidModel><Pose>" + localPose("1 0 0 0 0 90") +
+                            "</Pose><ChildList>"
+                            "<RCCuboidModel Key=\"Global\"><Pose>" +
+                            globalPose("2 0 0 0 0 0") +
+                            "</Pose></RCCuboidModel>"
+                            "<RCCuboidModel Key=\"Local\"><Pose>" +
+                            localPose("2 0 0 0 0 0") + "</Pose></RCCuboidModel></ChildList></RCCuboidModel></Model>";
+  Model m = mustCompile(scene(mobile("A", globalPose("10 0 0 0 90 0"), "<RCModelMatchGeom/>", model) +
+                              "<RCStaticRigidBody Key=\"S\"><Pose>" + globalPose("10 0 0 0 0 0") +
+                              "</Pose><Geom><RCModelMatchGeom/></Geom>" + model + "</RCStaticRigidBody>"));
+  // Mobile body: geom offsets are in the body frame (document order: root, Global, Local).
+  std::vector<const GeomDef*> a = geomsOf(m, "A");
+  REQUIRE(a.size() == 3);
+  checkVec(a[0]->offset.p, {1, 0, 0});
+  checkRot(a[0]->offset.q, rz(90));
+  checkVec(a[1]->offset.p, {2, 0, 0});
+  checkRot(a[1]->offset.q, rz(0));
+  // A local child follows its parent: (1,0,0) + Rz(90)(2,0,0).
+  checkVec(a[2]->offset.p, {1, 2, 0});
+  checkRot(a[2]->offset.q, rz(90));
+  // Static body at (10,0,0): geoms are global.
+  std::vector<const GeomDef*> s = geomsOf(m, "S");
+  REQUIRE(s.size() == 3);
+  checkVec(s[0]->offset.p, {11, 0, 0});
+  checkVec(s[1]->offset.p, {12, 0, 0});
+  checkVec(s[2]->offset.p, {11, 2, 0});
 }

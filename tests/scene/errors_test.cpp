@@ -204,6 +204,27 @@ TEST_CASE("errors: wrong value syntax", "[scene][errors]") {
   CHECK(r.diag.errors().size() == 6);
 }
 
+TEST_CASE("errors: a number with blanks around it (guide 4.3)", "[scene][errors][audit]") {
+  // Before: " 7" and "3 " were trimmed and accepted.
+  Result r =
+      run(inList("<RCSky Key=\"S\"><Height Value=\" 7\"/></RCSky>\n"                                    // 3
+                 "<RCEllipsoidModel Key=\"E\"><Accuracy Value=\"3 \"/></RCEllipsoidModel>\n"            // 4
+                 "<RCCuboidModel Key=\"C\"><Cuboid Value=\" -1 -1 -1  1 1 1 \"/></RCCuboidModel>\n"));  // a list: fine
+  CHECK_FALSE(r.loaded);
+  INFO(errorText(r.diag));
+  CHECK(r.diag.errors().size() == 2);
+  expectExact(r,
+              "bad.xml:3: RCSky 'S': parameter 'Height': expected a number without blanks around it, got ' 7' (guide "
+              "4.3: a number starts with a sign, a digit or '.')");
+  expectExact(r,
+              "bad.xml:4: RCEllipsoidModel 'E': parameter 'Accuracy': expected an integer without blanks around it, "
+              "got '3 ' (guide 4.3: a number starts with a sign, a digit or '.')");
+  // INI values are trimmed around '='; a quoted value keeps its blanks (guide 4.1).
+  CHECK(run("ComponentCount = 1\nComponent0.Type = RCSky\nComponent0.Height =   7  \n", Format::Ini, "b.ini").loaded);
+  Result ini = run("ComponentCount = 1\nComponent0.Type = RCSky\nComponent0.Height = \" 7\"\n", Format::Ini, "b.ini");
+  expectError(ini, "b.ini:3: ", {"parameter 'Height': expected a number without blanks around it, got ' 7'"});
+}
+
 TEST_CASE("errors: wrong arity", "[scene][errors]") {
   Result r =
       run(inList("<RCStaticRigidBody Key=\"S\">\n"                                                    // 3
@@ -567,9 +588,22 @@ TEST_CASE("errors: RCLocalCoordinates at the top level", "[scene][errors]") {
   CHECK(r.loaded);
   CHECK_FALSE(r.compiled);
   expectExact(r,
-              "bad.xml:4: RCMobileRigidBody 'B': RCLocalCoordinates needs a parent frame (a joint, construction or "
-              "body); use RCGlobalCoordinates at the top level");
+              "bad.xml:4: RCMobileRigidBody 'B': RCLocalCoordinates needs a parent frame, which only a joint gives (to "
+              "its own poses and the body it carries); at the top level and for a construction's root body use "
+              "RCGlobalCoordinates");
   expectError(r, "bad.xml:7: ", {"RCStaticRigidBody 'S': RCLocalCoordinates needs a parent frame"});
+  // A construction's root body is at the top level too. The message used to name "construction"
+  // among the frames that RCLocalCoordinates can refer to, which was not true for its root.
+  Result root =
+      run(inList("<RCConstruction Key=\"K\"><Body><RCMobileRigidBody Key=\"R\">\n"
+                 "<Pose><RCLocalCoordinates/></Pose><Geom><RCSphereGeom/></Geom></RCMobileRigidBody></Body>"
+                 "</RCConstruction>\n"));
+  CHECK_FALSE(root.compiled);
+  REQUIRE(root.diag.errors().size() == 1);
+  expectExact(root,
+              "bad.xml:4: RCMobileRigidBody 'K.R': RCLocalCoordinates needs a parent frame, which only a joint gives "
+              "(to its own poses and the body it carries); at the top level and for a construction's root body use "
+              "RCGlobalCoordinates");
 }
 
 TEST_CASE("errors: a plane geom on a mobile body", "[scene][errors]") {
@@ -638,6 +672,20 @@ TEST_CASE("errors: RigidBodyClone of nothing", "[scene][errors]") {
   expectExact(r,
               "bad.xml:7: RigidBodyClone 'D': parameter 'Original' is required (the fully qualified key of the body "
               "to copy)");
+  // Written empty, and naming the clone itself.
+  Result e =
+      run(inList("<RCStaticRigidBody Key=\"E\"/>\n<RigidBodyClone Key=\"F\">\n<Original Value=\"\"/></RigidBodyClone>\n"
+                 "<RigidBodyClone Key=\"G\">\n<Original Value=\"G\"/></RigidBodyClone>\n"));
+  INFO(errorText(e.diag));
+  CHECK(e.diag.errors().size() == 2);
+  expectExact(e,
+              "bad.xml:5: RigidBodyClone 'F': parameter 'Original' is required (the fully qualified key of the body "
+              "to copy)");
+  // It used to say "'G' names no body (a clone cannot copy itself) (did you mean 'E'?)": G is a
+  // body, and E is no better.
+  expectExact(e,
+              "bad.xml:7: RigidBodyClone 'G': parameter 'Original' 'G' names the clone itself; a clone cannot "
+              "copy itself");
 }
 
 TEST_CASE("errors: SceneSettings checks", "[scene][errors]") {
@@ -680,6 +728,27 @@ TEST_CASE("errors: INI syntax", "[scene][errors][ini]") {
               "b.ini:3: ", {"parameter 'Height' is a value: write 'Height = ...'"});
   expectError(run("ComponentCount = 1\nComponent0.Type = RCSky\nComponent7.Type = RCSky\n", Format::Ini, "b.ini"),
               "b.ini:3: ", {"parameter 'Component7' unknown"});
+}
+
+TEST_CASE("errors: INI list items without their Count", "[scene][errors][ini][audit]") {
+  // Before: "b.ini:1: parameter 'Component0' unknown", which hid that ComponentCount was missing.
+  Result one = run("Component0.Type = RCSky\nComponent0.Height = 3\n", Format::Ini, "b.ini");
+  CHECK_FALSE(one.loaded);
+  REQUIRE(one.diag.errors().size() == 1);
+  expectExact(one, "b.ini:1: ComponentCount is missing: Component0 needs 'ComponentCount = 1'");
+  Result two = run("\n[Component0]\nType = RCSky\n[Component1]\nType = RCGround\n", Format::Ini, "b.ini");
+  REQUIRE(two.diag.errors().size() == 1);
+  expectExact(two, "b.ini:3: ComponentCount is missing: Component0 to Component1 need 'ComponentCount = 2'");
+  // Any list: a model's ChildList.
+  Result child =
+      run("ComponentCount = 1\nComponent0.Type = RCCuboidModel\nComponent0.Key = M\nComponent0.Child0.Type = "
+          "RCConeModel\n",
+          Format::Ini, "b.ini");
+  REQUIRE(child.diag.errors().size() == 1);
+  expectExact(child, "b.ini:4: RCCuboidModel 'M': ChildCount is missing: Child0 needs 'ChildCount = 1'");
+  // Items that do not start at 0 are still unknown names.
+  Result gap = run("Component1.Type = RCSky\n", Format::Ini, "b.ini");
+  expectExact(gap, "b.ini:1: parameter 'Component1' unknown");
 }
 
 // ---------------------------------------------------------------------------------- many errors
@@ -780,4 +849,220 @@ TEST_CASE("errors: deep nesting is an error, not a stack overflow", "[scene][err
   Result r = run(inList(open + close + "\n"));
   CHECK_FALSE(r.loaded);
   expectError(r, "bad.xml:3: ", {"nested deeper than"});
+}
+
+// ---------------------------------------------------------------------------------- audit #9
+
+namespace {
+
+/// What `simbob check` does: load, and compile even when loading failed (as long as there is
+/// a graph), so that one pass reports every problem.
+Result checkAll(const std::string& text, const std::string& name = "bad.xml") {
+  Result r;
+  Scene s;
+  r.loaded = loadSceneFromText(text, name, Format::Xml, testRegistry(), &s, r.diag);
+  if (r.loaded || !s.comps.empty()) {
+    Model m;
+    r.compiled = compileScene(s, &m, r.diag);
+  }
+  return r;
+}
+
+/// Every error line, sorted (the order of load and compile messages is not the point).
+std::vector<std::string> sortedErrors(const Diagnostics& d) {
+  std::vector<std::string> out;
+  for (const Error& e : d.errors()) out.push_back(e.str());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("errors: check reports load and compile errors of several bodies in one pass", "[scene][errors][audit]") {
+  // Before: a scene that failed to load was not compiled, so only the unknown geom type (line
+  // 7) was reported; the mass, inertia and clone errors came one fix-and-rerun later each.
+  Result r =
+      checkAll(inList("<RCMobileRigidBody Key=\"A\"><Geom Macro=\"NoGeom\"/></RCMobileRigidBody>\n"  // 3
+                      "<RCMobileRigidBody Key=\"B\"><Inertia><RCGenericInertia>"
+                      "<Inertia Value=\"1 2 0 2 1 0 0 0 1\"/></RCGenericInertia></Inertia></RCMobileRigidBody>\n"  // 4
+                      "<RCMobileRigidBody Key=\"C\"><Geom><RCSphereGeom/></Geom><Inertia><RCInertiaByGeom>"
+                      "<Mass Value=\"0\"/></RCInertiaByGeom></Inertia></RCMobileRigidBody>\n"         // 5
+                      "<RCMobileRigidBody Key=\"G\"><Inertia><RCGenericInertia><Mass Value=\"-2\"/>"  // 6
+                      "</RCGenericInertia></Inertia><Geom><RCSphereGeom/></Geom></RCMobileRigidBody>\n"
+                      "<RCMobileRigidBody Key=\"D\"><Geom><RCSphereGeon/></Geom></RCMobileRigidBody>\n"  // 7
+                      "<RigidBodyClone Key=\"E\"><Original Value=\"Nobody\"/></RigidBodyClone>\n"));     // 8
+  CHECK_FALSE(r.loaded);
+  CHECK_FALSE(r.compiled);
+  INFO(errorText(r.diag));
+  CHECK(sortedErrors(r.diag) ==
+        std::vector<std::string>{
+            "bad.xml:3: RCMobileRigidBody 'A': RCInertiaByGeom needs a geom with volume on body 'A' (give it a Geom "
+            "or use RCGenericInertia)",
+            "bad.xml:4: RCGenericInertia 'B.Inertia': parameter 'Inertia' is not positive definite",
+            "bad.xml:5: RCInertiaByGeom 'C.Inertia': parameter 'Mass' must be > 0 (or negative to use Density)",
+            "bad.xml:6: RCGenericInertia 'G.Inertia': parameter 'Mass' must be > 0, got '-2'",
+            "bad.xml:7: RCMobileRigidBody 'D': unknown component type 'RCSphereGeon' (did you mean 'RCSphereGeom'?)",
+            "bad.xml:8: RigidBodyClone 'E': parameter 'Original' 'Nobody' names no body",
+        });
+}
+
+TEST_CASE("errors: a body whose geom type is unknown reports only that", "[scene][errors][audit]") {
+  // The failed geom leaves the body without volume; "needs a geom with volume" would be noise.
+  Result r = checkAll(inList("<RCMobileRigidBody Key=\"D\">\n<Geom><RCSphereGeon/></Geom></RCMobileRigidBody>\n"));
+  CHECK_FALSE(r.compiled);
+  INFO(errorText(r.diag));
+  REQUIRE(r.diag.errors().size() == 1);
+  expectExact(r,
+              "bad.xml:4: RCMobileRigidBody 'D': unknown component type 'RCSphereGeon' (did you mean 'RCSphereGeom'?)");
+}
+
+TEST_CASE("errors: a missing import does not hide a clone error elsewhere", "[scene][errors][audit][import]") {
+  // Before: `check` stopped at the missing file; the misspelt Original was never reported.
+  TempDir dir;
+  std::string main =
+      dir.write("main.xml", inList("<RCImportBody Key=\"M\"><File Value=\"missing.xml\"/></RCImportBody>\n"
+                                   "<RCMobileRigidBody Key=\"Ball\"><Geom><RCSphereGeom/></Geom></RCMobileRigidBody>\n"
+                                   "<RigidBodyClone Key=\"E\"><Original Value=\"Bal\"/></RigidBodyClone>\n"));
+  Scene s;
+  Diagnostics d;
+  CHECK_FALSE(loadScene(main, testRegistry(), &s, d));
+  REQUIRE_FALSE(s.comps.empty());
+  Model m;
+  CHECK_FALSE(compileScene(s, &m, d));
+  INFO(errorText(d));
+  REQUIRE(d.errors().size() == 2);
+  CHECK(d.errors()[0].kind == ErrorKind::MissingInput);
+  CHECK(d.errors()[0].str() == main + ":3: RCImportBody 'M': cannot read import '" +
+                                   (dir.path() / "missing.xml").string() + "': No such file or directory");
+  CHECK(d.errors()[1].str() ==
+        main + ":5: RigidBodyClone 'E': parameter 'Original' 'Bal' names no body (did you mean 'Ball'?)");
+}
+
+TEST_CASE("errors: a root model's Pose must be RCLocalCoordinates (guide 6.3)", "[scene][errors][audit]") {
+  // Before: accepted, and the global pose was silently used as a pose relative to the body.
+  Result r =
+      run(inList("<RCMobileRigidBody Key=\"A\"><Geom><RCSphereGeom/></Geom>\n"
+                 "<Model><RCCuboidModel><Pose>\n"
+                 "<RCGlobalCoordinates><Pose Value=\"1 0 0 0 0 0\"/></RCGlobalCoordinates>\n"  // 5
+                 "</Pose></RCCuboidModel></Model></RCMobileRigidBody>\n"));
+  CHECK(r.loaded);
+  CHECK_FALSE(r.compiled);
+  REQUIRE(r.diag.errors().size() == 1);
+  expectExact(r,
+              "bad.xml:5: RCCuboidModel 'A.Model': a root model's Pose must be RCLocalCoordinates: a model may be "
+              "drawn for several bodies, so global coordinates have no meaning for it (guide 6.3)");
+  // A shared model is reported once, however many bodies draw it; a local root pose is fine.
+  Result shared =
+      run(inList("<RCCuboidModel Key=\"M\"><Pose><RCGlobalCoordinates/></Pose></RCCuboidModel>\n"  // 3
+                 "<RCStaticRigidBody Key=\"S\"><Model Ref=\"M\"/></RCStaticRigidBody>\n"
+                 "<RCStaticRigidBody Key=\"T\"><Model Ref=\"M\"/></RCStaticRigidBody>\n"
+                 "<RCStaticRigidBody Key=\"U\"><Model><RCCuboidModel><Pose><RCLocalCoordinates/></Pose>"
+                 "</RCCuboidModel></Model></RCStaticRigidBody>\n"));
+  INFO(errorText(shared.diag));
+  CHECK(shared.diag.errors().size() == 1);
+  expectError(shared, "bad.xml:3: ", {"RCCuboidModel 'M': a root model's Pose must be RCLocalCoordinates"});
+}
+
+TEST_CASE("errors: drives, servos, sockets and controllers that refer to the wrong thing", "[scene][errors][audit]") {
+  // Before: every one of these passed `check` (with only the "read but no effect" warnings).
+  Result r = run(inList(
+      "<RCRobot Key=\"Bot\"><Construction><RCConstruction Key=\"C\"><Body><RCMobileRigidBody Key=\"Base\">"
+      "<Geom><RCSphereGeom/></Geom></RCMobileRigidBody></Body><ChildList>\n"  // 3
+      "<RCBallSocketJoint Key=\"Ball\"><Body><RCMobileRigidBody Key=\"L1\"><Pose><RCLocalCoordinates>"
+      "<Pose Value=\"1 0 0 0 0 0\"/></RCLocalCoordinates></Pose><Geom><RCSphereGeom/></Geom></RCMobileRigidBody>"
+      "</Body></RCBallSocketJoint>\n"  // 4
+      "<RCHingeJoint Key=\"H\"><Body><RCMobileRigidBody Key=\"L2\"><Pose><RCLocalCoordinates>"
+      "<Pose Value=\"-1 0 0 0 0 0\"/></RCLocalCoordinates></Pose><Geom><RCSphereGeom/></Geom></RCMobileRigidBody>"
+      "</Body></RCHingeJoint>\n"                                                                         // 5
+      "<RCGenericDrive Key=\"OnBall\">\n<Joint Ref=\"Bot.C.Ball\"/></RCGenericDrive>\n"                  // 6, 7
+      "<RCGenericDrive Key=\"NoJoint\"/>\n"                                                              // 8
+      "<RCGenericServo Key=\"Servo\"><Joint Ref=\"Bot.C.H\"/></RCGenericServo>\n"                        // 9
+      "<RCGenericVelControlledDrive Key=\"Vel\"><Joint Ref=\"Bot.C.H\"/>\n<MinPos Value=\"2\"/>\n"       // 10, 11
+      "<MaxPos Value=\"1\"/></RCGenericVelControlledDrive>\n"                                            // 12
+      "<RCGenericDrive Key=\"Drive\"><Joint Ref=\"Bot.C.H\"/></RCGenericDrive>\n"                        // 13
+      "<RCLocalSocketCommunicator Key=\"Sock\">\n<Port Value=\"70000\"/></RCLocalSocketCommunicator>\n"  // 14, 15
+      "</ChildList></RCConstruction></Construction><ControllerList>\n"                                   // 16
+      "<RCDriveTest Key=\"DT\">\n<Drive Ref=\"Bot.C.Servo\"/></RCDriveTest>\n"                           // 17, 18
+      "<RCTwoWheelMotionControl Key=\"TW\">\n<ControlLeft Ref=\"Bot.C.Drive\"/>\n"                       // 19, 20
+      "<ControlRight Ref=\"Bot.C.Vel\"/></RCTwoWheelMotionControl>\n"                                    // 21
+      "<RCServoTest Key=\"ST\"><PosControl Ref=\"Bot.C.Servo\"/></RCServoTest>\n"                        // 22
+      "</ControllerList></RCRobot>\n"));
+  CHECK(r.loaded);
+  CHECK_FALSE(r.compiled);
+  INFO(errorText(r.diag));
+  CHECK(sortedErrors(r.diag) ==
+        std::vector<std::string>{
+            "bad.xml:12: RCGenericVelControlledDrive 'Bot.C.Vel': MinPos (2) is greater than MaxPos (1)",
+            "bad.xml:15: RCLocalSocketCommunicator 'Bot.C.Sock': parameter 'Port' must be at most 65535, got 70000",
+            "bad.xml:18: RCDriveTest 'Bot.DT': parameter 'Drive' must refer to a component implementing RCDriver, "
+            "but RCGenericServo 'Bot.C.Servo' does not",
+            "bad.xml:20: RCTwoWheelMotionControl 'Bot.TW': parameter 'ControlLeft' must refer to a component "
+            "implementing RCVelControl, but RCGenericDrive 'Bot.C.Drive' does not",
+            "bad.xml:22: RCServoTest 'Bot.ST': RCServoTest moves its servo between MinPos and MaxPos, but "
+            "RCGenericServo 'Bot.C.Servo' has an infinite limit",
+            "bad.xml:7: RCGenericDrive 'Bot.C.OnBall': parameter 'Joint' must be a hinge or slider joint, but "
+            "RCBallSocketJoint 'Bot.C.Ball' is not (guide 6.11)",
+            "bad.xml:8: RCGenericDrive 'Bot.C.NoJoint': parameter 'Joint' is required (a Ref to the hinge or slider "
+            "joint it drives)",
+        });
+}
+
+TEST_CASE("errors: the example robot scene checks clean", "[scene][errors][audit]") {
+  Scene s;
+  Diagnostics d;
+  REQUIRE(loadScene(std::string(SIMBOB_SOURCE_DIR) + "/scenes/robot.xml", testRegistry(), &s, d));
+  Model m;
+  bool ok = compileScene(s, &m, d);
+  INFO(errorText(d));
+  CHECK(ok);
+  CHECK(d.errors().empty());
+}
+
+TEST_CASE("errors: camera clip planes, view angle and cameras without a Body", "[scene][errors][audit]") {
+  // Before: all of these passed `check`.
+  Result r =
+      run("<Simulation><CameraList>\n"
+          "<RCStaticCamera Key=\"Clip\"><NearClip Value=\"10\"/>\n<FarClip Value=\"5\"/></RCStaticCamera>\n"  // 2, 3
+          "<RCStaticCamera Key=\"Same\"><NearClip Value=\"5\"/><FarClip Value=\"5\"/></RCStaticCamera>\n"     // 4
+          "<RCStaticCamera Key=\"Wide\">\n<ViewAngle Value=\"500\"/></RCStaticCamera>\n"                      // 5, 6
+          "<MountedCamera Key=\"M\"/>\n"                                                                      // 7
+          "<SpotlightCamera Key=\"S\"/>\n"                                                                    // 8
+          "<TrackingCamera Key=\"T\"/>\n"                                                                     // 9
+          "<RCStaticCamera Key=\"Fine\"><ViewAngle Value=\"179\"/></RCStaticCamera>\n"
+          "</CameraList></Simulation>\n");
+  CHECK(r.loaded);
+  CHECK_FALSE(r.compiled);
+  INFO(errorText(r.diag));
+  CHECK(sortedErrors(r.diag) ==
+        std::vector<std::string>{
+            "bad.xml:3: RCStaticCamera 'Clip': NearClip (10 m) must be closer than FarClip (5 m)",
+            "bad.xml:4: RCStaticCamera 'Same': NearClip (5 m) must be closer than FarClip (5 m)",
+            "bad.xml:6: RCStaticCamera 'Wide': parameter 'ViewAngle' must be below 180 degrees, got 500",
+            "bad.xml:7: RCMountedCamera 'M': parameter 'Body' is required (a Ref to the body it follows)",
+            "bad.xml:8: RCSpotlightCamera 'S': parameter 'Body' is required (a Ref to the body it follows)",
+            "bad.xml:9: RCTrackingCamera 'T': parameter 'Body' is required (a Ref to the body it follows)",
+        });
+}
+
+TEST_CASE("errors: Motion on an RCImportBody whose imported body is static", "[scene][errors][audit][import]") {
+  // Before: accepted and silently ignored (a static body has no velocity).
+  TempDir dir;
+  dir.write("wall.xml",
+            "<Body><RCStaticRigidBody Key=\"Wall\"><Geom><RCCuboidGeom/></Geom></RCStaticRigidBody></Body>");
+  dir.write("ball.xml",
+            "<Body><RCMobileRigidBody Key=\"Ball\"><Geom><RCSphereGeom/></Geom></RCMobileRigidBody></Body>");
+  const std::string motion = "<Motion><RCGlobalMotion><LinVelocity Value=\"1 0 0\"/></RCGlobalMotion></Motion>";
+  std::string main = dir.write("main.xml", inList("<RCImportBody Key=\"I\"><File Value=\"wall.xml\"/>\n" + motion +
+                                                  "</RCImportBody>\n"  // 3, 4
+                                                  "<RCImportBody Key=\"J\"><File Value=\"ball.xml\"/>" +
+                                                  motion + "</RCImportBody>\n"));
+  Scene s;
+  Diagnostics d;
+  REQUIRE(loadScene(main, testRegistry(), &s, d));
+  Model m;
+  CHECK_FALSE(compileScene(s, &m, d));
+  INFO(errorText(d));
+  REQUIRE(d.errors().size() == 1);
+  CHECK(d.errors()[0].str() ==
+        main + ":4: RCImportBody 'I': parameter 'Motion' is given but the imported body is static: it cannot move");
 }

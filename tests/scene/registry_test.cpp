@@ -489,3 +489,64 @@ TEST_CASE("registry: the scene root and settings structs", "[scene][registry]") 
   const ParamSpec& children = con->params[static_cast<size_t>(con->paramIndex("ChildList"))];
   CHECK(children.families == std::vector<Family>{Family::Joint, Family::Periphery});
 }
+
+TEST_CASE("registry: registerBuiltins fills a fresh registry without problems", "[scene][registry]") {
+  Registry r;
+  CHECK(registerBuiltins(r));
+  CHECK(r.problems().empty());
+  CHECK(r.types().size() == testRegistry().types().size());
+  CHECK(r.find("RCSphereGeom"));
+  // Registering the builtins twice is refused, type by type, and changes nothing.
+  const size_t n = r.types().size();
+  CHECK_FALSE(registerBuiltins(r));
+  CHECK(r.types().size() == n);
+  CHECK(r.problems().size() >= n);
+}
+
+TEST_CASE("registry: a type whose name or alias is taken (in any case) is refused", "[scene][registry]") {
+  // Before, the registry was one global map and a second registration replaced the first in
+  // silence. Now add() refuses it and problems() says which name was taken.
+  Registry r;
+  REQUIRE(registerBuiltins(r));
+  const size_t n = r.types().size();
+  const TypeSpec* sphere = r.find("RCSphereGeom");
+  const TypeSpec* match = r.find("RCModelMatchGeom");
+  struct Case {
+    TypeSpec spec;
+    std::string problem;
+  };
+  std::vector<Case> cases;
+  cases.push_back({{"RCSphereGeom", Family::Geom, 0, {}, {}, "same name"},
+                   "component type 'RCSphereGeom': the name 'RCSphereGeom' is already registered"});
+  cases.push_back({{"rcspheregeom", Family::Geom, 0, {}, {}, "same name, other case"},
+                   "component type 'rcspheregeom': the name 'rcspheregeom' is already registered"});
+  cases.push_back({{"MyGeom", Family::Geom, 0, {}, {"RCSPHEREGEOM"}, "alias = a name"},
+                   "component type 'MyGeom': the name 'RCSPHEREGEOM' is already registered"});
+  cases.push_back({{"rcmoelmatchgeom", Family::Geom, 0, {}, {}, "name = an alias"},
+                   "component type 'rcmoelmatchgeom': the name 'rcmoelmatchgeom' is already registered"});
+  cases.push_back({{"MyGeom2", Family::Geom, 0, {}, {"Unused", "RCMoelWrapGeom"}, "alias = an alias"},
+                   "component type 'MyGeom2': the name 'RCMoelWrapGeom' is already registered"});
+  cases.push_back({{"nogeom", Family::Geom, 0, {}, {}, "name = a macro"},
+                   "component type 'nogeom': the name 'nogeom' is already registered"});
+  cases.push_back({{"", Family::Geom, 0, {}, {}, "empty"}, "component type '': the name '' is empty"});
+  for (Case& c : cases) {
+    INFO(c.spec.doc);
+    const size_t problems = r.problems().size();
+    CHECK_FALSE(r.add(c.spec));
+    REQUIRE(r.problems().size() == problems + 1);
+    CHECK(r.problems().back() == c.problem);
+  }
+  // Nothing changed: the first registrations stand, the refused aliases were not added.
+  CHECK(r.types().size() == n);
+  CHECK(r.find("RCSphereGeom") == sphere);
+  CHECK(r.findIgnoreCase("rcmoelmatchgeom") == match);
+  CHECK(r.find("MyGeom") == nullptr);
+  CHECK(r.find("Unused") == nullptr);
+  // A free name goes in.
+  CHECK(r.add({"MyGeom", Family::Geom, 0, {}, {"MyGeomAlias"}, "free"}));
+  CHECK(r.types().size() == n + 1);
+  CHECK(r.find("MyGeomAlias") == r.find("MyGeom"));
+  // Macros too.
+  CHECK_FALSE(r.addMacro({"NOGEOM", Family::Geom, "RCEmptyGeom", {}, ""}));
+  CHECK(r.problems().back() == "macro 'NOGEOM': the name is already registered");
+}

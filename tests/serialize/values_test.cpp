@@ -286,7 +286,6 @@ TEST_CASE("random doubles round-trip bit for bit", "[values][number]") {
 
 TEST_CASE("Int parses integral numbers into int64", "[values][int]") {
   CHECK(parseAs<int64_t>(ValueType::Int, "42") == 42);
-  CHECK(parseAs<int64_t>(ValueType::Int, " -7 ") == -7);
   CHECK(parseAs<int64_t>(ValueType::Int, "+7") == 7);
   CHECK(parseAs<int64_t>(ValueType::Int, "-0") == 0);
   CHECK(parseAs<int64_t>(ValueType::Int, "1e3") == 1000);
@@ -310,6 +309,47 @@ TEST_CASE("Int rejects fractions, junk and out-of-range values", "[values][int]"
   CHECK(parseErr(ValueType::Int, "nan") == "NaN is not allowed: 'nan'");
   CHECK(parseErr(ValueType::Int, "Infinite") == "infinite value not allowed here: 'Infinite'");
   parseErr(ValueType::Int, "Infinite", nullptr, {true});
+}
+
+TEST_CASE("Number and Int values start with a sign, a digit or '.' (guide 4.3)", "[values][number][int]") {
+  // Before: the text was trimmed first, so " 7" (and "7 ") were accepted as 7. Guide 4.3: "The
+  // first character needs to be a plus or minus sign, a digit or a '.'".
+  CHECK(parseErr(ValueType::Number, " 7") ==
+        "expected a number without blanks around it, got ' 7' (guide 4.3: a number starts with a sign, a digit or "
+        "'.')");
+  CHECK(parseErr(ValueType::Number, "7 ") ==
+        "expected a number without blanks around it, got '7 ' (guide 4.3: a number starts with a sign, a digit or "
+        "'.')");
+  CHECK(parseErr(ValueType::Int, " -7 ") ==
+        "expected an integer without blanks around it, got ' -7 ' (guide 4.3: a number starts with a sign, a digit "
+        "or '.')");
+  for (const char* s : {" 7", "\t7", "7\t", "  -1.5", "+2 ", " .5", " 1e3"}) {
+    INFO("text '" << s << "'");
+    parseErr(ValueType::Number, s);
+    parseErr(ValueType::Int, s);
+  }
+  // Infinite drive limits too; a text that is no number at all keeps its plain message.
+  parseErr(ValueType::Number, " Infinite", nullptr, {true});
+  parseErr(ValueType::Number, "-Infinite\t", nullptr, {true});
+  CHECK(parseAs<double>(ValueType::Number, "-Infinite", nullptr, {true}) == -kInf);
+  CHECK(parseErr(ValueType::Number, " x") == "expected a number, got 'x'");
+  CHECK(parseErr(ValueType::Int, " 1.5") == "expected an integer, got '1.5'");
+  // What 4.3 allows.
+  for (const char* s : {"7", "+7", "-7", ".5", "-.5", "+.5", "7.", "1e3", "1E+3"}) {
+    INFO("text '" << s << "'");
+    parseOk(ValueType::Number, s);
+  }
+  CHECK(parseAs<int64_t>(ValueType::Int, "-7") == -7);
+  CHECK(parseAs<int64_t>(ValueType::Int, "+7") == 7);
+  // Compound values are numerical value lists: separators (blanks among them) may stand
+  // before, between and after the elements, and each element is a number as above.
+  CHECK(parseAs<Triple>(ValueType::Triple, " 1 2 3 ") == Triple{1, 2, 3});
+  CHECK(parseAs<Pose>(ValueType::Pose, "  (1, 2, 3) (0; 90; 0)  ").pos == std::array<double, 3>{1, 2, 3});
+  CHECK(parseAs<Cuboid>(ValueType::Cuboid, "\t-1 -1 -1 1 1 1\t").b == std::array<double, 3>{1, 1, 1});
+  for (const char* s : {"1 2\n3", "1 \r2 3", "1 2 3\v", "1 x2 3", "1 e2 3", "1 2 --3"}) {
+    INFO("text '" << s << "'");
+    parseErr(ValueType::Triple, s);
+  }
 }
 
 TEST_CASE("random int64 values round-trip", "[values][int]") {

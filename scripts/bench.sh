@@ -27,6 +27,7 @@ bash scripts/build.sh
 need=()
 command -v mujoco-testspeed >/dev/null || need+=(libmujoco-samples)
 [ -x /usr/bin/time ] || need+=(time)
+command -v python3 >/dev/null || need+=(python3)
 if [ ${#need[@]} -gt 0 ]; then
   echo "bench.sh: installing ${need[*]}" >&2
   SUDO=""

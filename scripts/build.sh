@@ -1,7 +1,16 @@
 #!/usr/bin/env bash
-# Configures and builds simbob into build/ (binary: build/simbob). Extra arguments go to cmake.
+# Installs what building and running needs (scripts/deps.sh run), configures and builds simbob
+# into build/ (binary: build/simbob). Extra arguments go to cmake. The test suite needs Catch2,
+# which only scripts/deps.sh test installs: without it, and without an explicit
+# -DSIMBOB_TESTS=..., the tests are left out (demo.sh asks for that; test.sh asks for them).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/deps.sh
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "$@" >/dev/null
+bash scripts/deps.sh run
+args=("$@")
+if [[ " $* " != *" -DSIMBOB_TESTS="* ]] &&
+  ! dpkg-query -W -f='${Status}' catch2 2>/dev/null | grep -q "install ok installed"; then
+  echo "build: Catch2 is not installed (scripts/deps.sh test), building without the tests" >&2
+  args+=(-DSIMBOB_TESTS=OFF)
+fi
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${args[@]}" >/dev/null
 cmake --build build -j"$(nproc)"

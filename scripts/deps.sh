@@ -1,25 +1,34 @@
 #!/usr/bin/env bash
-# Installs simbob's build and test dependencies from Debian 12's packages (only what is missing).
-# Sourced by demo.sh, test.sh and bench.sh; safe to run on its own.
+# Installs simbob's dependencies from Debian 12's packages (only what is missing).
+#   scripts/deps.sh run    what building and running simbob needs (build.sh, demo.sh)
+#   scripts/deps.sh test   that plus what the tests and style checks need (test.sh, sanitize.sh)
 set -euo pipefail
 
-SIMBOB_PACKAGES=(
+RUN_PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libode-dev            # physics
-  libeigen3-dev         # linear algebra in the compile step
+  libeigen3-dev         # rotations and inertia tensors in the compile step
   libpugixml-dev        # XML scenes
   libcli11-dev          # command line
   nlohmann-json3-dev    # run summaries and reports
-  libosmesa6-dev libpng-dev  # off-screen rendering (Record)
   libcairo2-dev         # trajectory plots (PNG, SVG)
+)
+TEST_PACKAGES=(
   catch2                # unit tests
-  python3               # test helpers
+  python3               # test helpers (tests/cli/scene_expectations.py)
   valgrind              # memcheck of the example scenes (tests/cli/valgrind.sh)
   clang libclang-rt-14-dev  # sanitizer and fuzz builds (scripts/sanitize.sh, scripts/fuzz.sh)
+  clang-format clang-tidy   # scripts/check-style.sh
 )
 
+case "${1:-}" in
+  run) packages=("${RUN_PACKAGES[@]}") ;;
+  test) packages=("${RUN_PACKAGES[@]}" "${TEST_PACKAGES[@]}") ;;
+  *) echo "usage: scripts/deps.sh run|test" >&2; exit 64 ;;
+esac
+
 missing=()
-for p in "${SIMBOB_PACKAGES[@]}"; do
+for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if [ ${#missing[@]} -gt 0 ]; then

@@ -14,7 +14,7 @@ if [ "${1:-}" = "--build-only" ]; then
   shift
 fi
 
-bash scripts/deps.sh
+bash scripts/deps.sh test
 
 # ASan's default leak check stays on; a failing check stops with a stack trace.
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1}"

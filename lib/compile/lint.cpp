@@ -73,7 +73,7 @@ Vec3 halfExtents(const GeomDef& g, const Quat& q) {
   }
   Mat3 r = toMatrix(q);
   Vec3 out;
-  for (int i = 0; i < 3; ++i)
+  for (size_t i = 0; i < 3; ++i)
     out[i] = std::fabs(r[i * 3]) * local[0] + std::fabs(r[i * 3 + 1]) * local[1] + std::fabs(r[i * 3 + 2]) * local[2];
   return out;
 }

@@ -114,9 +114,11 @@ class Builder {
  public:
   Builder(const Registry& reg, Scene& scene, Diagnostics& diag) : reg_(reg), scene_(scene), diag_(diag) {}
 
-  // Build one component of type t from src; returns its index.
+  // Build one component of type t from src; returns its index. `loc` is taken by value on
+  // purpose: callers pass slots of components that building more components moves.
   int build(const TypeSpec* t, Source* src, std::string key, bool has_key, int parent, const std::string& parent_qkey,
-            SourceLoc loc, bool register_key = true) {
+            SourceLoc loc,  // NOLINT(performance-unnecessary-value-param)
+            bool register_key = true) {
     if (++depth_ > kMaxNesting) {
       --depth_;
       diag_.error(loc, "components nested deeper than " + std::to_string(kMaxNesting) + " levels");

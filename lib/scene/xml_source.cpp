@@ -185,7 +185,7 @@ class XmlSource : public Source {
       return l;
     }
     if (kids.size() != 1) {
-      if (kids.empty() && !is_param && doc_->reg->suggestType(c.name()).size())
+      if (kids.empty() && !is_param && !doc_->reg->suggestType(c.name()).empty())
         l.error = std::string("unknown component type '") + c.name() + "' (did you mean '" +
                   doc_->reg->suggestType(c.name()) + "'?)";
       else if (kids.empty() && !is_param)

@@ -334,6 +334,7 @@ int cmdRun(RunArgs& a, const Common& common) {
     std::string where;
     RunResult second;
     first_pass = false;
+    g_log.debug("determinism check: running the scene a second time");
     bool same = checkDeterminism(model, opts, rec_times, rec_poses, &where, &second);
     if (second.status == RunStatus::Interrupted) {
       // An interrupt is an interrupt, whichever run it came in: not a difference.

@@ -1,5 +1,9 @@
 // Builds the component graph from a Source, driven only by the registry's parameter tables:
 // no type-specific code here. Then reads imports, resolves Refs and checks for cycles.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -21,34 +25,51 @@ constexpr int kMaxImportDepth = 16;
 constexpr int kMaxNesting = 200;
 // Scene and import files are read whole; /dev/zero or a runaway generator must not eat memory.
 constexpr size_t kMaxFileBytes = size_t{64} << 20;
+// Files importing the next one twice double the graph with every file: bound what the imports
+// and the whole graph may expand to (a few KB of memory per component).
+constexpr int kMaxImports = 5000;
+constexpr size_t kMaxComponents = 300000;
 
-bool readFile(const std::string& path, std::string* out, std::string* error) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    *error = "is a directory";
+enum class ReadFailure { None, Missing, TooLarge };
+
+// Reads a regular file whole. A FIFO without a writer would block in open(), a device such as
+// /dev/zero never end: only regular files are read (opened without blocking, then checked).
+bool readFile(const std::string& path, std::string* out, std::string* error, ReadFailure* why = nullptr) {
+  if (why) *why = ReadFailure::Missing;
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    *error = std::strerror(errno);
     return false;
   }
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) {
-    *error = std::strerror(errno);
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    *error = S_ISDIR(st.st_mode) ? "is a directory" : "not a regular file";
     return false;
   }
   out->clear();
   char buf[65536];
-  size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) {
-    if (out->size() + n > kMaxFileBytes) {
-      std::fclose(f);
-      out->clear();
-      *error = "larger than " + std::to_string(kMaxFileBytes >> 20) + " MiB";
+  while (true) {
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      *error = std::string("read error: ") + std::strerror(errno);
+      ::close(fd);
       return false;
     }
-    out->append(buf, n);
+    if (n == 0) break;
+    if (out->size() + static_cast<size_t>(n) > kMaxFileBytes) {
+      ::close(fd);
+      out->clear();
+      *error = "larger than " + std::to_string(kMaxFileBytes >> 20) + " MiB";
+      if (why) *why = ReadFailure::TooLarge;
+      return false;
+    }
+    out->append(buf, static_cast<size_t>(n));
   }
-  bool bad = std::ferror(f) != 0;
-  std::fclose(f);
-  if (bad) *error = "read error";
-  return !bad;
+  ::close(fd);
+  if (why) *why = ReadFailure::None;
+  return true;
 }
 
 uint64_t fnv1a(uint64_t h, const std::string& bytes) {
@@ -152,6 +173,13 @@ class Builder {
   // Build one component of type t from src; returns its index.
   int build(const TypeSpec* t, Source* src, std::string key, bool has_key, int parent, const std::string& parent_qkey,
             SourceLoc loc, bool register_key = true) {
+    if (too_big_) return -1;
+    if (scene_.comps.size() >= kMaxComponents) {
+      too_big_ = true;
+      diag_.error(loc, "the scene expands to more than " + std::to_string(kMaxComponents) +
+                           " components (imports or lists that multiply?)");
+      return -1;
+    }
     if (++depth_ > kMaxNesting) {
       --depth_;
       diag_.error(loc, "components nested deeper than " + std::to_string(kMaxNesting) + " levels");
@@ -240,9 +268,9 @@ class Builder {
         std::string near = didYouMean(name, names);
         bool duplicate = t->paramIndex(name) >= 0 || (src->ignoresCase() && t->paramIndexIgnoreCase(name) >= 0);
         if (duplicate)
-          diag_.error({loc.file, line}, prefix(what) + "parameter '" + name + "' given twice");
+          diag_.error({loc.file, line}, prefix(what) + "parameter '" + quoteInput(name) + "' given twice");
         else
-          diag_.error({loc.file, line}, prefix(what) + "parameter '" + name + "' unknown" +
+          diag_.error({loc.file, line}, prefix(what) + "parameter '" + quoteInput(name) + "' unknown" +
                                             (near.empty() ? "" : " (did you mean '" + near + "'?)"));
       }
     }
@@ -265,6 +293,13 @@ class Builder {
     std::filesystem::path p(file);
     if (p.is_relative()) p = std::filesystem::path(loc.file).parent_path() / p;
     std::string path = p.lexically_normal().string();
+    if (too_big_) return;
+    if (++imports_ > kMaxImports) {
+      too_big_ = true;
+      diag_.error(at, prefix(what) + "more than " + std::to_string(kMaxImports) +
+                          " imports in all (files that import the same file several times multiply)");
+      return;
+    }
     if (import_stack_.size() >= kMaxImportDepth) {
       diag_.error(at, prefix(what) + "imports nested deeper than " + std::to_string(kMaxImportDepth) + " files");
       return;
@@ -279,10 +314,10 @@ class Builder {
       return;
     }
     std::string text, err;
-    // A device, FIFO or socket (/dev/stdout, /dev/zero) would block or never end.
-    if (std::filesystem::is_other(std::filesystem::status(path, ec))) err = "not a regular file";
-    if (!err.empty() || !readFile(path, &text, &err)) {
-      diag_.error(at, prefix(what) + "cannot read import '" + path + "': " + err, ErrorKind::MissingInput);
+    ReadFailure why = ReadFailure::None;
+    if (!readFile(path, &text, &err, &why)) {
+      diag_.error(at, prefix(what) + "cannot read import '" + quoteInput(path, 400) + "': " + err,
+                  why == ReadFailure::TooLarge ? ErrorKind::InvalidInput : ErrorKind::MissingInput);
       return;
     }
     addFile(path, text);
@@ -356,7 +391,8 @@ class Builder {
       if (auto* d = std::get_if<double>(&*r.value)) v = *d;
       if (auto* i = std::get_if<int64_t>(&*r.value)) v = static_cast<double>(*i);
       if (!inRange(p.range, v)) {
-        diag_.error(loc, prefix(what) + "parameter '" + p.name + "' " + rangeText(p.range) + ", got '" + text + "'");
+        diag_.error(loc, prefix(what) + "parameter '" + p.name + "' " + rangeText(p.range) + ", got '" +
+                             quoteInput(text) + "'");
         return false;
       }
     }
@@ -461,6 +497,8 @@ class Builder {
   std::vector<std::string> import_stack_;
   uint64_t hash_ = 1469598103934665603ull;
   int depth_ = 0;
+  int imports_ = 0;
+  bool too_big_ = false;                        // a size limit was crossed: stop building (one error, not thousands)
   std::set<int> duplicates_;                    // components whose qualified key was taken already
   std::map<std::string, int> shared_defaults_;  // default component of each type
 };
@@ -621,8 +659,11 @@ bool loadSceneFromText(const std::string& text, const std::string& name, Format 
 
 bool loadScene(const std::string& path, const Registry& reg, Scene* scene, Diagnostics& diag) {
   std::string text, err;
-  if (!readFile(path, &text, &err)) {
-    diag.error({path, 0}, "cannot read scene: " + err, ErrorKind::MissingInput);
+  ReadFailure why = ReadFailure::None;
+  if (!readFile(path, &text, &err, &why)) {
+    // Too large is an input limit (65); the rest means the file cannot be read (66).
+    diag.error({path, 0}, "cannot read scene: " + err,
+               why == ReadFailure::TooLarge ? ErrorKind::InvalidInput : ErrorKind::MissingInput);
     return false;
   }
   bool ini = path.size() >= 4 && equalsIgnoreCase(std::string_view(path).substr(path.size() - 4), ".ini");

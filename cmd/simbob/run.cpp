@@ -16,6 +16,7 @@
 #include "simbob/files.h"
 #include "simbob/physics.h"
 #include "simbob/run.h"
+#include "simbob/transform.h"
 #include "simbob/values.h"
 
 namespace simbob::cli {
@@ -207,6 +208,17 @@ int cmdRun(RunArgs& a, const Common& common) {
   Model model;
   int code = 0;
   if (!loadAndCompile(a.scene, &scene, &model, &code, !a.batch_child, {{"--settings", common.settings}})) return code;
+  // A body that starts beyond the runaway limit would "diverge" at the first step; `simbob
+  // check` reports it (lintModel) and so does run, before anything is written.
+  for (const BodyDef& b : model.bodies)
+    if (norm(b.pose.p) > RunOptions{}.runaway_limit) {
+      Model one;  // lint words it; a one-body model keeps that cheap
+      one.settings = model.settings;
+      one.bodies = {b};
+      Diagnostics far;
+      lintModel(one, far);
+      return report(far, false);
+    }
   // The scene's own step must fit the nanosecond clock as --dt does.
   const double dt = a.dt > 0 ? a.dt : model.settings.max_time_step;
   if (!(dt >= kMinTimeOption && dt <= kMaxTimeOption)) {

@@ -422,6 +422,12 @@ bool CsvParser::run(Trajectory* out, Error* err) {
     std::string_view body = fields_[1];
     if (body.empty()) return fail(err, line, "empty body key");
     if (!isValidUtf8(body)) return fail(err, line, "body key is not valid UTF-8");
+    // A NUL would cut the key wherever it is used as a C string (plots, messages).
+    if (body.find('\0') != std::string_view::npos) return fail(err, line, "body key contains a NUL byte");
+    // Rotation errors are angles between quaternions (scaled to unit length): a zero one is no
+    // rotation, and comparing with it gave "nan".
+    if (pose[3] == 0 && pose[4] == 0 && pose[5] == 0 && pose[6] == 0)
+      return fail(err, line, "quaternion qw qx qy qz is zero: not a rotation");
 
     if (t.times.empty() || time != t.times.back()) {
       if (!t.times.empty() && time < t.times.back()) {

@@ -182,7 +182,10 @@ class Builder {
     }
     if (++depth_ > kMaxNesting) {
       --depth_;
-      diag_.error(loc, "components nested deeper than " + std::to_string(kMaxNesting) + " levels");
+      // Every parameter at the limit would say it again: once per scene is enough.
+      if (!nesting_reported_)
+        diag_.error(loc, "components nested deeper than " + std::to_string(kMaxNesting) + " levels");
+      nesting_reported_ = true;
       return -1;
     }
     int index = static_cast<int>(scene_.comps.size());
@@ -498,6 +501,7 @@ class Builder {
   uint64_t hash_ = 1469598103934665603ull;
   int depth_ = 0;
   int imports_ = 0;
+  bool nesting_reported_ = false;
   bool too_big_ = false;                        // a size limit was crossed: stop building (one error, not thousands)
   std::set<int> duplicates_;                    // components whose qualified key was taken already
   std::map<std::string, int> shared_defaults_;  // default component of each type

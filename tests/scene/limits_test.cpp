@@ -182,3 +182,17 @@ TEST_CASE("a FIFO as the scene is refused at once, as an import is", "[scene][li
   CHECK(e[0].kind == ErrorKind::MissingInput);
   CHECK(e[0].str() == path + ": cannot read scene: not a regular file");
 }
+
+TEST_CASE("constructions nested too deep give one error, not one per parameter", "[scene][limits]") {
+  std::string xml = "<Simulation><ComponentList>\n";
+  for (int i = 0; i < 300; ++i)
+    xml += "<RCConstruction Key=\"C" + std::to_string(i) +
+           "\"><Body><RCMobileRigidBody Key=\"B\"><Geom><RCSphereGeom/></Geom></RCMobileRigidBody></Body>"
+           "<ChildList><RCBallSocketJoint Key=\"J\"><Body>\n";
+  xml += "<RCMobileRigidBody Key=\"L\"><Geom><RCSphereGeom/></Geom></RCMobileRigidBody>";
+  for (int i = 0; i < 300; ++i) xml += "</Body></RCBallSocketJoint></ChildList></RCConstruction>\n";
+  xml += "</ComponentList></Simulation>\n";
+  auto e = loadErrors(xml);
+  REQUIRE(e.size() == 1);
+  CHECK(e[0] == "limits.xml:101: components nested deeper than 200 levels");
+}

@@ -3,6 +3,8 @@
 // crashing scene takes down only its worker.
 #include <fcntl.h>
 #include <glob.h>
+#include <sys/prctl.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -12,12 +14,17 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <nlohmann/json.hpp>
 #include <sstream>
+
+#include <CLI/CLI.hpp>
 
 #include "cli.h"
 #include "commands.h"
 #include "simbob/compare.h"
+#include "simbob/files.h"
+#include "simbob/run.h"
 #include "simbob/trajectory.h"
 #include "simbob/values.h"
 
@@ -35,7 +42,7 @@ struct Job {
   SourceLoc loc;  // manifest line, if any
   // Results.
   pid_t pid = -1;
-  std::string status = "pending";  // ok, failed, diverged, crashed, interrupted
+  std::string status = "not started";  // ok, failed, diverged, crashed, interrupted
   int exit_code = -1;
   double wall = 0;
   std::chrono::steady_clock::time_point started;
@@ -106,9 +113,13 @@ pid_t startWorker(const Job& j, const BatchArgs& a) {
   args.emplace_back("--batch-child");
   // Manifest options come last: CLI11 keeps the last value of a repeated option.
   args.insert(args.end(), j.args.begin(), j.args.end());
+  const pid_t parent = getpid();
   pid_t pid = fork();
   if (pid != 0) return pid;
-  // Child: output to the scene's log, then become `simbob run`.
+  // Child: a killed batch must not leave its workers running (SIGTERM keeps their partials).
+  prctl(PR_SET_PDEATHSIG, SIGTERM);
+  if (getppid() != parent) _exit(kExitSigTerm);
+  // Output to the scene's log, then become `simbob run`.
   int fd = open(j.log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   if (fd >= 0) {
     dup2(fd, 1);
@@ -125,6 +136,10 @@ pid_t startWorker(const Job& j, const BatchArgs& a) {
 
 void finish(Job& j, int wstatus, const BatchArgs& a) {
   j.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - j.started).count();
+  if (WIFSIGNALED(wstatus) && g_stop && (WTERMSIG(wstatus) == SIGINT || WTERMSIG(wstatus) == SIGTERM)) {
+    j.status = "interrupted";  // the signal came before the worker could catch it
+    return;
+  }
   if (WIFSIGNALED(wstatus)) {
     j.status = "crashed";
     j.error = std::string("worker killed by signal ") + std::to_string(WTERMSIG(wstatus)) + " (" +
@@ -185,15 +200,88 @@ void finish(Job& j, int wstatus, const BatchArgs& a) {
   }
 }
 
+// What `simbob run` would refuse in a manifest line (its options after the batch-wide ones).
+std::string manifestLineProblem(const std::vector<std::string>& words, const BatchArgs& a) {
+  std::vector<std::string> args = {words[0], "--duration", formatNumber(a.duration), "--sample-interval",
+                                   formatNumber(a.sample_interval)};
+  if (a.dt > 0) {
+    args.emplace_back("--dt");
+    args.push_back(formatNumber(a.dt));
+  }
+  args.insert(args.end(), words.begin() + 1, words.end());
+  CLI::App app{"run"};
+  RunArgs ra;
+  Common common;
+  addRunOptions(&app, ra, common);
+  try {
+    std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them last first
+    app.parse(reversed);
+  } catch (const CLI::ParseError& e) {
+    return std::string("run options: ") + e.what();
+  }
+  if (app.count("--out") > 0 && ra.out.empty()) return "--out needs a file name, got \"\"";
+  return runArgsProblem(ra);
+}
+
+// An output of the batch must not be any input (a scene, the manifest, a golden file), nor
+// another output. Inputs are compared by device and inode, outputs by their resolved place.
+int checkBatchFiles(const std::vector<Job>& jobs, const BatchArgs& a, const Common& common) {
+  std::map<std::pair<dev_t, ino_t>, std::string> inputs;
+  auto addInput = [&](const std::string& what, const std::string& path) {
+    struct stat st {};
+    if (!path.empty() && ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode))
+      inputs.emplace(std::make_pair(st.st_dev, st.st_ino), what + " " + path);
+  };
+  addInput("the manifest", a.manifest);
+  addInput("--settings", common.settings);
+  for (const Job& j : jobs) {
+    addInput("the scene", j.scene);
+    if (!a.golden.empty()) addInput("the golden file", (fs::path(a.golden) / fs::path(j.out).filename()).string());
+  }
+  std::vector<NamedPath> outputs = {{"--report", a.report}, {"--log-file", g_log.path}};
+  for (const Job& j : jobs) {
+    outputs.push_back({"the trajectory", j.out});
+    outputs.push_back({"the worker log", j.log});
+    outputs.push_back({"the summary", fs::path(j.out).replace_extension(".json").string()});
+    if (!a.golden.empty())
+      outputs.push_back({"the comparison report", fs::path(j.out).replace_extension(".compare.txt").string()});
+  }
+  std::map<std::string, std::string> places;
+  for (const NamedPath& o : outputs) {
+    if (o.path.empty() || isStreamOutput(o.path)) continue;
+    struct stat st {};
+    if (::stat(o.path.c_str(), &st) == 0) {
+      auto it = inputs.find({st.st_dev, st.st_ino});
+      if (it != inputs.end()) {
+        g_log.error({ErrorKind::InvalidInput,
+                     {},
+                     o.what + " " + o.path + " is " + it->second + ": an output must not overwrite an input"});
+        return kExitUsage;
+      }
+    }
+    std::error_code ec;
+    std::string place = fs::weakly_canonical(fs::absolute(o.path), ec).string();
+    if (ec) place = o.path;
+    auto [it, fresh] = places.emplace(place, o.what + " " + o.path);
+    if (!fresh) {
+      g_log.error({ErrorKind::InvalidInput,
+                   {},
+                   o.what + " " + o.path + " and " + it->second +
+                       " are the same file: outputs of one command must not collide"});
+      return kExitUsage;
+    }
+  }
+  return 0;
+}
+
 bool jobFailed(const Job& j) { return j.status != "ok" || (!j.golden_status.empty() && j.golden_status != "pass"); }
 
 }  // namespace
 
-int cmdBatch(const BatchArgs& a) {
-  if (!(a.duration > 0) || a.dt < 0 || !(a.sample_interval > 0)) {
-    g_log.error({ErrorKind::InvalidInput, {}, "--duration and --sample-interval must be > 0, --dt >= 0"});
+int cmdBatch(const BatchArgs& a, const Common& common) {
+  if (!checkTimeOption("--duration", a.duration) || (a.dt != 0 && !checkTimeOption("--dt", a.dt)) ||
+      !checkTimeOption("--sample-interval", a.sample_interval))
     return kExitUsage;
-  }
   std::vector<Job> jobs;
   for (const auto& pattern : a.scenes)
     for (const auto& path : expandGlob(pattern)) {
@@ -203,6 +291,11 @@ int cmdBatch(const BatchArgs& a) {
     }
   if (!a.manifest.empty()) {
     std::ifstream in(a.manifest);
+    std::error_code dir_ec;
+    if (fs::is_directory(a.manifest, dir_ec)) {
+      g_log.error({ErrorKind::MissingInput, {a.manifest, 0}, "cannot read manifest: is a directory"});
+      return kExitNoInput;
+    }
     if (!in) {
       g_log.error(
           {ErrorKind::MissingInput, {a.manifest, 0}, std::string("cannot read manifest: ") + std::strerror(errno)});
@@ -229,6 +322,11 @@ int cmdBatch(const BatchArgs& a) {
       j.scene = scene.string();
       j.args.assign(words.begin() + 1, words.end());
       j.loc = {a.manifest, line_no};
+      // The worker would say only "Run with --help": check the line here and name it.
+      if (std::string problem = manifestLineProblem(words, a); !problem.empty()) {
+        g_log.error({ErrorKind::InvalidInput, j.loc, problem});
+        return kExitDataErr;
+      }
       for (size_t i = 0; i + 1 < j.args.size(); ++i)
         if (j.args[i] == "--out") {
           fs::path out = j.args[i + 1];
@@ -263,13 +361,20 @@ int cmdBatch(const BatchArgs& a) {
       return kExitUsage;
     }
   }
+  if (int c = checkBatchFiles(jobs, a, common)) return c;
 
   int workers = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
   catchStopSignals();
   auto t0 = std::chrono::steady_clock::now();
   size_t next = 0, done = 0, running = 0;
   std::map<pid_t, size_t> by_pid;
+  bool forwarded = false;
   while (done < jobs.size()) {
+    if (g_stop && !forwarded) {
+      // Workers stop as a run does on a signal: they keep their partial trajectories.
+      for (const auto& [pid, index] : by_pid) kill(pid, static_cast<int>(g_stop));
+      forwarded = true;
+    }
     while (!g_stop && running < static_cast<size_t>(workers) && next < jobs.size()) {
       Job& j = jobs[next];
       j.started = std::chrono::steady_clock::now();
@@ -335,6 +440,8 @@ int cmdBatch(const BatchArgs& a) {
       r["max_rot_err"] = j.max_rot;
     }
     if (!j.error.empty()) r["error"] = j.error;
+    std::error_code pec;
+    if (j.status != "ok" && fs::exists(partialPath(j.out), pec)) r["partial"] = partialPath(j.out);
     rep["results"].push_back(r);
     char buf[512];
     std::snprintf(buf, sizeof buf, "%-40s %-12s %7.2f   %-11s %-12s %s\n", j.scene.c_str(), j.status.c_str(), j.wall,
@@ -357,7 +464,7 @@ int cmdBatch(const BatchArgs& a) {
       return exitCodeFor(err.kind);
     }
   }
-  if (g_stop) return g_stop == SIGTERM ? kExitSigTerm : kExitSigInt;
+  if (g_stop) return stopExitCode();
   return failed == 0 ? kExitOk : kExitResultWrong;
 }
 

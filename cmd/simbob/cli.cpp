@@ -3,21 +3,111 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 
 #include "components/families.h"
 #include "simbob/registry.h"
+#include "simbob/values.h"
 
 namespace simbob::cli {
 
 Log g_log;
 volatile std::sig_atomic_t g_stop = 0;
 
-extern "C" void simbobOnSignal(int sig) { g_stop = sig; }
+namespace {
+// What the exit-at-once handler prints; formatted before the handler is installed, since a
+// signal handler may only call async-signal-safe functions (write, _exit).
+char g_signal_message[2][1024];
+size_t g_signal_message_len[2];
+volatile std::sig_atomic_t g_signal_exits = 0;
+int g_log_fd = -1;
+
+void installHandler(void (*handler)(int)) {
+  struct sigaction sa {};
+  sa.sa_handler = handler;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = 0;  // no SA_RESTART: a blocking waitpid() returns EINTR
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+}  // namespace
+
+extern "C" void simbobOnSignal(int sig) {
+  g_stop = sig;
+  if (g_signal_exits) {
+    const int i = sig == SIGTERM ? 1 : 0;
+    ssize_t ignored = ::write(2, g_signal_message[i], g_signal_message_len[i]);
+    if (g_log_fd >= 0) ignored = ::write(g_log_fd, g_signal_message[i], g_signal_message_len[i]);
+    (void)ignored;
+    _exit(sig == SIGTERM ? kExitSigTerm : kExitSigInt);
+  }
+}
 
 void catchStopSignals() {
-  std::signal(SIGINT, simbobOnSignal);
-  std::signal(SIGTERM, simbobOnSignal);
+  g_signal_exits = 0;
+  installHandler(simbobOnSignal);
+}
+
+void exitOnStopSignals(const std::string& place, const std::string& what) {
+  g_signal_exits = 0;
+  for (int i = 0; i < 2; ++i) {
+    std::string line =
+        quoteInput(place, 400) + ": error: interrupted while " + what + " (" + (i == 1 ? "SIGTERM" : "SIGINT") + ")\n";
+    if (line.size() > sizeof g_signal_message[i]) line.resize(sizeof g_signal_message[i]);
+    std::memcpy(g_signal_message[i], line.data(), line.size());
+    g_signal_message_len[i] = line.size();
+  }
+  g_log_fd = g_log.file ? fileno(g_log.file) : -1;
+  g_signal_exits = 1;
+  installHandler(simbobOnSignal);
+  // A signal that came before this call is not lost.
+  if (g_stop) simbobOnSignal(static_cast<int>(g_stop));
+}
+
+int stopExitCode() { return g_stop == SIGTERM ? kExitSigTerm : kExitSigInt; }
+
+bool checkTimeOption(const char* name, double seconds) {
+  if (std::isfinite(seconds) && seconds >= kMinTimeOption && seconds <= kMaxTimeOption) return true;
+  g_log.error({ErrorKind::InvalidInput,
+               {},
+               std::string(name) + " must be between 1e-9 and 1e9 s, got " + formatNumber(seconds)});
+  return false;
+}
+
+int checkOutputs(const std::vector<NamedPath>& outputs, const std::vector<NamedPath>& inputs) {
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    const NamedPath& o = outputs[i];
+    if (o.path.empty() || isStreamOutput(o.path)) continue;
+    for (const NamedPath& in : inputs)
+      if (sameExistingFile(o.path, in.path)) {
+        if (o.path == g_log.path && g_log.file) {
+          std::fclose(g_log.file);  // not one more line into an input
+          g_log.file = nullptr;
+        }
+        g_log.error({ErrorKind::InvalidInput,
+                     {},
+                     o.what + " " + quoteInput(o.path, 400) + " is " + in.what + " " + quoteInput(in.path, 400) +
+                         ": an output must not overwrite an input"});
+        return kExitUsage;
+      }
+    for (size_t k = 0; k < i; ++k)
+      if (!outputs[k].path.empty() && sameOutputPlace(o.path, outputs[k].path)) {
+        g_log.error({ErrorKind::InvalidInput,
+                     {},
+                     o.what + " " + quoteInput(o.path, 400) + " and " + outputs[k].what + " " +
+                         quoteInput(outputs[k].path, 400) +
+                         " are the same file: outputs of one command must not collide"});
+        return kExitUsage;
+      }
+  }
+  return 0;
+}
+
+int checkNotEmpty(const char* option, const std::string& value, bool given) {
+  if (!given || !value.empty()) return 0;
+  g_log.error({ErrorKind::InvalidInput, {}, std::string(option) + " needs a file name, got \"\""});
+  return kExitUsage;
 }
 
 std::string jsonText(const nlohmann::json& j) {
@@ -56,12 +146,25 @@ std::string place(const Error& e) {
 }
 }  // namespace
 
-void Log::write(const std::string& line, bool to_stderr) {
+void Log::write(const std::string& raw, bool to_stderr) {
+  // Input echoed in a message without quoteInput (a 50 MB line, a control character) is made
+  // printable here; printable UTF-8 passes unchanged.
+  const std::string line = quoteInput(raw, kMaxLogLine);
   if (to_stderr) std::fprintf(stderr, "%s\n", line.c_str());
-  if (file) {
-    std::fprintf(file, "%s\n", line.c_str());
-    std::fflush(file);
+  if (file && write_errno == 0) {
+    if (std::fprintf(file, "%s\n", line.c_str()) < 0 || std::fflush(file) != 0) write_errno = errno ? errno : EIO;
   }
+}
+
+int Log::close() {
+  if (!file) return 0;
+  if (std::fclose(file) != 0 && write_errno == 0) write_errno = errno ? errno : EIO;
+  file = nullptr;
+  g_log_fd = -1;
+  if (write_errno == 0) return 0;
+  std::fprintf(stderr, "%s: error: writing the log file failed: %s\n", quoteInput(path, 400).c_str(),
+               std::strerror(write_errno));
+  return kExitIoErr;
 }
 // "file:line: error: message" so that editors and CI logs can jump to the place.
 void Log::error(const Error& e) { write(place(e) + ": error: " + e.message, true); }
@@ -85,6 +188,7 @@ int report(const Diagnostics& d, bool warnings) {
 int setupLogging(const Common& c) {
   g_log.level = c.quiet ? Level::Quiet : (c.verbose ? Level::Verbose : Level::Normal);
   if (!c.log_file.empty()) {
+    g_log.path = c.log_file;
     g_log.file = std::fopen(c.log_file.c_str(), "a");
     if (!g_log.file) {
       g_log.error(
@@ -95,25 +199,33 @@ int setupLogging(const Common& c) {
   return 0;
 }
 
-int readSettings(Common& c, const Registry& reg) {
+int readSettings(Common& c) {
   if (c.settings.empty()) return 0;
   Scene holder;
   int comp = -1;
   Diagnostics d;
-  if (!loadStructIni(c.settings, reg, "GlobalSettings", &holder, &comp, d)) return report(d, true);
+  if (!loadStructIni(c.settings, *c.registry, "GlobalSettings", &holder, &comp, d)) return report(d, true);
   const std::string& log = holder.at(comp).get(kLogFileParam);
   if (c.log_file.empty() && !log.empty()) c.log_file = log;
   return 0;
 }
 
 bool loadAndCompile(const std::string& path, const Registry& reg, Scene* scene, Model* model, int* code, bool warnings,
-                    bool collect_all) {
+                    bool collect_all, const std::vector<NamedPath>& inputs) {
   Diagnostics d;
-  bool loaded = loadScene(path, reg, scene, d);
+  const bool loaded = loadScene(path, reg, scene, d);
   // A scene that failed to load is still a consistent graph (bad links are empty), so `check`
   // compiles it too and reports what the compile step finds in the same pass.
-  bool compiled = (loaded || (collect_all && !scene->comps.empty())) && compileScene(*scene, model, d);
-  if (!loaded || !compiled) {
+  const bool ok = (loaded || (collect_all && !scene->comps.empty())) && compileScene(*scene, model, d) && loaded;
+  std::vector<NamedPath> read = inputs;
+  for (const std::string& f : scene->files) read.push_back({f == path ? "the scene" : "the import", f});
+  if (g_log.file) {
+    if (int c = checkOutputs({{"--log-file", g_log.path}}, read)) {
+      *code = c;
+      return false;
+    }
+  }
+  if (!ok) {
     *code = report(d, warnings);
     return false;
   }

@@ -31,15 +31,21 @@ int exitCodeFor(ErrorKind k);
 
 enum class Level { Quiet, Normal, Verbose };
 
-/// Log lines go to stderr (by level) and to --log-file (always).
+/// Log lines go to stderr (by level) and to --log-file (always). Input quoted in a message is
+/// shown printable (quoteInput) and a line is cut at kMaxLogLine bytes.
 struct Log {
+  static constexpr size_t kMaxLogLine = 4096;
   Level level = Level::Normal;
   std::FILE* file = nullptr;
+  std::string path;     ///< of the log file
+  int write_errno = 0;  ///< first failed write to the log file
 
   void error(const Error& e);
   void warning(const Error& e);
   void info(const std::string& s);
   void debug(const std::string& s);
+  /// Closes the log file; 74 (after saying so on stderr) if a write to it failed, else 0.
+  int close();
 
  private:
   void write(const std::string& line, bool to_stderr);
@@ -54,18 +60,28 @@ struct Common {
   bool verbose = false;
   std::string log_file;
   std::string settings;
+  /// The component types: built once by main (registerBuiltins) and passed down with the options.
+  const Registry* registry = nullptr;
 };
 
 /// Prints every diagnostic; returns the exit status its errors call for (0 if none).
 int report(const Diagnostics& d, bool warnings);
 int setupLogging(const Common& c);
-int readSettings(Common& c, const Registry& reg);
+int readSettings(Common& c);
 
-/// Load and compile a scene, reporting problems; *code is the exit status on failure. With
-/// `collect_all` (simbob check), a scene that failed to load is compiled too, so that one pass
-/// reports every problem the compile step can still see.
+/// A file a command reads or writes, and what it is ("the scene", "--out").
+struct NamedPath {
+  std::string what;
+  std::string path;
+};
+
+/// Load and compile a scene, reporting problems; *code is the exit status on failure. The log
+/// file must not be any file read (the scene, its imports, `inputs`): nothing is appended to
+/// an input, and that is a usage error.
+/// With `collect_all` (simbob check), a scene that failed to load is compiled too, so that one
+/// pass reports every problem the compile step can still see.
 bool loadAndCompile(const std::string& path, const Registry& reg, Scene* scene, Model* model, int* code, bool warnings,
-                    bool collect_all = false);
+                    bool collect_all, const std::vector<NamedPath>& inputs = {});
 
 /// JSON text of a report or summary; invalid UTF-8 (from keys in input files) is replaced, never
 /// thrown.
@@ -74,7 +90,28 @@ std::string jsonText(const nlohmann::ordered_json& j);
 
 bool endsWith(const std::string& s, const std::string& suffix);
 
-/// Install SIGINT/SIGTERM handlers that set g_stop.
+/// SIGINT/SIGTERM set g_stop, for a loop that stops by itself. Blocking calls (waitpid) return
+/// EINTR instead of being restarted.
 void catchStopSignals();
+
+/// SIGINT/SIGTERM end the process at once: "PLACE: error: interrupted while WHAT" on stderr and
+/// in the log file, exit 130/143. For stretches with nothing to keep (loading a scene).
+void exitOnStopSignals(const std::string& place, const std::string& what);
+
+/// 130 or 143 after SIGINT or SIGTERM (g_stop).
+int stopExitCode();
+
+/// Time options (--duration, --dt, --sample-interval) lie in [kMinTimeOption, kMaxTimeOption]
+/// seconds: the clock counts integer nanoseconds in 64 bits. Returns false after reporting.
+constexpr double kMinTimeOption = 1e-9;
+constexpr double kMaxTimeOption = 1e9;
+bool checkTimeOption(const char* name, double seconds);
+
+/// A usage error (reported, 64) if an output names an input of the command by any spelling,
+/// or two outputs would be the same file; 0 otherwise. Streams (/dev/null, "-") never collide.
+int checkOutputs(const std::vector<NamedPath>& outputs, const std::vector<NamedPath>& inputs);
+
+/// A usage error (reported, 64) if an output option was given as "".
+int checkNotEmpty(const char* option, const std::string& value, bool given);
 
 }  // namespace simbob::cli

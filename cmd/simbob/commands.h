@@ -5,11 +5,17 @@
 #include <string>
 #include <vector>
 
+namespace CLI {
+class App;
+}
 namespace simbob {
 class Registry;
 }
 
 namespace simbob::cli {
+
+struct Common;
+struct NamedPath;
 
 struct RunArgs {
   std::string scene;
@@ -24,11 +30,21 @@ struct RunArgs {
   std::string space;          ///< overrides SceneSettings Space ("" = the scene's)
   bool auto_disable = false;  ///< turns SceneSettings AutoDisable on
   int max_contacts = 0;       ///< overrides SceneSettings MaxContacts (0 = the scene's)
+  bool out_given = false;     ///< --out was on the command line
 };
-int cmdRun(RunArgs& a, const Registry& reg);
+int cmdRun(RunArgs& a, const Common& common);
 
-int cmdCheck(const std::string& scene, const Registry& reg);
-int cmdDump(const std::string& scene, const std::string& format, const Registry& reg);
+/// The options of `simbob run` (also used to check the lines of a batch manifest).
+void addRunOptions(CLI::App* run, RunArgs& ra, Common& common);
+void addCommon(CLI::App* app, Common& c);
+/// The files `simbob run` writes: --out, then (unless --out is a stream) the summary and the
+/// partial trajectory.
+std::vector<NamedPath> runOutputs(const RunArgs& a);
+/// What is wrong with run options beyond their syntax ("" if nothing): time ranges, --out.
+std::string runArgsProblem(const RunArgs& a);
+
+int cmdCheck(const std::string& scene, const Common& common);
+int cmdDump(const std::string& scene, const std::string& format, const Common& common);
 int cmdTypes(bool markdown, const Registry& reg);
 
 struct CompareArgs {
@@ -38,12 +54,12 @@ struct CompareArgs {
   bool json = false;
   bool bless = false;
 };
-int cmdCompare(const CompareArgs& a);
+int cmdCompare(const CompareArgs& a, const Common& common);
 
 struct PlotArgs {
   std::string trajectory, golden, out, bodies, title;
 };
-int cmdPlot(const PlotArgs& a);
+int cmdPlot(const PlotArgs& a, const Common& common);
 
 struct BatchArgs {
   std::vector<std::string> scenes;  ///< paths or glob patterns
@@ -59,6 +75,6 @@ struct BatchArgs {
   std::string report;
   bool json = false;
 };
-int cmdBatch(const BatchArgs& a);
+int cmdBatch(const BatchArgs& a, const Common& common);
 
 }  // namespace simbob::cli

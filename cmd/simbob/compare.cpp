@@ -1,10 +1,14 @@
 // simbob compare and simbob plot: looking at trajectories against golden ones.
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "cli.h"
 #include "commands.h"
 #include "simbob/compare.h"
+#include "simbob/files.h"
 #include "simbob/plot.h"
 #include "simbob/trajectory.h"
 
@@ -24,11 +28,15 @@ bool readOrReport(const std::string& path, Trajectory* t, int* code) {
 
 }  // namespace
 
-int cmdCompare(const CompareArgs& a) {
+int cmdCompare(const CompareArgs& a, const Common& common) {
   if (!(a.tol_pos >= 0) || !(a.tol_rot >= 0)) {
     g_log.error({ErrorKind::InvalidInput, {}, "--tol-pos and --tol-rot must be >= 0"});
     return kExitUsage;
   }
+  if (int c =
+          checkOutputs({{"--report", a.report}, {"--log-file", g_log.path}},
+                       {{"the trajectory", a.actual}, {"the golden file", a.golden}, {"--settings", common.settings}}))
+    return c;
   Trajectory actual, golden;
   int code = 0;
   if (!readOrReport(a.actual, &actual, &code) || !readOrReport(a.golden, &golden, &code)) return code;
@@ -52,14 +60,16 @@ int cmdCompare(const CompareArgs& a) {
       g_log.info("golden " + a.golden + " already matches; left as it is");
       return kExitOk;
     }
-    std::error_code ec;
-    std::string tmp = a.golden + ".tmp.bless";
-    std::filesystem::copy_file(a.actual, tmp, std::filesystem::copy_options::overwrite_existing, ec);
-    if (!ec) std::filesystem::rename(tmp, a.golden, ec);
-    if (ec) {
-      std::filesystem::remove(tmp);
-      g_log.error({ErrorKind::CannotCreate, {a.golden, 0}, "cannot replace golden file: " + ec.message()});
-      return kExitCantCreate;
+    // The bytes just compared, not a second read of the file; a symlinked golden file keeps
+    // its link and gets new contents.
+    std::ifstream in(a.actual, std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    Error err;
+    if (!in || !writeFileAtomically(a.golden, bytes.str(), &err)) {
+      if (err.message.empty()) err = {ErrorKind::MissingInput, {a.actual, 0}, "cannot read it again"};
+      g_log.error(err);
+      return exitCodeFor(err.kind);
     }
     g_log.info("blessed: " + a.golden + " now holds " + a.actual + " (changes listed above)");
     return kExitOk;
@@ -67,7 +77,17 @@ int cmdCompare(const CompareArgs& a) {
   return r.pass ? kExitOk : kExitResultWrong;
 }
 
-int cmdPlot(const PlotArgs& a) {
+int cmdPlot(const PlotArgs& a, const Common& common) {
+  std::string ext = std::filesystem::path(a.out).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".png" && ext != ".svg") {
+    g_log.error({ErrorKind::InvalidInput, {}, "--out " + quoteInput(a.out, 400) + ": a plot is .png or .svg"});
+    return kExitUsage;
+  }
+  if (int c = checkOutputs(
+          {{"--out", a.out}, {"--log-file", g_log.path}},
+          {{"the trajectory", a.trajectory}, {"the golden file", a.golden}, {"--settings", common.settings}}))
+    return c;
   Trajectory actual, golden;
   int code = 0;
   if (!readOrReport(a.trajectory, &actual, &code)) return code;

@@ -8,23 +8,30 @@
 
 namespace simbob::cli {
 
-int cmdCheck(const std::string& path, const Registry& reg) {
+int cmdCheck(const std::string& path, const Common& common) {
+  exitOnStopSignals(path, "loading");
   Scene scene;
   Model model;
   int code = 0;
-  if (!loadAndCompile(path, reg, &scene, &model, &code, true, true)) return code;
+  if (!loadAndCompile(path, *common.registry, &scene, &model, &code, true, true, {{"--settings", common.settings}}))
+    return code;
   Diagnostics lint;
   lintModel(model, lint);
-  report(lint, true);
+  if (int c = report(lint, true)) return c;
   g_log.info(path + ": ok (" + std::to_string(model.bodies.size()) + " mobile bodies, " +
              std::to_string(model.geoms.size()) + " geoms, " + std::to_string(model.joints.size()) + " joints)");
   return kExitOk;
 }
 
-int cmdDump(const std::string& path, const std::string& format, const Registry& reg) {
+int cmdDump(const std::string& path, const std::string& format, const Common& common) {
+  exitOnStopSignals(path, "loading");
   Scene scene;
   Diagnostics d;
-  if (!loadScene(path, reg, &scene, d)) return report(d, true);
+  const bool ok = loadScene(path, *common.registry, &scene, d);
+  std::vector<NamedPath> read = {{"--settings", common.settings}};
+  for (const std::string& f : scene.files) read.push_back({f == path ? "the scene" : "the import", f});
+  if (int c = checkOutputs({{"--log-file", g_log.path}}, read)) return c;
+  if (!ok) return report(d, true);
   std::string text = writeScene(scene, format == "ini" ? Format::Ini : Format::Xml, true);
   std::fwrite(text.data(), 1, text.size(), stdout);
   return std::fflush(stdout) == 0 ? kExitOk : kExitIoErr;

@@ -9,7 +9,9 @@
 
 using namespace simbob::cli;
 
-namespace {
+namespace {}  // namespace
+
+namespace simbob::cli {
 
 void addCommon(CLI::App* app, Common& c) {
   app->add_flag("-q,--quiet", c.quiet, "Print only errors (no progress bar, no info)");
@@ -18,21 +20,14 @@ void addCommon(CLI::App* app, Common& c) {
   app->add_option("--settings", c.settings, "Global settings INI (LogFile, ExtensionFolder, TextureFolder)");
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"simbob: headless batch simulator for mobile robots (Simulator Bob scenes on ODE)"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("simbob ") + SIMBOB_VERSION);
-  Common common;
-
-  RunArgs ra;
-  CLI::App* run = app.add_subcommand("run", "Simulate a scene and write its pose trajectory as CSV");
+void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
   run->add_option("scene", ra.scene, "Scene file (XML, or INI by extension)")->required();
-  run->add_option("--duration", ra.duration, "Simulated seconds")->required();
-  run->add_option("--dt", ra.dt, "Step size in s (default: the scene's MaxTimeStep)");
-  run->add_option("--out", ra.out, "Trajectory CSV (default: <scene name>.csv); the summary goes beside it as .json");
-  run->add_option("--sample-interval", ra.sample_interval, "Simulated seconds between samples (default 0.01)");
+  run->add_option("--duration", ra.duration, "Simulated seconds (1e-9 to 1e9)")->required();
+  run->add_option("--dt", ra.dt, "Step size in s, 1e-9 to 1e9 (default: the scene's MaxTimeStep)");
+  run->add_option("--out", ra.out,
+                  "Trajectory CSV (default: <scene name>.csv; - for stdout); the summary goes beside it as .json");
+  run->add_option("--sample-interval", ra.sample_interval,
+                  "Simulated seconds between samples, 1e-9 to 1e9 (default 0.01)");
   run->add_option("--seed", ra.seed, "Seed of ODE's random generator (default 0)");
   run->add_flag("--json", ra.json, "Also print the run summary as JSON on stdout");
   run->add_flag("--check-determinism", ra.check_determinism,
@@ -46,6 +41,19 @@ int main(int argc, char** argv) {
   addCommon(run, common);
   // A batch manifest appends per-scene options after the batch-wide ones: the last one wins.
   for (CLI::Option* o : run->get_options()) o->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+}
+
+}  // namespace simbob::cli
+
+int main(int argc, char** argv) {
+  CLI::App app{"simbob: headless batch simulator for mobile robots (Simulator Bob scenes on ODE)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("simbob ") + SIMBOB_VERSION);
+  Common common;
+
+  RunArgs ra;
+  CLI::App* run = app.add_subcommand("run", "Simulate a scene and write its pose trajectory as CSV");
+  addRunOptions(run, ra, common);
 
   std::string check_scene;
   CLI::App* check = app.add_subcommand("check", "Load and validate a scene; report every problem found");
@@ -77,7 +85,8 @@ int main(int argc, char** argv) {
   CLI::App* batch = app.add_subcommand("batch", "Run many scenes on worker processes, optionally against golden files");
   batch->add_option("scenes", ba.scenes, "Scene files or glob patterns");
   batch->add_option("--manifest", ba.manifest, "File with one `SCENE [run options]` per line (# comments)");
-  batch->add_option("-j,--jobs", ba.jobs, "Worker processes (default: all cores)");
+  batch->add_option("-j,--jobs", ba.jobs, "Worker processes, 1 to 1024 (default: all cores)")
+      ->check(CLI::Range(1, 1024));
   batch->add_option("--duration", ba.duration, "Simulated seconds per scene (default 10)");
   batch->add_option("--dt", ba.dt, "Step size in s (default: each scene's MaxTimeStep)");
   batch->add_option("--sample-interval", ba.sample_interval, "Seconds between samples (default 0.01)");
@@ -116,25 +125,49 @@ int main(int argc, char** argv) {
     app.exit(e);
     return kExitUsage;
   }
+  // An output option given as "" is a mistake, not a request for the default name.
+  for (CLI::App* sub : {run, compare, plot, batch, check, dump})
+    for (const char* name : {"--out", "--report", "--log-file", "--out-dir", "--settings"}) {
+      CLI::Option* o = sub->get_option_no_throw(name);
+      if (!o || o->count() == 0) continue;
+      for (const std::string& v : o->results())
+        if (int c = checkNotEmpty(name, v, true)) return c;
+    }
+  ra.out_given = run->count("--out") > 0;
   // The one registry of component types: built here, passed down (plug-ins will add to it).
-  simbob::Registry reg;
-  if (!simbob::registerBuiltins(reg)) {
-    for (const std::string& p : reg.problems()) g_log.error({simbob::ErrorKind::Internal, {}, "internal error: " + p});
+  simbob::Registry registry;
+  if (!simbob::registerBuiltins(registry)) {
+    for (const std::string& p : registry.problems())
+      g_log.error({simbob::ErrorKind::Internal, {}, "internal error: " + p});
     return kExitSoftware;
   }
+  common.registry = &registry;
+  int code = kExitUsage;
   try {
-    if (int c = readSettings(common, reg)) return c;
+    if (int c = readSettings(common)) return c;
+    // The log file is opened (created) first: it must not be another output of the command.
+    if (!common.log_file.empty()) {
+      std::vector<NamedPath> outputs;
+      if (*run) outputs = runOutputs(ra);
+      if (*compare) outputs = {{"--report", ca.report}};
+      if (*plot) outputs = {{"--out", pa.out}};
+      if (*batch) outputs = {{"--report", ba.report}};
+      outputs.push_back({"--log-file", common.log_file});
+      if (int c = checkOutputs(outputs, {})) return c;
+    }
     if (int c = setupLogging(common)) return c;
-    if (*run) return cmdRun(ra, reg);
-    if (*check) return cmdCheck(check_scene, reg);
-    if (*dump) return cmdDump(dump_scene, dump_format, reg);
-    if (*types) return cmdTypes(markdown, reg);
-    if (*compare) return cmdCompare(ca);
-    if (*batch) return cmdBatch(ba);
-    if (*plot) return cmdPlot(pa);
+    if (*run) code = cmdRun(ra, common);
+    if (*check) code = cmdCheck(check_scene, common);
+    if (*dump) code = cmdDump(dump_scene, dump_format, common);
+    if (*types) code = cmdTypes(markdown, registry);
+    if (*compare) code = cmdCompare(ca, common);
+    if (*batch) code = cmdBatch(ba, common);
+    if (*plot) code = cmdPlot(pa, common);
   } catch (const std::exception& e) {
     g_log.error({simbob::ErrorKind::Internal, {}, std::string("internal error: ") + e.what()});
-    return kExitSoftware;
+    code = kExitSoftware;
   }
-  return kExitUsage;
+  // A log that could not be written is an output that failed.
+  if (int c = g_log.close(); c != 0 && code == kExitOk) code = c;
+  return code;
 }

@@ -1,17 +1,22 @@
 // simbob run: one scene, one trajectory, one summary.
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "cli.h"
 #include "commands.h"
+#include "simbob/files.h"
 #include "simbob/physics.h"
 #include "simbob/run.h"
+#include "simbob/transform.h"
 #include "simbob/values.h"
 
 namespace simbob::cli {
@@ -80,15 +85,18 @@ const char* statusName(RunStatus s) {
   return "failed";
 }
 
-// Runs the model a second time and names the first sample where the two runs part.
+// Runs the model a second time and names the first sample where the two runs part. The
+// second run's result (interrupted, say) is in *second.
 bool checkDeterminism(const Model& model, const RunOptions& base, const std::vector<double>& first_times,
-                      const std::vector<double>& first_poses, std::string* where) {
+                      const std::vector<double>& first_poses, std::string* where, RunResult* second) {
   const size_t n = model.bodies.size();
   size_t sample = 0;
   bool differ = false;
   RunOptions opts = base;
   opts.progress = nullptr;
+  auto track = base.on_sample;
   opts.on_sample = [&](double t, const double* p) {
+    if (track) track(t, p);
     if (differ) return;
     if (sample >= first_times.size() || t != first_times[sample]) {
       differ = true;
@@ -108,33 +116,118 @@ bool checkDeterminism(const Model& model, const RunOptions& base, const std::vec
         }
     ++sample;
   };
-  RunResult r = runModel(model, opts, nullptr);
+  *second = runModel(model, opts, nullptr);
+  if (second->status != RunStatus::Completed) return !differ;  // not a difference: the caller decides
   if (!differ && sample != first_times.size()) {
     differ = true;
     *where = "second run produced " + std::to_string(sample) + " samples, first " + std::to_string(first_times.size());
   }
-  (void)r;
   return !differ;
 }
 
+// The run loop sees SIGINT/SIGTERM only between steps, and one step of a pathological scene
+// can take minutes. If the loop has not returned within kStopGrace of the signal, this thread
+// keeps the partial trajectory (whole samples only), says so and ends the process.
+class StopWatchdog {
+ public:
+  static constexpr auto kStopGrace = std::chrono::milliseconds(1000);
+
+  explicit StopWatchdog(std::function<void()> on_timeout) : on_timeout_(std::move(on_timeout)) {
+    thread_ = std::thread([this] { watch(); });
+  }
+  ~StopWatchdog() {
+    quit_ = true;
+    thread_.join();
+  }
+  StopWatchdog(const StopWatchdog&) = delete;
+  StopWatchdog& operator=(const StopWatchdog&) = delete;
+
+  /// The run loop returned: from now on the main thread finishes the command. If the watchdog
+  /// has already taken over, it is ending the process: wait for that.
+  void loopReturned() {
+    int expected = kWatching;
+    if (!state_.compare_exchange_strong(expected, kMainOwns))
+      for (;;) ::pause();
+  }
+
+ private:
+  enum { kWatching, kMainOwns, kWatchdogOwns };
+
+  void watch() {
+    std::chrono::steady_clock::time_point seen{};
+    bool stopping = false;
+    while (!quit_ && state_ == kWatching) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      if (!g_stop) continue;
+      const auto now = std::chrono::steady_clock::now();
+      if (!stopping) {
+        stopping = true;
+        seen = now;
+      } else if (now - seen >= kStopGrace) {
+        int expected = kWatching;
+        if (state_.compare_exchange_strong(expected, kWatchdogOwns)) on_timeout_();  // does not return
+        return;
+      }
+    }
+  }
+
+  std::function<void()> on_timeout_;
+  std::atomic<int> state_{kWatching};
+  std::atomic<bool> quit_{false};
+  std::thread thread_;
+};
+
 }  // namespace
 
-int cmdRun(RunArgs& a, const Registry& reg) {
+std::vector<NamedPath> runOutputs(const RunArgs& a) {
+  const std::string out = a.out.empty() ? std::filesystem::path(a.scene).stem().string() + ".csv" : a.out;
+  if (isStreamOutput(out)) return {{"--out", out}};
+  return {
+      {"--out", out}, {"the summary", replaceExtension(out, ".json")}, {"the partial trajectory", partialPath(out)}};
+}
+
+std::string runArgsProblem(const RunArgs& a) {
+  auto range = [](const char* name, double v) -> std::string {
+    if (std::isfinite(v) && v >= kMinTimeOption && v <= kMaxTimeOption) return "";
+    return std::string(name) + " must be between 1e-9 and 1e9 s, got " + formatNumber(v);
+  };
+  std::string p = range("--duration", a.duration);
+  if (p.empty() && a.dt != 0) p = range("--dt", a.dt);
+  if (p.empty()) p = range("--sample-interval", a.sample_interval);
+  if (p.empty() && a.out == "-" && a.json) p = "--out - and --json would both write to stdout; drop one";
+  return p;
+}
+
+int cmdRun(RunArgs& a, const Common& common) {
+  if (std::string p = runArgsProblem(a); !p.empty()) {
+    g_log.error({ErrorKind::InvalidInput, {}, p});
+    return kExitUsage;
+  }
+  exitOnStopSignals(a.scene, "loading");
   Scene scene;
   Model model;
   int code = 0;
-  if (!loadAndCompile(a.scene, reg, &scene, &model, &code, !a.batch_child)) return code;
-  if (!(a.duration > 0) || !std::isfinite(a.duration) || a.duration > 1e9) {
-    g_log.error({ErrorKind::InvalidInput, {}, "--duration must be a positive number of seconds (at most 1e9)"});
-    return kExitUsage;
-  }
-  if (a.dt < 0 || !std::isfinite(a.dt) || (a.dt > 0 && a.dt < 1e-9)) {
-    g_log.error({ErrorKind::InvalidInput, {}, "--dt must be at least 1e-9 s"});
-    return kExitUsage;
-  }
-  if (!(a.sample_interval >= 1e-9) || !std::isfinite(a.sample_interval)) {
-    g_log.error({ErrorKind::InvalidInput, {}, "--sample-interval must be at least 1e-9 s"});
-    return kExitUsage;
+  if (!loadAndCompile(a.scene, *common.registry, &scene, &model, &code, !a.batch_child, false,
+                      {{"--settings", common.settings}}))
+    return code;
+  // A body that starts beyond the runaway limit would "diverge" at the first step; `simbob
+  // check` reports it (lintModel) and so does run, before anything is written.
+  for (const BodyDef& b : model.bodies)
+    if (norm(b.pose.p) > RunOptions{}.runaway_limit) {
+      Model one;  // lint words it; a one-body model keeps that cheap
+      one.settings = model.settings;
+      one.bodies = {b};
+      Diagnostics far;
+      lintModel(one, far);
+      return report(far, false);
+    }
+  // The scene's own step must fit the nanosecond clock as --dt does.
+  const double dt = a.dt > 0 ? a.dt : model.settings.max_time_step;
+  if (!(dt >= kMinTimeOption && dt <= kMaxTimeOption)) {
+    g_log.error({ErrorKind::InvalidInput,
+                 {a.scene, 0},
+                 "SceneSettings MaxTimeStep " + formatNumber(dt) + " s is outside 1e-9 to 1e9 s (give --dt)"});
+    return kExitDataErr;
   }
   if (a.out.empty()) a.out = std::filesystem::path(a.scene).stem().string() + ".csv";
   if (a.space == "hash") model.settings.space = SpaceKind::Hash;
@@ -143,6 +236,19 @@ int cmdRun(RunArgs& a, const Registry& reg) {
   if (a.space == "simple") model.settings.space = SpaceKind::Simple;
   if (a.auto_disable) model.settings.auto_disable = true;
   if (a.max_contacts > 0) model.settings.max_contacts = a.max_contacts;
+
+  // Every output is checked, and created under a temporary name, before the run starts: a run
+  // must not end in "cannot create" after simulating for an hour.
+  std::vector<NamedPath> outputs = runOutputs(a);
+  const std::string summary_path = outputs.size() > 1 ? outputs[1].path : std::string();
+  const std::string partial = outputs.size() > 2 ? outputs[2].path : std::string();
+  {
+    std::vector<NamedPath> inputs;
+    for (const std::string& f : scene.files) inputs.push_back({f == a.scene ? "the scene" : "the import", f});
+    inputs.push_back({"--settings", common.settings});
+    outputs.push_back({"--log-file", g_log.path});
+    if (int c = checkOutputs(outputs, inputs)) return c;
+  }
 
   // The run needs only the compiled model: free the component graph before ODE allocates.
   const std::string scene_hash = scene.content_hash;
@@ -155,6 +261,19 @@ int cmdRun(RunArgs& a, const Registry& reg) {
     g_log.error(err);
     return exitCodeFor(err.kind);
   }
+  std::unique_ptr<OutputFile> summary_file;
+  if (!summary_path.empty()) {
+    summary_file = OutputFile::open(summary_path, &err);
+    if (!summary_file) {
+      g_log.error(err);
+      return exitCodeFor(err.kind);
+    }
+  }
+  std::error_code ec;
+  if (!partial.empty() && std::filesystem::is_directory(partial, ec)) {
+    g_log.error({ErrorKind::CannotCreate, {partial, 0}, "cannot create: is a directory"});
+    return kExitCantCreate;
+  }
   catchStopSignals();
 
   RunOptions opts;
@@ -164,12 +283,29 @@ int cmdRun(RunArgs& a, const Registry& reg) {
   opts.seed = a.seed;
   opts.stop = &g_stop;
   std::vector<double> rec_times, rec_poses;
-  if (a.check_determinism) {
-    opts.on_sample = [&](double t, const double* p) {
+  std::atomic<double> last_sample{0.0};
+  bool first_pass = true;
+  opts.on_sample = [&](double t, const double* p) {
+    if (a.check_determinism && first_pass) {
       rec_times.push_back(t);
       rec_poses.insert(rec_poses.end(), p, p + model.bodies.size() * kPoseSize);
-    };
-  }
+    }
+    last_sample = t;
+  };
+  StopWatchdog watchdog([&]() {
+    g_log.error({ErrorKind::Diverged,
+                 {},
+                 "interrupted at t=" + formatNumber(last_sample) +
+                     " s (the last whole sample; the step under way was abandoned)"});
+    if (summary_file) summary_file->abandon();
+    Error perr;
+    if (writer->keepPartialFromOtherThread(partial, &perr)) {
+      if (!writer->isStream()) g_log.info("kept the trajectory so far in " + partial);
+    } else {
+      g_log.error(perr);
+    }
+    _exit(stopExitCode());
+  });
   Progress progress(a.duration, g_log.level != Level::Quiet);
   opts.progress = [&](double t) { progress.update(t); };
   g_log.debug("running " + a.scene + ": " + std::to_string(model.bodies.size()) + " mobile bodies, " +
@@ -210,34 +346,52 @@ int cmdRun(RunArgs& a, const Registry& reg) {
 
   if (r.status == RunStatus::Completed && a.check_determinism) {
     std::string where;
-    bool same = checkDeterminism(model, opts, rec_times, rec_poses, &where);
-    summary["determinism_check"] = same ? "identical" : where;
-    if (!same) {
-      writer->abandon();
-      if (a.json) std::fputs(jsonText(summary).c_str(), stdout);
-      g_log.error({ErrorKind::Diverged, {a.scene, 0}, "two runs in one process differ: " + where});
-      return kExitResultWrong;
+    RunResult second;
+    first_pass = false;
+    g_log.debug("determinism check: running the scene a second time");
+    bool same = checkDeterminism(model, opts, rec_times, rec_poses, &where, &second);
+    if (second.status == RunStatus::Interrupted) {
+      // An interrupt is an interrupt, whichever run it came in: not a difference.
+      r.status = RunStatus::Interrupted;
+      r.error = second.error;
+      r.error.message += " (second run of --check-determinism)";
+      summary["status"] = statusName(r.status);
+    } else {
+      summary["determinism_check"] = same ? "identical" : where;
+      if (!same) {
+        watchdog.loopReturned();
+        writer->abandon();
+        if (summary_file) summary_file->abandon();
+        if (a.json) std::fputs(jsonText(summary).c_str(), stdout);
+        g_log.error({ErrorKind::Diverged, {a.scene, 0}, "two runs in one process differ: " + where});
+        return kExitResultWrong;
+      }
+      g_log.info("determinism check: two runs gave identical samples");
     }
-    g_log.info("determinism check: two runs gave identical samples");
   }
+  watchdog.loopReturned();
 
   if (r.status == RunStatus::Completed) {
-    if (!writer->commit(&err)) {
-      g_log.error(err);
-      return exitCodeFor(err.kind);
-    }
     summary["trajectory"] = a.out;
     summary["csv_bytes"] = writer->bytesWritten();
-    if (!writeFileAtomically(replaceExtension(a.out, ".json"), jsonText(summary), &err)) {
+    const std::string text = jsonText(summary);
+    std::vector<OutputFile*> also;
+    if (summary_file) {
+      summary_file->write(text);
+      also.push_back(summary_file.get());
+    }
+    // The trajectory and its summary replace the old pair together, or neither does.
+    if (!writer->commit(&err, also)) {
       g_log.error(err);
       return exitCodeFor(err.kind);
     }
-    if (a.json) std::fputs(jsonText(summary).c_str(), stdout);
+    if (a.json) std::fputs(text.c_str(), stdout);
     g_log.info("wrote " + a.out + " (" + std::to_string(r.samples) + " samples of " +
                std::to_string(model.bodies.size()) + " bodies, " + std::to_string(r.steps) + " steps in " +
                formatNumber(std::round(r.wall_seconds * 1000) / 1000) + " s)");
     return kExitOk;
   }
+  if (summary_file) summary_file->abandon();
   if (r.status == RunStatus::Diverged) {
     // The checks of `simbob check` usually know why: name the first one about this body.
     Diagnostics lint;
@@ -251,16 +405,15 @@ int cmdRun(RunArgs& a, const Registry& reg) {
       }
   }
   // A failed run keeps what it computed, beside the output and never over it.
-  std::string partial = partialPath(a.out);
   Error perr;
-  if (writer->keepPartial(partial, &perr)) summary["partial_trajectory"] = partial;
+  if (writer->keepPartial(partial, &perr) && !writer->isStream()) summary["partial_trajectory"] = partial;
   if (a.json) std::fputs(jsonText(summary).c_str(), stdout);
   g_log.error(r.error);
   if (!perr.message.empty())
     g_log.error(perr);
-  else
+  else if (!writer->isStream())
     g_log.info("kept the trajectory so far in " + partial);
-  if (r.status == RunStatus::Interrupted) return g_stop == SIGTERM ? kExitSigTerm : kExitSigInt;
+  if (r.status == RunStatus::Interrupted) return stopExitCode();
   return exitCodeFor(r.error.kind);
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -32,6 +33,11 @@ struct Error {
   /// One line: "file:line: message" (or "file: message" when the line is unknown).
   std::string str() const;
 };
+
+/// Input text as it may appear inside a message: control characters and invalid UTF-8 as \xNN,
+/// invisible characters (a byte order mark, zero-width spaces, direction marks) as \u{FEFF}, and
+/// anything beyond max_bytes cut, saying how long it was: "abc... (52428800 bytes)".
+std::string quoteInput(std::string_view text, size_t max_bytes = 80);
 
 /// Collects errors and warnings so one pass can report every problem.
 class Diagnostics {

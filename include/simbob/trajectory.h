@@ -6,10 +6,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include "simbob/error.h"
+#include "simbob/files.h"
 
 namespace simbob {
 
@@ -19,16 +21,16 @@ inline constexpr const char* kTrajectoryHeader = "time,body,x,y,z,qw,qx,qy,qz";
 /// Doubles per body per sample: x y z qw qx qy qz.
 inline constexpr size_t kPoseSize = 7;
 
-/// Streams a trajectory CSV to a temporary file next to the final path and moves it into place
-/// only on commit(), so a failed or interrupted run never leaves a truncated file under the
-/// final name. Output is buffered (flushed in ~1 MiB blocks) and formatted with std::to_chars.
+/// Streams a trajectory CSV to an OutputFile (simbob/files.h): a temporary file next to the
+/// final path, moved into place only on commit(), so a failed or interrupted run never leaves a
+/// truncated file under the final name; a device or FIFO is written through instead. Output is
+/// buffered (flushed in ~1 MiB blocks) and formatted with std::to_chars.
 class TrajectoryWriter {
  public:
-  /// Opens "<final_path>.tmp.<pid>" (same directory, so the final rename is atomic) and writes
-  /// the header into the buffer. Nothing is created under final_path until commit().
-  /// body_keys are fully qualified keys in output order; they must be non-empty and distinct
-  /// (ErrorKind::Internal otherwise). Returns nullptr and sets *err on failure
-  /// (ErrorKind::CannotCreate when the temporary file cannot be created).
+  /// Opens the output (see OutputFile::open) and writes the header into the buffer. Nothing is
+  /// created under final_path until commit(). body_keys are fully qualified keys in output
+  /// order; they must be non-empty and distinct (ErrorKind::Internal otherwise). Returns
+  /// nullptr and sets *err on failure (ErrorKind::CannotCreate when the output cannot be made).
   static std::unique_ptr<TrajectoryWriter> open(const std::string& final_path, std::vector<std::string> body_keys,
                                                 Error* err);
 
@@ -44,14 +46,22 @@ class TrajectoryWriter {
   bool addSample(double time, const double* poses);
 
   /// Flushes, closes and renames the temporary file to final_path (atomically replacing an
-  /// existing file). On failure the temporary file is removed, *err is set
+  /// existing file), together with `also` (the run's other outputs): all are replaced, or none
+  /// (see commitOutputs). On failure the temporary files are removed, *err is set
   /// (ErrorKind::IoError for a failed write, ErrorKind::CannotCreate for a failed rename)
   /// and false is returned.
-  bool commit(Error* err);
+  bool commit(Error* err, const std::vector<OutputFile*>& also = {});
 
   /// Like commit() but renames to partial_path: keeps what was recorded by a failed or
   /// interrupted run without touching final_path. If a write had failed, nothing is kept.
+  /// A stream output has nothing to rename: what was recorded has gone through.
   bool keepPartial(const std::string& partial_path, Error* err);
+
+  /// keepPartial() from another thread while the thread that adds samples may be stopped in
+  /// the middle of anything (an interrupted run whose step does not end): keeps the samples
+  /// added completely so far. The writer is closed for good afterwards (addSample blocks), so
+  /// call it only right before ending the process.
+  bool keepPartialFromOtherThread(const std::string& partial_path, Error* err);
 
   /// Closes and removes the temporary file; no-op after commit()/keepPartial().
   void abandon();
@@ -63,27 +73,28 @@ class TrajectoryWriter {
   /// False once a write has failed.
   bool ok() const { return !failed_; }
 
+  /// Whether the output is written through (a device, FIFO or stdout) rather than renamed.
+  bool isStream() const;
+
   const std::string& finalPath() const { return final_path_; }
-  const std::string& tempPath() const { return temp_path_; }
+  const std::string& tempPath() const;
   const std::vector<std::string>& bodyKeys() const { return keys_; }
 
  private:
   TrajectoryWriter() = default;
   bool flush();
-  bool finish(const std::string& target, Error* err);
-  void closeFd();
+  bool finish(const std::string& target, Error* err, const std::vector<OutputFile*>& also);
 
   std::string final_path_;
-  std::string temp_path_;
+  std::unique_ptr<OutputFile> out_;
   std::vector<std::string> keys_;
   std::vector<std::string> encoded_keys_;  ///< keys as written (quoted when needed)
   std::string buf_;
   std::string time_text_;
   uint64_t flushed_ = 0;
-  int fd_ = -1;
   bool failed_ = false;
-  int failed_errno_ = 0;
-  bool done_ = false;  ///< committed, kept or abandoned
+  bool done_ = false;    ///< committed, kept or abandoned
+  std::timed_mutex mu_;  ///< held while a sample is added: keepPartialFromOtherThread sees whole samples
 };
 
 /// A trajectory in memory. Storage is per body: poses[b] holds kPoseSize doubles per sample and

@@ -22,6 +22,7 @@ constexpr double kAnchorFar = 10.0;       // anchor farther than this many body 
 constexpr double kAnchorFarMin = 2.0;     // m; pendulum rods up to this length are normal
 constexpr double kOverlap = 1e-3;         // m of penetration that counts as overlap
 constexpr int kMaxPerKind = 20;
+constexpr double kRunaway = 1e6;  // m and m/s: RunOptions::runaway_limit
 
 double boundingRadius(const GeomDef& g) {
   switch (g.shape) {
@@ -115,6 +116,7 @@ class Linter {
   Linter(const Model& m, Diagnostics& d) : m_(m), d_(d) {}
 
   void run() {
+    farAway();
     place();
     massRatios();
     inertiaRatios();
@@ -133,6 +135,19 @@ class Linter {
       return;
     }
     d_.warning(loc, msg);
+  }
+
+  // A run stops as diverged when a body is beyond kRunaway m (RunOptions::runaway_limit): a
+  // body that starts there can never run, whatever the step. An error, not a warning. (A start
+  // that fast only diverges at the first step, as it should.)
+  void farAway() {
+    for (const BodyDef& b : m_.bodies) {
+      const double r = norm(b.pose.p);
+      if (r > kRunaway)
+        d_.error(b.loc, "body '" + b.key + "' starts " + formatApprox(r) +
+                            " m from the origin, beyond the 1e+06 m at which a run stops as diverged; move the scene "
+                            "nearer the origin");
+    }
   }
 
   void place() {
@@ -195,8 +210,8 @@ class Linter {
         double reference = b.mass * d * d;
         if (reference > 0 && smallest < kInertiaRatio * reference)
           warn("inertia ratio", b.loc,
-               "body '" + b.key + "' (" + formatApprox(b.mass) + " kg) sits " + formatApprox(d) + " m from joint '" + j.key +
-                   "' but its smallest moment of inertia is " + formatApprox(smallest) + " kg m^2, " +
+               "body '" + b.key + "' (" + formatApprox(b.mass) + " kg) sits " + formatApprox(d) + " m from joint '" +
+                   j.key + "' but its smallest moment of inertia is " + formatApprox(smallest) + " kg m^2, " +
                    formatApprox(smallest / reference) + " of m*d^2 (below " + formatApprox(kInertiaRatio) +
                    "): the solver cannot hold the joint together; give the body a realistic inertia "
                    "(RCInertiaByGeom computes it from the geoms) or use Solver Step");

@@ -6,24 +6,37 @@
 
 #include <cerrno>
 #include <cstdint>
+#include <climits>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 
 namespace simbob {
 
-bool readFile(const std::string& path, size_t max_bytes, std::string* out, std::string* reason) {
+bool readFile(const std::string& path, size_t max_bytes, std::string* out, std::string* reason, bool regular_only,
+              bool* too_large) {
   out->clear();
+  if (too_large) *too_large = false;
   auto fail = [&](std::string why) {
     out->clear();
     out->shrink_to_fit();
     if (reason) *reason = std::move(why);
     return false;
   };
-  auto tooLarge = [&] { return fail("larger than " + std::to_string(max_bytes >> 20) + " MiB"); };
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  auto tooLarge = [&] {
+    if (too_large) *too_large = true;
+    return fail("larger than " + std::to_string(max_bytes >> 20) + " MiB");
+  };
+  // Without O_NONBLOCK, opening a FIFO that has no writer blocks forever.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | (regular_only ? O_NONBLOCK : 0));
   if (fd < 0) return fail(std::strerror(errno));
   struct stat st;
-  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) {
+  const bool is_stat = ::fstat(fd, &st) == 0;
+  if (regular_only && !(is_stat && S_ISREG(st.st_mode))) {
+    ::close(fd);
+    return fail(is_stat && S_ISDIR(st.st_mode) ? std::strerror(EISDIR) : "not a regular file");
+  }
+  if (is_stat && S_ISREG(st.st_mode)) {
     if (static_cast<uint64_t>(st.st_size) > max_bytes) {
       ::close(fd);
       return tooLarge();
@@ -50,6 +63,36 @@ bool readFile(const std::string& path, size_t max_bytes, std::string* out, std::
   return true;
 }
 
+namespace {
+
+namespace fs = std::filesystem;
+
+// Follows a chain of symlinks (which may end in a name not yet taken) to the path that an
+// output replaces. Bounded like the kernel's own limit on symlink hops.
+std::string followLinks(const std::string& path) {
+  std::string p = path;
+  for (int hop = 0; hop < 40; ++hop) {
+    struct stat st {};
+    if (::lstat(p.c_str(), &st) != 0 || !S_ISLNK(st.st_mode)) return p;
+    std::vector<char> buf(PATH_MAX + 1);
+    const ssize_t n = ::readlink(p.c_str(), buf.data(), PATH_MAX);
+    if (n < 0) return p;
+    fs::path link(std::string(buf.data(), static_cast<size_t>(n)));
+    p = link.is_absolute() ? link.string() : (fs::path(p).parent_path() / link).string();
+  }
+  return p;
+}
+
+Error makeError(ErrorKind kind, const std::string& file, std::string message) {
+  Error e;
+  e.kind = kind;
+  e.loc.file = file;
+  e.message = std::move(message);
+  return e;
+}
+
+}  // namespace
+
 int writeAll(int fd, const char* data, size_t size) {
   while (size > 0) {
     const ssize_t n = ::write(fd, data, size);
@@ -64,26 +107,186 @@ int writeAll(int fd, const char* data, size_t size) {
   return 0;
 }
 
-bool writeFileAtomically(const std::string& path, const std::string& bytes, Error* err) {
-  auto fail = [&](ErrorKind kind, const std::string& what, int e) {
-    if (err) *err = {kind, {path, 0}, what + ": " + std::strerror(e)};
-    return false;
+bool isStreamOutput(const std::string& path) {
+  if (path == "-") return true;
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return false;
+  return !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode);
+}
+
+std::unique_ptr<OutputFile> OutputFile::open(const std::string& path, Error* err) {
+  auto fail = [&](const std::string& what) {
+    if (err) *err = makeError(ErrorKind::CannotCreate, path, what);
+    return nullptr;
   };
-  const std::string tmp = path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  if (fd < 0) return fail(ErrorKind::CannotCreate, "cannot create", errno);
-  int e = writeAll(fd, bytes.data(), bytes.size());
-  if (::close(fd) != 0 && e == 0 && errno != EINTR) e = errno;
-  if (e != 0) {
-    ::unlink(tmp.c_str());
-    return fail(ErrorKind::IoError, "write failed", e);
+  if (path.empty()) return fail("empty output file name");
+  std::unique_ptr<OutputFile> f(new OutputFile());
+  f->path_ = path;
+  if (path == "-") {
+    f->target_ = "-";
+    f->stream_ = true;
+    f->fd_ = STDOUT_FILENO;
+    return f;
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    e = errno;
-    ::unlink(tmp.c_str());
-    return fail(ErrorKind::CannotCreate, "cannot create", e);
+  f->target_ = followLinks(path);
+  struct stat st {};
+  if (::stat(f->target_.c_str(), &st) == 0) {
+    if (S_ISDIR(st.st_mode)) return fail("cannot create: is a directory");
+    if (!S_ISREG(st.st_mode)) {
+      // Written through: renaming a file over /dev/null would replace the device node.
+      f->stream_ = true;
+      f->fd_ = ::open(f->target_.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY);
+      if (f->fd_ < 0) return fail(std::string("cannot open: ") + std::strerror(errno));
+      return f;
+    }
+  }
+  f->temp_ = f->target_ + ".tmp." + std::to_string(static_cast<long>(::getpid()));
+  f->fd_ = ::open(f->temp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (f->fd_ < 0) {
+    f->done_ = true;  // nothing to clean up
+    return fail("cannot create temporary file " + f->temp_ + ": " + std::strerror(errno));
+  }
+  return f;
+}
+
+OutputFile::~OutputFile() { abandon(); }
+
+bool OutputFile::write(const char* data, size_t size) {
+  if (errno_ != 0 || closed_) return false;
+  const int e = writeAll(fd_, data, size);
+  if (e != 0) {
+    errno_ = e;
+    return false;
+  }
+  size_ += size;
+  return true;
+}
+
+bool OutputFile::truncate(uint64_t bytes) {
+  if (stream_ || closed_ || fd_ < 0) return false;
+  if (::ftruncate(fd_, static_cast<off_t>(bytes)) != 0) return false;
+  size_ = bytes;
+  return ::lseek(fd_, static_cast<off_t>(bytes), SEEK_SET) >= 0;
+}
+
+bool OutputFile::close(Error* err) {
+  if (done_) {
+    if (err) *err = makeError(ErrorKind::Internal, path_, "output already closed");
+    return false;
+  }
+  if (!closed_) {
+    closed_ = true;
+    // close() can report a deferred write error (e.g. NFS, quota): it counts as a failed write.
+    // Standard output stays open for the rest of the command.
+    if (!(stream_ && fd_ == STDOUT_FILENO) && ::close(fd_) != 0 && errno != EINTR && errno_ == 0) errno_ = errno;
+    fd_ = -1;
+  }
+  if (errno_ != 0) {
+    const int e = errno_;
+    abandon();
+    if (err) *err = makeError(ErrorKind::IoError, path_, std::string("write failed: ") + std::strerror(e));
+    return false;
   }
   return true;
+}
+
+bool OutputFile::rename(const std::string& to, Error* err) {
+  if (stream_) {
+    done_ = true;
+    return true;
+  }
+  const std::string& target = to.empty() ? target_ : to;
+  if (std::rename(temp_.c_str(), target.c_str()) != 0) {
+    const int e = errno;
+    abandon();
+    if (err)
+      *err = makeError(ErrorKind::CannotCreate, target,
+                       "cannot rename " + temp_ + " to " + target + ": " + std::strerror(e));
+    return false;
+  }
+  done_ = true;
+  return true;
+}
+
+void OutputFile::abandon() {
+  if (done_) return;
+  if (fd_ >= 0 && !(stream_ && fd_ == STDOUT_FILENO)) ::close(fd_);
+  fd_ = -1;
+  closed_ = true;
+  if (!stream_) ::unlink(temp_.c_str());
+  done_ = true;
+}
+
+bool commitOutputs(const std::vector<OutputFile*>& files, Error* err) {
+  auto abandonAll = [&]() {
+    for (OutputFile* f : files) f->abandon();
+  };
+  for (OutputFile* f : files)
+    if (!f->close(err)) {
+      abandonAll();
+      return false;
+    }
+  // Keep each old target under a second name (a hard link, no copy) until all are replaced.
+  const std::string pid = std::to_string(static_cast<long>(::getpid()));
+  struct Undo {
+    OutputFile* f;
+    std::string backup;  // "" if the target did not exist
+  };
+  std::vector<Undo> done;
+  std::vector<std::string> backups(files.size());
+  for (size_t i = 0; i < files.size(); ++i) {
+    OutputFile* f = files[i];
+    if (f->stream_) continue;
+    const std::string backup = f->target_ + ".old." + pid;
+    ::unlink(backup.c_str());
+    if (::link(f->target_.c_str(), backup.c_str()) == 0) backups[i] = backup;
+  }
+  bool ok = true;
+  for (size_t i = 0; i < files.size() && ok; ++i) {
+    OutputFile* f = files[i];
+    if (!f->rename("", err)) {
+      ok = false;
+      break;
+    }
+    if (!f->stream_) done.push_back({f, backups[i]});
+  }
+  if (!ok) {
+    for (const Undo& u : done) {
+      if (u.backup.empty())
+        ::unlink(u.f->target_.c_str());
+      else
+        std::rename(u.backup.c_str(), u.f->target_.c_str());
+    }
+    abandonAll();
+  }
+  for (const std::string& b : backups)
+    if (!b.empty()) ::unlink(b.c_str());
+  return ok;
+}
+
+bool writeFileAtomically(const std::string& path, const std::string& bytes, Error* err) {
+  std::unique_ptr<OutputFile> f = OutputFile::open(path, err);
+  if (!f) return false;
+  f->write(bytes);
+  return commitOutputs({f.get()}, err);
+}
+
+bool sameExistingFile(const std::string& a, const std::string& b) {
+  if (a.empty() || b.empty() || a == "-" || b == "-") return false;
+  struct stat sa {
+  }, sb{};
+  if (::stat(a.c_str(), &sa) != 0 || ::stat(b.c_str(), &sb) != 0) return false;
+  return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
+bool sameOutputPlace(const std::string& a, const std::string& b) {
+  if (a.empty() || b.empty()) return false;
+  if (a == "-" || b == "-") return a == b;
+  if (sameExistingFile(a, b)) return true;
+  std::error_code ea, eb;
+  const fs::path pa = fs::weakly_canonical(fs::absolute(followLinks(a)), ea);
+  const fs::path pb = fs::weakly_canonical(fs::absolute(followLinks(b)), eb);
+  return !ea && !eb && pa == pb;
 }
 
 }  // namespace simbob

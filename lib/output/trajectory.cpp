@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -82,13 +83,9 @@ std::unique_ptr<TrajectoryWriter> TrajectoryWriter::open(const std::string& fina
 
   std::unique_ptr<TrajectoryWriter> w(new TrajectoryWriter());
   w->final_path_ = final_path;
-  w->temp_path_ = final_path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
-  w->fd_ = ::open(w->temp_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  if (w->fd_ < 0) {
-    int e = errno;
+  w->out_ = OutputFile::open(final_path, err);
+  if (!w->out_) {
     w->done_ = true;  // nothing to clean up
-    setError(err, makeError(ErrorKind::CannotCreate, final_path, 0,
-                            "cannot create temporary file " + w->temp_path_ + ": " + std::strerror(e)));
     return nullptr;
   }
   w->keys_ = std::move(body_keys);
@@ -102,7 +99,15 @@ std::unique_ptr<TrajectoryWriter> TrajectoryWriter::open(const std::string& fina
 
 TrajectoryWriter::~TrajectoryWriter() { abandon(); }
 
+bool TrajectoryWriter::isStream() const { return out_ && out_->isStream(); }
+
+const std::string& TrajectoryWriter::tempPath() const {
+  static const std::string none;
+  return out_ ? out_->tempPath() : none;
+}
+
 bool TrajectoryWriter::addSample(double time, const double* poses) {
+  std::lock_guard<std::timed_mutex> lock(mu_);
   if (done_ || failed_) return false;
   // The time text is the same for every body of the sample: format it once.
   time_text_.clear();
@@ -126,10 +131,8 @@ bool TrajectoryWriter::addSample(double time, const double* poses) {
 bool TrajectoryWriter::flush() {
   if (failed_) return false;
   if (buf_.empty()) return true;
-  int e = writeAll(fd_, buf_.data(), buf_.size());
-  if (e != 0) {
+  if (!out_->write(buf_)) {
     failed_ = true;
-    failed_errno_ = e;
     return false;
   }
   flushed_ += buf_.size();
@@ -137,51 +140,46 @@ bool TrajectoryWriter::flush() {
   return true;
 }
 
-void TrajectoryWriter::closeFd() {
-  if (fd_ >= 0) ::close(fd_);
-  fd_ = -1;
-}
-
-bool TrajectoryWriter::finish(const std::string& target, Error* err) {
+bool TrajectoryWriter::finish(const std::string& target, Error* err, const std::vector<OutputFile*>& also) {
   if (done_) {
     setError(err, makeError(ErrorKind::Internal, final_path_, 0, "trajectory writer already closed"));
     return false;
   }
   flush();
-  if (!failed_) {
-    // close() can report a deferred write error (e.g. NFS, quota): it counts as a failed write.
-    int rc = ::close(fd_);
-    fd_ = -1;
-    if (rc != 0 && errno != EINTR) {
-      failed_ = true;
-      failed_errno_ = errno;
-    }
+  std::vector<OutputFile*> all = {out_.get()};
+  all.insert(all.end(), also.begin(), also.end());
+  bool ok;
+  if (target.empty()) {
+    ok = commitOutputs(all, err);
+  } else {
+    ok = out_->close(err) && out_->rename(target, err);
   }
-  if (failed_) {
-    abandon();
-    setError(err, makeError(ErrorKind::IoError, final_path_, 0,
-                            std::string("write failed: ") + std::strerror(failed_errno_)));
-    return false;
-  }
-  if (std::rename(temp_path_.c_str(), target.c_str()) != 0) {
-    int e = errno;
-    abandon();
-    setError(err, makeError(ErrorKind::CannotCreate, target, 0,
-                            "cannot rename " + temp_path_ + " to " + target + ": " + std::strerror(e)));
-    return false;
-  }
+  if (!ok) failed_ = true;
+  buf_.clear();
   done_ = true;
-  return true;
+  return ok;
 }
 
-bool TrajectoryWriter::commit(Error* err) { return finish(final_path_, err); }
+bool TrajectoryWriter::commit(Error* err, const std::vector<OutputFile*>& also) { return finish("", err, also); }
 
-bool TrajectoryWriter::keepPartial(const std::string& partial_path, Error* err) { return finish(partial_path, err); }
+bool TrajectoryWriter::keepPartial(const std::string& partial_path, Error* err) {
+  if (out_ && out_->isStream()) return finish("", err, {});
+  return finish(partial_path, err, {});
+}
+
+bool TrajectoryWriter::keepPartialFromOtherThread(const std::string& partial_path, Error* err) {
+  // Never unlocked: the other thread must not add anything after this. A write that blocks
+  // (a FIFO nobody reads) must not hold the caller forever.
+  if (!mu_.try_lock_for(std::chrono::milliseconds(500))) {
+    setError(err, makeError(ErrorKind::IoError, final_path_, 0, "a write in progress did not finish; nothing kept"));
+    return false;
+  }
+  return keepPartial(partial_path, err);
+}
 
 void TrajectoryWriter::abandon() {
   if (done_) return;
-  closeFd();
-  ::unlink(temp_path_.c_str());
+  if (out_) out_->abandon();
   buf_.clear();
   done_ = true;
 }
@@ -400,6 +398,12 @@ bool CsvParser::run(Trajectory* out, Error* err) {
     std::string_view body = fields_[1];
     if (body.empty()) return fail(err, line, "empty body key");
     if (!isValidUtf8(body)) return fail(err, line, "body key is not valid UTF-8");
+    // A NUL would cut the key wherever it is used as a C string (plots, messages).
+    if (body.find('\0') != std::string_view::npos) return fail(err, line, "body key contains a NUL byte");
+    // Rotation errors are angles between quaternions (scaled to unit length): a zero one is no
+    // rotation, and comparing with it gave "nan".
+    if (pose[3] == 0 && pose[4] == 0 && pose[5] == 0 && pose[6] == 0)
+      return fail(err, line, "quaternion qw qx qy qz is zero: not a rotation");
 
     if (t.times.empty() || time != t.times.back()) {
       if (!t.times.empty() && time < t.times.back()) {

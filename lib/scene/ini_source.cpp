@@ -36,6 +36,9 @@ struct IniDoc {
 
 namespace {
 
+// INI lists are read item by item; a count beyond this is a typo or an attack, not a scene.
+constexpr int64_t kMaxListCount = 10000000;
+
 std::string lower(std::string s) {
   for (char& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
   return s;
@@ -81,11 +84,16 @@ class IniSource : public Source {
     *line = count->line;
     auto n = parseNumber(trim(count->value));
     // Range first: casting a double beyond int64 to int64 is undefined behaviour.
-    if (!count->has_value || !n || *n < 0 || *n > 1e7 || *n != static_cast<double>(static_cast<int64_t>(*n))) {
+    if (!count->has_value || !n || *n < 0 || *n > kMaxListCount ||
+        *n != static_cast<double>(static_cast<int64_t>(*n))) {
       SourceLink bad;
       bad.present = true;
       bad.line = count->line;
-      bad.error = base + "Count must be a whole number >= 0, got '" + count->value + "'";
+      if (count->has_value && n && *n > kMaxListCount)
+        bad.error = base + "Count " + quoteInput(count->value) + " is beyond the limit of " +
+                    std::to_string(kMaxListCount) + " items";
+      else
+        bad.error = base + "Count must be a whole number >= 0, got '" + quoteInput(count->value) + "'";
       items.push_back(std::move(bad));
       return items;
     }
@@ -97,7 +105,7 @@ class IniSource : public Source {
         SourceLink missing;
         missing.present = true;
         missing.line = count->line;
-        missing.error = base + "Count is " + count->value + " but " + item + " is missing";
+        missing.error = base + "Count is " + quoteInput(count->value) + " but " + item + " is missing";
         items.push_back(std::move(missing));
         break;
       }
@@ -201,7 +209,8 @@ std::shared_ptr<IniDoc> parseIni(const std::string& text, std::string* error, in
   auto doc = std::make_shared<IniDoc>();
   doc->root.line = 1;
   std::string section;
-  size_t pos = 0;
+  // A UTF-8 byte order mark (Windows editors write one) is no part of the first key.
+  size_t pos = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
   int line_no = 0;
   while (pos <= text.size()) {
     size_t end = text.find('\n', pos);
@@ -215,7 +224,7 @@ std::shared_ptr<IniDoc> parseIni(const std::string& text, std::string* error, in
     }
     if (line.front() == '[') {
       if (line.back() != ']' || line.size() < 3) {
-        *error = "malformed section header '" + std::string(line) + "'";
+        *error = "malformed section header '" + quoteInput(line) + "'";
         *error_line = line_no;
         return nullptr;
       }
@@ -225,7 +234,7 @@ std::shared_ptr<IniDoc> parseIni(const std::string& text, std::string* error, in
     }
     size_t eq = line.find('=');
     if (eq == std::string_view::npos) {
-      *error = "expected 'key = value', got '" + std::string(line) + "'";
+      *error = "expected 'key = value', got '" + quoteInput(line) + "'";
       *error_line = line_no;
       return nullptr;
     }
@@ -244,7 +253,7 @@ std::shared_ptr<IniDoc> parseIni(const std::string& text, std::string* error, in
       size_t dot = full.find('.', start);
       std::string part = full.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
       if (part.empty()) {
-        *error = "empty name in key '" + full + "'";
+        *error = "empty name in key '" + quoteInput(full) + "'";
         *error_line = line_no;
         return nullptr;
       }
@@ -262,7 +271,7 @@ std::shared_ptr<IniDoc> parseIni(const std::string& text, std::string* error, in
       start = dot + 1;
     }
     if (node->has_value) {
-      *error = "key '" + full + "' assigned twice (first on line " + std::to_string(node->line) + ")";
+      *error = "key '" + quoteInput(full) + "' assigned twice (first on line " + std::to_string(node->line) + ")";
       *error_line = line_no;
       return nullptr;
     }

@@ -1,5 +1,9 @@
 // Builds the component graph from a Source, driven only by the registry's parameter tables:
 // no type-specific code here. Then reads imports, resolves Refs and checks for cycles.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -16,6 +20,11 @@ namespace {
 
 constexpr int kMaxImportDepth = 16;
 constexpr int kMaxNesting = 200;
+// Files importing the next one twice double the graph with every file: bound what the imports
+// and the whole graph may expand to (a few KB of memory per component).
+constexpr int kMaxImports = 5000;
+constexpr size_t kMaxComponents = 300000;
+
 uint64_t fnv1a(uint64_t h, const std::string& bytes) {
   for (unsigned char c : bytes) {
     h ^= c;
@@ -119,9 +128,19 @@ class Builder {
   int build(const TypeSpec* t, Source* src, std::string key, bool has_key, int parent, const std::string& parent_qkey,
             SourceLoc loc,  // NOLINT(performance-unnecessary-value-param)
             bool register_key = true) {
+    if (too_big_) return -1;
+    if (scene_.comps.size() >= kMaxComponents) {
+      too_big_ = true;
+      diag_.error(loc, "the scene expands to more than " + std::to_string(kMaxComponents) +
+                           " components (imports or lists that multiply?)");
+      return -1;
+    }
     if (++depth_ > kMaxNesting) {
       --depth_;
-      diag_.error(loc, "components nested deeper than " + std::to_string(kMaxNesting) + " levels");
+      // Every parameter at the limit would say it again: once per scene is enough.
+      if (!nesting_reported_)
+        diag_.error(loc, "components nested deeper than " + std::to_string(kMaxNesting) + " levels");
+      nesting_reported_ = true;
       return -1;
     }
     int index = static_cast<int>(scene_.comps.size());
@@ -208,9 +227,9 @@ class Builder {
         std::string near = didYouMean(name, names);
         bool duplicate = t->paramIndex(name) >= 0 || (src->ignoresCase() && t->paramIndexIgnoreCase(name) >= 0);
         if (duplicate)
-          diag_.error({loc.file, line}, prefix(what) + "parameter '" + name + "' given twice");
+          diag_.error({loc.file, line}, prefix(what) + "parameter '" + quoteInput(name) + "' given twice");
         else
-          diag_.error({loc.file, line}, prefix(what) + "parameter '" + name + "' unknown" +
+          diag_.error({loc.file, line}, prefix(what) + "parameter '" + quoteInput(name) + "' unknown" +
                                             (near.empty() ? "" : " (did you mean '" + near + "'?)"));
       }
     }
@@ -234,6 +253,13 @@ class Builder {
     std::filesystem::path p(file);
     if (p.is_relative()) p = std::filesystem::path(loc.file).parent_path() / p;
     std::string path = p.lexically_normal().string();
+    if (too_big_) return;
+    if (++imports_ > kMaxImports) {
+      too_big_ = true;
+      diag_.error(at, prefix(what) + "more than " + std::to_string(kMaxImports) +
+                          " imports in all (files that import the same file several times multiply)");
+      return;
+    }
     if (import_stack_.size() >= kMaxImportDepth) {
       diag_.error(at, prefix(what) + "imports nested deeper than " + std::to_string(kMaxImportDepth) + " files");
       return;
@@ -248,10 +274,10 @@ class Builder {
       return;
     }
     std::string text, err;
-    // A device, FIFO or socket (/dev/stdout, /dev/zero) would block or never end.
-    if (std::filesystem::is_other(std::filesystem::status(path, ec))) err = "not a regular file";
-    if (!err.empty() || !readFile(path, kMaxSceneFileBytes, &text, &err)) {
-      diag_.error(at, prefix(what) + "cannot read import '" + path + "': " + err, ErrorKind::MissingInput);
+    bool too_large = false;
+    if (!readFile(path, kMaxSceneFileBytes, &text, &err, true, &too_large)) {
+      diag_.error(at, prefix(what) + "cannot read import '" + quoteInput(path, 400) + "': " + err,
+                  too_large ? ErrorKind::InvalidInput : ErrorKind::MissingInput);
       return;
     }
     addFile(path, text);
@@ -325,7 +351,8 @@ class Builder {
       if (auto* d = std::get_if<double>(&*r.value)) v = *d;
       if (auto* i = std::get_if<int64_t>(&*r.value)) v = static_cast<double>(*i);
       if (!inRange(p.range, v)) {
-        diag_.error(loc, prefix(what) + "parameter '" + p.name + "' " + rangeText(p.range) + ", got '" + text + "'");
+        diag_.error(loc, prefix(what) + "parameter '" + p.name + "' " + rangeText(p.range) + ", got '" +
+                             quoteInput(text) + "'");
         return false;
       }
     }
@@ -430,6 +457,9 @@ class Builder {
   std::vector<std::string> import_stack_;
   uint64_t hash_ = 1469598103934665603ull;
   int depth_ = 0;
+  int imports_ = 0;
+  bool nesting_reported_ = false;
+  bool too_big_ = false;                        // a size limit was crossed: stop building (one error, not thousands)
   std::set<int> duplicates_;                    // components whose qualified key was taken already
   std::map<std::string, int> shared_defaults_;  // default component of each type
 };
@@ -590,8 +620,10 @@ bool loadSceneFromText(const std::string& text, const std::string& name, Format 
 
 bool loadScene(const std::string& path, const Registry& reg, Scene* scene, Diagnostics& diag) {
   std::string text, err;
-  if (!readFile(path, kMaxSceneFileBytes, &text, &err)) {
-    diag.error({path, 0}, "cannot read scene: " + err, ErrorKind::MissingInput);
+  bool too_large = false;
+  if (!readFile(path, kMaxSceneFileBytes, &text, &err, true, &too_large)) {
+    // Too large is an input limit (65); the rest means the file cannot be read (66).
+    diag.error({path, 0}, "cannot read scene: " + err, too_large ? ErrorKind::InvalidInput : ErrorKind::MissingInput);
     return false;
   }
   bool ini = path.size() >= 4 && equalsIgnoreCase(std::string_view(path).substr(path.size() - 4), ".ini");
@@ -601,7 +633,7 @@ bool loadScene(const std::string& path, const Registry& reg, Scene* scene, Diagn
 bool loadStructIni(const std::string& path, const Registry& reg, const std::string& struct_type, Scene* holder,
                    int* comp, Diagnostics& diag) {
   std::string text, err;
-  if (!readFile(path, kMaxSceneFileBytes, &text, &err)) {
+  if (!readFile(path, kMaxSceneFileBytes, &text, &err, true)) {
     diag.error({path, 0}, "cannot read settings: " + err, ErrorKind::MissingInput);
     return false;
   }

@@ -1,5 +1,8 @@
 // XML format (guide 4.2) as a Source: <Name Value=".."/>, type elements with Key, Ref, Macro.
 #include <algorithm>
+#include <set>
+#include <unordered_set>
+#include <string_view>
 #include <pugixml.hpp>
 
 #include "scene/source.h"
@@ -92,8 +95,7 @@ class XmlSource : public Source {
   std::vector<std::pair<std::string, int>> unread() const override {
     std::vector<std::pair<std::string, int>> out;
     for (pugi::xml_node c : node_.children())
-      if (isElement(c) && std::find(read_.begin(), read_.end(), c) == read_.end())
-        out.emplace_back(c.name(), doc_->lineOf(c));
+      if (isElement(c) && !read_.count(c.hash_value())) out.emplace_back(c.name(), doc_->lineOf(c));
     return out;
   }
 
@@ -145,8 +147,8 @@ class XmlSource : public Source {
   // reported as a duplicate by the builder.
   pugi::xml_node take(const std::string& name) {
     for (pugi::xml_node c : node_.children()) {
-      if (isElement(c) && name == c.name() && std::find(read_.begin(), read_.end(), c) == read_.end()) {
-        read_.push_back(c);
+      if (isElement(c) && name == c.name() && !read_.count(c.hash_value())) {
+        read_.insert(c.hash_value());
         return c;
       }
     }
@@ -205,7 +207,7 @@ class XmlSource : public Source {
 
   std::shared_ptr<XmlDoc> doc_;
   pugi::xml_node node_;
-  std::vector<pugi::xml_node> read_;
+  std::unordered_set<size_t> read_;  // hash_value() of the children read; membership only, never iterated
 };
 
 }  // namespace
@@ -229,6 +231,30 @@ std::shared_ptr<XmlDoc> parseXml(const std::string& text, const Registry& reg, s
     *error_line = 1;
     *error = "empty XML document";
     return nullptr;
+  }
+  // pugixml keeps the last of two equal attributes and accepts a second root element: both
+  // would silently drop what the file says, so they are errors here.
+  int roots = 0;
+  for (pugi::xml_node n : d->doc.children()) {
+    if (!isElement(n) || ++roots < 2) continue;
+    *error_line = d->lineOf(n);
+    *error = std::string("malformed XML: a second root element <") + n.name() + "> (a document has one)";
+    return nullptr;
+  }
+  std::vector<pugi::xml_node> stack = {d->doc.document_element()};
+  while (!stack.empty()) {
+    pugi::xml_node n = stack.back();
+    stack.pop_back();
+    // Elements have a handful of attributes; a set keeps an attack with thousands linear.
+    std::set<std::string_view> names;
+    for (pugi::xml_attribute a = n.first_attribute(); a; a = a.next_attribute())
+      if (!names.insert(a.name()).second) {
+        *error_line = d->lineOf(n);
+        *error = std::string("malformed XML: attribute '") + a.name() + "' given twice in <" + n.name() + ">";
+        return nullptr;
+      }
+    for (pugi::xml_node c : n.children())
+      if (isElement(c)) stack.push_back(c);
   }
   return d;
 }

@@ -1066,3 +1066,46 @@ TEST_CASE("errors: Motion on an RCImportBody whose imported body is static", "[s
   CHECK(d.errors()[0].str() ==
         main + ":4: RCImportBody 'I': parameter 'Motion' is given but the imported body is static: it cannot move");
 }
+
+// Issue #10, items 12-14: input forms.
+
+TEST_CASE("a UTF-8 byte order mark is accepted in INI as in XML", "[scene][errors]") {
+  const std::string bom = "\xEF\xBB\xBF";
+  Result ini = run(bom + "ComponentCount = 1\nComponent0.Type = RCGround\n", Format::Ini, "bom.ini");
+  INFO(errorText(ini.diag));
+  CHECK(ini.loaded);
+  Result xml = run(bom + inList("<RCGround/>\n"), Format::Xml, "bom.xml");
+  CHECK(xml.loaded);
+}
+
+TEST_CASE("invisible and control characters in messages are escaped", "[scene][errors]") {
+  // A zero-width space inside a name and a BOM in the middle of the file.
+  Result r =
+      run("ComponentCount = 0\nCamera\xE2\x80\x8B"
+          "Count = 1\n\xEF\xBB\xBF"
+          "Foo = 1\n",
+          Format::Ini, "bad.ini");
+  expectExact(r, "bad.ini:2: parameter 'Camera\\u{200B}Count' unknown");
+  expectExact(r, "bad.ini:3: parameter '\\u{FEFF}Foo' unknown");
+  Result c = run("ComponentCount = 0\nx\x01y\n", Format::Ini, "ctl.ini");
+  expectExact(c, "ctl.ini:2: expected 'key = value', got 'x\\x01y'");
+}
+
+TEST_CASE("a huge bad line is cut in the message", "[scene][errors]") {
+  const std::string line(50 << 20, 'x');
+  Result r = run("ComponentCount = 0\n" + line + "\n", Format::Ini, "huge.ini");
+  REQUIRE(r.diag.errors().size() == 1);
+  const std::string msg = r.diag.errors()[0].str();
+  CHECK(msg == "huge.ini:2: expected 'key = value', got '" + std::string(80, 'x') + "... (52428800 bytes)'");
+}
+
+TEST_CASE("XML with a duplicated attribute or two root elements is rejected", "[scene][errors]") {
+  Result dup = run(inList("<RCGround Key=\"a\" Key=\"b\"/>\n"));
+  CHECK_FALSE(dup.loaded);
+  expectExact(dup, "bad.xml:3: malformed XML: attribute 'Key' given twice in <RCGround>");
+  Result val = run(inList("<RCSky>\n<Height Value=\"1\" Value=\"2\"/>\n</RCSky>\n"));
+  expectExact(val, "bad.xml:4: malformed XML: attribute 'Value' given twice in <Height>");
+  Result roots = run(inList("<RCGround/>\n") + "<Simulation/>\n");
+  CHECK_FALSE(roots.loaded);
+  expectExact(roots, "bad.xml:6: malformed XML: a second root element <Simulation> (a document has one)");
+}

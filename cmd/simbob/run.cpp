@@ -11,6 +11,7 @@
 #include "cli.h"
 #include "commands.h"
 #include "simbob/physics.h"
+#include "simbob/robot.h"
 #include "simbob/run.h"
 #include "simbob/values.h"
 
@@ -163,6 +164,7 @@ int cmdRun(RunArgs& a, const Registry& reg) {
   opts.sample_interval = a.sample_interval;
   opts.seed = a.seed;
   opts.stop = &g_stop;
+  opts.make_parties = [&model] { return robotParties(model); };  // controllers, after the sampler
   std::vector<double> rec_times, rec_poses;
   if (a.check_determinism) {
     opts.on_sample = [&](double t, const double* p) {

@@ -15,6 +15,7 @@
 #include "commands.h"
 #include "simbob/files.h"
 #include "simbob/physics.h"
+#include "simbob/robot.h"
 #include "simbob/run.h"
 #include "simbob/transform.h"
 #include "simbob/values.h"
@@ -282,6 +283,7 @@ int cmdRun(RunArgs& a, const Common& common) {
   opts.sample_interval = a.sample_interval;
   opts.seed = a.seed;
   opts.stop = &g_stop;
+  opts.make_parties = [&model] { return robotParties(model); };  // controllers, after the sampler
   std::vector<double> rec_times, rec_poses;
   std::atomic<double> last_sample{0.0};
   bool first_pass = true;

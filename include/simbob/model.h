@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -74,6 +75,44 @@ struct JointDef {
   Vec3 axis{0, 0, 1};    ///< global unit vector (Hinge, Slider)
 };
 
+/// A drive on a hinge or slider joint (guide 6.11.1-6.11.3). Positions and velocities are the
+/// joint's (JointState: the child relative to the parent, zero at the start pose).
+struct ActuatorDef {
+  std::string key;  ///< fully qualified key of the periphery
+  SourceLoc loc;
+  enum Kind : uint8_t {
+    Drive,     ///< RCGenericDrive: command = voltage in [-1, 1] (RCDriver)
+    Servo,     ///< RCGenericServo: command = target position, m or rad (RCPosControl)
+    VelDrive,  ///< RCGenericVelControlledDrive: command = target velocity, m/s or rad/s (RCVelControl)
+  } kind = Drive;
+  int joint = -1;                                             ///< index into Model::joints (hinge or slider)
+  double max_power = 10.0;                                    ///< N or N m, largest force or torque
+  double max_velocity = 1.0;                                  ///< m/s or rad/s
+  double min_pos = -std::numeric_limits<double>::infinity();  ///< m or rad; -inf: no stop
+  double max_pos = std::numeric_limits<double>::infinity();   ///< m or rad; inf: no stop
+  double stall = 0.8;                                         ///< Drive: power fades above stall * max_velocity
+  double smooth = 1.0;                                        ///< Servo: s, time constant of the final approach
+};
+
+/// A built-in controller (guide 6.12) or a command schedule; runs as a party of the run loop.
+struct ControllerDef {
+  std::string key;  ///< fully qualified key
+  SourceLoc loc;
+  enum Kind : uint8_t {
+    DriveTest,        ///< sine voltage on actuators[0]
+    ServoTest,        ///< triangle wave between the limits of actuators[0]
+    TwoWheel,         ///< (v, w) -> wheel velocities of actuators[0] (left), actuators[1] (right)
+    CommandSchedule,  ///< timed commands to actuators[0], or to controllers[target] (TwoWheel)
+  } kind = DriveTest;
+  double period = 0.01;          ///< s, loop period (DriveTest, ServoTest)
+  double variation = 6.0;        ///< 1/min (DriveTest, ServoTest); wheel radius in m (TwoWheel)
+  double wheel_distance = 0.5;   ///< m (TwoWheel)
+  std::vector<int> actuators;    ///< indices into Model::actuators
+  int target = -1;               ///< CommandSchedule to a controller: index into Model::controllers
+  int values = 1;                ///< CommandSchedule: values per row (1, or 2 for linear angular)
+  std::vector<double> commands;  ///< CommandSchedule: rows of (time s, values...), times increasing
+};
+
 /// ODE collision space: how candidate pairs are found. Results differ between spaces (pairs
 /// arrive in another order), so the choice is part of a scene's reproducibility.
 enum class SpaceKind : uint8_t { Hash, SweepAndPrune, QuadTree, Simple };
@@ -94,10 +133,12 @@ struct SolverSettings {
 
 struct Model {
   SolverSettings settings;
-  std::vector<MaterialDef> materials;  ///< [0] is the default material
-  std::vector<BodyDef> bodies;         ///< mobile bodies, document order
-  std::vector<GeomDef> geoms;          ///< document order
-  std::vector<JointDef> joints;        ///< document order
+  std::vector<MaterialDef> materials;      ///< [0] is the default material
+  std::vector<BodyDef> bodies;             ///< mobile bodies, document order
+  std::vector<GeomDef> geoms;              ///< document order
+  std::vector<JointDef> joints;            ///< document order
+  std::vector<ActuatorDef> actuators;      ///< document order (after the joints they drive)
+  std::vector<ControllerDef> controllers;  ///< document order; a schedule's TwoWheel target may come first
 };
 
 }  // namespace simbob

@@ -64,6 +64,18 @@ class World {
   /// State of joint i (0 <= i < jointCount()); see JointState for units and signs.
   JointState joint(int i) const;
 
+  /// Actuators, in Model::actuators order.
+  int actuatorCount() const;
+  /// Commands actuator i (0 <= i < actuatorCount()) from now on (see README, "Actuators"):
+  /// Drive: voltage, clamped to [-1, 1]; Servo: target position (m or rad), clamped to
+  /// [MinPos, MaxPos]; VelDrive: target velocity (m/s or rad/s), clamped to +-MaxVelocity.
+  /// Before its first command a drive has voltage 0, a servo holds its start position (0,
+  /// clamped to its limits) and a velocity drive is idle (applies nothing).
+  void setCommand(int actuator, double value);
+  /// The force (N) or torque (N m) drive i applied in the last step, in the joint's sense
+  /// (0 for servos and velocity drives, whose force comes from the solver).
+  double driveEffort(int actuator) const;
+
   /// Index of the first body whose state is non-finite or beyond `limit` (m or m/s, rad/s),
   /// or -1 when all are fine.
   int firstBadBody(double limit = 1e6) const;

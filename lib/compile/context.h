@@ -16,6 +16,8 @@ namespace simbob {
 
 /// What lowering a body produced: its index in Model::bodies (-1 = static, part of the world)
 /// and its global frame.
+constexpr int kFailedActuator = -2;
+
 struct Built {
   int index = -1;
   Transform frame;
@@ -80,6 +82,16 @@ class CompileContext {
   /// Index of a component of the scene.
   int indexOf(const Component& c) const { return static_cast<int>(&c - scene.comps.data()); }
   void recordJoint(const std::string& model_key, int index) { joint_index_[model_key] = index; }
+  /// Model::actuators index of the periphery lowered under `model_key`, -1 if it was not lowered,
+  /// kFailedActuator if its lowering reported an error.
+  int actuatorIndex(const std::string& model_key) const {
+    auto it = actuator_index_.find(model_key);
+    return it == actuator_index_.end() ? -1 : it->second;
+  }
+  void recordActuator(const std::string& model_key, int index) { actuator_index_[model_key] = index; }
+  /// Controllers lowered so far: component index -> Model::controllers index (-1 while it is
+  /// being lowered or after an error).
+  std::map<int, int> controller_index;
 
   /// Lowering state of bodies (bodies.cpp, clones.cpp): bodies already lowered (memo), bodies
   /// being lowered (cycle and depth checks), and the clone being copied.
@@ -107,6 +119,7 @@ class CompileContext {
   bool failed_quietly_ = false;
   std::map<std::string, int> body_index_;
   std::map<std::string, int> joint_index_;
+  std::map<std::string, int> actuator_index_;
   std::map<int, Transform> parent_frame_;
   std::set<int> checked_;
 };

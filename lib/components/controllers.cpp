@@ -1,5 +1,7 @@
 // ControllerComponents (guide 6.12): the software of an RCRobot. Each controller checks that
-// the components it refers to implement the interface it needs. They do not run yet.
+// the components it refers to implement the interface it needs and lowers to a ControllerDef;
+// lib/robot runs them as parties of the run loop. RCCommandSchedule (simbob's own) sends timed
+// commands to a drive, a servo or an RC2DMotionControl.
 #include <cmath>
 
 #include "compile/context.h"
@@ -9,7 +11,7 @@ namespace simbob {
 
 namespace {
 
-enum class ControllerKind { DriveTest, ServoTest, TwoWheelMotionControl };
+enum class ControllerKind { DriveTest, ServoTest, TwoWheelMotionControl, CommandSchedule };
 
 constexpr LinkParam kDrive{"Drive"};
 constexpr LinkParam kPosControl{"PosControl"};
@@ -18,6 +20,64 @@ constexpr LinkParam kControlRight{"ControlRight"};
 constexpr ValueParam<double> kPeriod{"Period"};
 constexpr ValueParam<double> kVariation{"Variation"};
 constexpr ValueParam<double> kWheelDistance{"WheelDistance"};
+constexpr LinkParam kTarget{"Target"};
+constexpr ValueParam<std::string> kCommands{"Commands"};
+
+/// Model::actuators index of a drive or servo component, or -1 after an error.
+int actuatorOf(CompileContext& ctx, const Component& c, const Link& l, const Component& drive) {
+  const int i = ctx.actuatorIndex(ctx.modelKey(drive));
+  if (i == -1 && !ctx.failedQuietly())
+    ctx.error(l, c,
+              CompileContext::describe(drive) +
+                  " is not part of a construction built before this controller (put it in the ChildList of "
+                  "its robot's construction)");
+  return i;
+}
+
+/// Rows "time value..." of a command schedule; false after an error naming the row.
+bool parseCommands(CompileContext& ctx, const Component& c, int values, std::vector<double>* out) {
+  std::string err;
+  const std::string& text = c.get(kCommands);
+  auto nums = parseNumberList(text, &err);
+  const Slot& slot = c.slotOf(kCommands);
+  if (!nums) {
+    ctx.errorAt(slot, c, "parameter 'Commands': " + err);
+    return false;
+  }
+  const size_t width = static_cast<size_t>(values) + 1;
+  if (nums->empty() || nums->size() % width != 0) {
+    ctx.errorAt(slot, c,
+                "parameter 'Commands' must hold rows of " +
+                    std::string(values == 1 ? "'time value'" : "'time linear angular'") + " (" + std::to_string(width) +
+                    " numbers each), got " + std::to_string(nums->size()) + " numbers");
+    return false;
+  }
+  for (size_t row = 0; row * width < nums->size(); ++row) {
+    const double t = (*nums)[row * width];
+    if (t < 0 || t > 1e9) {
+      ctx.errorAt(slot, c,
+                  "parameter 'Commands': row " + std::to_string(row + 1) + ": time " + formatNumber(t) +
+                      " s must be in [0, 1e9]");
+      return false;
+    }
+    if (row > 0 && !(t > (*nums)[(row - 1) * width])) {
+      ctx.errorAt(slot, c,
+                  "parameter 'Commands': row " + std::to_string(row + 1) + ": time " + formatNumber(t) +
+                      " s is not after the previous row's " + formatNumber((*nums)[(row - 1) * width]) +
+                      " s (times must increase strictly)");
+      return false;
+    }
+    for (size_t k = 1; k < width; ++k)
+      if (std::fabs((*nums)[row * width + k]) > 1e9) {
+        ctx.errorAt(slot, c,
+                    "parameter 'Commands': row " + std::to_string(row + 1) + ": value " +
+                        formatNumber((*nums)[row * width + k]) + " is beyond 1e9");
+        return false;
+      }
+  }
+  *out = std::move(*nums);
+  return true;
+}
 
 /// The component behind `param`, which must implement `interface`; nullptr after an error.
 const Component* target(CompileContext& ctx, const Component& c, LinkParam param, const char* interface) {
@@ -56,36 +116,117 @@ void registerControllers(Registry& r) {
           number(kVariation, 6.0, "1/min", "oscillations per minute", Range::NonNegative)},
          {},
          "Moves a servo between its limits."});
-  r.add({"RCTwoWheelMotionControl",
+  TypeSpec two_wheel{
+      "RCTwoWheelMotionControl",
+      Family::Controller,
+      int(ControllerKind::TwoWheelMotionControl),
+      {componentParam(kControlLeft, {Family::Periphery}, "", "left wheel velocity control (Ref, RCVelControl)"),
+       componentParam(kControlRight, {Family::Periphery}, "", "right wheel velocity control (Ref, RCVelControl)"),
+       number(kWheelDistance, 0.5, "m", "distance between the wheels", Range::Positive),
+       number(kVariation, 0.1, "m", "wheel radius (the guide's name)", Range::Positive)},
+      {},
+      "Differential drive: linear and angular velocity to two wheel velocities."};
+  two_wheel.interfaces = {"RC2DMotionControl"};
+  r.add(std::move(two_wheel));
+  r.add({"RCCommandSchedule",
          Family::Controller,
-         int(ControllerKind::TwoWheelMotionControl),
-         {componentParam(kControlLeft, {Family::Periphery}, "", "left wheel velocity control (Ref, RCVelControl)"),
-          componentParam(kControlRight, {Family::Periphery}, "", "right wheel velocity control (Ref, RCVelControl)"),
-          number(kWheelDistance, 0.5, "m", "distance between the wheels", Range::Positive),
-          number(kVariation, 0.1, "m", "wheel radius (the guide's name)", Range::Positive)},
+         int(ControllerKind::CommandSchedule),
+         {componentParam(kTarget, {Family::Periphery, Family::Controller}, "",
+                         "drive, servo or motion control to command (Ref: RCDriver, RCPosControl, RCVelControl or "
+                         "RC2DMotionControl)"),
+          text(kCommands, "",
+               "rows 'time value' (s, then voltage, position or velocity), or 'time linear angular' (s, m/s, rad/s) "
+               "for RC2DMotionControl; times increasing; each holds until the next")},
          {},
-         "Differential drive: linear and angular velocity to two wheel velocities."});
+         "Timed commands to one drive, servo or motion control.",
+         true});
 }
 
 void lowerController(CompileContext& ctx, const Component& c) {
+  const int ci = ctx.indexOf(c);
+  if (ctx.controller_index.count(ci)) return;  // lowered already (a schedule's target, or listed twice)
+  ctx.controller_index[ci] = -1;               // being lowered
+  ControllerDef d;
+  d.key = c.qkey;
+  d.loc = c.loc;
+  bool ok = true;
+  // The actuator behind `param`, which must implement `interface`.
+  auto actuator = [&](LinkParam param, const char* interface) {
+    const Component* t = target(ctx, c, param, interface);
+    const int i = t ? actuatorOf(ctx, c, c.get(param), *t) : -1;
+    if (i < 0) ok = false;
+    d.actuators.push_back(i);
+  };
   switch (static_cast<ControllerKind>(c.type->kind)) {
     case ControllerKind::DriveTest:
-      target(ctx, c, kDrive, "RCDriver");
+      d.kind = ControllerDef::DriveTest;
+      d.period = c.get(kPeriod);
+      d.variation = c.get(kVariation);
+      actuator(kDrive, "RCDriver");
       break;
     case ControllerKind::ServoTest: {
+      d.kind = ControllerDef::ServoTest;
+      d.period = c.get(kPeriod);
+      d.variation = c.get(kVariation);
       const Component* servo = target(ctx, c, kPosControl, "RCPosControl");
       double lo, hi;
-      if (servo && peripheryLimits(*servo, &lo, &hi) && !(std::isfinite(lo) && std::isfinite(hi)))
+      if (servo && peripheryLimits(*servo, &lo, &hi) && !(std::isfinite(lo) && std::isfinite(hi))) {
         ctx.error(c, "RCServoTest moves its servo between MinPos and MaxPos, but " + CompileContext::describe(*servo) +
                          " has an infinite limit");
+        servo = nullptr;
+      }
+      const int i = servo ? actuatorOf(ctx, c, c.get(kPosControl), *servo) : -1;
+      if (i < 0) ok = false;
+      d.actuators.push_back(i);
       break;
     }
     case ControllerKind::TwoWheelMotionControl:
-      target(ctx, c, kControlLeft, "RCVelControl");
-      target(ctx, c, kControlRight, "RCVelControl");
+      d.kind = ControllerDef::TwoWheel;
+      d.wheel_distance = c.get(kWheelDistance);
+      d.variation = c.get(kVariation);
+      actuator(kControlLeft, "RCVelControl");
+      actuator(kControlRight, "RCVelControl");
       break;
+    case ControllerKind::CommandSchedule: {
+      d.kind = ControllerDef::CommandSchedule;
+      const Link& l = c.get(kTarget);
+      if (l.comp < 0) {
+        if (!l.isRef())
+          ctx.error(c,
+                    "parameter 'Target' is required (a Ref to a component implementing RCDriver, RCPosControl, "
+                    "RCVelControl or RC2DMotionControl)");
+        ok = false;
+        break;
+      }
+      const Component& t = ctx.at(l.comp);
+      if (t.type->implements("RC2DMotionControl")) {
+        d.values = 2;
+        lowerController(ctx, t);  // a target listed later is lowered now, so its index is known
+        auto it = ctx.controller_index.find(l.comp);
+        d.target = it == ctx.controller_index.end() ? -1 : it->second;
+        if (d.target < 0) {
+          ok = false;
+        }
+      } else if (t.type->implements("RCDriver") || t.type->implements("RCPosControl") ||
+                 t.type->implements("RCVelControl")) {
+        const int i = actuatorOf(ctx, c, l, t);
+        if (i < 0) ok = false;
+        d.actuators.push_back(i);
+      } else {
+        ctx.error(l, c,
+                  "parameter 'Target' must refer to a component implementing RCDriver, RCPosControl, RCVelControl "
+                  "or RC2DMotionControl, but " +
+                      CompileContext::describe(t) + " does not");
+        ok = false;
+        break;
+      }
+      if (!parseCommands(ctx, c, d.values, &d.commands)) ok = false;
+      break;
+    }
   }
-  ctx.warning(c, "controllers are read but do not run yet");
+  if (!ok) return;
+  ctx.controller_index[ci] = static_cast<int>(ctx.model.controllers.size());
+  ctx.model.controllers.push_back(std::move(d));
 }
 
 }  // namespace simbob

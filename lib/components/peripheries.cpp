@@ -1,7 +1,8 @@
 // PeripheryComponents (guide 6.11): drives, servos and sensors on the joints of a construction,
 // and the socket communicator. Each type names the interfaces it offers to controllers
 // (guide 6.12): RCDriver, RCPosControl, RCVelControl, RCContactSensor.
-// Lowering checks what the guide requires of each; they do not act on the physics yet.
+// Drives and servos lower to Model::actuators (lib/physics/actuators.cpp makes them act); the
+// proximity sensor and the socket communicator are checked but do not act yet.
 #include <cmath>
 #include <limits>
 
@@ -27,6 +28,7 @@ constexpr ValueParam<bool> kIsServer{"IsServer"};
 constexpr ValueParam<int64_t> kPort{"Port"};
 
 constexpr int64_t kMaxPort = 65535;
+constexpr double kPi = 3.14159265358979323846;
 
 PeripheryKind kindOf(const Component& c) { return static_cast<PeripheryKind>(c.type->kind); }
 
@@ -36,23 +38,65 @@ TypeSpec offering(TypeSpec t, std::vector<std::string> interfaces) {
 }
 
 /// Drives and servos: the Joint must be a hinge (angular) or a slider (linear); limits ordered.
-void checkJointDrive(CompileContext& ctx, const Component& c) {
+/// Returns the joint's Model index, or -1 after an error.
+int checkJointDrive(CompileContext& ctx, const Component& c) {
   const Link& jl = c.get(kJoint);
   if (jl.comp < 0) {
     if (!jl.isRef()) ctx.error(c, "parameter 'Joint' is required (a Ref to the hinge or slider joint it drives)");
-    return;
+    return -1;
   }
   const Component& joint = ctx.at(jl.comp);
   JointKind kind;
-  if (joint.type->family != Family::Joint || !jointKindOf(ctx, joint, &kind)) return;  // reported by the loader
-  if (kind != JointKind::Hinge && kind != JointKind::Slider)
+  if (joint.type->family != Family::Joint || !jointKindOf(ctx, joint, &kind)) return -1;  // reported by the loader
+  bool ok = true;
+  if (kind != JointKind::Hinge && kind != JointKind::Slider) {
     ctx.error(jl, c,
               "parameter 'Joint' must be a hinge or slider joint, but " + CompileContext::describe(joint) +
                   " is not (guide 6.11)");
+    ok = false;
+  }
   double lo = c.get(kMinPos), hi = c.get(kMaxPos);
-  if (std::isfinite(lo) && std::isfinite(hi) && lo > hi)
+  if (std::isfinite(lo) && std::isfinite(hi) && lo > hi) {
     ctx.errorAt(c.slotOf(kMaxPos), c,
                 "MinPos (" + formatNumber(lo) + ") is greater than MaxPos (" + formatNumber(hi) + ")");
+    ok = false;
+  }
+  // ODE keeps hinge stops within [-pi, pi] of the start pose.
+  if (kind == JointKind::Hinge && ((std::isfinite(lo) && lo < -kPi) || (std::isfinite(hi) && hi > kPi))) {
+    ctx.error(c, "hinge limits MinPos/MaxPos must lie within [-pi, pi] rad (or be infinite), got " + formatNumber(lo) +
+                     " .. " + formatNumber(hi));
+    ok = false;
+  }
+  if (!ok) return -1;
+  // Joints of the construction are lowered before its peripheries; a joint elsewhere must be too.
+  const int index = ctx.jointIndex(ctx.modelKey(joint));
+  if (index < 0 && !ctx.failedQuietly())
+    ctx.error(jl, c,
+              "parameter 'Joint' refers to " + CompileContext::describe(joint) +
+                  ", which is not built before this periphery: put the periphery in the ChildList of the "
+                  "construction that holds the joint (after it)");
+  return index;
+}
+
+void lowerActuator(CompileContext& ctx, const Component& c, ActuatorDef::Kind kind) {
+  const int joint = checkJointDrive(ctx, c);
+  if (joint < 0) {
+    ctx.recordActuator(ctx.modelKey(c), kFailedActuator);  // controllers referring to it say nothing more
+    return;
+  }
+  ActuatorDef a;
+  a.key = ctx.modelKey(c);
+  a.loc = c.loc;
+  a.kind = kind;
+  a.joint = joint;
+  a.max_power = c.get(kMaxPower);
+  a.max_velocity = c.get(kMaxVelocity);
+  a.min_pos = c.get(kMinPos);
+  a.max_pos = c.get(kMaxPos);
+  if (kind == ActuatorDef::Drive) a.stall = c.get(kStall);
+  if (kind == ActuatorDef::Servo) a.smooth = c.get(kSmooth);
+  ctx.recordActuator(a.key, static_cast<int>(ctx.model.actuators.size()));
+  ctx.model.actuators.push_back(a);
 }
 
 }  // namespace
@@ -73,14 +117,15 @@ void registerPeripheries(Registry& r) {
                   {},
                   "Voltage-controlled drive on a joint."},
                  {"RCDriver"}));
-  r.add(offering({"RCGenericServo",
-                  Family::Periphery,
-                  int(PeripheryKind::GenericServo),
-                  {joint, power, vel, minpos, maxpos,
-                   number(kSmooth, 1.0, "", "velocity reduction near the target", Range::Positive)},
-                  {},
-                  "Position-controlled drive on a joint."},
-                 {"RCPosControl"}));
+  r.add(offering(
+      {"RCGenericServo",
+       Family::Periphery,
+       int(PeripheryKind::GenericServo),
+       {joint, power, vel, minpos, maxpos,
+        number(kSmooth, 1.0, "s", "time constant of the final approach (v = error / Smooth)", Range::Positive)},
+       {},
+       "Position-controlled drive on a joint."},
+      {"RCPosControl"}));
   r.add(offering({"RCGenericVelControlledDrive",
                   Family::Periphery,
                   int(PeripheryKind::VelControlledDrive),
@@ -123,18 +168,23 @@ bool peripheryLimits(const Component& c, double* lo, double* hi) {
 void lowerPeriphery(CompileContext& ctx, const Component& c, const Built& /*parent*/) {
   switch (kindOf(c)) {
     case PeripheryKind::GenericDrive:
+      lowerActuator(ctx, c, ActuatorDef::Drive);
+      break;
     case PeripheryKind::GenericServo:
+      lowerActuator(ctx, c, ActuatorDef::Servo);
+      break;
     case PeripheryKind::VelControlledDrive:
-      checkJointDrive(ctx, c);
+      lowerActuator(ctx, c, ActuatorDef::VelDrive);
       break;
     case PeripheryKind::ProximitySensor:
+      ctx.warning(c, "proximity sensors are read but have no effect yet");
       break;
     case PeripheryKind::LocalSocketCommunicator:
       if (c.get(kPort) > kMaxPort)
         ctx.errorAt(c.slotOf(kPort), c, "parameter 'Port' must be at most 65535, got " + std::to_string(c.get(kPort)));
+      ctx.warning(c, "socket communicators are read but have no effect yet");
       break;
   }
-  ctx.warning(c, "peripheries are read but have no effect on the physics yet");
 }
 
 }  // namespace simbob

@@ -68,7 +68,8 @@ std::unique_ptr<World> World::create(const Model& model, uint32_t seed) {
   createBodies(im, model);
   createGeoms(im, model);
   createJoints(im, model);
-  // Actuators and sensors: createActuators(im, model), createSensors(im, model) go here.
+  createActuators(im, model);
+  // Sensors: createSensors(im, model) goes here.
   return w;
 }
 
@@ -103,6 +104,12 @@ int World::firstBrokenJoint(double limit, double* separation) const {
   }
   return -1;
 }
+
+int World::actuatorCount() const { return static_cast<int>(impl_->actuators.size()); }
+
+void World::setCommand(int actuator, double value) { commandActuator(*impl_, actuator, value); }
+
+double World::driveEffort(int actuator) const { return impl_->actuators[static_cast<size_t>(actuator)].effort; }
 
 int World::firstBadBody(double limit) const {
   // Runs after every step: read ODE's arrays in place. `!(|x| <= limit)` is also true for NaN;

@@ -6,6 +6,7 @@
 //   geoms.cpp     the collision space, geoms and their contact data
 //   joints.cpp    joints and joint state (simbob's sign convention)
 //   contacts.cpp  the near callback: contact joints per the material rules of guide 7.1
+//   actuators.cpp drives, servos and velocity drives on hinge and slider joints
 //   world.cpp     World: create, step, accessors
 //
 // Actuators and sensors join as files of their own: a create function called by World::create
@@ -37,6 +38,17 @@ struct JointInfo {
   double zero;  ///< ODE's position (rad or m) at creation, subtracted so that the start pose reads 0
 };
 
+/// An actuator's definition and its current command (see World::setCommand).
+struct ActuatorState {
+  ActuatorDef def;
+  double command = 0.0;  ///< voltage, target position or target velocity (clamped)
+  bool commanded = false;
+  double effort = 0.0;  ///< Drive: force or torque applied in the last step (simbob's sense)
+  /// The sense of ODE's motor and stops against simbob's: -1, or +1 for a hinge whose parent is
+  /// the world (ODE swaps its bodies and flips its readings but not its motor and stops).
+  double motor_sign = -1.0;
+};
+
 struct WorldImpl {
   dWorldID world = nullptr;
   dSpaceID space = nullptr;
@@ -47,6 +59,7 @@ struct WorldImpl {
   std::vector<GeomInfo> geomInfo;
   std::vector<dJointID> joints;
   std::vector<JointInfo> jointInfo;
+  std::vector<ActuatorState> actuators;
   std::vector<dContact> contactBuffer;  ///< sized max_contacts once; reused by every collision
   int lastContacts = 0;
   bool quickstep = true;
@@ -80,6 +93,12 @@ JointState jointState(const WorldImpl& im, int i);
 /// Distance (m) between where joint i's anchor is on its first and on its second body; 0 for
 /// joints without a shared anchor (slider, fixed).
 double jointSeparation(const WorldImpl& im, int i);
+
+// actuators.cpp
+/// Sets each actuator's stops and appends the per-step drive action to beforeStep.
+void createActuators(WorldImpl& im, const Model& model);
+/// Records a command (clamped as World::setCommand says); the next step acts on it.
+void commandActuator(WorldImpl& im, int i, double value);
 
 // contacts.cpp
 /// Collides the space and creates this step's contact joints (guide 7.1); counts them in lastContacts.

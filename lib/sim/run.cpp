@@ -138,7 +138,11 @@ RunResult runModel(const Model& model, const RunOptions& opts, TrajectoryWriter*
   }
   TrajectorySampler sampler(static_cast<int>(model.bodies.size()), std::max<SimTime>(interval, 1), min_step, writer,
                             opts.on_sample);
-  RunResult res = runParties(model, opts, {&sampler});
+  std::vector<std::unique_ptr<Party>> more;
+  if (opts.make_parties) more = opts.make_parties();
+  std::vector<Party*> parties{&sampler};
+  for (auto& p : more) parties.push_back(p.get());
+  RunResult res = runParties(model, opts, parties);
   res.samples = sampler.samples();
   return res;
 }

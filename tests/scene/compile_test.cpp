@@ -1020,20 +1020,100 @@ TEST_CASE("compile: RCModelWrapGeom is exact for one sphere, cylinder or box and
   checkVec(t.offset.p, {0, 0, 0});
 }
 
-TEST_CASE("compile: peripheries and controllers are kept with a warning", "[scene][compile]") {
-  Scene s = mustLoad(scene("<RCRobot Key=\"Bot\"><Construction><RCConstruction Key=\"C\"><Body>" +
-                           mobile("Base", globalPose("0 0 0 0 0 0")) +
-                           "</Body><ChildList><RCHingeJoint Key=\"J\"><Body>" + mobile("W", localPose("1 0 0 0 0 0")) +
-                           "</Body></RCHingeJoint><RCGenericDrive Key=\"D\"><Joint Ref=\"Bot.C.J\"/></RCGenericDrive>"
-                           "</ChildList></RCConstruction></Construction><ControllerList><RCDriveTest><Drive "
-                           "Ref=\"Bot.C.D\"/></RCDriveTest></ControllerList></RCRobot>"));
+namespace {
+
+// A robot "Bot" whose construction "C" has hinges J (and K) with drives; `drives` and
+// `controllers` are the ChildList tail and the ControllerList.
+std::string robot(const std::string& drives, const std::string& controllers) {
+  return scene("<RCRobot Key=\"Bot\"><Construction><RCConstruction Key=\"C\"><Body>" +
+               mobile("Base", globalPose("0 0 0 0 0 0")) + "</Body><ChildList><RCHingeJoint Key=\"J\"><Body>" +
+               mobile("W", localPose("1 0 0 0 0 0")) + "</Body></RCHingeJoint><RCHingeJoint Key=\"K\"><Body>" +
+               mobile("V", localPose("-1 0 0 0 0 0")) + "</Body></RCHingeJoint>" + drives +
+               "</ChildList></RCConstruction></Construction><ControllerList>" + controllers +
+               "</ControllerList></RCRobot>");
+}
+
+std::string compileErrors(const std::string& text) {
+  Scene s = mustLoad(text);
   Model m;
   Diagnostics d;
+  CHECK_FALSE(compileScene(s, &m, d));
+  return errorText(d);
+}
+
+}  // namespace
+
+TEST_CASE("compile: drives become actuators and controllers ControllerDefs, without warnings", "[scene][compile]") {
+  Diagnostics d;
+  Scene s = mustLoad(robot(
+      "<RCGenericDrive Key=\"D\"><Joint Ref=\"Bot.C.J\"/><MaxPower Value=\"3\"/><MaxVelocity Value=\"4\"/>"
+      "<MinPos Value=\"-1\"/><Stall Value=\"0.5\"/></RCGenericDrive>"
+      "<RCGenericVelControlledDrive Key=\"L\"><Joint Ref=\"Bot.C.J\"/></RCGenericVelControlledDrive>"
+      "<RCGenericVelControlledDrive Key=\"R\"><Joint Ref=\"Bot.C.K\"/></RCGenericVelControlledDrive>",
+      "<RCCommandSchedule Key=\"S\"><Target Ref=\"Bot.M\"/><Commands Value=\"0 1 0; 2 0 0.5\"/></RCCommandSchedule>"
+      "<RCDriveTest><Drive Ref=\"Bot.C.D\"/><Period Value=\"0.02\"/></RCDriveTest>"
+      "<RCTwoWheelMotionControl Key=\"M\"><ControlLeft Ref=\"Bot.C.L\"/><ControlRight Ref=\"Bot.C.R\"/>"
+      "</RCTwoWheelMotionControl>"));
+  Model m;
   REQUIRE(compileScene(s, &m, d));
-  CHECK(m.bodies.size() == 2);
-  CHECK(m.joints.size() == 1);
-  CHECK(m.joints[0].key == "Bot.C.J");
-  CHECK(d.warnings().size() == 2);
+  CHECK(d.warnings().empty());
+  REQUIRE(m.actuators.size() == 3);
+  const ActuatorDef& a = m.actuators[0];
+  CHECK(a.key == "Bot.C.D");
+  CHECK(a.kind == ActuatorDef::Drive);
+  CHECK(a.joint == 0);
+  CHECK(a.max_power == 3);
+  CHECK(a.max_velocity == 4);
+  CHECK(a.min_pos == -1);
+  CHECK(std::isinf(a.max_pos));
+  CHECK(a.stall == 0.5);
+  CHECK(m.actuators[2].kind == ActuatorDef::VelDrive);
+  CHECK(m.actuators[2].joint == 1);
+  // The schedule's target is lowered first, so it comes before the schedule.
+  REQUIRE(m.controllers.size() == 3);
+  CHECK(m.controllers[0].kind == ControllerDef::TwoWheel);
+  CHECK(m.controllers[0].actuators == std::vector<int>{1, 2});
+  CHECK(m.controllers[1].kind == ControllerDef::CommandSchedule);
+  CHECK(m.controllers[1].target == 0);
+  CHECK(m.controllers[1].values == 2);
+  CHECK(m.controllers[1].commands == std::vector<double>{0, 1, 0, 2, 0, 0.5});
+  CHECK(m.controllers[2].kind == ControllerDef::DriveTest);
+  CHECK(m.controllers[2].period == 0.02);
+  CHECK(m.controllers[2].actuators == std::vector<int>{0});
+}
+
+TEST_CASE("compile: command schedule errors name the row", "[scene][compile]") {
+  const std::string drive = "<RCGenericDrive Key=\"D\"><Joint Ref=\"Bot.C.J\"/></RCGenericDrive>";
+  auto sched = [](const std::string& commands) {
+    return "<RCCommandSchedule Key=\"S\"><Target Ref=\"Bot.C.D\"/><Commands Value=\"" + commands +
+           "\"/></RCCommandSchedule>";
+  };
+  CHECK_THAT(compileErrors(robot(drive, sched("0 1; 1 0; 1 0.5"))),
+             Catch::Contains("RCCommandSchedule 'Bot.S': parameter 'Commands': row 3: time 1 s is not after the "
+                             "previous row's 1 s (times must increase strictly)"));
+  CHECK_THAT(compileErrors(robot(drive, sched("0 1 2"))),
+             Catch::Contains("parameter 'Commands' must hold rows of 'time value' (2 numbers each), got 3 numbers"));
+  CHECK_THAT(compileErrors(robot(drive, sched("0 1; -1 0"))), Catch::Contains("row 2: time -1 s must be in [0, 1e9]"));
+  CHECK_THAT(compileErrors(robot(drive, sched("0 x"))), Catch::Contains("parameter 'Commands': "));
+  // A target without a command interface.
+  CHECK_THAT(compileErrors(robot("",
+                                 "<RCCommandSchedule Key=\"S\"><Target><RCDriveTest/></Target>"
+                                 "<Commands Value=\"0 1\"/></RCCommandSchedule>")),
+             Catch::Contains("parameter 'Target' must refer to a component implementing RCDriver, RCPosControl, "
+                             "RCVelControl or RC2DMotionControl, but RCDriveTest 'Bot.S.Target' does not"));
+}
+
+TEST_CASE("compile: a drive outside the construction of its joint is refused clearly", "[scene][compile]") {
+  // The drive sits in another construction listed before the one holding the joint.
+  const std::string text =
+      scene("<RCConstruction Key=\"A\"><Body>" + mobile("P", globalPose("5 0 0 0 0 0")) +
+            "</Body><ChildList><RCGenericDrive Key=\"D\"><Joint Ref=\"B.J\"/></RCGenericDrive></ChildList>"
+            "</RCConstruction><RCConstruction Key=\"B\"><Body>" +
+            mobile("Q", globalPose("0 0 0 0 0 0")) + "</Body><ChildList><RCHingeJoint Key=\"J\"><Body>" +
+            mobile("W", localPose("1 0 0 0 0 0")) + "</Body></RCHingeJoint></ChildList></RCConstruction>");
+  CHECK_THAT(compileErrors(text),
+             Catch::Contains("RCGenericDrive 'A.D': parameter 'Joint' refers to RCHingeJoint 'B.J', which is not "
+                             "built before this periphery"));
 }
 
 TEST_CASE("compile: the example pendulum", "[scene][compile]") {

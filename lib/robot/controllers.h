@@ -1,0 +1,36 @@
+// Private to lib/robot: one factory per controller file, and the periodic timing they share.
+#pragma once
+
+#include <memory>
+
+#include "simbob/clock.h"
+#include "simbob/model.h"
+#include "simbob/run.h"
+
+namespace simbob::robot {
+
+/// Requests at 0, period, 2 period, ... (integer ns, so no drift); the next one after `now`.
+class Periodic {
+ public:
+  explicit Periodic(double period_s);
+  SimTime next(SimTime now);
+
+ private:
+  SimTime period_;
+  SimTime next_ = 0;
+};
+
+/// RC2DMotionControl: what a command schedule calls on a two-wheel controller.
+class MotionControl2D : public Party {
+ public:
+  /// Linear velocity (m/s) and angular velocity (rad/s, counter-clockwise seen from above).
+  virtual void setMotion(double linear, double angular, World& world) = 0;
+};
+
+std::unique_ptr<Party> makeDriveTest(const ControllerDef& c);
+std::unique_ptr<Party> makeServoTest(const ControllerDef& c, const Model& model);
+std::unique_ptr<MotionControl2D> makeTwoWheel(const ControllerDef& c);
+/// `target`: the controller a 2-D schedule commands (nullptr for an actuator schedule).
+std::unique_ptr<Party> makeCommandSchedule(const ControllerDef& c, MotionControl2D* target);
+
+}  // namespace simbob::robot

@@ -1,0 +1,51 @@
+// The parties of a Model's controllers, and the periodic timing of the test controllers.
+#include <algorithm>
+
+#include "robot/controllers.h"
+#include "simbob/robot.h"
+
+namespace simbob {
+
+namespace robot {
+
+Periodic::Periodic(double period_s) : period_(std::max<SimTime>(toSimTime(period_s).value_or(kNever), 1)) {}
+
+SimTime Periodic::next(SimTime now) {
+  if (period_ == kNever || next_ > kNever - period_) return kNever;
+  next_ += period_;
+  if (next_ <= now) next_ = (now / period_ + 1) * period_;  // a grant late by more than a period
+  return next_;
+}
+
+}  // namespace robot
+
+std::vector<std::unique_ptr<Party>> robotParties(const Model& model) {
+  std::vector<std::unique_ptr<Party>> out(model.controllers.size());
+  std::vector<robot::MotionControl2D*> motion(model.controllers.size(), nullptr);
+  // Two-wheel controllers first: a schedule may command one listed after it.
+  for (size_t i = 0; i < model.controllers.size(); ++i)
+    if (model.controllers[i].kind == ControllerDef::TwoWheel) {
+      auto p = robot::makeTwoWheel(model.controllers[i]);
+      motion[i] = p.get();
+      out[i] = std::move(p);
+    }
+  for (size_t i = 0; i < model.controllers.size(); ++i) {
+    const ControllerDef& c = model.controllers[i];
+    switch (c.kind) {
+      case ControllerDef::DriveTest:
+        out[i] = robot::makeDriveTest(c);
+        break;
+      case ControllerDef::ServoTest:
+        out[i] = robot::makeServoTest(c, model);
+        break;
+      case ControllerDef::TwoWheel:
+        break;  // made above
+      case ControllerDef::CommandSchedule:
+        out[i] = robot::makeCommandSchedule(c, c.target >= 0 ? motion[static_cast<size_t>(c.target)] : nullptr);
+        break;
+    }
+  }
+  return out;
+}
+
+}  // namespace simbob

@@ -1,0 +1,67 @@
+// lib/robot end to end: scenes/two_wheel_robot.xml, whose schedule drives the two-wheel
+// controller forward at v = 0.2 m/s (0-2 s), turns it at w = 0.5 rad/s (2-4 s), then stops.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <vector>
+
+#include "scene/scene_helpers.h"
+#include "simbob/robot.h"
+#include "simbob/run.h"
+
+using namespace simbob;
+
+namespace {
+
+struct Track {
+  std::vector<double> t, x, z, yaw;  // chassis (body 0) position and heading about +Y
+  std::vector<double> raw;
+};
+
+Track runRobot(const Model& m) {
+  Track tr;
+  RunOptions o;
+  o.duration = 5;
+  o.sample_interval = 0.5;
+  o.make_parties = [&m] { return robotParties(m); };
+  o.on_sample = [&](double t, const double* p) {
+    tr.t.push_back(t);
+    tr.x.push_back(p[0]);
+    tr.z.push_back(p[2]);
+    // Heading of the chassis's +X axis, counter-clockwise seen from above (about +Y).
+    const double w = p[3], qx = p[4], qy = p[5], qz = p[6];
+    const double fx = 1 - 2 * (qy * qy + qz * qz), fz = 2 * (qx * qz - w * qy);
+    tr.yaw.push_back(std::atan2(-fz, fx));
+    tr.raw.insert(tr.raw.end(), p, p + kPoseSize * m.bodies.size());
+  };
+  RunResult r = runModel(m, o, nullptr);
+  REQUIRE(r.status == RunStatus::Completed);
+  return tr;
+}
+
+}  // namespace
+
+TEST_CASE("robot: a scheduled two-wheel robot drives v t forward and turns w t", "[robot]") {
+  Scene s;
+  Diagnostics d;
+  REQUIRE(loadScene(std::string(SIMBOB_SOURCE_DIR) + "/scenes/two_wheel_robot.xml", testRegistry(), &s, d));
+  Model m;
+  REQUIRE(compileScene(s, &m, d));
+  REQUIRE(m.bodies[0].key == "Bot.Cart.Chassis");
+  const Track tr = runRobot(m);
+  REQUIRE(tr.t.size() == 11);  // 0, 0.5, ..., 5
+  // Forward, once up to speed (the wheels start at rest): x(2) - x(1) = v * 1 s, straight ahead.
+  CHECK(tr.x[4] - tr.x[2] == Approx(0.2).margin(1e-3));
+  CHECK(std::fabs(tr.z[4]) < 1e-6);
+  CHECK(std::fabs(tr.yaw[4]) < 1e-6);
+  // Turning on the spot from 2 s: heading gained over [3 s, 4 s] is w * 1 s = 0.5 rad to the
+  // left (positive). Tolerance 10 %: the caster ball slides sideways against its friction and the
+  // wheels slip a little, so the turn runs about 9 % slow.
+  CHECK(tr.yaw[8] - tr.yaw[6] == Approx(0.5).epsilon(0.1));
+  // Stopped after 4 s: nothing moves between 4.5 s and 5 s.
+  CHECK(tr.x[10] == Approx(tr.x[9]).margin(1e-6));
+  CHECK(tr.yaw[10] == Approx(tr.yaw[9]).margin(1e-6));
+  // Reruns are byte-identical (controllers are fresh parties each run).
+  const Track again = runRobot(m);
+  CHECK(again.raw == tr.raw);
+}

@@ -77,6 +77,7 @@ std::string element(const TypeSpec& t, const std::string& construction_key) {
       if (has("PosControl")) p += "<PosControl Ref=\"Bot.C.S\"/>";
       if (has("ControlLeft")) p += "<ControlLeft Ref=\"Bot.C.V\"/>";
       if (has("ControlRight")) p += "<ControlRight Ref=\"Bot.C.V\"/>";
+      if (has("Target")) p += "<Target Ref=\"Bot.C.D\"/><Commands Value=\"0 0.5; 1 -0.5\"/>";
       break;
     case Family::Camera:
       if (has("Body")) p += "<Body Ref=\"Ball\"/>";

@@ -265,7 +265,7 @@ class Builder {
       return;
     }
     std::filesystem::path p(file);
-    if (p.is_relative()) p = std::filesystem::path(loc.file).parent_path() / p;
+    if (p.is_relative()) p = std::filesystem::path(loc.file.str()).parent_path() / p;
     std::string path = p.lexically_normal().string();
     if (import_stack_.size() >= kMaxImportDepth) {
       diag_.error(at, prefix(what) + "imports nested deeper than " + std::to_string(kMaxImportDepth) + " files");
@@ -396,7 +396,7 @@ class Builder {
   }
 
   Link makeLink(SourceLink& l, const ParamSpec& p, const std::string& default_key, int parent,
-                const std::string& parent_qkey, const std::string& file, const std::string& what) {
+                const std::string& parent_qkey, const FileName& file, const std::string& what) {
     Link link;
     link.loc = {file, l.line};
     if (!l.error.empty()) {
@@ -475,17 +475,18 @@ bool isConnection(Family target) {
 }
 
 void resolveRefs(Scene& scene, Diagnostics& diag) {
-  std::vector<std::string> keys;
-  for (const auto& [k, i] : scene.by_qkey) keys.push_back(k);
+  std::vector<std::string> keys;  // for "did you mean", made on the first unknown Ref
   for (size_t ci = 0; ci < scene.comps.size(); ++ci) {
     Component& c = scene.comps[ci];
     for (size_t pi = 0; pi < c.slots.size(); ++pi) {
       const ParamSpec& p = c.type->params[pi];
       auto resolve = [&](Link& l) {
         if (!l.isRef()) return;
-        auto it = scene.by_qkey.find(l.ref);
+        auto it = scene.by_qkey.find(l.ref.str());
         if (it == scene.by_qkey.end()) {
-          std::string near = didYouMean(l.ref, keys);
+          if (keys.empty())
+            for (const auto& [k, i] : scene.by_qkey) keys.push_back(k);
+          std::string near = didYouMean(l.ref.str(), keys);
           diag.error(l.loc, c.type->name + " '" + c.qkey + "': Ref '" + l.ref + "' names no component" +
                                 (near.empty() ? "" : " (did you mean '" + near + "'?)"));
           return;

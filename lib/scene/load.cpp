@@ -289,7 +289,7 @@ class Builder {
     }
     addFile(path, text);
     int err_line = 0;
-    std::shared_ptr<XmlDoc> doc = parseXml(text, reg_, &err, &err_line);
+    std::shared_ptr<XmlDoc> doc = parseXml(std::move(text), reg_, &err, &err_line);
     if (!doc) {
       diag_.error({path, err_line}, err);
       return;
@@ -566,7 +566,7 @@ void checkCycles(const Scene& scene, Diagnostics& diag) {
   }
 }
 
-bool loadFromText(const std::string& text, const std::string& name, Format format, const Registry& reg, Scene* scene,
+bool loadFromText(std::string text, const std::string& name, Format format, const Registry& reg, Scene* scene,
                   Diagnostics& diag) {
   *scene = Scene{};
   scene->path = name;
@@ -581,7 +581,7 @@ bool loadFromText(const std::string& text, const std::string& name, Format forma
   std::shared_ptr<XmlDoc> xml;
   std::shared_ptr<IniDoc> ini;
   if (format == Format::Xml) {
-    xml = parseXml(text, reg, &err, &err_line);
+    xml = parseXml(std::move(text), reg, &err, &err_line);
     if (!xml) {
       diag.error({name, err_line}, err);
       return false;
@@ -629,7 +629,7 @@ bool loadScene(const std::string& path, const Registry& reg, Scene* scene, Diagn
     return false;
   }
   bool ini = path.size() >= 4 && equalsIgnoreCase(std::string_view(path).substr(path.size() - 4), ".ini");
-  return loadFromText(text, path, ini ? Format::Ini : Format::Xml, reg, scene, diag);
+  return loadFromText(std::move(text), path, ini ? Format::Ini : Format::Xml, reg, scene, diag);
 }
 
 bool loadStructIni(const std::string& path, const Registry& reg, const std::string& struct_type, Scene* holder,

@@ -72,7 +72,7 @@ struct Link {
 };
 
 /// The value of one parameter of one component. Every parameter of every component has one,
-/// so it is kept small (128 bytes): file names are shared, Ref/Macro text is out of line.
+/// so it is kept small (144 bytes): file names are shared, Ref/Macro text is out of line.
 struct Slot {
   Value value;             ///< Value params (the default when !set)
   Link link;               ///< Component and Struct params

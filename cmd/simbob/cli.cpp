@@ -142,7 +142,7 @@ int exitCodeFor(ErrorKind k) {
 namespace {
 std::string place(const Error& e) {
   if (e.loc.file.empty()) return "simbob";
-  return e.loc.line > 0 ? e.loc.file + ":" + std::to_string(e.loc.line) : e.loc.file;
+  return e.loc.line > 0 ? e.loc.file + ":" + std::to_string(e.loc.line) : e.loc.file.str();
 }
 }  // namespace
 

@@ -9,9 +9,44 @@
 
 namespace simbob {
 
+/// A file name kept once per process: copying one copies a pointer, so the thousands of
+/// places a scene records (every component, parameter and link) share one string per file.
+/// Reads as a `const std::string&`. Names stay until the process ends (one per file read).
+class FileName {
+ public:
+  FileName() = default;  ///< ""
+  FileName(const std::string& name) : s_(intern(name)) {}
+  FileName(const char* name) : s_(intern(name)) {}
+
+  const std::string& str() const { return *s_; }
+  operator const std::string&() const { return *s_; }
+  bool empty() const { return s_->empty(); }
+  size_t size() const { return s_->size(); }
+  const char* c_str() const { return s_->c_str(); }
+
+  friend bool operator==(const FileName& a, const FileName& b) { return a.s_ == b.s_; }
+  friend bool operator!=(const FileName& a, const FileName& b) { return a.s_ != b.s_; }
+  friend bool operator==(const FileName& a, const std::string& b) { return *a.s_ == b; }
+  friend bool operator==(const std::string& a, const FileName& b) { return a == *b.s_; }
+  friend bool operator==(const FileName& a, const char* b) { return *a.s_ == b; }
+  friend bool operator!=(const FileName& a, const std::string& b) { return *a.s_ != b; }
+  friend bool operator!=(const FileName& a, const char* b) { return *a.s_ != b; }
+  friend std::string operator+(const FileName& a, const std::string& b) { return *a.s_ + b; }
+  friend std::string operator+(const FileName& a, const char* b) { return *a.s_ + b; }
+  friend std::string operator+(const FileName& a, char b) { return *a.s_ + b; }
+  friend std::string operator+(const std::string& a, const FileName& b) { return a + *b.s_; }
+  friend std::string operator+(std::string&& a, const FileName& b) { return std::move(a) + *b.s_; }
+  friend std::string operator+(const char* a, const FileName& b) { return a + *b.s_; }
+
+ private:
+  static const std::string* intern(const std::string& name);
+  static const std::string* empty_();
+  const std::string* s_ = empty_();
+};
+
 /// Where something came from: a file and a 1-based line (0 = unknown line).
 struct SourceLoc {
-  std::string file;
+  FileName file;
   int line = 0;
 };
 

@@ -14,24 +14,71 @@
 
 namespace simbob {
 
+/// Text that is usually empty (a Link's Ref or Macro): one pointer, on the heap only when set,
+/// so that the Link in every slot stays small. Reads as a `const std::string&`.
+class RareText {
+ public:
+  RareText() = default;
+  RareText(const std::string& s) { assign(s); }
+  RareText(const char* s) { assign(s); }
+  RareText(const RareText& o) { assign(o.str()); }
+  RareText(RareText&& o) noexcept = default;
+  RareText& operator=(const RareText& o) {
+    if (this != &o) assign(o.str());
+    return *this;
+  }
+  RareText& operator=(RareText&& o) noexcept = default;
+  RareText& operator=(const std::string& s) {
+    assign(s);
+    return *this;
+  }
+
+  const std::string& str() const { return p_ ? *p_ : empty_(); }
+  operator const std::string&() const { return str(); }
+  bool empty() const { return !p_; }
+
+  friend bool operator==(const RareText& a, const std::string& b) { return a.str() == b; }
+  friend bool operator==(const RareText& a, const char* b) { return a.str() == b; }
+  friend bool operator!=(const RareText& a, const std::string& b) { return a.str() != b; }
+  friend std::string operator+(const RareText& a, const std::string& b) { return a.str() + b; }
+  friend std::string operator+(const RareText& a, const char* b) { return a.str() + b; }
+  friend std::string operator+(const std::string& a, const RareText& b) { return a + b.str(); }
+  friend std::string operator+(std::string&& a, const RareText& b) { return std::move(a) + b.str(); }
+  friend std::string operator+(const char* a, const RareText& b) { return a + b.str(); }
+
+ private:
+  void assign(const std::string& s) {
+    if (s.empty())
+      p_.reset();
+    else
+      p_ = std::make_unique<std::string>(s);
+  }
+  static const std::string& empty_() {
+    static const std::string e;
+    return e;
+  }
+  std::unique_ptr<std::string> p_;
+};
+
 /// One component-valued slot: an inline component, a Ref, or a Macro (which creates one).
 struct Link {
-  int comp = -1;      ///< component index (inline, macro-created, or resolved Ref target)
-  std::string ref;    ///< Ref text as written ("" if none)
-  std::string macro;  ///< Macro name as written ("" if none)
   SourceLoc loc;
+  int comp = -1;   ///< component index (inline, macro-created, or resolved Ref target)
+  RareText ref;    ///< Ref text as written ("" if none)
+  RareText macro;  ///< Macro name as written ("" if none)
 
   bool empty() const { return comp < 0 && ref.empty(); }
   bool isRef() const { return !ref.empty(); }
 };
 
-/// The value of one parameter of one component.
+/// The value of one parameter of one component. Every parameter of every component has one,
+/// so it is kept small (144 bytes): file names are shared, Ref/Macro text is out of line.
 struct Slot {
-  bool set = false;        ///< written in the file (else the default applies)
   Value value;             ///< Value params (the default when !set)
   Link link;               ///< Component and Struct params
   std::vector<Link> list;  ///< List params
   SourceLoc loc;
+  bool set = false;  ///< written in the file (else the default applies)
 };
 
 struct Component {

@@ -3,8 +3,11 @@
 // write(parse(s)) may normalise the spelling, but parse(write(v)) == v bit for bit.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <initializer_list>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -35,9 +38,52 @@ struct Pose {
   bool operator==(const Pose& o) const { return pos == o.pos && euler_deg == o.euler_deg; }
 };
 
+/// The 16 numbers of a Matrix4, kept on the heap: every parameter slot holds a Value, and a
+/// Value is as large as its largest alternative, so 128 bytes inline would cost every slot.
+/// Behaves as a std::array<double, 16> (indexing, data, iteration, ==). A moved-from one reads
+/// as the identity.
+class Matrix4Elements {
+ public:
+  using Array = std::array<double, 16>;
+  Matrix4Elements(std::initializer_list<double> v) : p_(std::make_unique<Array>()) {
+    std::copy_n(v.begin(), std::min<size_t>(v.size(), 16), p_->begin());
+  }
+  Matrix4Elements(const Array& a) : p_(std::make_unique<Array>(a)) {}
+  Matrix4Elements(const Matrix4Elements& o) : p_(std::make_unique<Array>(o.array())) {}
+  Matrix4Elements(Matrix4Elements&& o) noexcept = default;
+  Matrix4Elements& operator=(const Matrix4Elements& o) {
+    if (this != &o) p_ = std::make_unique<Array>(o.array());
+    return *this;
+  }
+  Matrix4Elements& operator=(Matrix4Elements&& o) noexcept = default;
+
+  const Array& array() const { return p_ ? *p_ : identity(); }
+  Array& array() {
+    if (!p_) p_ = std::make_unique<Array>(identity());
+    return *p_;
+  }
+  double operator[](size_t i) const { return array()[i]; }
+  double& operator[](size_t i) { return array()[i]; }
+  const double* data() const { return array().data(); }
+  double* data() { return array().data(); }
+  const double* begin() const { return data(); }
+  const double* end() const { return data() + 16; }
+  double* begin() { return data(); }
+  double* end() { return data() + 16; }
+  static constexpr size_t size() { return 16; }
+  bool operator==(const Matrix4Elements& o) const { return array() == o.array(); }
+
+ private:
+  static const Array& identity() {
+    static const Array i{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    return i;
+  }
+  std::unique_ptr<Array> p_;
+};
+
 /// Row-major 4x4 matrix.
 struct Matrix4 {
-  std::array<double, 16> m{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  Matrix4Elements m{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
   bool operator==(const Matrix4& o) const { return m == o.m; }
 };
 

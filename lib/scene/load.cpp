@@ -210,9 +210,12 @@ class Builder {
           std::vector<SourceLink> items = src ? src->list(p.name, &present, &line) : std::vector<SourceLink>{};
           slot.set = present;
           slot.loc = {loc.file, line};
-          for (auto& item : items) {
-            std::string default_key = item.type;
-            slot.list.push_back(makeLink(item, p, default_key, index, qkey, loc.file, what));
+          slot.list.reserve(items.size());
+          const size_t comps_before = scene_.comps.size();
+          for (size_t i = 0; i < items.size(); ++i) {
+            if (i == kEstimateAfter) reserveComponents(comps_before, i, items.size());
+            std::string default_key = items[i].type;
+            slot.list.push_back(makeLink(items[i], p, default_key, index, qkey, loc.file, what));
           }
           break;
         }
@@ -251,7 +254,7 @@ class Builder {
       return;
     }
     std::filesystem::path p(file);
-    if (p.is_relative()) p = std::filesystem::path(loc.file).parent_path() / p;
+    if (p.is_relative()) p = std::filesystem::path(loc.file.str()).parent_path() / p;
     std::string path = p.lexically_normal().string();
     if (too_big_) return;
     if (++imports_ > kMaxImports) {
@@ -282,7 +285,7 @@ class Builder {
     }
     addFile(path, text);
     int err_line = 0;
-    std::shared_ptr<XmlDoc> doc = parseXml(text, reg_, &err, &err_line);
+    std::shared_ptr<XmlDoc> doc = parseXml(std::move(text), reg_, &err, &err_line);
     if (!doc) {
       diag_.error({path, err_line}, err);
       return;
@@ -323,6 +326,7 @@ class Builder {
   }
 
   void addFile(const std::string& path, const std::string& text) {
+    text_bytes_ += text.size();
     scene_.files.push_back(path);
     hash_ = fnv1a(hash_, text);
     scene_.content_hash = hex64(hash_);
@@ -360,6 +364,15 @@ class Builder {
     return true;
   }
 
+  // A long list (a scene's ComponentList) adds about as many components per item as its first
+  // items did: reserve for the rest once, with a quarter to spare, instead of letting comps double
+  // (and be copied) near its largest. Every component takes some text, which caps the guess.
+  void reserveComponents(size_t comps_before, size_t done, size_t total) {
+    const size_t per_item = (scene_.comps.size() - comps_before + done - 1) / done;
+    const size_t want = scene_.comps.size() + per_item * (total - done) * 5 / 4;
+    scene_.comps.reserve(std::min(want, scene_.comps.size() + text_bytes_ / kMinComponentBytes));
+  }
+
   void registerKey(int index) {
     const Component& c = scene_.at(index);
     // Below a component whose key was a duplicate every key repeats too: report the first only.
@@ -390,7 +403,7 @@ class Builder {
   }
 
   Link makeLink(SourceLink& l, const ParamSpec& p, const std::string& default_key, int parent,
-                const std::string& parent_qkey, const std::string& file, const std::string& what) {
+                const std::string& parent_qkey, const FileName& file, const std::string& what) {
     Link link;
     link.loc = {file, l.line};
     if (!l.error.empty()) {
@@ -456,6 +469,9 @@ class Builder {
   Diagnostics& diag_;
   std::vector<std::string> import_stack_;
   uint64_t hash_ = 1469598103934665603ull;
+  size_t text_bytes_ = 0;                           // of every file read
+  static constexpr size_t kEstimateAfter = 16;      // list items built before reserving for the rest
+  static constexpr size_t kMinComponentBytes = 16;  // text a component takes at least ("<A Macro=\"B\"/>")
   int depth_ = 0;
   int imports_ = 0;
   bool nesting_reported_ = false;
@@ -472,17 +488,18 @@ bool isConnection(Family target) {
 }
 
 void resolveRefs(Scene& scene, Diagnostics& diag) {
-  std::vector<std::string> keys;
-  for (const auto& [k, i] : scene.by_qkey) keys.push_back(k);
+  std::vector<std::string> keys;  // for "did you mean", made on the first unknown Ref
   for (size_t ci = 0; ci < scene.comps.size(); ++ci) {
     Component& c = scene.comps[ci];
     for (size_t pi = 0; pi < c.slots.size(); ++pi) {
       const ParamSpec& p = c.type->params[pi];
       auto resolve = [&](Link& l) {
         if (!l.isRef()) return;
-        auto it = scene.by_qkey.find(l.ref);
+        auto it = scene.by_qkey.find(l.ref.str());
         if (it == scene.by_qkey.end()) {
-          std::string near = didYouMean(l.ref, keys);
+          if (keys.empty())
+            for (const auto& [k, i] : scene.by_qkey) keys.push_back(k);
+          std::string near = didYouMean(l.ref.str(), keys);
           diag.error(l.loc, c.type->name + " '" + c.qkey + "': Ref '" + l.ref + "' names no component" +
                                 (near.empty() ? "" : " (did you mean '" + near + "'?)"));
           return;
@@ -562,7 +579,7 @@ void checkCycles(const Scene& scene, Diagnostics& diag) {
   }
 }
 
-bool loadFromText(const std::string& text, const std::string& name, Format format, const Registry& reg, Scene* scene,
+bool loadFromText(std::string text, const std::string& name, Format format, const Registry& reg, Scene* scene,
                   Diagnostics& diag) {
   *scene = Scene{};
   scene->path = name;
@@ -577,7 +594,7 @@ bool loadFromText(const std::string& text, const std::string& name, Format forma
   std::shared_ptr<XmlDoc> xml;
   std::shared_ptr<IniDoc> ini;
   if (format == Format::Xml) {
-    xml = parseXml(text, reg, &err, &err_line);
+    xml = parseXml(std::move(text), reg, &err, &err_line);
     if (!xml) {
       diag.error({name, err_line}, err);
       return false;
@@ -627,7 +644,7 @@ bool loadScene(const std::string& path, const Registry& reg, Scene* scene, Diagn
     return false;
   }
   bool ini = path.size() >= 4 && equalsIgnoreCase(std::string_view(path).substr(path.size() - 4), ".ini");
-  return loadFromText(text, path, ini ? Format::Ini : Format::Xml, reg, scene, diag);
+  return loadFromText(std::move(text), path, ini ? Format::Ini : Format::Xml, reg, scene, diag);
 }
 
 bool loadStructIni(const std::string& path, const Registry& reg, const std::string& struct_type, Scene* holder,

@@ -61,9 +61,10 @@ class Source {
 
 class Registry;
 
-/// Parse XML text; the registry tells type elements from wrapper elements in lists.
+/// Parse XML text; the registry tells type elements from wrapper elements in lists. The document
+/// keeps `text` and is parsed in place (no second copy of a large scene).
 struct XmlDoc;
-std::shared_ptr<XmlDoc> parseXml(const std::string& text, const Registry& reg, std::string* error, int* error_line);
+std::shared_ptr<XmlDoc> parseXml(std::string text, const Registry& reg, std::string* error, int* error_line);
 std::unique_ptr<Source> xmlRoot(const std::shared_ptr<XmlDoc>& doc, std::string* root_name);
 /// The document node itself, whose one parameter is the root element: imports read
 /// component("Body") / component("Joint") / list("RefList") from it.

@@ -1,5 +1,6 @@
 // XML format (guide 4.2) as a Source: <Name Value=".."/>, type elements with Key, Ref, Macro.
 #include <algorithm>
+#include <cstring>
 #include <set>
 #include <unordered_set>
 #include <string_view>
@@ -212,14 +213,16 @@ class XmlSource : public Source {
 
 }  // namespace
 
-std::shared_ptr<XmlDoc> parseXml(const std::string& text, const Registry& reg, std::string* error, int* error_line) {
+std::shared_ptr<XmlDoc> parseXml(std::string text, const Registry& reg, std::string* error, int* error_line) {
   auto d = std::make_shared<XmlDoc>();
-  d->text = text;
+  d->text = std::move(text);
   d->reg = &reg;
-  for (size_t i = 0; i < d->text.size(); ++i)
-    if (d->text[i] == '\n') d->newlines.push_back(i);
+  const char* const begin = d->text.data();
+  const char* const end = begin + d->text.size();
+  for (const char* p = begin; (p = static_cast<const char*>(std::memchr(p, '\n', static_cast<size_t>(end - p)))); ++p)
+    d->newlines.push_back(static_cast<size_t>(p - begin));
   pugi::xml_parse_result res =
-      d->doc.load_buffer(d->text.data(), d->text.size(), pugi::parse_default, pugi::encoding_utf8);
+      d->doc.load_buffer_inplace(d->text.data(), d->text.size(), pugi::parse_default, pugi::encoding_utf8);
   if (!res) {
     auto off = static_cast<size_t>(std::max<ptrdiff_t>(0, res.offset));
     *error_line =

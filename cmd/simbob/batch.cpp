@@ -127,6 +127,7 @@ pid_t startWorker(const Job& j, const BatchArgs& a) {
     close(fd);
   }
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (auto& s : args) argv.push_back(s.data());
   argv.push_back(nullptr);
   execv("/proc/self/exe", argv.data());

@@ -48,7 +48,7 @@ struct Log {
   int close();
 
  private:
-  void write(const std::string& line, bool to_stderr);
+  void write(const std::string& raw, bool to_stderr);
 };
 
 extern Log g_log;

@@ -43,8 +43,8 @@ std::vector<NamedPath> runOutputs(const RunArgs& a);
 /// What is wrong with run options beyond their syntax ("" if nothing): time ranges, --out.
 std::string runArgsProblem(const RunArgs& a);
 
-int cmdCheck(const std::string& scene, const Common& common);
-int cmdDump(const std::string& scene, const std::string& format, const Common& common);
+int cmdCheck(const std::string& path, const Common& common);
+int cmdDump(const std::string& path, const std::string& format, const Common& common);
 int cmdTypes(bool markdown, const Registry& reg);
 
 struct CompareArgs {

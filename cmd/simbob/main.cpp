@@ -45,7 +45,8 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
 
 }  // namespace simbob::cli
 
-int main(int argc, char** argv) {
+// CLI11 builds its options before the try below; an exception there is a bug worth a crash.
+int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   CLI::App app{"simbob: headless batch simulator for mobile robots (Simulator Bob scenes on ODE)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("simbob ") + SIMBOB_VERSION);

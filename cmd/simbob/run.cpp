@@ -33,7 +33,7 @@ class Progress {
     if (!enabled_) return;
     double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     if (wall < 1.0) return;  // runs shorter than a second print no bar
-    int pct = static_cast<int>(100.0 * t / duration_ + 0.5);
+    int pct = static_cast<int>(std::lround(100.0 * t / duration_));
     int bar = pct * 30 / 100;
     std::fprintf(stderr, "\r[%.*s%*s] %3d%% t=%.2f/%.2f s", bar, "##############################", 30 - bar, "", pct, t,
                  duration_);
@@ -107,7 +107,9 @@ bool checkDeterminism(const Model& model, const RunOptions& base, const std::vec
     const double* q = &first_poses[sample * n * kPoseSize];
     for (size_t b = 0; b < n && !differ; ++b)
       for (size_t k = 0; k < kPoseSize; ++k)
-        if (std::memcmp(&p[b * kPoseSize + k], &q[b * kPoseSize + k], sizeof(double)) != 0) {
+        // Bitwise on purpose: determinism means the same bits (-0.0 vs 0.0, NaN payloads).
+        if (std::memcmp(&p[b * kPoseSize + k], &q[b * kPoseSize + k], sizeof(double)) != 0) {  // NOLINT
+
           differ = true;
           double dist = std::sqrt(std::pow(p[b * 7] - q[b * 7], 2) + std::pow(p[b * 7 + 1] - q[b * 7 + 1], 2) +
                                   std::pow(p[b * 7 + 2] - q[b * 7 + 2], 2));

@@ -78,10 +78,10 @@ std::string quoteInput(std::string_view text, size_t max_bytes = 80);
 class Diagnostics {
  public:
   void error(SourceLoc loc, std::string message, ErrorKind kind = ErrorKind::InvalidInput) {
-    errors_.push_back({kind, std::move(loc), std::move(message)});
+    errors_.push_back({kind, loc, std::move(message)});
   }
   void warning(SourceLoc loc, std::string message) {
-    warnings_.push_back({ErrorKind::InvalidInput, std::move(loc), std::move(message)});
+    warnings_.push_back({ErrorKind::InvalidInput, loc, std::move(message)});
   }
   bool ok() const { return errors_.empty(); }
   const std::vector<Error>& errors() const { return errors_; }

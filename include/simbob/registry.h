@@ -174,9 +174,9 @@ namespace detail {
 ParamSpec valueParam(const char* name, ValueType type, Value def, std::string unit, std::string doc, Range range);
 }
 template <class T>
-ParamSpec valueParam(ValueParam<T> name, ValueType type, Value def, std::string unit, std::string doc,
-                     Range range = Range::Any) {
-  return detail::valueParam(name.name, type, std::move(def), std::move(unit), std::move(doc), range);
+ParamSpec valueParam(ValueParam<T> name, ValueType type, const Value& def, const std::string& unit,
+                     const std::string& doc, Range range = Range::Any) {
+  return detail::valueParam(name.name, type, def, unit, doc, range);
 }
 ParamSpec enumParam(EnumParam name, ValueType type, const EnumTable* table, uint32_t def, std::string doc);
 ParamSpec componentParam(LinkParam name, std::vector<Family> families, std::string default_type, std::string doc);

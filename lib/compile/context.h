@@ -173,25 +173,24 @@ ModelShape modelShape(const Component& model);
 bool lowerInertia(CompileContext& ctx, const Link& l, const Component& owner, size_t first_geom, BodyDef* b);
 /// bodies.cpp: a body component (memoised: a body Ref'd twice is built once), `parent` the
 /// frame local coordinates refer to (nullptr at the top level).
-Built lowerBody(CompileContext& ctx, int comp, const Transform* parent);
+Built lowerBody(CompileContext& ctx, int ci, const Transform* parent);
 /// clones.cpp: RCImportBody and RigidBodyClone (a rigid copy of another body's subtree).
 Built lowerImportBody(CompileContext& ctx, const Component& c, const Transform* parent);
 Built lowerClone(CompileContext& ctx, const Component& c, const Transform* parent);
 bool isClone(const Component& c);
 /// joints.cpp: a joint of a construction whose root is `parent`; the overrides come from an
 /// RCImportJoint's own Pose and Body.
-void lowerJoint(CompileContext& ctx, int comp, const Built& parent, const Link* pose_override,
-                const Link* body_override);
+void lowerJoint(CompileContext& ctx, int ji, const Built& parent, const Link* pose_override, const Link* body_override);
 /// joints.cpp: the kind of a joint component (following RCImportJoint); false if unknown.
 bool jointKindOf(const CompileContext& ctx, const Component& joint, JointKind* kind);
 /// peripheries.cpp: a periphery in a construction's ChildList (after its joints).
 void lowerPeriphery(CompileContext& ctx, const Component& c, const Built& parent);
 /// peripheries.cpp: the position limits (m or rad; infinite: none) of a drive or servo.
-bool peripheryLimits(const Component& periphery, double* lo, double* hi);
+bool peripheryLimits(const Component& c, double* lo, double* hi);
 /// controllers.cpp: a controller in an RCRobot's ControllerList.
 void lowerController(CompileContext& ctx, const Component& c);
 /// globals.cpp: a GlobalSimComponent of the ComponentList.
-void lowerGlobal(CompileContext& ctx, int comp);
+void lowerGlobal(CompileContext& ctx, int gi);
 /// cameras.cpp: checks of a camera of the CameraList.
 void lowerCamera(CompileContext& ctx, int comp);
 

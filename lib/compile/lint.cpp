@@ -335,7 +335,14 @@ class Linter {
       return placed_[a].lo[0] < placed_[b].lo[0] || (placed_[a].lo[0] == placed_[b].lo[0] && a < b);
     });
     std::set<std::pair<int, int>> reported;
+    // Thousands of coincident bodies overlap pairwise: stop looking once the point is made.
+    constexpr size_t kMaxOverlapPairs = 10000;
     for (size_t oi = 0; oi < order.size(); ++oi) {
+      if (reported.size() >= kMaxOverlapPairs) {
+        d_.warning({}, "stopped looking for overlaps after " + std::to_string(kMaxOverlapPairs) +
+                           " overlapping pairs of bodies");
+        return;
+      }
       const Placed& a = placed_[order[oi]];
       for (size_t oj = oi + 1; oj < order.size(); ++oj) {
         const Placed& b = placed_[order[oj]];

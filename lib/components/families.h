@@ -38,24 +38,24 @@ constexpr ValueParam<std::string> kExtensionFolderParam{"ExtensionFolder"};
 constexpr ValueParam<std::string> kTextureFolderParam{"TextureFolder"};
 
 // Short forms for the parameter tables; each takes the parameter's typed name.
-inline ParamSpec number(ValueParam<double> name, double def, std::string unit, std::string doc,
+inline ParamSpec number(ValueParam<double> name, double def, const std::string& unit, const std::string& doc,
                         Range range = Range::Any) {
-  return valueParam(name, ValueType::Number, def, std::move(unit), std::move(doc), range);
+  return valueParam(name, ValueType::Number, def, unit, doc, range);
 }
-inline ParamSpec integer(ValueParam<int64_t> name, int64_t def, std::string doc, Range range = Range::Any) {
-  return valueParam(name, ValueType::Int, def, "", std::move(doc), range);
+inline ParamSpec integer(ValueParam<int64_t> name, int64_t def, const std::string& doc, Range range = Range::Any) {
+  return valueParam(name, ValueType::Int, def, "", doc, range);
 }
-inline ParamSpec flag(ValueParam<bool> name, bool def, std::string doc) {
-  return valueParam(name, ValueType::Bool, def, "", std::move(doc));
+inline ParamSpec flag(ValueParam<bool> name, bool def, const std::string& doc) {
+  return valueParam(name, ValueType::Bool, def, "", doc);
 }
-inline ParamSpec text(ValueParam<std::string> name, std::string def, std::string doc) {
-  return valueParam(name, ValueType::String, std::move(def), "", std::move(doc));
+inline ParamSpec text(ValueParam<std::string> name, const std::string& def, const std::string& doc) {
+  return valueParam(name, ValueType::String, def, "", doc);
 }
-inline ParamSpec triple(ValueParam<Triple> name, Triple def, std::string unit, std::string doc) {
-  return valueParam(name, ValueType::Triple, def, std::move(unit), std::move(doc));
+inline ParamSpec triple(ValueParam<Triple> name, Triple def, const std::string& unit, const std::string& doc) {
+  return valueParam(name, ValueType::Triple, def, unit, doc);
 }
-inline ParamSpec color(ValueParam<Color> name, Color def, std::string doc) {
-  return valueParam(name, ValueType::Color, def, "", std::move(doc));
+inline ParamSpec color(ValueParam<Color> name, Color def, const std::string& doc) {
+  return valueParam(name, ValueType::Color, def, "", doc);
 }
 inline Color rgba(double r, double g, double b, double a = 1.0) { return Color{{r, g, b, a}, true}; }
 inline Color noColor() { return Color{{0, 0, 0, 1}, false}; }

@@ -85,7 +85,8 @@ void createGeoms(WorldImpl& im, const Model& model) {
       dGeomSetPosition(g, gd.offset.p[0], gd.offset.p[1], gd.offset.p[2]);
       dGeomSetQuaternion(g, q);
     }
-    dGeomSetData(g, reinterpret_cast<void*>(static_cast<intptr_t>(gi)));
+    // ODE's user data is a pointer; the geom's index travels in it (read back in contacts.cpp).
+    dGeomSetData(g, reinterpret_cast<void*>(static_cast<intptr_t>(gi)));  // NOLINT(performance-no-int-to-ptr)
     const MaterialDef& mat = model.materials[static_cast<size_t>(gd.material)];
     im.geomInfo.push_back({mat.friction, mat.bounceness, mat.min_bounce_vel, gd.sensor});
     im.geoms.push_back(g);

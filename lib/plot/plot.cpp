@@ -78,10 +78,10 @@ struct Series {
   std::string label;
 };
 
-void setError(Error* err, ErrorKind kind, std::string file, std::string message) {
+void setError(Error* err, ErrorKind kind, const std::string& file, std::string message) {
   if (!err) return;
   err->kind = kind;
-  err->loc.file = std::move(file);
+  err->loc.file = file;
   err->loc.line = 0;
   err->message = std::move(message);
 }

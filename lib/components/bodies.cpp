@@ -34,6 +34,17 @@ constexpr LinkParam kSkin{"Skin"};
 constexpr LinkParam kBody{"Body"};
 constexpr ListParam kChildList{"ChildList"};
 
+/// Appends a mobile body to the Model under its key; what its parent joint needs of it.
+Built addMobileBody(CompileContext& ctx, const BodyDef& b) {
+  Built out;
+  out.index = static_cast<int>(ctx.model.bodies.size());
+  out.frame = b.pose;
+  out.ok = true;
+  ctx.model.bodies.push_back(b);
+  ctx.recordBody(b.key, out.index);
+  return out;
+}
+
 Built rod(CompileContext& ctx, const Component& c, const Transform* parent) {
   Built out;
   Transform p1, p2;
@@ -67,12 +78,7 @@ Built rod(CompileContext& ctx, const Component& c, const Transform* parent) {
   b.mass = c.get(kMass);
   for (int k = 0; k < 9; ++k) b.inertia[k] = mp.inertia[k] * b.mass / mp.volume;
   ctx.model.geoms.push_back(g);
-  ctx.model.bodies.push_back(b);
-  ctx.recordBody(b.key, index);
-  out.index = index;
-  out.frame = b.pose;
-  out.ok = true;
-  return out;
+  return addMobileBody(ctx, b);
 }
 
 Built lowerUncached(CompileContext& ctx, int ci, const Transform* parent) {
@@ -100,12 +106,7 @@ Built lowerUncached(CompileContext& ctx, int ci, const Transform* parent) {
       lowerGeom(ctx, c.get(kGeom), t, Transform{});
       // A bad inertia is reported and the body kept, so that what hangs on it is checked too.
       lowerInertia(ctx, c.get(kInertia), c, first_geom, &b);
-      ctx.model.bodies.push_back(b);
-      ctx.recordBody(b.key, index);
-      out.index = index;
-      out.frame = b.pose;
-      out.ok = true;
-      return out;
+      return addMobileBody(ctx, b);
     }
     case BodyKind::Rod:
       return rod(ctx, c, parent);

@@ -18,7 +18,6 @@ using namespace simbob::test;
 namespace {
 
 constexpr SimTime kMs = 1000000;  // ns
-constexpr SimTime kUs = 1000;     // ns
 
 using Grants = std::vector<std::pair<std::string, SimTime>>;
 

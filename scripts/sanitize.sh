@@ -19,6 +19,8 @@ bash scripts/deps.sh test
 # ASan's default leak check stays on; a failing check stops with a stack trace.
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+# Leaks of third-party libraries that simbob cannot free (each explained in the file).
+export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan.supp:print_suppressions=0}"
 
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DSIMBOB_SANITIZE=ON -DSIMBOB_FUZZ=ON -DSIMBOB_WERROR=ON "$@" >/dev/null

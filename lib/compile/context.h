@@ -157,8 +157,6 @@ bool collectModelParts(CompileContext& ctx, const Link& root, const Transform& b
                        std::vector<ModelPart>* out);
 /// models.cpp: checks a body's model tree (a root model's Pose must be local, guide 6.3).
 void checkModelTree(CompileContext& ctx, const Link& root);
-/// models.cpp: axis-aligned bounds of one model in its own frame (false: it has no extent).
-bool modelBounds(const Component& model, Vec3* center, Vec3* half);
 /// models.cpp: the primitive a model is, in its own frame: Box (size = extents, at center),
 /// Ellipsoid (size = radii), Cylinder/Capsule/Cone (size = radius, length along Z), Plane
 /// (size = extensions), None (nothing visible).

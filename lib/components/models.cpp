@@ -170,41 +170,6 @@ void checkModelTree(CompileContext& ctx, const Link& root) {
               "coordinates have no meaning for it (guide 6.3)");
 }
 
-bool modelBounds(const Component& m, Vec3* center, Vec3* half) {
-  *center = {0, 0, 0};
-  switch (kindOf(m)) {
-    case ModelKind::Cuboid: {
-      const Cuboid& cb = m.get(kCuboid);
-      for (int i = 0; i < 3; ++i) {
-        (*center)[i] = (cb.a[i] + cb.b[i]) / 2;
-        (*half)[i] = std::fabs(cb.b[i] - cb.a[i]) / 2;
-      }
-      return true;
-    }
-    case ModelKind::Ellipsoid:
-      *half = {m.get(kRadiusX), m.get(kRadiusY), m.get(kRadiusZ)};
-      return true;
-    case ModelKind::Cylinder: {
-      double r = m.get(kRadius), l = m.get(kLength);
-      bool capped = (m.get(kComponentMask) & kCapBits) != 0;
-      *half = {r, r, l / 2 + (capped ? r : 0)};
-      return true;
-    }
-    case ModelKind::Cone: {
-      double r = m.get(kRadius), l = m.get(kLength);
-      *half = {r, r, l / 2};
-      *center = {0, 0, l / 2};
-      return true;
-    }
-    case ModelKind::Plane:
-      *half = {m.get(kExtensionX) / 2, m.get(kExtensionY) / 2, 0};
-      return true;
-    case ModelKind::Empty:
-      return false;
-  }
-  return false;
-}
-
 ModelShape modelShape(const Component& m) {
   ModelShape s;
   switch (kindOf(m)) {

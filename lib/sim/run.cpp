@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <vector>
 
@@ -63,10 +64,11 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
     const auto took = std::chrono::steady_clock::now() - started;
     if (took <= limit_d) return false;
     res.status = RunStatus::Failed;
+    char held[32];
+    std::snprintf(held, sizeof held, "%.3g", std::chrono::duration<double>(took).count());
     res.error = {ErrorKind::Unavailable, p.loc,
-                 p.name + " held the simulation for " +
-                     formatNumber(std::round(std::chrono::duration<double>(took).count() * 1000) / 1000) +
-                     " s of wall-clock time at t=" + formatNumber(toSeconds(clock.now())) +
+                 p.name + " held the simulation for " + held + " s of wall-clock time at t=" +
+                     formatNumber(toSeconds(clock.now())) +
                      " s, longer than MaxAccessTime (" + formatNumber(limit) + " s)"};
     return true;
   };

@@ -267,7 +267,7 @@ def two_wheel_robot(c):
     c.near("forward between 1 s and 2 s (v = 0.2 m/s)", x(2) - x(1), 0.2, 2e-3)
     q0 = rows[0][2]
     yaw = lambda t: turned(q0, c.at("Bot.Cart.Chassis", t)[2], 1)
-    c.near("heading gained between 3 s and 4 s (w = 0.5 rad/s)", yaw(4) - yaw(3), 0.5, 0.05)
+    c.near("heading gained between 3 s and 4 s (w = 0.5 rad/s)", yaw(4) - yaw(3), 0.5, 1e-3)
     c.below("motion after the stop (4.5 s to 10 s, m)", math.dist(c.at("Bot.Cart.Chassis", 4.5)[1],
                                                                    c.at("Bot.Cart.Chassis", 10)[1]), 1e-3)
 

@@ -67,8 +67,8 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
     char held[32];
     std::snprintf(held, sizeof held, "%.3g", std::chrono::duration<double>(took).count());
     res.error = {ErrorKind::Unavailable, p.loc,
-                 p.name + " held the simulation for " + held + " s of wall-clock time at t=" +
-                     formatNumber(toSeconds(clock.now())) +
+                 p.name + " held the simulation for " + held +
+                     " s of wall-clock time at t=" + formatNumber(toSeconds(clock.now())) +
                      " s, longer than MaxAccessTime (" + formatNumber(limit) + " s)"};
     return true;
   };

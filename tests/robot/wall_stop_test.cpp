@@ -4,7 +4,9 @@
 // Also: RCWallStop checks the interfaces of what it refers to.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 

@@ -135,6 +135,8 @@ int exitCodeFor(ErrorKind k) {
       return kExitResultWrong;
     case ErrorKind::Internal:
       return kExitSoftware;
+    case ErrorKind::Unavailable:
+      return kExitUnavailable;
   }
   return kExitSoftware;
 }

@@ -104,7 +104,8 @@ int sweepPlan(const SweepArgs& a, const Common& common) {
   const std::string scene_path = scene_abs.lexically_normal().string();
   const fs::path man_dir = fs::path(absolutePath(a.out)).parent_path();
   std::string rel = fs::path(absolutePath(scene_path)).lexically_relative(man_dir).string();
-  if (rel.empty()) rel = absolutePath(scene_path);
+  // A path that climbs out of the manifest's folder is written absolute: plainer to read.
+  if (rel.empty() || rel.rfind("..", 0) == 0) rel = absolutePath(scene_path);
   std::vector<SweepCase> cases;
   if (!planSweep(text, a.input, rel, &cases, &err)) {
     g_log.error(err);

@@ -211,8 +211,7 @@ int readSettings(Common& c) {
 }
 
 bool loadAndCompile(const std::string& path, const Registry& reg, Scene* scene, Model* model, int* code, bool warnings,
-                    bool collect_all, const std::vector<NamedPath>& inputs,
-                    const std::vector<Override>& overrides) {
+                    bool collect_all, const std::vector<NamedPath>& inputs, const std::vector<Override>& overrides) {
   Diagnostics d;
   const bool loaded = loadScene(path, reg, scene, d) && applyOverrides(*scene, overrides, d);
   // A scene that failed to load is still a consistent graph (bad links are empty), so `check`

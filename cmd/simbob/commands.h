@@ -11,7 +11,7 @@ class App;
 namespace simbob {
 class Registry;
 struct Override;
-}
+}  // namespace simbob
 
 namespace simbob::cli {
 
@@ -27,11 +27,11 @@ struct RunArgs {
   uint32_t seed = 0;
   bool json = false;
   bool check_determinism = false;
-  bool batch_child = false;   ///< started by `simbob batch`: warnings stay out of the log
-  std::string space;          ///< overrides SceneSettings Space ("" = the scene's)
-  bool auto_disable = false;  ///< turns SceneSettings AutoDisable on
-  int max_contacts = 0;       ///< overrides SceneSettings MaxContacts (0 = the scene's)
-  bool out_given = false;     ///< --out was on the command line
+  bool batch_child = false;       ///< started by `simbob batch`: warnings stay out of the log
+  std::string space;              ///< overrides SceneSettings Space ("" = the scene's)
+  bool auto_disable = false;      ///< turns SceneSettings AutoDisable on
+  int max_contacts = 0;           ///< overrides SceneSettings MaxContacts (0 = the scene's)
+  bool out_given = false;         ///< --out was on the command line
   std::vector<std::string> sets;  ///< --set KEY.PARAM=VALUE, in order
 };
 int cmdRun(RunArgs& a, const Common& common);

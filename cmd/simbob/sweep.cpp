@@ -33,7 +33,8 @@ bool readInput(const std::string& path, const char* what, std::string* text, int
   std::string reason;
   bool too_large = false;
   if (!readFile(path, kMaxManifestBytes, text, &reason, true, &too_large)) {
-    g_log.error({too_large ? ErrorKind::InvalidInput : ErrorKind::MissingInput, {path, 0},
+    g_log.error({too_large ? ErrorKind::InvalidInput : ErrorKind::MissingInput,
+                 {path, 0},
                  std::string("cannot read ") + what + ": " + reason});
     *code = too_large ? kExitDataErr : kExitNoInput;
     return false;
@@ -121,7 +122,8 @@ int sweepPlan(const SweepArgs& a, const Common& common) {
     for (const SweepMetric& m : cases.front().metrics)
       if (std::find(keys.begin(), keys.end(), m.body) == keys.end()) {
         std::string near = didYouMean(m.body, keys);
-        g_log.error({ErrorKind::InvalidInput, {a.input, 0},
+        g_log.error({ErrorKind::InvalidInput,
+                     {a.input, 0},
                      "metric '" + m.name + "': no mobile body '" + quoteInput(m.body) + "' in " + scene_path +
                          (near.empty() ? "" : " (did you mean '" + near + "'?)")});
         return kExitDataErr;
@@ -174,14 +176,16 @@ int claimOutDir(const std::string& out, const std::string& manifest_text) {
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec || !fs::is_directory(out)) {
-    g_log.error({ErrorKind::CannotCreate, {out, 0}, "cannot create output folder: " + (ec ? ec.message() : "not a folder")});
+    g_log.error(
+        {ErrorKind::CannotCreate, {out, 0}, "cannot create output folder: " + (ec ? ec.message() : "not a folder")});
     return kExitCantCreate;
   }
   const std::string copy = (fs::path(out) / "manifest.jsonl").string();
   std::string have;
   if (readFile(copy, kMaxManifestBytes, &have, nullptr, true)) {
     if (have == manifest_text) return kExitOk;
-    g_log.error({ErrorKind::InvalidInput, {copy, 0},
+    g_log.error({ErrorKind::InvalidInput,
+                 {copy, 0},
                  "this folder holds the cases of another manifest; give another -o or remove it"});
     return kExitDataErr;
   }
@@ -238,9 +242,17 @@ int runOneCase(const SweepArgs& a, const SweepCase& c, const std::string& manife
   }
   fs::path scene = c.scene;
   if (scene.is_relative()) scene = fs::path(manifest).parent_path() / scene;
-  std::vector<std::string> args = {"simbob",     "run", scene.lexically_normal().string(), "--duration",
-                                   formatNumber(c.duration), "--sample-interval", formatNumber(c.sample_interval),
-                                   "--seed",     std::to_string(c.seed), "--out", (tmp / "trajectory.csv").string()};
+  std::vector<std::string> args = {"simbob",
+                                   "run",
+                                   scene.lexically_normal().string(),
+                                   "--duration",
+                                   formatNumber(c.duration),
+                                   "--sample-interval",
+                                   formatNumber(c.sample_interval),
+                                   "--seed",
+                                   std::to_string(c.seed),
+                                   "--out",
+                                   (tmp / "trajectory.csv").string()};
   if (c.dt > 0) {
     args.emplace_back("--dt");
     args.push_back(formatNumber(c.dt));
@@ -320,7 +332,8 @@ int runOneCase(const SweepArgs& a, const SweepCase& c, const std::string& manife
   // Publish: a new case is one rename; a redone one swaps with the old directory in one step.
   if (::rename(tmp.c_str(), final_dir.c_str()) != 0) {
     if (::renameat2(AT_FDCWD, tmp.c_str(), AT_FDCWD, final_dir.c_str(), RENAME_EXCHANGE) != 0) {
-      g_log.error({ErrorKind::CannotCreate, {final_dir.string(), 0}, std::string("cannot publish: ") + std::strerror(errno)});
+      g_log.error(
+          {ErrorKind::CannotCreate, {final_dir.string(), 0}, std::string("cannot publish: ") + std::strerror(errno)});
       fs::remove_all(tmp, ec);
       return kExitCantCreate;
     }
@@ -352,8 +365,8 @@ int runAllCases(const SweepArgs& a, const std::vector<SweepCase>& cases) {
     }
     while (!g_stop && running < static_cast<size_t>(a.jobs) && next < todo.size()) {
       const int i = todo[next++];
-      std::vector<std::string> args = {"simbob", "sweep", "run", a.input, "--case", std::to_string(i), "-o", a.out,
-                                       "--quiet"};
+      std::vector<std::string> args = {"simbob",          "sweep", "run", a.input,  "--case",
+                                       std::to_string(i), "-o",    a.out, "--quiet"};
       if (a.force) args.emplace_back("--force");
       const pid_t pid = spawnSelf(args, "/dev/null");
       if (pid < 0) {
@@ -383,9 +396,10 @@ int runAllCases(const SweepArgs& a, const std::vector<SweepCase>& cases) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started[i]).count();
     char line[256];
     std::snprintf(line, sizeof line, "[%zu/%zu] case %d %s %.2f s  (%zu failed, %zu running)", done, todo.size(), i,
-                  ok ? "ok" : caseStatus(fs::path(a.out) / caseDirName(i)).empty()
-                                  ? "failed"
-                                  : caseStatus(fs::path(a.out) / caseDirName(i)).c_str(),
+                  ok ? "ok"
+                  : caseStatus(fs::path(a.out) / caseDirName(i)).empty()
+                      ? "failed"
+                      : caseStatus(fs::path(a.out) / caseDirName(i)).c_str(),
                   wall, failed, running);
     if (g_log.level != Level::Quiet) std::fprintf(stderr, tty ? "\r%s\033[K" : "%s\n", line);
   }
@@ -468,8 +482,7 @@ int sweepGather(const SweepArgs& a) {
       ++ok;
     } else {
       retry.push_back(c.index);
-      if (!a.retry)
-        g_log.error({ErrorKind::Diverged, {dir.string(), 0}, status + (error.empty() ? "" : ": " + error)});
+      if (!a.retry) g_log.error({ErrorKind::Diverged, {dir.string(), 0}, status + (error.empty() ? "" : ": " + error)});
     }
   }
   const std::string out = a.out.empty() ? (fs::path(a.input) / "results.csv").string() : a.out;
@@ -538,7 +551,8 @@ int sweepSbatch(const SweepArgs& a) {
     ::chmod(path.c_str(), 0755);
   }
   std::printf("sh %s/submit.sh\n", shellQuote(out).c_str());
-  g_log.info("wrote " + out + "/sweep.sbatch (" + std::to_string(cases.size()) + " array tasks), gather.sbatch and "
+  g_log.info("wrote " + out + "/sweep.sbatch (" + std::to_string(cases.size()) +
+             " array tasks), gather.sbatch and "
              "submit.sh; submit with the line above (or: sbatch sweep.sbatch, then sbatch "
              "--dependency=afterany:JOBID gather.sbatch)");
   return kExitOk;
@@ -553,10 +567,12 @@ CLI::App* addSweepCommands(CLI::App& app, SweepArgs& s, Common& common) {
   plan->add_option("sweep", s.input, "Sweep description (JSON)")->required();
   plan->add_option("-o,--out", s.out, "Manifest to write")->required();
   addCommon(plan, common);
-  CLI::App* run = sweep->add_subcommand("run", "Run one case (--case, SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX) or all (-j)");
+  CLI::App* run =
+      sweep->add_subcommand("run", "Run one case (--case, SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX) or all (-j)");
   run->add_option("manifest", s.input, "Case manifest")->required();
   run->add_option("-o,--out", s.out, "Output folder (case-NNNN/ per case)")->required();
-  run->add_option("--case", s.case_index, "Case index (default: from the environment)")->check(CLI::Range(0, 999999999));
+  run->add_option("--case", s.case_index, "Case index (default: from the environment)")
+      ->check(CLI::Range(0, 999999999));
   run->add_option("-j,--jobs", s.jobs, "Run every case here on N worker processes")->check(CLI::Range(1, 1024));
   run->add_flag("--force", s.force, "Redo cases that are done already");
   addCommon(run, common);
@@ -568,7 +584,8 @@ CLI::App* addSweepCommands(CLI::App& app, SweepArgs& s, Common& common) {
   CLI::App* sbatch = sweep->add_subcommand("sbatch", "Write Slurm scripts: a case array and a dependent gather job");
   sbatch->add_option("manifest", s.input, "Case manifest")->required();
   sbatch->add_option("-o,--out", s.out, "Output folder of the sweep (the scripts go there too)")->required();
-  sbatch->add_option("--max-parallel", s.max_parallel, "At most K array tasks at once (%K)")->check(CLI::Range(1, 1000000));
+  sbatch->add_option("--max-parallel", s.max_parallel, "At most K array tasks at once (%K)")
+      ->check(CLI::Range(1, 1000000));
   sbatch->add_option("--partition", s.partition, "Slurm partition");
   addCommon(sbatch, common);
   s.plan = plan;

@@ -17,8 +17,8 @@ namespace simbob {
 /// An end metric of a case, computed from its trajectory: `stat` of coordinate `value` of body
 /// `body` over the run. stat: final, initial, max, min, delta (final - initial).
 struct SweepMetric {
-  std::string name;  ///< column name in the gathered table
-  std::string body;  ///< fully qualified body key, as in the CSV
+  std::string name;         ///< column name in the gathered table
+  std::string body;         ///< fully qualified body key, as in the CSV
   std::string value = "x";  ///< x, y or z (m)
   std::string stat = "final";
 };

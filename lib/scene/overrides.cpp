@@ -64,9 +64,10 @@ bool parseOverride(std::string_view text, Override* out, std::string* error) {
   const std::string_view lhs = text.substr(0, eq);
   const size_t dot = lhs.rfind('.');
   if (eq == std::string_view::npos || dot == std::string_view::npos || dot == 0 || dot + 1 == lhs.size()) {
-    *error = "expected KEY.PARAM=VALUE (a component key as `simbob dump` shows it, '.', a parameter name, '=', "
-             "the value as in the scene file), got '" +
-             quoteInput(text) + "'";
+    *error =
+        "expected KEY.PARAM=VALUE (a component key as `simbob dump` shows it, '.', a parameter name, '=', "
+        "the value as in the scene file), got '" +
+        quoteInput(text) + "'";
     return false;
   }
   out->text = std::string(text);

@@ -93,8 +93,7 @@ ParseResult parseParam(const ParamSpec& p, std::string_view text) {
     if (auto* d = std::get_if<double>(&*r.value)) v = *d;
     if (auto* i = std::get_if<int64_t>(&*r.value)) v = static_cast<double>(*i);
     if (!inRange(p.range, v))
-      return {std::nullopt,
-              "parameter '" + p.name + "' " + rangeText(p.range) + ", got '" + quoteInput(text) + "'"};
+      return {std::nullopt, "parameter '" + p.name + "' " + rangeText(p.range) + ", got '" + quoteInput(text) + "'"};
   }
   return r;
 }

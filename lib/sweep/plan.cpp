@@ -106,7 +106,8 @@ std::vector<std::string> values(const json& e, const std::string& where) {
   // Stop included when it lies on the grid (within a billionth of a step).
   const double n = std::floor((stop - start) / step + 1e-9) + 1;
   if (n > static_cast<double>(kMaxCases)) fail(rw, "more than 1000000 values");
-  for (int64_t i = 0; i < static_cast<int64_t>(n); ++i) out.push_back(rangeValue(start + static_cast<double>(i) * step));
+  for (int64_t i = 0; i < static_cast<int64_t>(n); ++i)
+    out.push_back(rangeValue(start + static_cast<double>(i) * step));
   return out;
 }
 
@@ -221,8 +222,10 @@ bool planSweep(const std::string& text, const std::string& path, const std::stri
         if (!m.is_object()) fail(w, "must be an object {\"name\", \"body\", \"value\", \"stat\"}");
         onlyKeys(m, w, {"name", "body", "value", "stat"});
         SweepMetric sm;
-        for (auto [field, dst] : {std::pair<const char*, std::string*>{"name", &sm.name}, {"body", &sm.body},
-                                  {"value", &sm.value}, {"stat", &sm.stat}}) {
+        for (auto [field, dst] : {std::pair<const char*, std::string*>{"name", &sm.name},
+                                  {"body", &sm.body},
+                                  {"value", &sm.value},
+                                  {"stat", &sm.stat}}) {
           if (m.contains(field) && !m[field].is_string()) fail(w, std::string("'") + field + "' must be a string");
           if (m.contains(field)) *dst = m[field].get<std::string>();
         }
@@ -243,7 +246,8 @@ bool planSweep(const std::string& text, const std::string& path, const std::stri
     std::vector<Dimension> dims;
     if (j.contains("vary")) {
       if (!j["vary"].is_array()) fail("vary", "must be a list");
-      for (size_t i = 0; i < j["vary"].size(); ++i) dims.push_back(dimension(j["vary"][i], "vary[" + std::to_string(i) + "]"));
+      for (size_t i = 0; i < j["vary"].size(); ++i)
+        dims.push_back(dimension(j["vary"][i], "vary[" + std::to_string(i) + "]"));
     }
     std::vector<std::string> names;
     for (size_t d = 0; d < dims.size(); ++d)

@@ -65,6 +65,7 @@ int cmdCompare(const CompareArgs& a, const Common& common);
 
 struct PlotArgs {
   std::string trajectory, golden, out, bodies, title;
+  std::string x, y;  ///< a sweep table's columns: metric y against parameter x
 };
 int cmdPlot(const PlotArgs& a, const Common& common);
 

@@ -113,6 +113,8 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   plot->add_option("--bodies", pa.bodies, "Comma-separated body keys (default: all, at most 8)");
   plot->add_option("--title", pa.title, "Plot title");
   plot->add_option("--out", pa.out, "Output .png or .svg")->required();
+  plot->add_option("--x", pa.x, "With --y: TRAJ.csv is a sweep table; plot column --y against column --x");
+  plot->add_option("--y", pa.y, "With --x: the metric column of a sweep table");
   addCommon(plot, common);
 
   SweepArgs sa;

@@ -57,6 +57,12 @@ bool parseManifest(const std::string& text, const std::string& path, std::vector
 bool computeMetrics(const Trajectory& t, const std::vector<SweepMetric>& metrics, std::vector<double>* values,
                     std::string* error);
 
+/// One metric against one parameter from a gathered table (`simbob plot --x --y`): the rows
+/// whose status is ok, sorted by x, as a trajectory of one "body" named y_col whose x
+/// coordinate is the metric and whose time is the parameter. Errors name the table and line.
+bool sweepTableSeries(const std::string& text, const std::string& path, const std::string& x_col,
+                      const std::string& y_col, Trajectory* out, Error* err);
+
 /// "case-0007": a case's directory below OUT (at least four digits).
 std::string caseDirName(int index);
 

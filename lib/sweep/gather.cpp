@@ -45,3 +45,99 @@ bool computeMetrics(const Trajectory& t, const std::vector<SweepMetric>& metrics
 }
 
 }  // namespace simbob
+
+namespace simbob {
+
+namespace {
+
+std::vector<std::string> csvRow(const std::string& line) {
+  std::vector<std::string> out(1);
+  bool quoted = false;
+  for (size_t i = 0; i < line.size(); ++i) {
+    const char ch = line[i];
+    if (quoted && ch == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+      out.back() += '"';
+      ++i;
+    } else if (ch == '"') {
+      quoted = !quoted;
+    } else if (ch == ',' && !quoted) {
+      out.emplace_back();
+    } else if (ch != '\r') {
+      out.back() += ch;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+bool sweepTableSeries(const std::string& text, const std::string& path, const std::string& x_col,
+                      const std::string& y_col, Trajectory* out, Error* err) {
+  std::vector<std::vector<std::string>> rows;
+  size_t pos = 0;
+  while (pos < text.size()) {
+    size_t nl = text.find('\n', pos);
+    if (nl == std::string::npos) nl = text.size();
+    if (nl > pos) rows.push_back(csvRow(text.substr(pos, nl - pos)));
+    pos = nl + 1;
+  }
+  if (rows.empty()) {
+    *err = {ErrorKind::InvalidInput, {path, 0}, "empty table"};
+    return false;
+  }
+  const std::vector<std::string>& head = rows[0];
+  auto column = [&](const std::string& name, size_t* index) {
+    auto it = std::find(head.begin(), head.end(), name);
+    if (it != head.end()) {
+      *index = static_cast<size_t>(it - head.begin());
+      return true;
+    }
+    const std::string near = didYouMean(name, head);
+    *err = {ErrorKind::InvalidInput,
+            {path, 1},
+            "no column '" + quoteInput(name) + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)")};
+    return false;
+  };
+  size_t xi = 0, yi = 0, si = 0;
+  if (!column(x_col, &xi) || !column(y_col, &yi) || !column("status", &si)) return false;
+  std::vector<std::pair<double, double>> points;
+  for (size_t r = 1; r < rows.size(); ++r) {
+    const std::vector<std::string>& row = rows[r];
+    if (row.size() != head.size()) {
+      *err = {ErrorKind::InvalidInput,
+              {path, static_cast<int>(r + 1)},
+              std::to_string(row.size()) + " fields, the header has " + std::to_string(head.size())};
+      return false;
+    }
+    if (row[si] != "ok") continue;  // failed and missing cases have no metrics
+    auto x = parseNumber(row[xi]);
+    auto y = parseNumber(row[yi]);
+    if (!x || !y) {
+      *err = {ErrorKind::InvalidInput,
+              {path, static_cast<int>(r + 1)},
+              "'" + quoteInput(row[x ? yi : xi]) + "' is not a number"};
+      return false;
+    }
+    points.emplace_back(*x, *y);
+  }
+  std::sort(points.begin(), points.end());
+  for (size_t i = 1; i < points.size(); ++i)
+    if (points[i].first == points[i - 1].first) {
+      *err = {ErrorKind::InvalidInput,
+              {path, 0},
+              "several cases have " + x_col + " = " + formatNumber(points[i].first) +
+                  "; plot a table where it is the only varied parameter"};
+      return false;
+    }
+  *out = Trajectory{};
+  out->addBody(y_col);
+  for (size_t i = 0; i < points.size(); ++i) {
+    out->times.push_back(points[i].first);
+    const double pose[kPoseSize] = {points[i].second, 0, 0, 1, 0, 0, 0};
+    out->setPose(i, 0, pose);
+  }
+  out->finalize();
+  return true;
+}
+
+}  // namespace simbob

@@ -129,6 +129,13 @@ mus = [float(r["Crate.Material.Friction"]) for r in rows]
 assert mus == sorted(mus) and abs(mus[0] - 0.2) < 1e-12 and abs(mus[-1] - 1.15) < 1e-12
 PY
 
+check "plot draws a metric against the varied parameter from the table"
+expect_status 0 "$SIMBOB" plot box/results.csv --x Crate.Material.Friction --y stop_x --out mu.png
+expect_eq "a PNG" "$(head -c 8 mu.png | od -An -tx1 | tr -d ' \n')" "89504e470d0a1a0a"
+expect_status 65 "$SIMBOB" plot box/results.csv --x Crate.Material.Friction --y stopx --out bad.png
+expect_eq "unknown column" "$(cat "$LAST_ERR")" "box/results.csv:1: error: no column 'stopx' (did you mean 'stop_x'?)"
+expect_no_file bad.png
+
 # ---------------------------------------------------------------- idempotent re-runs
 check "a finished case is skipped; --force redoes it with the same trajectory bytes"
 cp box/case-0003/trajectory.csv before.csv

@@ -12,6 +12,7 @@
 #include "simbob/error.h"
 #include "simbob/files.h"
 #include "simbob/graph.h"
+#include "simbob/overrides.h"
 
 namespace simbob::cli {
 
@@ -81,8 +82,13 @@ struct NamedPath {
 /// an input, and that is a usage error.
 /// With `collect_all` (simbob check), a scene that failed to load is compiled too, so that one
 /// pass reports every problem the compile step can still see.
+/// `overrides` (--set) change the graph between loading and compiling.
 bool loadAndCompile(const std::string& path, const Registry& reg, Scene* scene, Model* model, int* code, bool warnings,
-                    bool collect_all, const std::vector<NamedPath>& inputs = {});
+                    bool collect_all, const std::vector<NamedPath>& inputs = {},
+                    const std::vector<Override>& overrides = {});
+
+/// The `--set` options as overrides; a malformed one is reported (usage error, 64).
+int parseSetOptions(const std::vector<std::string>& sets, std::vector<Override>* out);
 
 /// JSON text of a report or summary; invalid UTF-8 (from keys in input files) is replaced, never
 /// thrown.

@@ -280,8 +280,20 @@ def wall_stop_robot(c):
     c.below("sideways drift (m)", max(abs(p[2]) for _, p, _ in rows), 1e-4)
 
 
+def sliding_box(c):
+    # v0 = 2 m/s, mu = 0.5: stops at v0^2 / (2 mu g) = 0.408 m after v0 / (mu g) = 0.41 s; the
+    # stop comes within one 1 ms step (v0 h = 2 mm).
+    want = 2.0**2 / (2 * 0.5 * 9.81)
+    _, p, q = c.at("Crate", 10)
+    c.near("stopping distance v0^2/(2 mu g)", p[0], want, 0.005 * want + 0.002)
+    c.near("height (half its 0.1 m)", p[1], 0.05, 1e-3)
+    c.below("sideways drift", abs(p[2]), 1e-4)
+    _, p1, _ = c.at("Crate", 1.0)
+    c.below("at rest after 0.41 s", math.dist(p, p1), 1e-4)
+
+
 SCENES = {f.__name__: f for f in (pendulum, box_stack, chain, imported_bodies, mechanisms, bounce, robot, flywheel,
-                                  servo_arm, two_wheel_robot, wall_stop_robot)}
+                                  servo_arm, two_wheel_robot, wall_stop_robot, sliding_box)}
 
 if __name__ == "__main__":
     name, path = sys.argv[1], sys.argv[2]

@@ -135,6 +135,10 @@ int exitCodeFor(ErrorKind k) {
       return kExitResultWrong;
     case ErrorKind::Internal:
       return kExitSoftware;
+    case ErrorKind::Unavailable:
+      return kExitUnavailable;
+    case ErrorKind::Protocol:
+      return kExitProtocol;
   }
   return kExitSoftware;
 }

@@ -31,6 +31,8 @@ struct RunArgs {
   bool auto_disable = false;  ///< turns SceneSettings AutoDisable on
   int max_contacts = 0;       ///< overrides SceneSettings MaxContacts (0 = the scene's)
   bool out_given = false;     ///< --out was on the command line
+  int port_offset = 0;        ///< added to every socket communicator's Port
+  double peer_timeout = 10;   ///< wall-clock s for a socket peer to connect or answer
 };
 int cmdRun(RunArgs& a, const Common& common);
 

@@ -37,6 +37,10 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
   run->add_flag("--auto-disable", ra.auto_disable, "Let ODE put resting bodies to sleep (changes trajectories)");
   run->add_option("--max-contacts", ra.max_contacts, "Contact points per colliding pair (overrides the scene)")
       ->check(CLI::Range(1, 64));
+  run->add_option("--port-offset", ra.port_offset,
+                  "Added to the Port of every RCLocalSocketCommunicator, so parallel runs do not clash (default 0)");
+  run->add_option("--peer-timeout", ra.peer_timeout,
+                  "Wall-clock s a socket peer may take to connect or to answer, 0.001 to 86400 (default 10)");
   run->add_flag("--batch-child", ra.batch_child, "(internal) started by simbob batch")->group("");
   addCommon(run, common);
   // A batch manifest appends per-scene options after the batch-wide ones: the last one wins.

@@ -113,6 +113,18 @@ struct ControllerDef {
   std::vector<double> commands;  ///< CommandSchedule: rows of (time s, values...), times increasing
 };
 
+/// An RCLocalSocketCommunicator (guide 6.11.6): a peer program on 127.0.0.1 that reads the
+/// robot's state and sets its commands in lockstep with simulated time (lib/robot/socket_peer.cpp,
+/// README "Socket protocol").
+struct SocketDef {
+  std::string key;  ///< fully qualified key of the periphery
+  SourceLoc loc;
+  bool is_server = false;  ///< true: simbob listens and waits for the peer; false: simbob connects
+  int port = 5000;         ///< TCP port on 127.0.0.1 (the CLI adds --port-offset)
+  double period = 0.01;    ///< s of simulated time between exchanges
+  double timeout = 10.0;   ///< wall-clock s to wait for a connection or a reply (--peer-timeout)
+};
+
 /// ODE collision space: how candidate pairs are found. Results differ between spaces (pairs
 /// arrive in another order), so the choice is part of a scene's reproducibility.
 enum class SpaceKind : uint8_t { Hash, SweepAndPrune, QuadTree, Simple };
@@ -139,6 +151,7 @@ struct Model {
   std::vector<JointDef> joints;            ///< document order
   std::vector<ActuatorDef> actuators;      ///< document order (after the joints they drive)
   std::vector<ControllerDef> controllers;  ///< document order; a schedule's TwoWheel target may come first
+  std::vector<SocketDef> sockets;          ///< document order
 };
 
 }  // namespace simbob

@@ -2,6 +2,9 @@
 #pragma once
 
 #include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "simbob/clock.h"
 #include "simbob/model.h"
@@ -32,5 +35,9 @@ std::unique_ptr<Party> makeServoTest(const ControllerDef& c, const Model& model)
 std::unique_ptr<MotionControl2D> makeTwoWheel(const ControllerDef& c);
 /// `target`: the controller a 2-D schedule commands (nullptr for an actuator schedule).
 std::unique_ptr<Party> makeCommandSchedule(const ControllerDef& c, MotionControl2D* target);
+/// An RCLocalSocketCommunicator's peer: it may command every actuator of `model` and every
+/// RC2DMotionControl in `motions` (key, controller).
+std::unique_ptr<Party> makeSocketPeer(const SocketDef& d, const Model& model,
+                                      std::vector<std::pair<std::string, MotionControl2D*>> motions);
 
 }  // namespace simbob::robot

@@ -66,7 +66,6 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
       clock.granted(id, parties[static_cast<size_t>(id)]->onGrant(clock.now(), *world));
       granted = true;
     }
-    if (clock.now() >= end) break;
     if (granted) {
       for (const Party* p : parties)
         if (const Error* e = p->failure()) {
@@ -76,6 +75,7 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
         }
       if (!res.error.message.empty()) break;
     }
+    if (clock.now() >= end) break;
     if (opts.stop && *opts.stop) {
       res.status = RunStatus::Interrupted;
       res.error = {ErrorKind::Diverged, {}, "interrupted at t=" + formatNumber(toSeconds(clock.now())) + " s"};

@@ -62,6 +62,8 @@ struct Common {
   bool verbose = false;
   std::string log_file;
   std::string settings;
+  std::vector<std::string> plugins;  ///< --plugin FILE, in order
+  std::string extension_folder;      ///< the global setting ExtensionFolder (--settings)
   /// The component types: built once by main (registerBuiltins) and passed down with the options.
   const Registry* registry = nullptr;
 };

@@ -5,6 +5,7 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "plugins.h"
 #include "simbob/registry.h"
 
 using namespace simbob::cli;
@@ -18,6 +19,7 @@ void addCommon(CLI::App* app, Common& c) {
   app->add_flag("-v,--verbose", c.verbose, "Print debug messages");
   app->add_option("--log-file", c.log_file, "Also append log messages to this file");
   app->add_option("--settings", c.settings, "Global settings INI (LogFile, ExtensionFolder, TextureFolder)");
+  app->add_option("--plugin", c.plugins, "Load component types from this shared library (repeatable)");
 }
 
 void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
@@ -45,6 +47,7 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
   addCommon(run, common);
   // A batch manifest appends per-scene options after the batch-wide ones: the last one wins.
   for (CLI::Option* o : run->get_options()) o->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  run->get_option("--plugin")->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
 }
 
 }  // namespace simbob::cli
@@ -74,6 +77,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   bool markdown = false;
   CLI::App* types = app.add_subcommand("types", "List every component type with its parameters and defaults");
   types->add_flag("--markdown", markdown, "Markdown tables");
+  types->add_option("--plugin", common.plugins, "Load component types from this shared library (repeatable)");
 
   CompareArgs ca;
   CLI::App* compare = app.add_subcommand("compare", "Compare a trajectory with a golden one");
@@ -150,6 +154,8 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   int code = kExitUsage;
   try {
     if (int c = readSettings(common)) return c;
+    // Plug-ins before any scene: their types resolve like the built-ins.
+    if (int c = loadPlugins(registry, common.plugins, common.extension_folder)) return c;
     // The log file is opened (created) first: it must not be another output of the command.
     if (!common.log_file.empty()) {
       std::vector<NamedPath> outputs;

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -94,7 +95,13 @@ struct ActuatorDef {
   double smooth = 1.0;                                        ///< Servo: s, time constant of the final approach
 };
 
-/// A built-in controller (guide 6.12) or a command schedule; runs as a party of the run loop.
+class Party;
+struct ControllerDef;
+/// A plug-in controller's party factory (simbob/plugin.h).
+using PluginPartyFactory = std::unique_ptr<Party> (*)(const ControllerDef& def);
+
+/// A built-in controller (guide 6.12), a command schedule or a plug-in controller; runs as a
+/// party of the run loop.
 struct ControllerDef {
   std::string key;  ///< fully qualified key
   SourceLoc loc;
@@ -103,6 +110,7 @@ struct ControllerDef {
     ServoTest,        ///< triangle wave between the limits of actuators[0]
     TwoWheel,         ///< (v, w) -> wheel velocities of actuators[0] (left), actuators[1] (right)
     CommandSchedule,  ///< timed commands to actuators[0], or to controllers[target] (TwoWheel)
+    Plugin,           ///< a plug-in's type: `make` builds its party
   } kind = DriveTest;
   double period = 0.01;          ///< s, loop period (DriveTest, ServoTest)
   double variation = 6.0;        ///< 1/min (DriveTest, ServoTest); wheel radius in m (TwoWheel)
@@ -111,6 +119,9 @@ struct ControllerDef {
   int target = -1;               ///< CommandSchedule to a controller: index into Model::controllers
   int values = 1;                ///< CommandSchedule: values per row (1, or 2 for linear angular)
   std::vector<double> commands;  ///< CommandSchedule: rows of (time s, values...), times increasing
+  std::string type;               ///< Plugin: the type name
+  std::vector<double> numbers;    ///< Plugin: its number parameters, in the order it declared them
+  PluginPartyFactory make = nullptr;  ///< Plugin
 };
 
 /// An RCLocalSocketCommunicator (guide 6.11.6): a peer program on 127.0.0.1 that reads the

@@ -87,6 +87,8 @@ struct ListParam {
   const char* name;
 };
 
+struct PluginControllerType;  // simbob/plugin.h
+
 struct TypeSpec {
   TypeSpec() = default;
   TypeSpec(std::string n, Family f, int k, std::vector<ParamSpec> ps, std::vector<std::string> al, std::string d,
@@ -110,6 +112,7 @@ struct TypeSpec {
   std::string import_root;              ///< non-empty: parameter File names an XML file with this root
                                         ///< element ("Body", "Joint", "RefList") read into the scene
   std::vector<std::string> interfaces;  ///< guide interfaces it offers controllers ("RCDriver", ...)
+  const PluginControllerType* plugin = nullptr;  ///< a plug-in's controller type (kept by its loader)
 
   /// Whether it offers `interface`.
   bool implements(std::string_view interface) const;

@@ -6,12 +6,13 @@
 
 #include "compile/context.h"
 #include "components/families.h"
+#include "simbob/plugin.h"
 
 namespace simbob {
 
 namespace {
 
-enum class ControllerKind { DriveTest, ServoTest, TwoWheelMotionControl, CommandSchedule };
+enum class ControllerKind { DriveTest, ServoTest, TwoWheelMotionControl, CommandSchedule, Plugin };
 
 constexpr LinkParam kDrive{"Drive"};
 constexpr LinkParam kPosControl{"PosControl"};
@@ -142,6 +143,21 @@ void registerControllers(Registry& r) {
          true});
 }
 
+PluginHost::~PluginHost() = default;
+
+TypeSpec controllerTypeSpec(const PluginControllerType& t) {
+  std::vector<ParamSpec> params;
+  for (const PluginRef& r : t.refs)
+    params.push_back(
+        componentParam(LinkParam{r.name.c_str()}, {Family::Periphery}, "", r.doc + " (Ref, " + r.interface + ")"));
+  params.push_back(number(kPeriod, 0.01, "s", "loop period", Range::Positive));
+  for (const PluginNumber& n : t.numbers)
+    params.push_back(number(ValueParam<double>{n.name.c_str()}, n.default_value, n.unit, n.doc));
+  TypeSpec spec{t.name, Family::Controller, int(ControllerKind::Plugin), std::move(params), {}, t.doc};
+  spec.plugin = &t;
+  return spec;
+}
+
 void lowerController(CompileContext& ctx, const Component& c) {
   const int ci = ctx.indexOf(c);
   if (ctx.controller_index.count(ci)) return;  // lowered already (a schedule's target, or listed twice)
@@ -221,6 +237,16 @@ void lowerController(CompileContext& ctx, const Component& c) {
         break;
       }
       if (!parseCommands(ctx, c, d.values, &d.commands)) ok = false;
+      break;
+    }
+    case ControllerKind::Plugin: {
+      const PluginControllerType& t = *c.type->plugin;
+      d.kind = ControllerDef::Plugin;
+      d.type = t.name;
+      d.make = t.make;
+      d.period = c.get(kPeriod);
+      for (const PluginRef& r : t.refs) actuator(LinkParam{r.name.c_str()}, r.interface.c_str());
+      for (const PluginNumber& n : t.numbers) d.numbers.push_back(c.get(ValueParam<double>{n.name.c_str()}));
       break;
     }
   }

@@ -40,6 +40,9 @@ std::vector<std::unique_ptr<Party>> robotParties(const Model& model) {
         break;
       case ControllerDef::TwoWheel:
         break;  // made above
+      case ControllerDef::Plugin:
+        out[i] = c.make(c);
+        break;
       case ControllerDef::CommandSchedule:
         out[i] = robot::makeCommandSchedule(c, c.target >= 0 ? motion[static_cast<size_t>(c.target)] : nullptr);
         break;

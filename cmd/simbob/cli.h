@@ -17,15 +17,15 @@ namespace simbob::cli {
 
 // Exit statuses (README "Exit statuses").
 constexpr int kExitOk = 0;
-constexpr int kExitResultWrong = 1;  // diverged run, golden mismatch, failed scene in a batch
-constexpr int kExitUsage = 64;       // EX_USAGE
-constexpr int kExitDataErr = 65;     // EX_DATAERR: invalid scene or data file
-constexpr int kExitNoInput = 66;     // EX_NOINPUT
+constexpr int kExitResultWrong = 1;   // diverged run, golden mismatch, failed scene in a batch
+constexpr int kExitUsage = 64;        // EX_USAGE
+constexpr int kExitDataErr = 65;      // EX_DATAERR: invalid scene or data file
+constexpr int kExitNoInput = 66;      // EX_NOINPUT
 constexpr int kExitUnavailable = 69;  // EX_UNAVAILABLE: a socket peer or plug-in is not there
-constexpr int kExitSoftware = 70;    // EX_SOFTWARE: internal error
-constexpr int kExitCantCreate = 73;  // EX_CANTCREAT
-constexpr int kExitIoErr = 74;       // EX_IOERR
-constexpr int kExitProtocol = 76;    // EX_PROTOCOL: a socket peer broke the protocol
+constexpr int kExitSoftware = 70;     // EX_SOFTWARE: internal error
+constexpr int kExitCantCreate = 73;   // EX_CANTCREAT
+constexpr int kExitIoErr = 74;        // EX_IOERR
+constexpr int kExitProtocol = 76;     // EX_PROTOCOL: a socket peer broke the protocol
 constexpr int kExitSigInt = 130;
 constexpr int kExitSigTerm = 143;
 

@@ -62,15 +62,14 @@ int loadOne(Registry& reg, const std::string& path) {
   const SimbobPluginV1* p = reinterpret_cast<Entry>(sym)();  // NOLINT(cppcoreguidelines-pro-type-reinterpret-cast)
   if (!p) return fail(ErrorKind::InvalidInput, "simbob_plugin_v1 returned null");
   if (p->abi_version != SIMBOB_PLUGIN_ABI_VERSION)
-    return fail(ErrorKind::InvalidInput, "plug-in ABI version " + std::to_string(p->abi_version) +
-                                             ", but this simbob loads version " +
-                                             std::to_string(SIMBOB_PLUGIN_ABI_VERSION) +
-                                             " (rebuild it against this simbob's headers)");
+    return fail(ErrorKind::InvalidInput,
+                "plug-in ABI version " + std::to_string(p->abi_version) + ", but this simbob loads version " +
+                    std::to_string(SIMBOB_PLUGIN_ABI_VERSION) + " (rebuild it against this simbob's headers)");
   Host host(reg);
   if (!p->register_types || !p->register_types(&host))
-    return fail(ErrorKind::InvalidInput,
-                std::string("plug-in '") + (p->name ? p->name : "?") + "' could not register its types" +
-                    (host.problem().empty() ? std::string() : ": " + host.problem()));
+    return fail(ErrorKind::InvalidInput, std::string("plug-in '") + (p->name ? p->name : "?") +
+                                             "' could not register its types" +
+                                             (host.problem().empty() ? std::string() : ": " + host.problem()));
   g_log.debug("loaded plug-in " + path);
   return 0;
 }

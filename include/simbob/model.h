@@ -112,15 +112,15 @@ struct ControllerDef {
     CommandSchedule,  ///< timed commands to actuators[0], or to controllers[target] (TwoWheel)
     Plugin,           ///< a plug-in's type: `make` builds its party
   } kind = DriveTest;
-  double period = 0.01;          ///< s, loop period (DriveTest, ServoTest)
-  double variation = 6.0;        ///< 1/min (DriveTest, ServoTest); wheel radius in m (TwoWheel)
-  double wheel_distance = 0.5;   ///< m (TwoWheel)
-  std::vector<int> actuators;    ///< indices into Model::actuators
-  int target = -1;               ///< CommandSchedule to a controller: index into Model::controllers
-  int values = 1;                ///< CommandSchedule: values per row (1, or 2 for linear angular)
-  std::vector<double> commands;  ///< CommandSchedule: rows of (time s, values...), times increasing
-  std::string type;               ///< Plugin: the type name
-  std::vector<double> numbers;    ///< Plugin: its number parameters, in the order it declared them
+  double period = 0.01;               ///< s, loop period (DriveTest, ServoTest)
+  double variation = 6.0;             ///< 1/min (DriveTest, ServoTest); wheel radius in m (TwoWheel)
+  double wheel_distance = 0.5;        ///< m (TwoWheel)
+  std::vector<int> actuators;         ///< indices into Model::actuators
+  int target = -1;                    ///< CommandSchedule to a controller: index into Model::controllers
+  int values = 1;                     ///< CommandSchedule: values per row (1, or 2 for linear angular)
+  std::vector<double> commands;       ///< CommandSchedule: rows of (time s, values...), times increasing
+  std::string type;                   ///< Plugin: the type name
+  std::vector<double> numbers;        ///< Plugin: its number parameters, in the order it declared them
   PluginPartyFactory make = nullptr;  ///< Plugin
 };
 

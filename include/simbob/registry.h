@@ -112,7 +112,8 @@ struct TypeSpec {
   std::string import_root;              ///< non-empty: parameter File names an XML file with this root
                                         ///< element ("Body", "Joint", "RefList") read into the scene
   std::vector<std::string> interfaces;  ///< guide interfaces it offers controllers ("RCDriver", ...)
-  const PluginControllerType* plugin = nullptr;  ///< a plug-in's controller type (kept by its loader)
+  /// A plug-in's controller type (kept by its loader), or null.
+  const PluginControllerType* plugin = nullptr;
 
   /// Whether it offers `interface`.
   bool implements(std::string_view interface) const;

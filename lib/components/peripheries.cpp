@@ -148,8 +148,7 @@ void registerPeripheries(Registry& r) {
          int(PeripheryKind::LocalSocketCommunicator),
          {flag(kIsServer, false, "wait for a client instead of connecting"),
           integer(kPort, 5000, "TCP port on 127.0.0.1 (1 to 65535; run --port-offset adds to it)", Range::Positive),
-          number(kPeriod, 0.01, "s", "simulated time between exchanges with the peer (simbob's own)",
-                 Range::Positive)},
+          number(kPeriod, 0.01, "s", "simulated time between exchanges with the peer (simbob's own)", Range::Positive)},
          {},
          "Lets another program on this computer read the robot and command it, in lockstep (README \"Socket "
          "protocol\")."});
@@ -191,7 +190,8 @@ void lowerPeriphery(CompileContext& ctx, const Component& c, const Built& /*pare
       }
       const double period = c.get(kPeriod);
       if (!(period >= 1e-9 && period <= 1e9)) {
-        ctx.errorAt(c.slotOf(kPeriod), c, "parameter 'Period' must be between 1e-9 and 1e9 s, got " + formatNumber(period));
+        ctx.errorAt(c.slotOf(kPeriod), c,
+                    "parameter 'Period' must be between 1e-9 and 1e9 s, got " + formatNumber(period));
         break;
       }
       SocketDef d;

@@ -188,7 +188,8 @@ class SocketPeer : public Party {
     while (true) {
       const int r = ::poll(&p, 1, msLeft(until));
       if (r < 0 && errno == EINTR) continue;
-      if (r <= 0) return fail(ErrorKind::Unavailable, "no peer connected within " + timeoutText() + " (--peer-timeout)");
+      if (r <= 0)
+        return fail(ErrorKind::Unavailable, "no peer connected within " + timeoutText() + " (--peer-timeout)");
       conn_ = ::accept4(listen_, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
       if (conn_ >= 0) break;
       if (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR && errno != ECONNABORTED)
@@ -253,8 +254,8 @@ class SocketPeer : public Party {
   }
 
   std::string hello() const {
-    std::string s = "simbob " + std::to_string(kProtocolVersion) + " " + def_.key + " " + formatNumber(def_.period) +
-                    "\n";
+    std::string s =
+        "simbob " + std::to_string(kProtocolVersion) + " " + def_.key + " " + formatNumber(def_.period) + "\n";
     for (const ActuatorDef& a : model_.actuators) s += "actuator " + a.key + " " + actuatorKind(a.kind) + "\n";
     for (const auto& m : motions_) s += "motion " + m.first + "\n";
     for (const JointDef& j : model_.joints) s += "joint " + j.key + " " + jointKind(j.kind) + "\n";
@@ -331,8 +332,8 @@ class SocketPeer : public Party {
         if (!set(w, world)) return fail(ErrorKind::Protocol, problem_ + at);
         continue;
       }
-      return fail(ErrorKind::Protocol, "the peer sent '" + quoteInput(line) + "'" + at +
-                                           ": expected 'set KEY VALUE...', 'step' or 'done'");
+      return fail(ErrorKind::Protocol,
+                  "the peer sent '" + quoteInput(line) + "'" + at + ": expected 'set KEY VALUE...', 'step' or 'done'");
     }
   }
 
@@ -355,8 +356,8 @@ class SocketPeer : public Party {
     for (const auto& m : motions_)
       if (m.first == w[1]) {
         if (v.size() != 2) {
-          problem_ = "'set " + std::string(w[1]) + "' takes two values (linear angular), got " +
-                     std::to_string(v.size());
+          problem_ =
+              "'set " + std::string(w[1]) + "' takes two values (linear angular), got " + std::to_string(v.size());
           return false;
         }
         m.second->setMotion(v[0], v[1], world);

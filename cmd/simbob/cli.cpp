@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 
 #include "components/families.h"
 #include "simbob/registry.h"
@@ -137,6 +138,8 @@ int exitCodeFor(ErrorKind k) {
       return kExitSoftware;
     case ErrorKind::Unavailable:
       return kExitUnavailable;
+    case ErrorKind::Protocol:
+      return kExitProtocol;
   }
   return kExitSoftware;
 }
@@ -209,6 +212,10 @@ int readSettings(Common& c) {
   if (!loadStructIni(c.settings, *c.registry, "GlobalSettings", &holder, &comp, d)) return report(d, true);
   const std::string& log = holder.at(comp).get(kLogFileParam);
   if (c.log_file.empty() && !log.empty()) c.log_file = log;
+  // ExtensionFolder is relative to the settings file's folder.
+  c.extension_folder = holder.at(comp).get(kExtensionFolderParam);
+  if (!c.extension_folder.empty() && std::filesystem::path(c.extension_folder).is_relative())
+    c.extension_folder = (std::filesystem::path(c.settings).parent_path() / c.extension_folder).string();
   return 0;
 }
 

@@ -33,6 +33,8 @@ struct RunArgs {
   int max_contacts = 0;           ///< overrides SceneSettings MaxContacts (0 = the scene's)
   bool out_given = false;         ///< --out was on the command line
   std::vector<std::string> sets;  ///< --set KEY.PARAM=VALUE, in order
+  int port_offset = 0;             ///< added to every socket communicator's Port
+  double peer_timeout = 10;        ///< wall-clock s for a socket peer to connect or answer
 };
 int cmdRun(RunArgs& a, const Common& common);
 

@@ -5,6 +5,7 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "plugins.h"
 #include "simbob/registry.h"
 
 using namespace simbob::cli;
@@ -18,6 +19,7 @@ void addCommon(CLI::App* app, Common& c) {
   app->add_flag("-v,--verbose", c.verbose, "Print debug messages");
   app->add_option("--log-file", c.log_file, "Also append log messages to this file");
   app->add_option("--settings", c.settings, "Global settings INI (LogFile, ExtensionFolder, TextureFolder)");
+  app->add_option("--plugin", c.plugins, "Load component types from this shared library (repeatable)");
 }
 
 void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
@@ -39,12 +41,16 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
       ->check(CLI::Range(1, 64));
   run->add_option("--set", ra.sets, "Override a scene parameter: KEY.PARAM=VALUE (repeatable; README \"Sweeps\")")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  run->add_option("--port-offset", ra.port_offset,
+                  "Added to the Port of every RCLocalSocketCommunicator, so parallel runs do not clash (default 0)");
+  run->add_option("--peer-timeout", ra.peer_timeout,
+                  "Wall-clock s a socket peer may take to connect or to answer, 0.001 to 86400 (default 10)");
   run->add_flag("--batch-child", ra.batch_child, "(internal) started by simbob batch")->group("");
   addCommon(run, common);
   // A batch manifest appends per-scene options after the batch-wide ones: the last one wins
-  // (every --set counts).
+  // (every --set and --plugin counts).
   for (CLI::Option* o : run->get_options())
-    if (o->get_name() != "--set") o->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    if (o->get_name() != "--set" && o->get_name() != "--plugin") o->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
 }
 
 }  // namespace simbob::cli
@@ -77,6 +83,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   bool markdown = false;
   CLI::App* types = app.add_subcommand("types", "List every component type with its parameters and defaults");
   types->add_flag("--markdown", markdown, "Markdown tables");
+  types->add_option("--plugin", common.plugins, "Load component types from this shared library (repeatable)");
 
   CompareArgs ca;
   CLI::App* compare = app.add_subcommand("compare", "Compare a trajectory with a golden one");
@@ -159,6 +166,8 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   int code = kExitUsage;
   try {
     if (int c = readSettings(common)) return c;
+    // Plug-ins before any scene: their types resolve like the built-ins.
+    if (int c = loadPlugins(registry, common.plugins, common.extension_folder)) return c;
     // The log file is opened (created) first: it must not be another output of the command.
     if (!common.log_file.empty()) {
       std::vector<NamedPath> outputs;

@@ -200,6 +200,10 @@ std::string runArgsProblem(const RunArgs& a) {
   if (p.empty() && a.dt != 0) p = range("--dt", a.dt);
   if (p.empty()) p = range("--sample-interval", a.sample_interval);
   if (p.empty() && a.out == "-" && a.json) p = "--out - and --json would both write to stdout; drop one";
+  if (p.empty() && !(a.peer_timeout >= 0.001 && a.peer_timeout <= 86400))
+    p = "--peer-timeout must be between 0.001 and 86400 s, got " + formatNumber(a.peer_timeout);
+  if (p.empty() && (a.port_offset < -65535 || a.port_offset > 65535))
+    p = "--port-offset must be between -65535 and 65535, got " + std::to_string(a.port_offset);
   return p;
 }
 
@@ -256,6 +260,16 @@ int cmdRun(RunArgs& a, const Common& common) {
     return kExitDataErr;
   }
   if (a.out.empty()) a.out = std::filesystem::path(a.scene).stem().string() + ".csv";
+  for (SocketDef& d : model.sockets) {
+    d.timeout = a.peer_timeout;
+    if (d.port + a.port_offset < 1 || d.port + a.port_offset > 65535) {
+      g_log.error({ErrorKind::InvalidInput, d.loc,
+                   "RCLocalSocketCommunicator '" + d.key + "': Port " + std::to_string(d.port) + " + --port-offset " +
+                       std::to_string(a.port_offset) + " is outside 1 to 65535"});
+      return kExitUsage;
+    }
+    d.port += a.port_offset;
+  }
 
   // Every output is checked, and created under a temporary name, before the run starts: a run
   // must not end in "cannot create" after simulating for an hour.

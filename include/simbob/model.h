@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -103,7 +104,13 @@ struct SensorDef {
   std::vector<int> geoms;  ///< indices into Model::geoms, each with sensor = true
 };
 
-/// A built-in controller (guide 6.12) or a command schedule; runs as a party of the run loop.
+class Party;
+struct ControllerDef;
+/// A plug-in controller's party factory (simbob/plugin.h).
+using PluginPartyFactory = std::unique_ptr<Party> (*)(const ControllerDef& def);
+
+/// A built-in controller (guide 6.12), a command schedule or a plug-in controller; runs as a
+/// party of the run loop.
 struct ControllerDef {
   std::string key;  ///< fully qualified key
   SourceLoc loc;
@@ -113,16 +120,32 @@ struct ControllerDef {
     TwoWheel,         ///< (v, w) -> wheel velocities of actuators[0] (left), actuators[1] (right)
     CommandSchedule,  ///< timed commands to actuators[0], or to controllers[target] (TwoWheel)
     WallStop,         ///< drives controllers[target] (TwoWheel) at `speed` until sensors[0] touches, then stops
+    Plugin,           ///< a plug-in's type: `make` builds its party
   } kind = DriveTest;
-  double period = 0.01;          ///< s, loop period (DriveTest, ServoTest)
-  double variation = 6.0;        ///< 1/min (DriveTest, ServoTest); wheel radius in m (TwoWheel)
-  double wheel_distance = 0.5;   ///< m (TwoWheel)
-  std::vector<int> actuators;    ///< indices into Model::actuators
-  int target = -1;               ///< CommandSchedule to a controller: index into Model::controllers
-  int values = 1;                ///< CommandSchedule: values per row (1, or 2 for linear angular)
-  std::vector<double> commands;  ///< CommandSchedule: rows of (time s, values...), times increasing
-  std::vector<int> sensors;      ///< indices into Model::sensors (WallStop)
-  double speed = 0.1;            ///< m/s (WallStop)
+  double period = 0.01;               ///< s, loop period (DriveTest, ServoTest)
+  double variation = 6.0;             ///< 1/min (DriveTest, ServoTest); wheel radius in m (TwoWheel)
+  double wheel_distance = 0.5;        ///< m (TwoWheel)
+  std::vector<int> actuators;         ///< indices into Model::actuators
+  int target = -1;                    ///< CommandSchedule to a controller: index into Model::controllers
+  int values = 1;                     ///< CommandSchedule: values per row (1, or 2 for linear angular)
+  std::vector<double> commands;       ///< CommandSchedule: rows of (time s, values...), times increasing
+  std::string type;                   ///< Plugin: the type name
+  std::vector<double> numbers;        ///< Plugin: its number parameters, in the order it declared them
+  PluginPartyFactory make = nullptr;  ///< Plugin
+  std::vector<int> sensors;           ///< indices into Model::sensors (WallStop)
+  double speed = 0.1;                 ///< m/s (WallStop)
+};
+
+/// An RCLocalSocketCommunicator (guide 6.11.6): a peer program on 127.0.0.1 that reads the
+/// robot's state and sets its commands in lockstep with simulated time (lib/robot/socket_peer.cpp,
+/// README "Socket protocol").
+struct SocketDef {
+  std::string key;  ///< fully qualified key of the periphery
+  SourceLoc loc;
+  bool is_server = false;  ///< true: simbob listens and waits for the peer; false: simbob connects
+  int port = 5000;         ///< TCP port on 127.0.0.1 (the CLI adds --port-offset)
+  double period = 0.01;    ///< s of simulated time between exchanges
+  double timeout = 10.0;   ///< wall-clock s to wait for a connection or a reply (--peer-timeout)
 };
 
 /// ODE collision space: how candidate pairs are found. Results differ between spaces (pairs
@@ -153,6 +176,7 @@ struct Model {
   std::vector<ActuatorDef> actuators;      ///< document order (after the joints they drive)
   std::vector<SensorDef> sensors;          ///< document order (peripheries, after the joints)
   std::vector<ControllerDef> controllers;  ///< document order; a schedule's TwoWheel target may come first
+  std::vector<SocketDef> sockets;          ///< document order
 };
 
 }  // namespace simbob

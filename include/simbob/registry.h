@@ -93,6 +93,8 @@ struct ListParam {
   const char* name;
 };
 
+struct PluginControllerType;  // simbob/plugin.h
+
 struct TypeSpec {
   TypeSpec() = default;
   TypeSpec(std::string n, Family f, int k, std::vector<ParamSpec> ps, std::vector<std::string> al, std::string d,
@@ -116,6 +118,8 @@ struct TypeSpec {
   std::string import_root;              ///< non-empty: parameter File names an XML file with this root
                                         ///< element ("Body", "Joint", "RefList") read into the scene
   std::vector<std::string> interfaces;  ///< guide interfaces it offers controllers ("RCDriver", ...)
+  /// A plug-in's controller type (kept by its loader), or null.
+  const PluginControllerType* plugin = nullptr;
 
   /// Whether it offers `interface`.
   bool implements(std::string_view interface) const;

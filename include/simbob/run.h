@@ -68,7 +68,7 @@ class Party {
   /// not when it fails.
   virtual void finish(SimTime end, World& world);
   /// Non-null once the party cannot go on (its output failed, ...): the run stops with status
-  /// Failed and this error. Checked after the grants of each instant before the end.
+  /// Failed and this error. Checked after the grants of each instant (the last one too).
   virtual const Error* failure() const;
 
   /// MaxAccessTime (guide 7.2): the wall-clock seconds one call of first() or onGrant() may

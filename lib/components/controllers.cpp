@@ -7,12 +7,13 @@
 
 #include "compile/context.h"
 #include "components/families.h"
+#include "simbob/plugin.h"
 
 namespace simbob {
 
 namespace {
 
-enum class ControllerKind { DriveTest, ServoTest, TwoWheelMotionControl, CommandSchedule, WallStop };
+enum class ControllerKind { DriveTest, ServoTest, TwoWheelMotionControl, CommandSchedule, WallStop, Plugin };
 
 constexpr LinkParam kDrive{"Drive"};
 constexpr LinkParam kPosControl{"PosControl"};
@@ -177,6 +178,21 @@ void registerControllers(Registry& r) {
          "Drives forward until its contact sensor touches something, then stops for good."});
 }
 
+PluginHost::~PluginHost() = default;
+
+TypeSpec controllerTypeSpec(const PluginControllerType& t) {
+  std::vector<ParamSpec> params;
+  for (const PluginRef& r : t.refs)
+    params.push_back(
+        componentParam(LinkParam{r.name.c_str()}, {Family::Periphery}, "", r.doc + " (Ref, " + r.interface + ")"));
+  params.push_back(number(kPeriod, 0.01, "s", "loop period", Range::Positive));
+  for (const PluginNumber& n : t.numbers)
+    params.push_back(number(ValueParam<double>{n.name.c_str()}, n.default_value, n.unit, n.doc));
+  TypeSpec spec{t.name, Family::Controller, int(ControllerKind::Plugin), std::move(params), {}, t.doc};
+  spec.plugin = &t;
+  return spec;
+}
+
 void lowerController(CompileContext& ctx, const Component& c) {
   const int ci = ctx.indexOf(c);
   if (ctx.controller_index.count(ci)) return;  // lowered already (a schedule's target, or listed twice)
@@ -266,6 +282,16 @@ void lowerController(CompileContext& ctx, const Component& c) {
       d.sensors.push_back(sensorOf(ctx, c, kSensor));
       if (d.target < 0 || d.sensors[0] < 0) ok = false;
       break;
+    case ControllerKind::Plugin: {
+      const PluginControllerType& t = *c.type->plugin;
+      d.kind = ControllerDef::Plugin;
+      d.type = t.name;
+      d.make = t.make;
+      d.period = c.get(kPeriod);
+      for (const PluginRef& r : t.refs) actuator(LinkParam{r.name.c_str()}, r.interface.c_str());
+      for (const PluginNumber& n : t.numbers) d.numbers.push_back(c.get(ValueParam<double>{n.name.c_str()}));
+      break;
+    }
   }
   if (!ok) return;
   ctx.controller_index[ci] = static_cast<int>(ctx.model.controllers.size());

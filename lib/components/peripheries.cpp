@@ -3,7 +3,7 @@
 // (guide 6.12): RCDriver, RCPosControl, RCVelControl, RCContactSensor.
 // Drives and servos lower to Model::actuators (lib/physics/actuators.cpp makes them act); the
 // proximity sensor to Model::sensors and sensor geoms (lib/physics/sensors.cpp); the socket
-// communicator is checked but does not act yet.
+// communicator to Model::sockets (lib/robot/socket_peer.cpp talks to its peer).
 #include <cmath>
 #include <limits>
 
@@ -28,6 +28,7 @@ constexpr LinkParam kPose{"Pose"};
 constexpr LinkParam kGeom{"Geom"};
 constexpr ValueParam<bool> kIsServer{"IsServer"};
 constexpr ValueParam<int64_t> kPort{"Port"};
+constexpr ValueParam<double> kPeriod{"Period"};
 
 constexpr int64_t kMaxPort = 65535;
 constexpr double kPi = 3.14159265358979323846;
@@ -192,9 +193,11 @@ void registerPeripheries(Registry& r) {
          Family::Periphery,
          int(PeripheryKind::LocalSocketCommunicator),
          {flag(kIsServer, false, "wait for a client instead of connecting"),
-          integer(kPort, 5000, "TCP port on localhost (1 to 65535)", Range::Positive)},
+          integer(kPort, 5000, "TCP port on 127.0.0.1 (1 to 65535; run --port-offset adds to it)", Range::Positive),
+          number(kPeriod, 0.01, "s", "simulated time between exchanges with the peer (simbob's own)", Range::Positive)},
          {},
-         "Talks to another program over a local socket."});
+         "Lets another program on this computer read the robot and command it, in lockstep (README \"Socket "
+         "protocol\")."});
 }
 
 bool peripheryLimits(const Component& c, double* lo, double* hi) {
@@ -226,11 +229,26 @@ void lowerPeriphery(CompileContext& ctx, const Component& c, const Built& parent
     case PeripheryKind::ProximitySensor:
       lowerSensor(ctx, c, parent);
       break;
-    case PeripheryKind::LocalSocketCommunicator:
-      if (c.get(kPort) > kMaxPort)
+    case PeripheryKind::LocalSocketCommunicator: {
+      if (c.get(kPort) > kMaxPort) {
         ctx.errorAt(c.slotOf(kPort), c, "parameter 'Port' must be at most 65535, got " + std::to_string(c.get(kPort)));
-      ctx.warning(c, "socket communicators are read but have no effect yet");
+        break;
+      }
+      const double period = c.get(kPeriod);
+      if (!(period >= 1e-9 && period <= 1e9)) {
+        ctx.errorAt(c.slotOf(kPeriod), c,
+                    "parameter 'Period' must be between 1e-9 and 1e9 s, got " + formatNumber(period));
+        break;
+      }
+      SocketDef d;
+      d.key = ctx.modelKey(c);
+      d.loc = c.loc;
+      d.is_server = c.get(kIsServer);
+      d.port = static_cast<int>(c.get(kPort));
+      d.period = period;
+      ctx.model.sockets.push_back(d);
       break;
+    }
   }
 }
 

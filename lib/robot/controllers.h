@@ -2,6 +2,9 @@
 #pragma once
 
 #include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "simbob/clock.h"
 #include "simbob/model.h"
@@ -34,5 +37,9 @@ std::unique_ptr<MotionControl2D> makeTwoWheel(const ControllerDef& c);
 std::unique_ptr<Party> makeCommandSchedule(const ControllerDef& c, MotionControl2D* target);
 /// `motion`: the RC2DMotionControl it drives (never nullptr).
 std::unique_ptr<Party> makeWallStop(const ControllerDef& c, MotionControl2D* motion);
+/// An RCLocalSocketCommunicator's peer: it may command every actuator of `model` and every
+/// RC2DMotionControl in `motions` (key, controller).
+std::unique_ptr<Party> makeSocketPeer(const SocketDef& d, const Model& model,
+                                      std::vector<std::pair<std::string, MotionControl2D*>> motions);
 
 }  // namespace simbob::robot

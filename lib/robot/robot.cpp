@@ -40,6 +40,9 @@ std::vector<std::unique_ptr<Party>> robotParties(const Model& model) {
         break;
       case ControllerDef::TwoWheel:
         break;  // made above
+      case ControllerDef::Plugin:
+        out[i] = c.make(c);
+        break;
       case ControllerDef::CommandSchedule:
         out[i] = robot::makeCommandSchedule(c, c.target >= 0 ? motion[static_cast<size_t>(c.target)] : nullptr);
         break;
@@ -52,6 +55,11 @@ std::vector<std::unique_ptr<Party>> robotParties(const Model& model) {
     out[i]->name = "controller '" + model.controllers[i].key + "'";
     out[i]->loc = model.controllers[i].loc;
   }
+  // Socket peers last: at an instant they see what the controllers commanded and may override it.
+  std::vector<std::pair<std::string, robot::MotionControl2D*>> motions;
+  for (size_t i = 0; i < model.controllers.size(); ++i)
+    if (motion[i]) motions.emplace_back(model.controllers[i].key, motion[i]);
+  for (const SocketDef& d : model.sockets) out.push_back(robot::makeSocketPeer(d, model, motions));
   return out;
 }
 

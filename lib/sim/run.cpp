@@ -55,8 +55,8 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
     return res;
   }
   Clock clock(std::max<SimTime>(step, 1), min_step);
-  // MaxAccessTime (guide 7.2): every call that hands a party the world is timed; one that took
-  // longer stops the run. (A blocking party bounds its own waits by accessDeadline().)
+  // MaxAccessTime (guide 7.2): every grant (onGrant) is timed; one that took longer stops the
+  // run. (A blocking party bounds its own waits by accessDeadline().)
   const double limit = opts.max_access_time > 0 ? opts.max_access_time : model.settings.max_access_time;
   const auto limit_d = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
       std::chrono::duration<double>(std::min(limit, 1e9)));
@@ -78,10 +78,12 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
     p.access_deadline_ = started + limit_d;
     return started;
   };
+  // first() is not a grant: a party that waits there (a socket server for its peer) bounds that
+  // wait itself (--peer-timeout).
   for (Party* p : parties) {
-    const auto started = open(*p);
+    p->access_limit_ = limit;
+    p->access_deadline_ = std::chrono::steady_clock::time_point::max();
     clock.addParty(p->first());
-    if (overran(*p, started)) break;
   }
 
   const SimTime progress_every = std::max<SimTime>(end / 100, 1);
@@ -98,7 +100,6 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
       granted = true;
     }
     if (!res.error.message.empty()) break;
-    if (clock.now() >= end) break;
     if (granted) {
       for (const Party* p : parties)
         if (const Error* e = p->failure()) {
@@ -108,6 +109,7 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
         }
       if (!res.error.message.empty()) break;
     }
+    if (clock.now() >= end) break;
     if (opts.stop && *opts.stop) {
       res.status = RunStatus::Interrupted;
       res.error = {ErrorKind::Diverged, {}, "interrupted at t=" + formatNumber(toSeconds(clock.now())) + " s"};

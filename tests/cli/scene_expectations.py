@@ -292,8 +292,27 @@ def sliding_box(c):
     c.below("at rest after 0.41 s", math.dist(p, p1), 1e-4)
 
 
+def socket_robot(c):
+    # Driven by scripts/simbob_client.py: 0.2 m/s for 2 s, then a proportional turn on the spot
+    # to a heading of pi/2 (counter-clockwise about +Y). The wheels' axle midpoint sits 0.1 m
+    # ahead of the chassis centre, so the turn moves the centre to axle + R(pi/2) (-0.1, 0, 0).
+    def heading(q):
+        w, x, y, z = q
+        return math.atan2(-2 * (x * z - w * y), 1 - 2 * (y * y + z * z))
+
+    _, p2, q2 = c.at("Bot.Cart.Chassis", 2.0)
+    c.near("chassis x after 2 s at 0.2 m/s (m)", p2[0], 0.4, 0.02)
+    c.near("heading after the straight leg (rad)", heading(q2), 0.0, 0.01)
+    _, p, q = c.at("Bot.Cart.Chassis", 10.0)
+    c.near("heading at the end (rad)", heading(q), math.pi / 2, 0.02)
+    axle = p2[0] + 0.1
+    c.near("chassis x after the turn (m)", p[0], axle, 0.02)
+    c.near("chassis z after the turn (m)", p[2], 0.1, 0.02)
+    c.near("chassis height", p[1], 0.12, 2e-3)
+
+
 SCENES = {f.__name__: f for f in (pendulum, box_stack, chain, imported_bodies, mechanisms, bounce, robot, flywheel,
-                                  servo_arm, two_wheel_robot, wall_stop_robot, sliding_box)}
+                                  servo_arm, two_wheel_robot, wall_stop_robot, sliding_box, socket_robot)}
 
 if __name__ == "__main__":
     name, path = sys.argv[1], sys.argv[2]

@@ -6,6 +6,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 cli_setup "$@"
 
 # Mobile bodies of each documented scene (static bodies, ground and walls are not in the CSV).
+# (scenes/socket_robot.xml, 4 mobile bodies, needs its peer: tests/cli/socket.sh runs and checks it.)
 declare -A MOBILE=([pendulum]=1 [box_stack]=6 [chain]=5 [imported_bodies]=3 [mechanisms]=6 [bounce]=3 [robot]=4
   [two_wheel_robot]=4 [wall_stop_robot]=4 [flywheel]=1 [servo_arm]=1
   [sliding_box]=1)

@@ -10,6 +10,7 @@ cd "$tmp"
 fail() { echo "FAIL: $*"; exit 1; }
 
 # Keys are case-insensitive (INI, guide 4.1).
+mkdir ext # ExtensionFolder must exist (an empty one loads no plug-ins)
 printf 'logfile = from-settings.log\nTextureFolder = textures\nExtensionFolder = ext\n' > settings.ini
 "$simbob" run "$repo/scenes/pendulum.xml" --duration 0.1 --out a.csv --settings settings.ini 2> err.txt
 grep -q "simbob: wrote a.csv" from-settings.log || fail "LogFile from --settings not written: $(cat from-settings.log 2>/dev/null)"

@@ -93,7 +93,7 @@ const std::vector<GuideType>& guideTypes() {
       {"RCGenericServo", Family::Periphery, {"Joint", "MaxPower", "MaxVelocity", "MinPos", "MaxPos", "Smooth"}},
       {"RCGenericVelControlledDrive", Family::Periphery, {"Joint", "MaxPower", "MaxVelocity", "MinPos", "MaxPos"}},
       {"RCProximitySensor", Family::Periphery, {"Pose", "Geom"}},
-      {"RCLocalSocketCommunicator", Family::Periphery, {"IsServer", "Port"}},
+      {"RCLocalSocketCommunicator", Family::Periphery, {"IsServer", "Port", "Period"}},  // Period: simbob's own
       // 6.12 ControllerComponents
       {"RCDriveTest", Family::Controller, {"Drive", "Period", "Variation"}},
       {"RCServoTest", Family::Controller, {"PosControl", "Period", "Variation"}},

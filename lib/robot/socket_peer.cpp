@@ -1,0 +1,395 @@
+// RCLocalSocketCommunicator (guide 6.11.6): another program on this computer (the peer) reads
+// the robot's state and sets its commands over a TCP connection on 127.0.0.1, in lockstep with
+// simulated time. At every Period simbob sends the state and waits for the peer's commands and
+// "step" before the simulation goes on; the line protocol is README "Socket protocol".
+// Every wait is a poll(2) with a wall-clock deadline (SocketDef::timeout): a peer that never
+// connects, goes away or falls silent fails the run (ErrorKind::Unavailable), a line the
+// protocol does not allow fails it too (ErrorKind::Protocol). No threads.
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "robot/controllers.h"
+#include "simbob/physics.h"
+#include "simbob/values.h"
+
+namespace simbob::robot {
+
+namespace {
+
+constexpr int kProtocolVersion = 1;
+constexpr size_t kMaxLine = 4096;  ///< bytes of one line from the peer, newline excluded
+
+using Wall = std::chrono::steady_clock;
+
+const char* actuatorKind(ActuatorDef::Kind k) {
+  switch (k) {
+    case ActuatorDef::Drive:
+      return "voltage";
+    case ActuatorDef::Servo:
+      return "position";
+    case ActuatorDef::VelDrive:
+      return "velocity";
+  }
+  return "?";
+}
+
+const char* jointKind(JointKind k) {
+  switch (k) {
+    case JointKind::Hinge:
+      return "hinge";
+    case JointKind::Slider:
+      return "slider";
+    case JointKind::BallSocket:
+      return "ball";
+    case JointKind::Fixed:
+      return "fixed";
+  }
+  return "?";
+}
+
+/// One finite number, the whole of `s`.
+bool parseDouble(std::string_view s, double* out) {
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  const char* end = s.data() + s.size();
+  auto [p, ec] = std::from_chars(s.data(), end, *out);
+  return ec == std::errc() && p == end && !s.empty() && std::isfinite(*out);
+}
+
+std::vector<std::string_view> words(std::string_view line) {
+  std::vector<std::string_view> w;
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    size_t j = i;
+    while (j < line.size() && line[j] != ' ' && line[j] != '\t') ++j;
+    if (j > i) w.push_back(line.substr(i, j - i));
+    i = j;
+  }
+  return w;
+}
+
+class SocketPeer : public Party {
+ public:
+  SocketPeer(const SocketDef& d, const Model& model, std::vector<std::pair<std::string, MotionControl2D*>> motions)
+      : def_(d), model_(model), motions_(std::move(motions)), periodic_(d.period) {}
+  ~SocketPeer() override {
+    closeFd(&conn_);
+    closeFd(&listen_);
+  }
+  SocketPeer(const SocketPeer&) = delete;
+  SocketPeer& operator=(const SocketPeer&) = delete;
+
+  SimTime first() override {
+    // A server takes its port at once, so a peer may connect while the world is being built.
+    if (def_.is_server) listen();
+    return 0;
+  }
+
+  SimTime onGrant(SimTime now, World& world) override {
+    if (!error_.message.empty() || done_) return kNever;
+    if (conn_ < 0 && !(def_.is_server ? accept() : connect())) return kNever;
+    if (!hello_sent_) {
+      hello_sent_ = true;
+      if (!send(hello())) return kNever;
+    }
+    if (!send(state(now, world)) || !exchange(now, world)) return kNever;
+    if (done_) {
+      closeFd(&conn_);
+      return kNever;
+    }
+    return periodic_.next(now);
+  }
+
+  void finish(SimTime end, World& /*world*/) override {
+    if (conn_ >= 0 && error_.message.empty()) send("bye " + formatNumber(toSeconds(end)) + "\n");
+    closeFd(&conn_);
+    closeFd(&listen_);
+  }
+
+  const Error* failure() const override { return error_.message.empty() ? nullptr : &error_; }
+
+ private:
+  static void closeFd(int* fd) {
+    if (*fd >= 0) ::close(*fd);
+    *fd = -1;
+  }
+
+  std::string where() const {
+    return "RCLocalSocketCommunicator '" + def_.key + "' (127.0.0.1:" + std::to_string(def_.port) + ")";
+  }
+
+  /// Fails the run; tells a connected peer why (best effort) and closes the connection.
+  bool fail(ErrorKind kind, const std::string& what) {
+    if (error_.message.empty()) error_ = {kind, def_.loc, where() + ": " + what};
+    if (conn_ >= 0) {
+      const std::string line = "error " + what + "\n";
+      (void)::send(conn_, line.data(), line.size(), MSG_NOSIGNAL);
+    }
+    closeFd(&conn_);
+    closeFd(&listen_);
+    return false;
+  }
+
+  std::string timeoutText() const { return formatNumber(def_.timeout) + " s"; }
+
+  /// Milliseconds left until `deadline` (0 when past it), for poll(2).
+  static int msLeft(Wall::time_point deadline) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Wall::now()).count();
+    return left <= 0 ? 0 : static_cast<int>(std::min<long long>(left, 1000 * 1000));
+  }
+
+  Wall::time_point deadline() const {
+    return Wall::now() + std::chrono::duration_cast<Wall::duration>(std::chrono::duration<double>(def_.timeout));
+  }
+
+  static sockaddr_in loopback(int port) {
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_port = htons(static_cast<uint16_t>(port));
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    return a;
+  }
+
+  void listen() {
+    listen_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
+    if (listen_ < 0) {
+      fail(ErrorKind::Unavailable, std::string("cannot create a socket: ") + std::strerror(errno));
+      return;
+    }
+    const int one = 1;
+    ::setsockopt(listen_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+    sockaddr_in a = loopback(def_.port);
+    if (::bind(listen_, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 || ::listen(listen_, 1) != 0) {
+      fail(ErrorKind::Unavailable, std::string("cannot listen: ") + std::strerror(errno) +
+                                       " (another run on this port? --port-offset moves every port)");
+      return;
+    }
+  }
+
+  bool accept() {
+    if (listen_ < 0) return fail(ErrorKind::Internal, "not listening");
+    pollfd p{listen_, POLLIN, 0};
+    const Wall::time_point until = deadline();
+    while (true) {
+      const int r = ::poll(&p, 1, msLeft(until));
+      if (r < 0 && errno == EINTR) continue;
+      if (r <= 0)
+        return fail(ErrorKind::Unavailable, "no peer connected within " + timeoutText() + " (--peer-timeout)");
+      conn_ = ::accept4(listen_, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
+      if (conn_ >= 0) break;
+      if (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR && errno != ECONNABORTED)
+        return fail(ErrorKind::Unavailable, std::string("cannot accept a peer: ") + std::strerror(errno));
+    }
+    closeFd(&listen_);  // one peer per run
+    configure();
+    return true;
+  }
+
+  bool connect() {
+    conn_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
+    if (conn_ < 0) return fail(ErrorKind::Unavailable, std::string("cannot create a socket: ") + std::strerror(errno));
+    sockaddr_in a = loopback(def_.port);
+    int err = 0;
+    if (::connect(conn_, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
+      err = errno;
+      if (err == EINPROGRESS) {
+        pollfd p{conn_, POLLOUT, 0};
+        const Wall::time_point until = deadline();
+        int r;
+        while ((r = ::poll(&p, 1, msLeft(until))) < 0 && errno == EINTR) {
+        }
+        if (r <= 0) return fail(ErrorKind::Unavailable, "no answer from a server within " + timeoutText());
+        socklen_t len = sizeof err;
+        ::getsockopt(conn_, SOL_SOCKET, SO_ERROR, &err, &len);
+      }
+    }
+    if (err != 0)
+      return fail(ErrorKind::Unavailable, std::string("cannot connect to a server: ") + std::strerror(err) +
+                                              " (IsServer is false: start the peer's server first; simbob does "
+                                              "not retry)");
+    configure();
+    return true;
+  }
+
+  void configure() {
+    const int one = 1;
+    ::setsockopt(conn_, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+  }
+
+  bool send(const std::string& text) {
+    const Wall::time_point until = deadline();
+    size_t off = 0;
+    while (off < text.size()) {
+      const ssize_t n = ::send(conn_, text.data() + off, text.size() - off, MSG_NOSIGNAL);
+      if (n > 0) {
+        off += static_cast<size_t>(n);
+        continue;
+      }
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
+        pollfd p{conn_, POLLOUT, 0};
+        if (::poll(&p, 1, msLeft(until)) == 0)
+          return fail(ErrorKind::Unavailable, "the peer read nothing for " + timeoutText() + " (--peer-timeout)");
+        continue;
+      }
+      return fail(ErrorKind::Unavailable,
+                  std::string("the peer went away (") + std::strerror(n < 0 ? errno : EPIPE) + ")");
+    }
+    return true;
+  }
+
+  std::string hello() const {
+    std::string s =
+        "simbob " + std::to_string(kProtocolVersion) + " " + def_.key + " " + formatNumber(def_.period) + "\n";
+    for (const ActuatorDef& a : model_.actuators) s += "actuator " + a.key + " " + actuatorKind(a.kind) + "\n";
+    for (const auto& m : motions_) s += "motion " + m.first + "\n";
+    for (const JointDef& j : model_.joints) s += "joint " + j.key + " " + jointKind(j.kind) + "\n";
+    for (const BodyDef& b : model_.bodies) s += "body " + b.key + "\n";
+    s += "end\n";
+    return s;
+  }
+
+  std::string state(SimTime now, const World& world) const {
+    std::string s = "t " + formatNumber(toSeconds(now)) + "\n";
+    for (size_t i = 0; i < model_.joints.size(); ++i) {
+      const JointState js = world.joint(static_cast<int>(i));
+      s += "joint " + model_.joints[i].key + " ";
+      appendNumber(s, js.position);
+      s += ' ';
+      appendNumber(s, js.velocity);
+      s += '\n';
+    }
+    for (size_t i = 0; i < model_.bodies.size(); ++i) {
+      const BodyState b = world.body(static_cast<int>(i));
+      s += "body " + model_.bodies[i].key;
+      for (double v : b.pose.p) {
+        s += ' ';
+        appendNumber(s, v);
+      }
+      for (double v : b.pose.q) {
+        s += ' ';
+        appendNumber(s, v);
+      }
+      s += '\n';
+    }
+    s += "end\n";
+    return s;
+  }
+
+  /// Reads and applies the peer's lines up to "step" or "done".
+  bool exchange(SimTime now, World& world) {
+    // Within a grant the peer also answers within MaxAccessTime (guide 7.2), whichever ends first.
+    const Wall::time_point own = deadline();
+    const bool by_access = accessDeadline() < own;
+    const Wall::time_point until = by_access ? accessDeadline() : own;
+    const std::string limit = by_access ? formatNumber(accessLimit()) + " s" : timeoutText();
+    const std::string which = by_access ? " (MaxAccessTime)" : " (--peer-timeout)";
+    const std::string at = " at t=" + formatNumber(toSeconds(now)) + " s";
+    while (true) {
+      const size_t nl = in_.find('\n');
+      if (nl == std::string::npos) {
+        if (in_.size() > kMaxLine)
+          return fail(ErrorKind::Protocol, "a line longer than " + std::to_string(kMaxLine) + " bytes" + at);
+        pollfd p{conn_, POLLIN, 0};
+        const int r = ::poll(&p, 1, msLeft(until));
+        if (r < 0 && errno == EINTR) continue;
+        if (r == 0)
+          return fail(ErrorKind::Unavailable,
+                      "the peer sent no 'step' within " + limit + at + which);
+        char buf[4096];
+        const ssize_t n = ::recv(conn_, buf, sizeof buf, 0);
+        if (n < 0 && (errno == EINTR || errno == EAGAIN || errno == EWOULDBLOCK)) continue;
+        if (n <= 0)
+          return fail(ErrorKind::Unavailable,
+                      "the peer disconnected" + at + " without 'done'" +
+                          (n < 0 ? std::string(" (") + std::strerror(errno) + ")" : std::string()));
+        in_.append(buf, static_cast<size_t>(n));
+        continue;
+      }
+      std::string line = in_.substr(0, nl);
+      in_.erase(0, nl + 1);
+      if (!line.empty() && line.back() == '\r') line.pop_back();
+      if (line.size() > kMaxLine)
+        return fail(ErrorKind::Protocol, "a line longer than " + std::to_string(kMaxLine) + " bytes" + at);
+      const std::vector<std::string_view> w = words(line);
+      if (w.empty()) continue;
+      if (w[0] == "step" && w.size() == 1) return true;
+      if (w[0] == "done" && w.size() == 1) {
+        done_ = true;
+        return true;
+      }
+      if (w[0] == "set" && w.size() >= 3) {
+        if (!set(w, world)) return fail(ErrorKind::Protocol, problem_ + at);
+        continue;
+      }
+      return fail(ErrorKind::Protocol,
+                  "the peer sent '" + quoteInput(line) + "'" + at + ": expected 'set KEY VALUE...', 'step' or 'done'");
+    }
+  }
+
+  bool set(const std::vector<std::string_view>& w, World& world) {
+    std::vector<double> v(w.size() - 2);
+    for (size_t i = 2; i < w.size(); ++i)
+      if (!parseDouble(w[i], &v[i - 2])) {
+        problem_ = "'set " + quoteInput(w[1]) + "': '" + quoteInput(w[i]) + "' is not a finite number";
+        return false;
+      }
+    for (size_t i = 0; i < model_.actuators.size(); ++i)
+      if (model_.actuators[i].key == w[1]) {
+        if (v.size() != 1) {
+          problem_ = "'set " + std::string(w[1]) + "' takes one value, got " + std::to_string(v.size());
+          return false;
+        }
+        world.setCommand(static_cast<int>(i), v[0]);
+        return true;
+      }
+    for (const auto& m : motions_)
+      if (m.first == w[1]) {
+        if (v.size() != 2) {
+          problem_ =
+              "'set " + std::string(w[1]) + "' takes two values (linear angular), got " + std::to_string(v.size());
+          return false;
+        }
+        m.second->setMotion(v[0], v[1], world);
+        return true;
+      }
+    problem_ = "'set " + quoteInput(w[1]) + "': no actuator or motion control has that key";
+    return false;
+  }
+
+  SocketDef def_;
+  const Model& model_;
+  std::vector<std::pair<std::string, MotionControl2D*>> motions_;
+  Periodic periodic_;
+  int listen_ = -1;
+  int conn_ = -1;
+  bool hello_sent_ = false;
+  bool done_ = false;
+  std::string in_;
+  std::string problem_;
+  Error error_;
+};
+
+}  // namespace
+
+std::unique_ptr<Party> makeSocketPeer(const SocketDef& d, const Model& model,
+                                      std::vector<std::pair<std::string, MotionControl2D*>> motions) {
+  return std::make_unique<SocketPeer>(d, model, std::move(motions));
+}
+
+}  // namespace simbob::robot

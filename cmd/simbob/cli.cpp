@@ -207,6 +207,11 @@ int readSettings(Common& c) {
   if (!loadStructIni(c.settings, *c.registry, "GlobalSettings", &holder, &comp, d)) return report(d, true);
   const std::string& log = holder.at(comp).get(kLogFileParam);
   if (c.log_file.empty() && !log.empty()) c.log_file = log;
+  const std::string& tex = holder.at(comp).get(kTextureFolderParam);
+  if (!tex.empty()) {
+    const size_t slash = c.settings.find_last_of('/');
+    c.texture_folder = tex[0] == '/' || slash == std::string::npos ? tex : c.settings.substr(0, slash + 1) + tex;
+  }
   return 0;
 }
 

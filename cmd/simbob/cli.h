@@ -60,6 +60,7 @@ struct Common {
   bool verbose = false;
   std::string log_file;
   std::string settings;
+  std::string texture_folder;  ///< TextureFolder of the global settings (relative to the settings file)
   /// The component types: built once by main (registerBuiltins) and passed down with the options.
   const Registry* registry = nullptr;
 };

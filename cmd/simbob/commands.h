@@ -10,12 +10,25 @@ class App;
 }
 namespace simbob {
 class Registry;
+struct RenderOptions;
 }
 
 namespace simbob::cli {
 
 struct Common;
 struct NamedPath;
+
+/// The view options of `run --record` and `render` (issue #12).
+struct ViewArgs {
+  std::string size = "640x480";  ///< WIDTHxHEIGHT in pixels
+  std::string camera;            ///< a camera's key ("" = the scene's first, else a default view)
+  std::string quality;           ///< view quality level ("" = shadows)
+  std::string gl;                ///< egl, osmesa ("" = $SIMBOB_GL, else EGL falling back to OSMesa)
+};
+void addViewOptions(CLI::App* app, ViewArgs& v);
+/// Checks the view options and fills `o` (the back end from $SIMBOB_GL when --gl is not given);
+/// 0, or the exit status after logging the problem.
+int renderOptions(const ViewArgs& v, const Common& common, RenderOptions* o);
 
 struct RunArgs {
   std::string scene;
@@ -31,6 +44,9 @@ struct RunArgs {
   bool auto_disable = false;  ///< turns SceneSettings AutoDisable on
   int max_contacts = 0;       ///< overrides SceneSettings MaxContacts (0 = the scene's)
   bool out_given = false;     ///< --out was on the command line
+  std::string record;         ///< --record DIR: frames as DIR/frame_000000.png ("" = no GL context at all)
+  double fps = 30;            ///< frames per simulated second of --record
+  ViewArgs view;
 };
 int cmdRun(RunArgs& a, const Common& common);
 
@@ -60,6 +76,18 @@ struct PlotArgs {
   std::string trajectory, golden, out, bodies, title;
 };
 int cmdPlot(const PlotArgs& a, const Common& common);
+
+struct RenderArgs {
+  std::string scene;
+  double at = 0;  ///< s of simulated time drawn (the scene is simulated up to it)
+  std::string out;
+  double dt = 0;
+  uint32_t seed = 0;
+  ViewArgs view;
+};
+int cmdRender(const RenderArgs& a, const Common& common);
+/// simbob info: version and the GL back ends with their GL_RENDERER.
+int cmdInfo(const std::string& gl, const Common& common);
 
 struct BatchArgs {
   std::vector<std::string> scenes;  ///< paths or glob patterns

@@ -15,6 +15,7 @@
 #include "commands.h"
 #include "simbob/files.h"
 #include "simbob/physics.h"
+#include "simbob/render.h"
 #include "simbob/robot.h"
 #include "simbob/run.h"
 #include "simbob/transform.h"
@@ -180,6 +181,20 @@ class StopWatchdog {
   std::thread thread_;
 };
 
+/// A party owned elsewhere (the recorder outlives the run: its frame count and error are read
+/// after it).
+class PartyRef : public Party {
+ public:
+  explicit PartyRef(Party& p) : p_(p) {}
+  SimTime first() override { return p_.first(); }
+  SimTime onGrant(SimTime now, World& world) override { return p_.onGrant(now, world); }
+  void finish(SimTime end, World& world) override { p_.finish(end, world); }
+  const Error* failure() const override { return p_.failure(); }
+
+ private:
+  Party& p_;
+};
+
 }  // namespace
 
 std::vector<NamedPath> runOutputs(const RunArgs& a) {
@@ -240,6 +255,7 @@ int cmdRun(RunArgs& a, const Common& common) {
   if (a.auto_disable) model.settings.auto_disable = true;
   if (a.max_contacts > 0) model.settings.max_contacts = a.max_contacts;
 
+  Error err_early;
   // Every output is checked, and created under a temporary name, before the run starts: a run
   // must not end in "cannot create" after simulating for an hour.
   std::vector<NamedPath> outputs = runOutputs(a);
@@ -251,6 +267,38 @@ int cmdRun(RunArgs& a, const Common& common) {
     inputs.push_back({"--settings", common.settings});
     outputs.push_back({"--log-file", g_log.path});
     if (int c = checkOutputs(outputs, inputs)) return c;
+  }
+
+  // --record: the renderer (a GL context) exists only then; frames go to DIR/frame_NNNNNN.png.
+  std::unique_ptr<Renderer> renderer;
+  std::unique_ptr<FrameSink> sink;
+  if (!a.record.empty()) {
+    if (!(a.fps > 0 && a.fps <= 1000)) {
+      g_log.error({ErrorKind::InvalidInput, {}, "--fps must be above 0 and at most 1000, got " + formatNumber(a.fps)});
+      return kExitUsage;
+    }
+    RenderOptions ro;
+    if (int c = renderOptions(a.view, common, &ro)) return c;
+    std::error_code dir_ec;
+    std::filesystem::create_directories(a.record, dir_ec);
+    if (!std::filesystem::is_directory(a.record, dir_ec)) {
+      g_log.error({ErrorKind::CannotCreate, {a.record, 0}, "cannot create the --record directory"});
+      return kExitCantCreate;
+    }
+    if (std::filesystem::exists(std::filesystem::path(a.record) / "frame_000000.png", dir_ec)) {
+      g_log.error({ErrorKind::CannotCreate,
+                   {a.record, 0},
+                   "already holds a recording (frame_000000.png); remove it or record elsewhere"});
+      return kExitCantCreate;
+    }
+    renderer = Renderer::create(model, ro, &err_early);
+    if (!renderer) {
+      g_log.error(err_early);
+      return exitCodeFor(err_early.kind);
+    }
+    sink = pngSequenceSink(a.record);
+    g_log.debug("recording through " + renderer->backendName() + " (" + renderer->glRenderer() + "), camera " +
+                renderer->cameraName());
   }
 
   // The run needs only the compiled model: free the component graph before ODE allocates.
@@ -285,10 +333,19 @@ int cmdRun(RunArgs& a, const Common& common) {
   opts.sample_interval = a.sample_interval;
   opts.seed = a.seed;
   opts.stop = &g_stop;
-  opts.make_parties = [&model] { return robotParties(model); };  // controllers, after the sampler
   std::vector<double> rec_times, rec_poses;
   std::atomic<double> last_sample{0.0};
   bool first_pass = true;
+  std::unique_ptr<Recorder> recorder;
+  if (renderer)
+    recorder = std::make_unique<Recorder>(*renderer, *sink, a.fps, toSimTime(model.settings.min_time_step).value_or(0),
+                                          static_cast<int>(model.bodies.size()));
+  opts.make_parties = [&] {
+    std::vector<std::unique_ptr<Party>> parties = robotParties(model);  // controllers, after the sampler
+    // The recorder last (it sees what the controllers did at t), in the first run only.
+    if (recorder && first_pass) parties.push_back(std::make_unique<PartyRef>(*recorder));
+    return parties;
+  };
   opts.on_sample = [&](double t, const double* p) {
     if (a.check_determinism && first_pass) {
       rec_times.push_back(t);
@@ -375,6 +432,14 @@ int cmdRun(RunArgs& a, const Common& common) {
   }
   watchdog.loopReturned();
 
+  if (r.status == RunStatus::Completed && recorder && recorder->failure()) {
+    r.status = RunStatus::Failed;  // the recording could not be finished
+    r.error = *recorder->failure();
+  }
+  if (recorder) {
+    summary["record"] = a.record;
+    summary["frames"] = recorder->frames();
+  }
   if (r.status == RunStatus::Completed) {
     summary["trajectory"] = a.out;
     summary["csv_bytes"] = writer->bytesWritten();

@@ -10,19 +10,11 @@
 #include <vector>
 
 #include "simbob/error.h"
+#include "simbob/frames.h"
+#include "simbob/visuals.h"
 
 namespace simbob {
 
-using Vec3 = std::array<double, 3>;
-/// Unit quaternion, w x y z.
-using Quat = std::array<double, 4>;
-/// Row-major 3x3.
-using Mat3 = std::array<double, 9>;
-
-struct Transform {
-  Vec3 p{0, 0, 0};
-  Quat q{1, 0, 0, 0};
-};
 
 /// Contact properties of one material (guide 6.7.1, combined per 7.1).
 struct MaterialDef {
@@ -139,6 +131,11 @@ struct Model {
   std::vector<JointDef> joints;            ///< document order
   std::vector<ActuatorDef> actuators;      ///< document order (after the joints they drive)
   std::vector<ControllerDef> controllers;  ///< document order; a schedule's TwoWheel target may come first
+  // What the renderer draws (simbob/visuals.h); the physics never reads these.
+  std::vector<VisualDef> visuals;  ///< document order
+  std::vector<SkinDef> skins;      ///< [0] is the default skin
+  std::vector<CameraDef> cameras;  ///< CameraList order
+  ViewSettings view;
 };
 
 }  // namespace simbob

@@ -131,7 +131,9 @@ class GlRenderer : public Renderer {
                            static_cast<GLfloat>(view.light_pos[2]), static_cast<GLfloat>(view.light_pos[3])};
     const GLfloat lc[4] = {static_cast<GLfloat>(view.light_color[0]), static_cast<GLfloat>(view.light_color[1]),
                            static_cast<GLfloat>(view.light_color[2]), 1.0F};
-    const GLfloat ambient[4] = {0.2F, 0.2F, 0.2F, 1.0F};
+    // Light ambient = diffuse = LightColor and no global ambient: a skin with the derived
+    // Ambient = Diffuse = Color/2 shows its Color where it faces the light, half of it in shade.
+    const GLfloat ambient[4] = {0.0F, 0.0F, 0.0F, 1.0F};
     gl_.Lightfv(GL_LIGHT0, GL_POSITION, lp);
     gl_.Lightfv(GL_LIGHT0, GL_DIFFUSE, lc);
     gl_.Lightfv(GL_LIGHT0, GL_SPECULAR, lc);
@@ -231,7 +233,8 @@ class GlRenderer : public Renderer {
       diffuse[3] = alpha;
       setMaterial(gl_, GL_AMBIENT, s.ambient);
       setMaterial(gl_, GL_DIFFUSE, diffuse);
-      setMaterial(gl_, GL_SPECULAR, s.specular);
+      // Shininess 0 would make the highlight cover every lit surface (x^0 = 1): no highlight.
+      setMaterial(gl_, GL_SPECULAR, s.shininess > 0 ? s.specular : Rgba{0, 0, 0, 1});
       setMaterial(gl_, GL_EMISSION, s.emission);
       gl_.Materialf(GL_FRONT_AND_BACK, GL_SHININESS, static_cast<GLfloat>(std::min(s.shininess, 128.0)));
     }

@@ -209,7 +209,18 @@ def robot(c):
     c.near("caster ball height (its radius)", c.at("Bot.Cart.CasterSocket.CasterBall", 10)[1][1], 0.04, 2e-3)
 
 
-SCENES = {f.__name__: f for f in (pendulum, box_stack, chain, imported_bodies, mechanisms, bounce, robot)}
+def gallery(c):
+    # The ball rolls without slipping (v = w r from the start, no rolling resistance): x = -3 + t
+    # until it reaches the sandbox wall at x = 6 - 0.3 m (t = 8.7 s); the rod rests on the ground.
+    for t in (2.0, 5.0):
+        _, p, _ = c.at("Ball", t)
+        c.near(f"ball x at t = {t} s (m)", p[0], -3 + t, 0.05)
+        c.near(f"ball height at t = {t} s (m)", p[1], 0.3, 0.01)
+    _, p, _ = c.at("Rod", 10)
+    c.near("rod height at t = 10 s (m)", p[1], 0.1, 0.01)
+
+
+SCENES = {f.__name__: f for f in (pendulum, box_stack, chain, imported_bodies, mechanisms, bounce, robot, gallery)}
 
 if __name__ == "__main__":
     name, path = sys.argv[1], sys.argv[2]

@@ -213,3 +213,37 @@ TEST_CASE("an unknown --camera names the cameras there are") {
   CHECK_FALSE(Renderer::create(m, o, &err));
   CHECK(err.message == "no camera 'Side' in the scene (cameras: Front, Top)");
 }
+
+TEST_CASE("the gallery matches its references: every model and skin, textures, transparency, fog; each camera type") {
+  const Model m = compileFile("scenes/gallery.xml");
+  checkReference(draw(m, 160, 120, "Overview", Quality::Fog), "gallery_fog");
+  checkReference(draw(m, 160, 120, "Overview", Quality::Shadows), "gallery_shadows");
+  checkReference(draw(m, 160, 120, "Overview", Quality::Flat), "gallery_flat");
+  checkReference(draw(m, 160, 120, "Overview", Quality::Wire), "gallery_wire");
+  checkReference(draw(m, 160, 120, "Overview", Quality::Frame), "gallery_frame");
+  checkReference(draw(m, 160, 120, "Spot"), "gallery_spot");
+  checkReference(draw(m, 160, 120, "Chase"), "gallery_chase");
+  checkReference(draw(m, 160, 120, "OnBall"), "gallery_onball");
+  // Fog, textures and wire frames each change the picture.
+  CHECK_FALSE(imagesMatch(draw(m, 160, 120, "Overview", Quality::Fog), draw(m, 160, 120, "Overview", Quality::Shadows)));
+  CHECK_FALSE(imagesMatch(draw(m, 160, 120, "Overview", Quality::Textures), draw(m, 160, 120, "Overview", Quality::Smooth)));
+  CHECK_FALSE(imagesMatch(draw(m, 160, 120, "Overview", Quality::Wire), draw(m, 160, 120, "Overview", Quality::Plane)));
+}
+
+TEST_CASE("a scene without cameras gets a default view that frames every body") {
+  Model m = compileFile("tests/data/render/basic.xml");
+  m.cameras.clear();
+  const Image img = draw(m, 160, 120, "", Quality::Plane);
+  // Both objects are in view, and nothing of them touches the border.
+  bool red = false, blue = false;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const uint8_t* p = img.pixel(x, y);
+      const bool r = p[0] > 200 && p[1] < 50, b = p[2] > 200 && p[0] < 50;
+      red |= r;
+      blue |= b;
+      if (x == 0 || y == 0 || x == img.width - 1 || y == img.height - 1) CHECK_FALSE((r || b));
+    }
+  CHECK(red);
+  CHECK(blue);
+}

@@ -45,7 +45,8 @@ struct RunArgs {
   int max_contacts = 0;       ///< overrides SceneSettings MaxContacts (0 = the scene's)
   bool out_given = false;     ///< --out was on the command line
   std::string record;         ///< --record DIR: frames as DIR/frame_000000.png ("" = no GL context at all)
-  double fps = 30;            ///< frames per simulated second of --record
+  std::string video;          ///< --video FILE.avi|FILE.mp4: the same frames as one video
+  double fps = 30;            ///< frames per simulated second of --record and --video
   ViewArgs view;
 };
 int cmdRun(RunArgs& a, const Common& common);

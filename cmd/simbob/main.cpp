@@ -39,7 +39,8 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
       ->check(CLI::Range(1, 64));
   run->add_flag("--batch-child", ra.batch_child, "(internal) started by simbob batch")->group("");
   run->add_option("--record", ra.record, "Render frames to DIR/frame_000000.png, ... (frame n at t = n / fps)");
-  run->add_option("--fps", ra.fps, "Frames per simulated second of --record (default 30)");
+  run->add_option("--video", ra.video, "Render the frames into one video: FILE.avi (MJPEG) or FILE.mp4 (H.264)");
+  run->add_option("--fps", ra.fps, "Frames per simulated second of --record and --video (default 30)");
   addViewOptions(run, ra.view);
   addCommon(run, common);
   // A batch manifest appends per-scene options after the batch-wide ones: the last one wins.
@@ -146,7 +147,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   }
   // An output option given as "" is a mistake, not a request for the default name.
   for (CLI::App* sub : {run, compare, plot, batch, check, dump, render, info})
-    for (const char* name : {"--out", "--report", "--log-file", "--out-dir", "--settings"}) {
+    for (const char* name : {"--out", "--report", "--log-file", "--out-dir", "--settings", "--record", "--video"}) {
       CLI::Option* o = sub->get_option_no_throw(name);
       if (!o || o->count() == 0) continue;
       for (const std::string& v : o->results())

@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "simbob/render.h"
 #include "simbob/physics.h"
+#include "simbob/png.h"
 #include "simbob/robot.h"
 #include "simbob/run.h"
 #include "simbob/values.h"
@@ -139,7 +140,7 @@ int cmdRender(const RenderArgs& a, const Common& common) {
     g_log.error(*e);
     return exitCodeFor(e->kind);
   }
-  Error w = writeImagePng(a.out, img);
+  Error w = writePng(a.out, img);
   if (!w.message.empty()) {
     g_log.error(w);
     return exitCodeFor(w.kind);

@@ -15,6 +15,7 @@
 #include "commands.h"
 #include "simbob/files.h"
 #include "simbob/physics.h"
+#include "simbob/frame_sinks.h"
 #include "simbob/render.h"
 #include "simbob/robot.h"
 #include "simbob/run.h"
@@ -266,37 +267,61 @@ int cmdRun(RunArgs& a, const Common& common) {
     for (const std::string& f : scene.files) inputs.push_back({f == a.scene ? "the scene" : "the import", f});
     inputs.push_back({"--settings", common.settings});
     outputs.push_back({"--log-file", g_log.path});
+    if (!a.video.empty()) outputs.push_back({"--video", a.video});
     if (int c = checkOutputs(outputs, inputs)) return c;
   }
 
-  // --record: the renderer (a GL context) exists only then; frames go to DIR/frame_NNNNNN.png.
+  // --record / --video: the renderer (a GL context) exists only then. Frames are encoded on
+  // another thread (makeAsyncSink) while the next ones render and the physics steps on.
   std::unique_ptr<Renderer> renderer;
   std::unique_ptr<FrameSink> sink;
-  if (!a.record.empty()) {
+  if (!a.record.empty() || !a.video.empty()) {
     if (!(a.fps > 0 && a.fps <= 1000)) {
       g_log.error({ErrorKind::InvalidInput, {}, "--fps must be above 0 and at most 1000, got " + formatNumber(a.fps)});
       return kExitUsage;
     }
     RenderOptions ro;
     if (int c = renderOptions(a.view, common, &ro)) return c;
-    std::error_code dir_ec;
-    std::filesystem::create_directories(a.record, dir_ec);
-    if (!std::filesystem::is_directory(a.record, dir_ec)) {
-      g_log.error({ErrorKind::CannotCreate, {a.record, 0}, "cannot create the --record directory"});
-      return kExitCantCreate;
+    std::vector<std::unique_ptr<FrameSink>> sinks;
+    if (!a.record.empty()) {
+      std::error_code dir_ec;
+      if (std::filesystem::exists(std::filesystem::path(a.record) / "frame_000000.png", dir_ec)) {
+        g_log.error({ErrorKind::CannotCreate,
+                     {a.record, 0},
+                     "already holds a recording (frame_000000.png); remove it or record elsewhere"});
+        return kExitCantCreate;
+      }
+      std::unique_ptr<FrameSink> pngs = makePngSequenceSink(a.record, &err_early);
+      if (!pngs) {
+        g_log.error(err_early);
+        return exitCodeFor(err_early.kind);
+      }
+      sinks.push_back(std::move(pngs));
     }
-    if (std::filesystem::exists(std::filesystem::path(a.record) / "frame_000000.png", dir_ec)) {
-      g_log.error({ErrorKind::CannotCreate,
-                   {a.record, 0},
-                   "already holds a recording (frame_000000.png); remove it or record elsewhere"});
-      return kExitCantCreate;
+    if (!a.video.empty()) {
+      std::string why;
+      const std::string encoder = videoEncoderFor(a.video, &why);
+      if (encoder.empty()) {
+        g_log.error({ErrorKind::InvalidInput, {a.video, 0}, why});
+        return kExitUsage;
+      }
+      if (encoder != "mjpeg" && (ro.width % 2 != 0 || ro.height % 2 != 0)) {
+        g_log.error({ErrorKind::InvalidInput, {}, "--size must be even in both directions for H.264 (--video .mp4)"});
+        return kExitUsage;
+      }
+      std::unique_ptr<FrameSink> video = makeVideoSink(a.video, a.fps, &err_early);
+      if (!video) {
+        g_log.error(err_early);
+        return exitCodeFor(err_early.kind);
+      }
+      sinks.push_back(std::move(video));
     }
     renderer = Renderer::create(model, ro, &err_early);
     if (!renderer) {
       g_log.error(err_early);
       return exitCodeFor(err_early.kind);
     }
-    sink = pngSequenceSink(a.record);
+    sink = makeAsyncSink(std::move(sinks));
     g_log.debug("recording through " + renderer->backendName() + " (" + renderer->glRenderer() + "), camera " +
                 renderer->cameraName());
   }
@@ -437,6 +462,7 @@ int cmdRun(RunArgs& a, const Common& common) {
     r.error = *recorder->failure();
   }
   if (recorder) {
+    if (!a.video.empty()) summary["video"] = a.video;
     summary["record"] = a.record;
     summary["frames"] = recorder->frames();
   }

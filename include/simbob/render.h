@@ -81,9 +81,4 @@ class Recorder : public Party {
   bool failed_ = false;
 };
 
-/// A FrameSink writing DIR/frame_000000.png, ... (the directory must exist).
-std::unique_ptr<FrameSink> pngSequenceSink(const std::string& dir);
-/// Writes one PNG (through a temporary name, renamed when complete). Empty message on success.
-Error writeImagePng(const std::string& path, const Image& img);
-
 }  // namespace simbob

@@ -1,7 +1,7 @@
 // BMP and PNG readers for textures.
 #include "render/texture_file.h"
 
-#include <png.h>
+#include "simbob/png.h"
 
 #include <array>
 #include <cstdio>
@@ -45,20 +45,13 @@ bool readAll(const std::string& path, std::vector<uint8_t>* out, Error* err) {
 }
 
 bool readPngFile(const std::string& path, Image* out, Error* err) {
-  png_image img;
-  std::memset(&img, 0, sizeof img);
-  img.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&img, path.c_str()))
-    return bad(err, path, std::string("not a readable PNG: ") + img.message);
-  if (img.width > static_cast<png_uint_32>(kMaxTextureSide) || img.height > static_cast<png_uint_32>(kMaxTextureSide)) {
-    png_image_free(&img);
-    return bad(err, path, "texture larger than 16384 pixels per side");
+  Error e = readPng(path, *out);
+  if (!e.message.empty()) {
+    *err = e;
+    return false;
   }
-  img.format = PNG_FORMAT_RGB;
-  Image im(static_cast<int>(img.width), static_cast<int>(img.height));
-  if (!png_image_finish_read(&img, nullptr, im.rgb.data(), 0, nullptr))
-    return bad(err, path, std::string("not a readable PNG: ") + img.message);
-  *out = std::move(im);
+  if (out->width > kMaxTextureSide || out->height > kMaxTextureSide)
+    return bad(err, path, "texture larger than 16384 pixels per side");
   return true;
 }
 

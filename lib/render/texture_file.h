@@ -1,5 +1,5 @@
 // Texture images: BMP (what the original read: uncompressed 24/32-bit and 8-bit palettes) and
-// PNG (through libpng).
+// PNG (lib/image's readPng).
 #pragma once
 
 #include <string>

@@ -12,9 +12,10 @@
 #include <cstdlib>
 #include <string>
 
-#include "render/texture_file.h"
 #include "simbob/compile.h"
 #include "simbob/graph.h"
+#include "simbob/image_compare.h"
+#include "simbob/png.h"
 #include "simbob/render.h"
 #include "simbob/transform.h"
 #include "test_registry.h"
@@ -68,28 +69,18 @@ Image draw(const Model& m, int w, int h, const std::string& camera = "", Quality
   return img;
 }
 
-/// Pixels whose largest channel difference exceeds kChannelTolerance.
-size_t differing(const Image& a, const Image& b) {
-  REQUIRE(a.width == b.width);
-  REQUIRE(a.height == b.height);
-  size_t n = 0;
-  for (size_t i = 0; i < a.rgb.size(); i += 3) {
-    int d = 0;
-    for (size_t k = 0; k < 3; ++k) d = std::max(d, std::abs(int(a.rgb[i + k]) - int(b.rgb[i + k])));
-    if (d > kChannelTolerance) ++n;
-  }
-  return n;
+/// lib/image's rule with the tolerance above.
+ImageComparison compared(const Image& a, const Image& b) {
+  return compareImages(a, b, ImageTolerance{kChannelTolerance, kDifferingFraction});
 }
 
-bool imagesMatch(const Image& a, const Image& b) {
-  return static_cast<double>(differing(a, b)) <= kDifferingFraction * a.width * a.height;
-}
+bool imagesMatch(const Image& a, const Image& b) { return compared(a, b).matches; }
 
 /// Compares with golden/frames/NAME.png, or writes it when SIMBOB_BLESS_FRAMES is set.
 void checkReference(const Image& img, const std::string& name) {
   const std::string path = std::string(SIMBOB_SOURCE_DIR) + "/golden/frames/" + name + ".png";
   if (std::getenv("SIMBOB_BLESS_FRAMES")) {
-    Error e = writeImagePng(path, img);
+    Error e = writePng(path, img);
     REQUIRE(e.message.empty());
     WARN("blessed " + path);
     return;
@@ -97,8 +88,9 @@ void checkReference(const Image& img, const std::string& name) {
   Image ref;
   Error err;
   INFO(path + " (re-bless with scripts/update-frames.sh)");
-  REQUIRE(render::readTextureFile(path, &ref, &err));
-  INFO(std::to_string(differing(img, ref)) + " pixels differ");
+  err = readPng(path, ref);
+  REQUIRE(err.message.empty());
+  INFO(compared(img, ref).summary());
   CHECK(imagesMatch(img, ref));
 }
 

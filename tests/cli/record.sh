@@ -68,4 +68,19 @@ check "a run without --record never touches GL: a bad SIMBOB_GL does not matter 
 SIMBOB_GL=vulkan expect_status 0 "$SIMBOB" run "$BASIC" --duration 0.1 --out nogl.csv
 SIMBOB_GL=vulkan expect_status 64 "$SIMBOB" run "$BASIC" --duration 0.1 --out nogl.csv --record r2
 expect_match "SIMBOB_GL" "$LAST_ERR" "SIMBOB_GL must be egl or osmesa, got 'vulkan'"
+
+check "--video: the same frames as one MP4 (H.264) and one AVI (MJPEG): 1 s at 10 fps = 11 frames"
+for ext in mp4 avi; do
+  expect_status 0 "$SIMBOB" run "$BASIC" --duration 1 --out "v-$ext.csv" --video "clip.$ext" --fps 10 --size 64x48
+  expect_file "clip.$ext"
+  if command -v ffprobe >/dev/null; then
+    frames=$(ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames,width,height \
+      -of csv=p=0 "clip.$ext")
+    expect_eq "ffprobe width,height,frames of clip.$ext" "$frames" "64,48,11"
+  fi
+done
+check "--video with an odd size for H.264 is a usage error before anything runs"
+expect_status 64 "$SIMBOB" run "$BASIC" --duration 1 --out odd.csv --video odd.mp4 --size 65x48
+expect_match "odd size" "$LAST_ERR" "must be even"
+expect_no_file odd.mp4
 say "ok"

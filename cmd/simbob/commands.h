@@ -11,7 +11,7 @@ class App;
 namespace simbob {
 class Registry;
 struct RenderOptions;
-}
+}  // namespace simbob
 
 namespace simbob::cli {
 

@@ -133,7 +133,8 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   if (argc > 1 && argv[1][0] != '-' && std::find(names.begin(), names.end(), argv[1]) == names.end()) {
     std::string near = simbob::didYouMean(argv[1], names);
     std::fprintf(stderr,
-                 "simbob: error: unknown command '%s'%s; commands: run, check, dump, types, compare, batch, plot, render, info\n",
+                 "simbob: error: unknown command '%s'%s; commands: run, check, dump, types, compare, batch, plot, "
+                 "render, info\n",
                  argv[1], near.empty() ? "" : (" (did you mean '" + near + "'?)").c_str());
     return kExitUsage;
   }

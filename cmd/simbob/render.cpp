@@ -53,7 +53,8 @@ int renderOptions(const ViewArgs& v, const Common& common, RenderOptions* o) {
   char extra = 0;
   if (std::sscanf(v.size.c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 1 || h < 1 || w > kMaxImageSide ||
       h > kMaxImageSide) {
-    g_log.error({ErrorKind::InvalidInput, {},
+    g_log.error({ErrorKind::InvalidInput,
+                 {},
                  "--size must be WIDTHxHEIGHT with 1 to " + std::to_string(kMaxImageSide) + " pixels each, got '" +
                      v.size + "'"});
     return kExitUsage;
@@ -61,7 +62,8 @@ int renderOptions(const ViewArgs& v, const Common& common, RenderOptions* o) {
   o->width = w;
   o->height = h;
   if (!v.quality.empty() && !parseQuality(v.quality, &o->quality)) {
-    g_log.error({ErrorKind::InvalidInput, {},
+    g_log.error({ErrorKind::InvalidInput,
+                 {},
                  "--quality must be frame, wire, plane, flat, smooth, textures, shadows, transparency or fog, got '" +
                      v.quality + "'"});
     return kExitUsage;

@@ -15,7 +15,6 @@
 
 namespace simbob {
 
-
 /// Contact properties of one material (guide 6.7.1, combined per 7.1).
 struct MaterialDef {
   std::string key;              ///< fully qualified key ("" for the default material)

@@ -16,13 +16,13 @@ using Rgba = std::array<double, 4>;
 
 /// A surface's appearance (RCColoredSkin, RCTexturedSkin, RCColTexSkin).
 struct SkinDef {
-  std::string key;                   ///< fully qualified key of the skin ("" = the default skin)
-  Rgba color{0.8, 0.8, 0.8, 1};      ///< base colour: unlit modes and the default of the others
-  Rgba ambient{0.4, 0.4, 0.4, 1};    ///< Ambient, or Color/2 (guide 6.4.1)
-  Rgba diffuse{0.4, 0.4, 0.4, 1};    ///< Diffuse, or Color/2
-  Rgba specular{1.0, 1.0, 1.0, 1};   ///< Specular, or 2*Color (clamped to 1 by GL)
-  Rgba emission{0, 0, 0, 1};         ///< Emission, or black
-  double shininess = 0;              ///< specular exponent (GL clamps to 128)
+  std::string key;                  ///< fully qualified key of the skin ("" = the default skin)
+  Rgba color{0.8, 0.8, 0.8, 1};     ///< base colour: unlit modes and the default of the others
+  Rgba ambient{0.4, 0.4, 0.4, 1};   ///< Ambient, or Color/2 (guide 6.4.1)
+  Rgba diffuse{0.4, 0.4, 0.4, 1};   ///< Diffuse, or Color/2
+  Rgba specular{1.0, 1.0, 1.0, 1};  ///< Specular, or 2*Color (clamped to 1 by GL)
+  Rgba emission{0, 0, 0, 1};        ///< Emission, or black
+  double shininess = 0;             ///< specular exponent (GL clamps to 128)
   enum Mode : uint8_t { Color, Shading, TransparentColor, TransparentLighting } mode = Shading;
   bool colored = true;   ///< has a base colour (RCColoredSkin, RCColTexSkin)
   std::string texture;   ///< Texture as written ("" = none)
@@ -38,15 +38,15 @@ struct VisualDef {
     Cylinder,   ///< along local Z, centred (z in [-L/2, L/2]); size = radius, length
     Cone,       ///< base at z = 0, apex at z = Length; size = radius, length
   } shape = Cuboid;
-  int body = -1;    ///< Model::bodies index; -1 = static: `pose` is global
-  Transform pose;   ///< relative to the body frame, or global when body == -1
+  int body = -1;             ///< Model::bodies index; -1 = static: `pose` is global
+  Transform pose;            ///< relative to the body frame, or global when body == -1
   Vec3 a{-0.5, -0.5, -0.5};  ///< Cuboid corners (local)
   Vec3 b{0.5, 0.5, 0.5};
   Vec3 size{1, 1, 1};  ///< see Shape (m)
   int skin = 0;        ///< Model::skins index ([0] is the default skin)
   uint32_t mask = 63;  ///< Cuboid SideMask (1 -X, 2 +X, 4 -Y, 8 +Y, 16 -Z, 32 +Z); Cylinder ComponentMask
                        ///< (1 jacket, 2 flat front +Z, 4 flat back -Z, 8 capped front, 16 capped back); Cone 1 = base
-  bool wire = false;          ///< Cuboid: always a wire frame
+  bool wire = false;   ///< Cuboid: always a wire frame
   bool triangles = false;     ///< Ellipsoid: subdivided icosahedron instead of quads
   int accuracy = 2;           ///< tessellation level (guide 6.3.3)
   bool shadow_plane = false;  ///< Plane: shadows are projected onto it
@@ -60,12 +60,12 @@ struct VisualDef {
 struct CameraDef {
   std::string key;  ///< fully qualified key
   enum Kind : uint8_t { Static, Mounted, Spotlight, Tracking } kind = Static;
-  Transform pose;           ///< Static/Spotlight: global (Spotlight: position only); Mounted: relative to body
-  int body = -1;            ///< Model::bodies index followed (Mounted, Spotlight, Tracking); -1 = static
-  Vec3 target{0, 0, 0};     ///< a static body's position (Spotlight/Tracking on a static body)
-  double view_angle = 60;   ///< deg, horizontal field of view
-  double near_clip = 0.1;   ///< m
-  double far_clip = 1000;   ///< m
+  Transform pose;                ///< Static/Spotlight: global (Spotlight: position only); Mounted: relative to body
+  int body = -1;                 ///< Model::bodies index followed (Mounted, Spotlight, Tracking); -1 = static
+  Vec3 target{0, 0, 0};          ///< a static body's position (Spotlight/Tracking on a static body)
+  double view_angle = 60;        ///< deg, horizontal field of view
+  double near_clip = 0.1;        ///< m
+  double far_clip = 1000;        ///< m
   bool auto_view_angle = false;  ///< Spotlight: keep the body's apparent size
   double distance = 5;           ///< Tracking: m kept from the body
 };

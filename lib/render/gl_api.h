@@ -11,14 +11,15 @@
 namespace simbob::render {
 
 // Fixed-function GL 1.x (both Mesa back ends give compatibility contexts) and the FBO calls.
-#define SIMBOB_GL_FUNCTIONS(X)                                                                                      \
-  X(Begin) X(End) X(Vertex3d) X(Normal3d) X(TexCoord2d) X(Color4d) X(Clear) X(ClearColor) X(ClearStencil)          \
-  X(Enable) X(Disable) X(MatrixMode) X(LoadIdentity) X(LoadMatrixd) X(MultMatrixd) X(PushMatrix) X(PopMatrix)      \
-  X(Frustum) X(Viewport) X(Lightfv) X(LightModelfv) X(LightModeli) X(Materialfv) X(Materialf) X(ShadeModel)         \
-  X(PolygonMode) X(PolygonOffset) X(DepthFunc) X(DepthMask) X(BlendFunc) X(StencilFunc) X(StencilOp) X(Fogi)        \
-  X(Fogf) X(Fogfv) X(Hint) X(GenTextures) X(DeleteTextures) X(BindTexture) X(TexImage2D) X(TexParameteri) X(TexEnvi) \
-  X(PixelStorei) X(ReadPixels) X(Finish) X(GetString) X(GetError) X(GetIntegerv) X(LineWidth) X(ColorMask)         \
-  X(ColorMaterial) X(FrontFace) X(CullFace)
+#define SIMBOB_GL_FUNCTIONS(X)                                                                                        \
+  X(Begin)                                                                                                            \
+  X(End) X(Vertex3d) X(Normal3d) X(TexCoord2d) X(Color4d) X(Clear) X(ClearColor) X(ClearStencil) X(Enable) X(Disable) \
+      X(MatrixMode) X(LoadIdentity) X(LoadMatrixd) X(MultMatrixd) X(PushMatrix) X(PopMatrix) X(Frustum) X(Viewport)   \
+          X(Lightfv) X(LightModelfv) X(LightModeli) X(Materialfv) X(Materialf) X(ShadeModel) X(PolygonMode)           \
+              X(PolygonOffset) X(DepthFunc) X(DepthMask) X(BlendFunc) X(StencilFunc) X(StencilOp) X(Fogi) X(Fogf)     \
+                  X(Fogfv) X(Hint) X(GenTextures) X(DeleteTextures) X(BindTexture) X(TexImage2D) X(TexParameteri)     \
+                      X(TexEnvi) X(PixelStorei) X(ReadPixels) X(Finish) X(GetString) X(GetError) X(GetIntegerv)       \
+                          X(LineWidth) X(ColorMask) X(ColorMaterial) X(FrontFace) X(CullFace)
 
 struct GlApi {
 #define SIMBOB_GL_DECLARE(name) decltype(&::gl##name) name = nullptr;
@@ -36,11 +37,11 @@ struct GlApi {
   /// `fbo`: the framebuffer-object calls too (EGL renders into an FBO; OSMesa into its buffer).
   template <class Get>
   bool load(Get get, bool fbo, std::string* missing) {
-#define SIMBOB_GL_LOAD(name)                                         \
-  name = reinterpret_cast<decltype(name)>(get("gl" #name));          \
-  if (!name) {                                                       \
-    *missing = "gl" #name;                                           \
-    return false;                                                    \
+#define SIMBOB_GL_LOAD(name)                                \
+  name = reinterpret_cast<decltype(name)>(get("gl" #name)); \
+  if (!name) {                                              \
+    *missing = "gl" #name;                                  \
+    return false;                                           \
   }
     SIMBOB_GL_FUNCTIONS(SIMBOB_GL_LOAD)
     if (fbo) {

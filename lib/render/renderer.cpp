@@ -17,7 +17,7 @@ namespace {
 
 using render::GlApi;
 
-const char* const kQualityNames[] = {"frame",  "wire",    "plane",        "flat", "smooth",
+const char* const kQualityNames[] = {"frame",    "wire",    "plane",        "flat", "smooth",
                                      "textures", "shadows", "transparency", "fog"};
 
 std::string lower(std::string s) {
@@ -488,10 +488,14 @@ const char* qualityName(Quality q) { return kQualityNames[static_cast<size_t>(q)
 
 bool parseGlBackend(const std::string& text, GlBackend* out) {
   const std::string t = lower(text);
-  if (t == "egl") *out = GlBackend::Egl;
-  else if (t == "osmesa") *out = GlBackend::OsMesa;
-  else if (t == "auto" || t.empty()) *out = GlBackend::Auto;
-  else return false;
+  if (t == "egl")
+    *out = GlBackend::Egl;
+  else if (t == "osmesa")
+    *out = GlBackend::OsMesa;
+  else if (t == "auto" || t.empty())
+    *out = GlBackend::Auto;
+  else
+    return false;
   return true;
 }
 

@@ -17,9 +17,7 @@ namespace {
 constexpr int kMaxSubdivisions = 4;
 
 // Texture coordinate along one axis: repeats per metre (TexScale > 0) or per extension (< 0).
-double texCoord(double x, double extent, double scale) {
-  return scale >= 0 ? x * scale : (x / extent + 0.5) * -scale;
-}
+double texCoord(double x, double extent, double scale) { return scale >= 0 ? x * scale : (x / extent + 0.5) * -scale; }
 
 void vertex(const GlApi& gl, const Vec3& p, const Vec3& n) {
   gl.Normal3d(n[0], n[1], n[2]);
@@ -145,10 +143,9 @@ void ellipsoidTriangles(const GlApi& gl, const VisualDef& v) {
                           {-t, 0, -1},
                           {-t, 0, 1}}};
   for (Vec3& x : p) x = scale(x, 1 / norm(x));
-  static const int kFaces[20][3] = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-                                    {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                                    {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                                    {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  static const int kFaces[20][3] = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                                    {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                                    {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   gl.Begin(GL_TRIANGLES);
   for (const auto& f : kFaces)
     subdivided(gl, v.size, p[static_cast<size_t>(f[0])], p[static_cast<size_t>(f[1])], p[static_cast<size_t>(f[2])],

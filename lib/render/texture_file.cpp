@@ -28,9 +28,7 @@ uint32_t le32(const std::vector<uint8_t>& b, size_t at) {
   return static_cast<uint32_t>(b[at]) | static_cast<uint32_t>(b[at + 1]) << 8 | static_cast<uint32_t>(b[at + 2]) << 16 |
          static_cast<uint32_t>(b[at + 3]) << 24;
 }
-uint16_t le16(const std::vector<uint8_t>& b, size_t at) {
-  return static_cast<uint16_t>(b[at] | b[at + 1] << 8);
-}
+uint16_t le16(const std::vector<uint8_t>& b, size_t at) { return static_cast<uint16_t>(b[at] | b[at + 1] << 8); }
 
 bool readAll(const std::string& path, std::vector<uint8_t>* out, Error* err) {
   std::ifstream in(path, std::ios::binary);
@@ -85,8 +83,7 @@ bool readBmp(const std::string& path, Image* out, Error* err) {
     if (colors == 0) colors = 256;
     const size_t pal = 14 + header;
     if (colors > 256 || pal + colors * 4 > offset) return bad(err, path, "BMP: bad palette");
-    for (uint32_t i = 0; i < colors; ++i)
-      palette.push_back({b[pal + i * 4 + 2], b[pal + i * 4 + 1], b[pal + i * 4]});
+    for (uint32_t i = 0; i < colors; ++i) palette.push_back({b[pal + i * 4 + 2], b[pal + i * 4 + 1], b[pal + i * 4]});
   }
   Image im(w, static_cast<int>(h));
   for (int64_t y = 0; y < h; ++y) {

@@ -137,9 +137,9 @@ std::string ballScene(double r, double d, double view_angle) {
 <RCColoredSkin Key="White"><Color Value="1 1 1"/><ColorMode Value="Color"/></RCColoredSkin>
 <RCStaticRigidBody Key="Ball"><Pose><RCGlobalCoordinates><Pose Value="0 0 -)" +
          std::to_string(d) + R"( 0 0 0"/></RCGlobalCoordinates></Pose>
-<Model><RCEllipsoidModel><Skin Ref="White"/><Accuracy Value="12"/><RadiusX Value=")" + std::to_string(r) +
-         R"("/><RadiusY Value=")" + std::to_string(r) + R"("/><RadiusZ Value=")" + std::to_string(r) +
-         R"("/></RCEllipsoidModel></Model></RCStaticRigidBody></ComponentList></Simulation>)";
+<Model><RCEllipsoidModel><Skin Ref="White"/><Accuracy Value="12"/><RadiusX Value=")" +
+         std::to_string(r) + R"("/><RadiusY Value=")" + std::to_string(r) + R"("/><RadiusZ Value=")" +
+         std::to_string(r) + R"("/></RCEllipsoidModel></Model></RCStaticRigidBody></ComponentList></Simulation>)";
 }
 
 int litRun(const Image& img, bool row, int index) {
@@ -217,8 +217,10 @@ TEST_CASE("the gallery matches its references: every model and skin, textures, t
   checkReference(draw(m, 160, 120, "Chase"), "gallery_chase");
   checkReference(draw(m, 160, 120, "OnBall"), "gallery_onball");
   // Fog, textures and wire frames each change the picture.
-  CHECK_FALSE(imagesMatch(draw(m, 160, 120, "Overview", Quality::Fog), draw(m, 160, 120, "Overview", Quality::Shadows)));
-  CHECK_FALSE(imagesMatch(draw(m, 160, 120, "Overview", Quality::Textures), draw(m, 160, 120, "Overview", Quality::Smooth)));
+  CHECK_FALSE(
+      imagesMatch(draw(m, 160, 120, "Overview", Quality::Fog), draw(m, 160, 120, "Overview", Quality::Shadows)));
+  CHECK_FALSE(
+      imagesMatch(draw(m, 160, 120, "Overview", Quality::Textures), draw(m, 160, 120, "Overview", Quality::Smooth)));
   CHECK_FALSE(imagesMatch(draw(m, 160, 120, "Overview", Quality::Wire), draw(m, 160, 120, "Overview", Quality::Plane)));
 }
 
@@ -231,7 +233,7 @@ TEST_CASE("a scene without cameras gets a default view that frames every body") 
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
       const uint8_t* p = img.pixel(x, y);
-      const bool r = p[0] > 200 && p[1] < 50, b = p[2] > 200 && p[0] < 50;
+      const bool r = p[0] > 200 && p[1]<50, b = p[2]> 200 && p[0] < 50;
       red |= r;
       blue |= b;
       if (x == 0 || y == 0 || x == img.width - 1 || y == img.height - 1) CHECK_FALSE((r || b));

@@ -127,6 +127,7 @@ int cmdRender(const RenderArgs& a, const Common& common) {
     const std::optional<SimTime> at = toSimTime(a.at);
     Still still(at ? *at : kNever, model.bodies.size());
     std::vector<Party*> parties;
+    parties.reserve(owned.size() + 1);
     for (auto& p : owned) parties.push_back(p.get());
     parties.push_back(&still);
     RunResult r = runParties(model, opts, parties);

@@ -197,6 +197,6 @@ void lowerCamera(CompileContext& ctx, int comp);
 int lowerSkin(CompileContext& ctx, const Link& l);
 /// models.cpp: appends the visuals of a body's model tree to Model::visuals: `body` the
 /// Model::bodies index (frame = identity) or -1 with `frame` the static body's global frame.
-void lowerVisuals(CompileContext& ctx, const Link& model, int body, const Transform& frame, const std::string& key);
+void lowerVisuals(CompileContext& ctx, const Link& root, int body, const Transform& frame, const std::string& key);
 
 }  // namespace simbob

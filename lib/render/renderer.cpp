@@ -278,7 +278,8 @@ class GlRenderer : public Renderer {
     // M = (P.L) I - L P^T, column-major; a tiny lift along n keeps the shadow above the plane.
     std::array<double, 16> m{};
     for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 4; ++r) m[static_cast<size_t>(c * 4 + r)] = (r == c ? dl : 0) - l[r] * plane[c];
+      for (int r = 0; r < 4; ++r)
+        m[static_cast<size_t>(c) * 4 + static_cast<size_t>(r)] = (r == c ? dl : 0) - l[r] * plane[c];
     gl_.Disable(GL_LIGHTING);
     gl_.Disable(GL_DEPTH_TEST);
     gl_.Enable(GL_STENCIL_TEST);

@@ -81,9 +81,9 @@ bool readBmp(const std::string& path, Image* out, Error* err) {
   if (bpp == 8) {
     uint32_t colors = le32(b, 46);
     if (colors == 0) colors = 256;
-    const size_t pal = 14 + header;
-    if (colors > 256 || pal + colors * 4 > offset) return bad(err, path, "BMP: bad palette");
-    for (uint32_t i = 0; i < colors; ++i) palette.push_back({b[pal + i * 4 + 2], b[pal + i * 4 + 1], b[pal + i * 4]});
+    const size_t pal = 14 + static_cast<size_t>(header);
+    if (colors > 256 || pal + static_cast<size_t>(colors) * 4 > offset) return bad(err, path, "BMP: bad palette");
+    for (size_t i = 0; i < colors; ++i) palette.push_back({b[pal + i * 4 + 2], b[pal + i * 4 + 1], b[pal + i * 4]});
   }
   Image im(w, static_cast<int>(h));
   for (int64_t y = 0; y < h; ++y) {

@@ -40,9 +40,9 @@ class EglContext : public GlContext {
   std::string name() const override { return name_; }
 
   bool open(Error* err) {
-    lib_ = dlopen("libEGL.so.1", RTLD_NOW | RTLD_LOCAL);
-    if (!lib_) return fail(err, ErrorKind::MissingInput, std::string("EGL is not installed: install ") + kEglPackage);
-    egl_.GetProcAddress = reinterpret_cast<PFNEGLGETPROCADDRESSPROC>(dlsym(lib_, "eglGetProcAddress"));
+    void* lib = dlopen("libEGL.so.1", RTLD_NOW | RTLD_LOCAL);
+    if (!lib) return fail(err, ErrorKind::MissingInput, std::string("EGL is not installed: install ") + kEglPackage);
+    egl_.GetProcAddress = reinterpret_cast<PFNEGLGETPROCADDRESSPROC>(dlsym(lib, "eglGetProcAddress"));
     if (!egl_.GetProcAddress) return fail(err, ErrorKind::MissingInput, "libEGL.so.1 has no eglGetProcAddress");
     auto get = [&](const char* n) { return reinterpret_cast<void*>(egl_.GetProcAddress(n)); };
     egl_.Initialize = reinterpret_cast<PFNEGLINITIALIZEPROC>(get("eglInitialize"));
@@ -150,7 +150,6 @@ class EglContext : public GlContext {
     return false;
   }
 
-  void* lib_ = nullptr;
   EglFns egl_;
   EGLDisplay display_ = EGL_NO_DISPLAY;
   EGLContext context_ = EGL_NO_CONTEXT;

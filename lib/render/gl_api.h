@@ -11,17 +11,17 @@
 namespace simbob::render {
 
 // Fixed-function GL 1.x (both Mesa back ends give compatibility contexts) and the FBO calls.
-#define SIMBOB_GL_FUNCTIONS(X)                                                                                    \
-  X(Begin)                                                                                                        \
-  X(End)                                                                                                          \
-  X(Vertex3d)                                                                                                     \
-  X(Normal3d) X(TexCoord2d) X(Color4d) X(Clear) X(ClearColor) X(ClearStencil) X(Enable) X(Disable) X(MatrixMode)  \
-      X(LoadIdentity) X(LoadMatrixd) X(MultMatrixd) X(PushMatrix) X(PopMatrix) X(Frustum) X(Viewport) X(Lightfv)  \
-          X(LightModelfv) X(LightModeli) X(Materialfv) X(Materialf) X(ShadeModel) X(PolygonMode) X(PolygonOffset) \
-              X(DepthFunc) X(DepthMask) X(BlendFunc) X(StencilFunc) X(StencilOp) X(Fogi) X(Fogf) X(Fogfv) X(Hint) \
-                  X(GenTextures) X(DeleteTextures) X(BindTexture) X(TexImage2D) X(TexParameteri) X(TexEnvi)       \
-                      X(PixelStorei) X(ReadPixels) X(Finish) X(GetString) X(GetError) X(GetIntegerv) X(LineWidth) \
-                          X(ColorMask) X(ColorMaterial) X(FrontFace) X(CullFace)
+// clang-format off
+#define SIMBOB_GL_FUNCTIONS(X)                                                                  \
+  X(Begin) X(End) X(Vertex3d) X(Normal3d) X(TexCoord2d) X(Color4d) X(Clear) X(ClearColor)       \
+  X(ClearStencil) X(Enable) X(Disable) X(MatrixMode) X(LoadIdentity) X(LoadMatrixd)             \
+  X(MultMatrixd) X(PushMatrix) X(PopMatrix) X(Frustum) X(Viewport) X(Lightfv) X(LightModelfv)   \
+  X(LightModeli) X(Materialfv) X(Materialf) X(ShadeModel) X(PolygonMode) X(PolygonOffset)       \
+  X(DepthFunc) X(DepthMask) X(BlendFunc) X(StencilFunc) X(StencilOp) X(Fogi) X(Fogf) X(Fogfv)   \
+  X(Hint) X(GenTextures) X(DeleteTextures) X(BindTexture) X(TexImage2D) X(TexParameteri)        \
+  X(TexEnvi) X(PixelStorei) X(ReadPixels) X(Finish) X(GetString) X(GetError) X(GetIntegerv)     \
+  X(LineWidth) X(ColorMask) X(ColorMaterial) X(FrontFace) X(CullFace)
+// clang-format on
 
 struct GlApi {
 // NOLINTNEXTLINE(bugprone-macro-parentheses): `name` is a member name, not an expression

@@ -13,6 +13,8 @@ RUN_PACKAGES=(
   nlohmann-json3-dev    # run summaries and reports
   libcairo2-dev         # trajectory plots (PNG, SVG)
   libpng-dev libavformat-dev libavcodec-dev libavutil-dev libswscale-dev  # frames and videos (lib/image)
+  libgl-dev libegl-dev libosmesa6-dev  # GL, EGL and OSMesa headers (lib/render; opened with dlopen)
+  libegl-mesa0 libgl1-mesa-dri libosmesa6  # the back ends themselves: Mesa's llvmpipe without a GPU
 )
 TEST_PACKAGES=(
   catch2                # unit tests

@@ -216,6 +216,11 @@ int readSettings(Common& c) {
   c.extension_folder = holder.at(comp).get(kExtensionFolderParam);
   if (!c.extension_folder.empty() && std::filesystem::path(c.extension_folder).is_relative())
     c.extension_folder = (std::filesystem::path(c.settings).parent_path() / c.extension_folder).string();
+  const std::string& tex = holder.at(comp).get(kTextureFolderParam);
+  if (!tex.empty()) {
+    const size_t slash = c.settings.find_last_of('/');
+    c.texture_folder = tex[0] == '/' || slash == std::string::npos ? tex : c.settings.substr(0, slash + 1) + tex;
+  }
   return 0;
 }
 

@@ -65,6 +65,7 @@ struct Common {
   std::string settings;
   std::vector<std::string> plugins;  ///< --plugin FILE, in order
   std::string extension_folder;      ///< the global setting ExtensionFolder (--settings)
+  std::string texture_folder;  ///< TextureFolder of the global settings (relative to the settings file)
   /// The component types: built once by main (registerBuiltins) and passed down with the options.
   const Registry* registry = nullptr;
 };

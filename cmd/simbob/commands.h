@@ -11,12 +11,25 @@ class App;
 namespace simbob {
 class Registry;
 struct Override;
+struct RenderOptions;
 }  // namespace simbob
 
 namespace simbob::cli {
 
 struct Common;
 struct NamedPath;
+
+/// The view options of `run --record` and `render` (issue #12).
+struct ViewArgs {
+  std::string size = "640x480";  ///< WIDTHxHEIGHT in pixels
+  std::string camera;            ///< a camera's key ("" = the scene's first, else a default view)
+  std::string quality;           ///< view quality level ("" = shadows)
+  std::string gl;                ///< egl, osmesa ("" = $SIMBOB_GL, else EGL falling back to OSMesa)
+};
+void addViewOptions(CLI::App* app, ViewArgs& v);
+/// Checks the view options and fills `o` (the back end from $SIMBOB_GL when --gl is not given);
+/// 0, or the exit status after logging the problem.
+int renderOptions(const ViewArgs& v, const Common& common, RenderOptions* o);
 
 struct RunArgs {
   std::string scene;
@@ -35,6 +48,10 @@ struct RunArgs {
   std::vector<std::string> sets;  ///< --set KEY.PARAM=VALUE, in order
   int port_offset = 0;             ///< added to every socket communicator's Port
   double peer_timeout = 10;        ///< wall-clock s for a socket peer to connect or answer
+  std::string record;         ///< --record DIR: frames as DIR/frame_000000.png ("" = no GL context at all)
+  std::string video;          ///< --video FILE.avi|FILE.mp4: the same frames as one video
+  double fps = 30;            ///< frames per simulated second of --record and --video
+  ViewArgs view;
 };
 int cmdRun(RunArgs& a, const Common& common);
 
@@ -70,6 +87,18 @@ struct PlotArgs {
   std::string x, y;  ///< a sweep table's columns: metric y against parameter x
 };
 int cmdPlot(const PlotArgs& a, const Common& common);
+
+struct RenderArgs {
+  std::string scene;
+  double at = 0;  ///< s of simulated time drawn (the scene is simulated up to it)
+  std::string out;
+  double dt = 0;
+  uint32_t seed = 0;
+  ViewArgs view;
+};
+int cmdRender(const RenderArgs& a, const Common& common);
+/// simbob info: version and the GL back ends with their GL_RENDERER.
+int cmdInfo(const std::string& gl, const Common& common);
 
 struct BatchArgs {
   std::vector<std::string> scenes;  ///< paths or glob patterns

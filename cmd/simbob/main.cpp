@@ -46,6 +46,10 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
   run->add_option("--peer-timeout", ra.peer_timeout,
                   "Wall-clock s a socket peer may take to connect or to answer, 0.001 to 86400 (default 10)");
   run->add_flag("--batch-child", ra.batch_child, "(internal) started by simbob batch")->group("");
+  run->add_option("--record", ra.record, "Render frames to DIR/frame_000000.png, ... (frame n at t = n / fps)");
+  run->add_option("--video", ra.video, "Render the frames into one video: FILE.avi (MJPEG) or FILE.mp4 (H.264)");
+  run->add_option("--fps", ra.fps, "Frames per simulated second of --record and --video (default 30)");
+  addViewOptions(run, ra.view);
   addCommon(run, common);
   // A batch manifest appends per-scene options after the batch-wide ones: the last one wins
   // (every --set and --plugin counts).
@@ -126,16 +130,30 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
 
   SweepArgs sa;
   CLI::App* sweep = addSweepCommands(app, sa, common);
+  RenderArgs rna;
+  CLI::App* render = app.add_subcommand("render", "Draw the scene at a simulated time to a PNG");
+  render->add_option("scene", rna.scene, "Scene file")->required();
+  render->add_option("--at", rna.at, "Simulated time in s (default 0; the scene is simulated up to it)");
+  render->add_option("--out", rna.out, "Output PNG")->required();
+  render->add_option("--dt", rna.dt, "Step size in s (default: the scene's MaxTimeStep)");
+  render->add_option("--seed", rna.seed, "Seed of ODE's random generator (default 0)");
+  addViewOptions(render, rna.view);
+  addCommon(render, common);
+
+  std::string info_gl;
+  CLI::App* info = app.add_subcommand("info", "Print the version and the GL back ends with their renderer");
+  info->add_option("--gl", info_gl, "Only this back end: egl or osmesa");
+  addCommon(info, common);
 
   // Name an unknown subcommand instead of CLI11's "A subcommand is required".
   std::vector<std::string> names;
   for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
   if (argc > 1 && argv[1][0] != '-' && std::find(names.begin(), names.end(), argv[1]) == names.end()) {
     std::string near = simbob::didYouMean(argv[1], names);
-    std::fprintf(
-        stderr,
-        "simbob: error: unknown command '%s'%s; commands: run, check, dump, types, compare, batch, plot, sweep\n",
-        argv[1], near.empty() ? "" : (" (did you mean '" + near + "'?)").c_str());
+    std::fprintf(stderr,
+                 "simbob: error: unknown command '%s'%s; commands: run, check, dump, types, compare, batch, plot, "
+                 "sweep, render, info\n",
+                 argv[1], near.empty() ? "" : (" (did you mean '" + near + "'?)").c_str());
     return kExitUsage;
   }
   try {
@@ -147,8 +165,8 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
     return kExitUsage;
   }
   // An output option given as "" is a mistake, not a request for the default name.
-  for (CLI::App* sub : {run, compare, plot, batch, check, dump})
-    for (const char* name : {"--out", "--report", "--log-file", "--out-dir", "--settings"}) {
+  for (CLI::App* sub : {run, compare, plot, batch, check, dump, render, info})
+    for (const char* name : {"--out", "--report", "--log-file", "--out-dir", "--settings", "--record", "--video"}) {
       CLI::Option* o = sub->get_option_no_throw(name);
       if (!o || o->count() == 0) continue;
       for (const std::string& v : o->results())
@@ -174,6 +192,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
       if (*run) outputs = runOutputs(ra);
       if (*compare) outputs = {{"--report", ca.report}};
       if (*plot) outputs = {{"--out", pa.out}};
+      if (*render) outputs = {{"--out", rna.out}};
       if (*batch) outputs = {{"--report", ba.report}};
       outputs.push_back({"--log-file", common.log_file});
       if (int c = checkOutputs(outputs, {})) return c;
@@ -187,6 +206,8 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
     if (*batch) code = cmdBatch(ba, common);
     if (*plot) code = cmdPlot(pa, common);
     if (*sweep) code = cmdSweep(sa, common);
+    if (*render) code = cmdRender(rna, common);
+    if (*info) code = cmdInfo(info_gl, common);
   } catch (const std::exception& e) {
     g_log.error({simbob::ErrorKind::Internal, {}, std::string("internal error: ") + e.what()});
     code = kExitSoftware;

@@ -17,6 +17,8 @@
 #include "simbob/files.h"
 #include "simbob/overrides.h"
 #include "simbob/physics.h"
+#include "simbob/frame_sinks.h"
+#include "simbob/render.h"
 #include "simbob/robot.h"
 #include "simbob/run.h"
 #include "simbob/transform.h"
@@ -182,6 +184,20 @@ class StopWatchdog {
   std::thread thread_;
 };
 
+/// A party owned elsewhere (the recorder outlives the run: its frame count and error are read
+/// after it).
+class PartyRef : public Party {
+ public:
+  explicit PartyRef(Party& p) : p_(p) {}
+  SimTime first() override { return p_.first(); }
+  SimTime onGrant(SimTime now, World& world) override { return p_.onGrant(now, world); }
+  void finish(SimTime end, World& world) override { p_.finish(end, world); }
+  const Error* failure() const override { return p_.failure(); }
+
+ private:
+  Party& p_;
+};
+
 }  // namespace
 
 std::vector<NamedPath> runOutputs(const RunArgs& a) {
@@ -271,6 +287,7 @@ int cmdRun(RunArgs& a, const Common& common) {
     d.port += a.port_offset;
   }
 
+  Error err_early;
   // Every output is checked, and created under a temporary name, before the run starts: a run
   // must not end in "cannot create" after simulating for an hour.
   std::vector<NamedPath> outputs = runOutputs(a);
@@ -281,7 +298,63 @@ int cmdRun(RunArgs& a, const Common& common) {
     for (const std::string& f : scene.files) inputs.push_back({f == a.scene ? "the scene" : "the import", f});
     inputs.push_back({"--settings", common.settings});
     outputs.push_back({"--log-file", g_log.path});
+    if (!a.video.empty()) outputs.push_back({"--video", a.video});
     if (int c = checkOutputs(outputs, inputs)) return c;
+  }
+
+  // --record / --video: the renderer (a GL context) exists only then. Frames are encoded on
+  // another thread (makeAsyncSink) while the next ones render and the physics steps on.
+  std::unique_ptr<Renderer> renderer;
+  std::unique_ptr<FrameSink> sink;
+  if (!a.record.empty() || !a.video.empty()) {
+    if (!(a.fps > 0 && a.fps <= 1000)) {
+      g_log.error({ErrorKind::InvalidInput, {}, "--fps must be above 0 and at most 1000, got " + formatNumber(a.fps)});
+      return kExitUsage;
+    }
+    RenderOptions ro;
+    if (int c = renderOptions(a.view, common, &ro)) return c;
+    std::vector<std::unique_ptr<FrameSink>> sinks;
+    if (!a.record.empty()) {
+      std::error_code dir_ec;
+      if (std::filesystem::exists(std::filesystem::path(a.record) / "frame_000000.png", dir_ec)) {
+        g_log.error({ErrorKind::CannotCreate,
+                     {a.record, 0},
+                     "already holds a recording (frame_000000.png); remove it or record elsewhere"});
+        return kExitCantCreate;
+      }
+      std::unique_ptr<FrameSink> pngs = makePngSequenceSink(a.record, &err_early);
+      if (!pngs) {
+        g_log.error(err_early);
+        return exitCodeFor(err_early.kind);
+      }
+      sinks.push_back(std::move(pngs));
+    }
+    if (!a.video.empty()) {
+      std::string why;
+      const std::string encoder = videoEncoderFor(a.video, &why);
+      if (encoder.empty()) {
+        g_log.error({ErrorKind::InvalidInput, {a.video, 0}, why});
+        return kExitUsage;
+      }
+      if (encoder != "mjpeg" && (ro.width % 2 != 0 || ro.height % 2 != 0)) {
+        g_log.error({ErrorKind::InvalidInput, {}, "--size must be even in both directions for H.264 (--video .mp4)"});
+        return kExitUsage;
+      }
+      std::unique_ptr<FrameSink> video = makeVideoSink(a.video, a.fps, &err_early);
+      if (!video) {
+        g_log.error(err_early);
+        return exitCodeFor(err_early.kind);
+      }
+      sinks.push_back(std::move(video));
+    }
+    renderer = Renderer::create(model, ro, &err_early);
+    if (!renderer) {
+      g_log.error(err_early);
+      return exitCodeFor(err_early.kind);
+    }
+    sink = makeAsyncSink(std::move(sinks));
+    g_log.debug("recording through " + renderer->backendName() + " (" + renderer->glRenderer() + "), camera " +
+                renderer->cameraName());
   }
 
   // The run needs only the compiled model: free the component graph before ODE allocates.
@@ -316,10 +389,19 @@ int cmdRun(RunArgs& a, const Common& common) {
   opts.sample_interval = a.sample_interval;
   opts.seed = a.seed;
   opts.stop = &g_stop;
-  opts.make_parties = [&model] { return robotParties(model); };  // controllers, after the sampler
   std::vector<double> rec_times, rec_poses;
   std::atomic<double> last_sample{0.0};
   bool first_pass = true;
+  std::unique_ptr<Recorder> recorder;
+  if (renderer)
+    recorder = std::make_unique<Recorder>(*renderer, *sink, a.fps, toSimTime(model.settings.min_time_step).value_or(0),
+                                          static_cast<int>(model.bodies.size()));
+  opts.make_parties = [&] {
+    std::vector<std::unique_ptr<Party>> parties = robotParties(model);  // controllers, after the sampler
+    // The recorder last (it sees what the controllers did at t), in the first run only.
+    if (recorder && first_pass) parties.push_back(std::make_unique<PartyRef>(*recorder));
+    return parties;
+  };
   opts.on_sample = [&](double t, const double* p) {
     if (a.check_determinism && first_pass) {
       rec_times.push_back(t);
@@ -408,6 +490,15 @@ int cmdRun(RunArgs& a, const Common& common) {
   }
   watchdog.loopReturned();
 
+  if (r.status == RunStatus::Completed && recorder && recorder->failure()) {
+    r.status = RunStatus::Failed;  // the recording could not be finished
+    r.error = *recorder->failure();
+  }
+  if (recorder) {
+    if (!a.video.empty()) summary["video"] = a.video;
+    summary["record"] = a.record;
+    summary["frames"] = recorder->frames();
+  }
   if (r.status == RunStatus::Completed) {
     summary["trajectory"] = a.out;
     summary["csv_bytes"] = writer->bytesWritten();

@@ -11,19 +11,10 @@
 #include <vector>
 
 #include "simbob/error.h"
+#include "simbob/frames.h"
+#include "simbob/visuals.h"
 
 namespace simbob {
-
-using Vec3 = std::array<double, 3>;
-/// Unit quaternion, w x y z.
-using Quat = std::array<double, 4>;
-/// Row-major 3x3.
-using Mat3 = std::array<double, 9>;
-
-struct Transform {
-  Vec3 p{0, 0, 0};
-  Quat q{1, 0, 0, 0};
-};
 
 /// Contact properties of one material (guide 6.7.1, combined per 7.1).
 struct MaterialDef {
@@ -177,6 +168,11 @@ struct Model {
   std::vector<SensorDef> sensors;          ///< document order (peripheries, after the joints)
   std::vector<ControllerDef> controllers;  ///< document order; a schedule's TwoWheel target may come first
   std::vector<SocketDef> sockets;          ///< document order
+  // What the renderer draws (simbob/visuals.h); the physics never reads these.
+  std::vector<VisualDef> visuals;  ///< document order
+  std::vector<SkinDef> skins;      ///< [0] is the default skin
+  std::vector<CameraDef> cameras;  ///< CameraList order
+  ViewSettings view;
 };
 
 }  // namespace simbob

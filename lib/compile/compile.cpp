@@ -70,6 +70,7 @@ bool compileScene(const Scene& scene, Model* model, Diagnostics& diag) {
   // [0]: the registry's defaults, for geoms made without a material (none today: every body
   // and global has a Material parameter with a default).
   model->materials.push_back(MaterialDef{});
+  model->skins.push_back(SkinDef{});  // [0]: what a model without a skin wears
   lowerComponentList(ctx);
   for (const Link& l : scene.cameras)
     if (l.comp >= 0) lowerCamera(ctx, l.comp);

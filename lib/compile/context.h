@@ -98,6 +98,8 @@ class CompileContext {
   /// Controllers lowered so far: component index -> Model::controllers index (-1 while it is
   /// being lowered or after an error).
   std::map<int, int> controller_index;
+  /// Skins lowered so far: component index -> Model::skins index (skins.cpp).
+  std::map<int, int> skin_index;
 
   /// Lowering state of bodies (bodies.cpp, clones.cpp): bodies already lowered (memo), bodies
   /// being lowered (cycle and depth checks), and the clone being copied.
@@ -198,5 +200,10 @@ void lowerController(CompileContext& ctx, const Component& c);
 void lowerGlobal(CompileContext& ctx, int gi);
 /// cameras.cpp: checks of a camera of the CameraList.
 void lowerCamera(CompileContext& ctx, int comp);
+/// skins.cpp: Model::skins index of a skin (0, the default skin, for none); each skin once.
+int lowerSkin(CompileContext& ctx, const Link& l);
+/// models.cpp: appends the visuals of a body's model tree to Model::visuals: `body` the
+/// Model::bodies index (frame = identity) or -1 with `frame` the static body's global frame.
+void lowerVisuals(CompileContext& ctx, const Link& root, int body, const Transform& frame, const std::string& key);
 
 }  // namespace simbob

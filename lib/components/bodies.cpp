@@ -78,6 +78,14 @@ Built rod(CompileContext& ctx, const Component& c, const Transform* parent) {
   b.mass = c.get(kMass);
   for (int k = 0; k < 9; ++k) b.inertia[k] = mp.inertia[k] * b.mass / mp.volume;
   ctx.model.geoms.push_back(g);
+  VisualDef v;  // the rod draws its own shape
+  v.shape = VisualDef::Cylinder;
+  v.body = index;
+  v.size = {r, len, 0};
+  v.mask = capped ? 25 : 7;
+  v.skin = lowerSkin(ctx, c.get(kSkin));
+  v.key = b.key;
+  ctx.model.visuals.push_back(v);
   return addMobileBody(ctx, b);
 }
 
@@ -90,6 +98,7 @@ Built lowerUncached(CompileContext& ctx, int ci, const Transform* parent) {
       checkModelTree(ctx, c.get(kModel));
       GeomTarget t{&c, -1, out.frame, lowerMaterial(ctx, c.get(kMaterial)), &c.get(kModel)};
       lowerGeom(ctx, c.get(kGeom), t, Transform{});
+      lowerVisuals(ctx, c.get(kModel), -1, out.frame, c.qkey);
       out.ok = true;
       return out;
     }
@@ -106,6 +115,7 @@ Built lowerUncached(CompileContext& ctx, int ci, const Transform* parent) {
       lowerGeom(ctx, c.get(kGeom), t, Transform{});
       // A bad inertia is reported and the body kept, so that what hangs on it is checked too.
       lowerInertia(ctx, c.get(kInertia), c, first_geom, &b);
+      lowerVisuals(ctx, c.get(kModel), index, Transform{}, b.key);
       return addMobileBody(ctx, b);
     }
     case BodyKind::Rod:

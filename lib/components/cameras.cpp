@@ -2,6 +2,7 @@
 // Lowering checks what makes a view impossible (clip planes, view angle, missing bodies).
 #include "compile/context.h"
 #include "components/families.h"
+#include "simbob/transform.h"
 
 namespace simbob {
 
@@ -68,17 +69,49 @@ void lowerCamera(CompileContext& ctx, int comp) {
     ctx.errorAt(c.slotOf(kFarClip), c,
                 "NearClip (" + formatNumber(c.get(kNearClip)) + " m) must be closer than FarClip (" +
                     formatNumber(c.get(kFarClip)) + " m)");
-  switch (static_cast<CameraKind>(c.type->kind)) {
+  CameraDef d;
+  d.key = c.qkey;
+  d.view_angle = c.get(kViewAngle);
+  d.near_clip = c.get(kNearClip);
+  d.far_clip = c.get(kFarClip);
+  const auto kind = static_cast<CameraKind>(c.type->kind);
+  d.kind = static_cast<CameraDef::Kind>(kind);
+  switch (kind) {
     case CameraKind::Static:
+      lowerPose(ctx, c.get(kPose), c, nullptr, &d.pose);
       break;
     case CameraKind::Mounted:
     case CameraKind::Spotlight:
     case CameraKind::Tracking: {
       const Link& b = c.get(kBody);
-      if (b.comp < 0 && !b.isRef()) ctx.error(c, "parameter 'Body' is required (a Ref to the body it follows)");
+      if (b.comp < 0) {
+        if (!b.isRef()) ctx.error(c, "parameter 'Body' is required (a Ref to the body it follows)");
+        break;
+      }
+      d.body = ctx.bodyIndex(ctx.modelKey(ctx.at(b.comp)));
+      if (d.body < 0) {
+        // A static body (or one not lowered): follow the place it stands.
+        auto it = ctx.memo.find(b.comp);
+        if (it == ctx.memo.end() || !it->second.ok) {
+          ctx.error(b, c, "parameter 'Body' must refer to a body of the ComponentList");
+          break;
+        }
+        d.target = it->second.frame.p;
+        d.pose = it->second.frame;
+      }
+      if (kind == CameraKind::Mounted) {
+        const Transform rel = poseValue(ctx, c.get(kPose));
+        d.pose = d.body < 0 ? compose(d.pose, rel) : rel;
+      } else if (kind == CameraKind::Spotlight) {
+        lowerPose(ctx, c.get(kPose), c, nullptr, &d.pose);
+        d.auto_view_angle = c.get(kAutoViewAngle);
+      } else {
+        d.distance = c.get(kDistance);
+      }
       break;
     }
   }
+  ctx.model.cameras.push_back(std::move(d));
 }
 
 }  // namespace simbob

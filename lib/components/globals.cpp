@@ -1,6 +1,9 @@
 // GlobalSimComponents (guide 6.2): ground, sky and sandbox planes, robots, shared RefLists.
+#include <cmath>
+
 #include "compile/context.h"
 #include "components/families.h"
+#include "simbob/transform.h"
 
 namespace simbob {
 
@@ -22,6 +25,41 @@ constexpr ValueParam<double> kThickness{"Thickness"};
 constexpr LinkParam kWall{"Wall"};
 constexpr LinkParam kConstruction{"Construction"};
 constexpr ListParam kControllerList{"ControllerList"};
+
+/// A horizontal square plane model at height y facing up (+1) or down (-1).
+void addFloorVisual(CompileContext& ctx, const Component& c, double y, double facing) {
+  VisualDef v;
+  v.shape = VisualDef::Plane;
+  v.pose.p = {0, y, 0};
+  v.pose.q = quatAxisAngle({1, 0, 0}, -facing * kPi / 2);  // local +Z onto +Y (or -Y)
+  v.size = {c.get(kExtension), c.get(kExtension), 0};
+  v.tex_scale = c.get(kTexScale);
+  v.max_cell = c.get(kMaxCellSize);
+  v.shadow_plane = facing > 0;  // the ground catches the shadows
+  v.skin = lowerSkin(ctx, c.get(kSkin));
+  v.key = c.qkey;
+  ctx.model.visuals.push_back(v);
+}
+
+/// The sandbox's walls: boxes of Thickness outside the planes, Height tall from y = 0.
+void addSandBoxVisuals(CompileContext& ctx, const Component& c) {
+  const double w = c.get(kWidth) / 2, d = c.get(kDepth) / 2, t = c.get(kThickness), h = c.get(kHeight);
+  const int skin = lowerSkin(ctx, c.get(kWall));
+  auto wall = [&](const Vec3& a, const Vec3& b) {
+    VisualDef v;
+    v.shape = VisualDef::Cuboid;
+    v.a = a;
+    v.b = b;
+    v.tex_scale = c.get(kTexScale);
+    v.skin = skin;
+    v.key = c.qkey;
+    ctx.model.visuals.push_back(v);
+  };
+  wall({-w - t, 0, -d - t}, {-w, h, d + t});
+  wall({w, 0, -d - t}, {w + t, h, d + t});
+  wall({-w, 0, -d - t}, {w, h, -d});
+  wall({-w, 0, d}, {w, h, d + t});
+}
 
 }  // namespace
 
@@ -77,9 +115,11 @@ void lowerGlobal(CompileContext& ctx, int gi) {
   switch (static_cast<GlobalKind>(c.type->kind)) {
     case GlobalKind::Ground:
       addPlane(ctx, {0, 1, 0}, {0, 0, 0}, lowerMaterial(ctx, c.get(kMaterial)), c.qkey);
+      addFloorVisual(ctx, c, 0, 1);
       break;
     case GlobalKind::Sky:
       addPlane(ctx, {0, -1, 0}, {0, c.get(kHeight), 0}, lowerMaterial(ctx, c.get(kMaterial)), c.qkey);
+      addFloorVisual(ctx, c, c.get(kHeight), -1);
       break;
     case GlobalKind::SandBox: {
       int mat = lowerMaterial(ctx, c.get(kMaterial));
@@ -88,6 +128,7 @@ void lowerGlobal(CompileContext& ctx, int gi) {
       addPlane(ctx, {-1, 0, 0}, {w, 0, 0}, mat, c.qkey);
       addPlane(ctx, {0, 0, 1}, {0, 0, -d}, mat, c.qkey);
       addPlane(ctx, {0, 0, -1}, {0, 0, d}, mat, c.qkey);
+      addSandBoxVisuals(ctx, c);
       break;
     }
     case GlobalKind::Robot: {

@@ -1,6 +1,7 @@
 // ModelComponents (guide 6.3): visual hulls, no physical effect. The renderer draws them;
 // RCModelMatchGeom / RCModelWrapGeom (model_geoms.cpp) derive collision shapes from them
 // through the functions at the bottom.
+#include <algorithm>
 #include <cmath>
 
 #include "compile/context.h"
@@ -202,6 +203,81 @@ ModelShape modelShape(const Component& m) {
       return s;
   }
   return s;
+}
+
+void lowerVisuals(CompileContext& ctx, const Link& root, int body, const Transform& frame, const std::string& key) {
+  // Depth first in document order, like collectModelParts; a child without a skin wears its
+  // parent's.
+  struct Item {
+    const Link* link;
+    Transform parent;
+    bool is_root;
+    int skin;
+  };
+  std::vector<Item> stack{{&root, frame, true, 0}};
+  size_t parts = 0;
+  while (!stack.empty()) {
+    Item it = stack.back();
+    stack.pop_back();
+    if (it.link->comp < 0 || ++parts > kMaxModelParts) continue;
+    const Component& c = ctx.at(it.link->comp);
+    const Link& pl = c.get(kPose);
+    Transform t = it.parent;
+    if (pl.comp >= 0) t = compose(!isLocalPose(ctx, pl) && !it.is_root ? frame : it.parent, poseValue(ctx, pl));
+    const int skin = c.get(kSkin).comp >= 0 ? lowerSkin(ctx, c.get(kSkin)) : it.skin;
+    VisualDef v;
+    v.body = body;
+    v.pose = t;
+    v.skin = skin;
+    v.key = key;
+    bool visible = true;
+    switch (kindOf(c)) {
+      case ModelKind::Cuboid: {
+        const Cuboid& cb = c.get(kCuboid);
+        v.shape = VisualDef::Cuboid;
+        v.a = {cb.a[0], cb.a[1], cb.a[2]};
+        v.b = {cb.b[0], cb.b[1], cb.b[2]};
+        v.mask = c.get(kSideMaskParam);
+        v.wire = c.get(kWire);
+        v.tex_scale = c.get(kTexScale);
+        break;
+      }
+      case ModelKind::Plane:
+        v.shape = VisualDef::Plane;
+        v.size = {c.get(kExtensionX), c.get(kExtensionY), 0};
+        v.shadow_plane = c.get(kIsShadowPlane);
+        v.tex_scale = c.get(kTexScale);
+        v.max_cell = c.get(kMaxCellSize);
+        break;
+      case ModelKind::Ellipsoid:
+        v.shape = VisualDef::Ellipsoid;
+        v.size = {c.get(kRadiusX), c.get(kRadiusY), c.get(kRadiusZ)};
+        v.triangles = c.get(kTriangles);
+        v.accuracy = static_cast<int>(std::min<int64_t>(c.get(kAccuracy), 16));
+        break;
+      case ModelKind::Cylinder:
+        v.shape = VisualDef::Cylinder;
+        v.size = {c.get(kRadius), c.get(kLength), 0};
+        v.mask = c.get(kComponentMask);
+        v.tex_scale = c.get(kAngTexScale);
+        v.tex_scale2 = c.get(kLinTexScale);
+        v.accuracy = static_cast<int>(std::min<int64_t>(c.get(kAccuracy), 16));
+        break;
+      case ModelKind::Cone:
+        v.shape = VisualDef::Cone;
+        v.size = {c.get(kRadius), c.get(kLength), 0};
+        v.mask = c.get(kDrawBase) ? 1 : 0;
+        v.tex_scale = c.get(kLinTexScale);
+        v.accuracy = static_cast<int>(std::min<int64_t>(c.get(kAccuracy), 16));
+        break;
+      case ModelKind::Empty:
+        visible = false;
+        break;
+    }
+    if (visible) ctx.model.visuals.push_back(std::move(v));
+    const std::vector<Link>& kids = c.get(kChildList);
+    for (auto k = kids.rbegin(); k != kids.rend(); ++k) stack.push_back({&*k, t, false, skin});
+  }
 }
 
 }  // namespace simbob

@@ -125,6 +125,24 @@ void lowerSettings(CompileContext& ctx, int comp) {
   s.auto_disable = c.get(kAutoDisable);
   if (s.min_time_step > s.max_time_step)
     ctx.diag.error(c.slotOf(kMinTimeStep).loc, "SceneSettings: MinTimeStep must not exceed MaxTimeStep");
+  // The look of the views (guide 3.3.4); an invalid colour keeps the default.
+  ViewSettings& v = ctx.model.view;
+  v.light_pos = c.get(kLightPos).v;
+  if (c.get(kLightColor).valid) v.light_color = c.get(kLightColor).rgba;
+  if (c.get(kClearColor).valid) v.clear_color = c.get(kClearColor).rgba;
+  v.shadow_intensity = c.get(kShadowIntensity);
+  const Link& fl = c.get(kFogSettings);
+  if (fl.comp >= 0) {
+    const Component& f = ctx.at(fl.comp);
+    v.fog = static_cast<ViewSettings::Fog>(f.get(kMode));
+    v.fog_density = f.get(kDensity);
+    v.fog_start = f.get(kStart);
+    v.fog_end = f.get(kEnd);
+    if (f.get(kColor).valid) v.fog_color = f.get(kColor).rgba;
+    if (v.fog == ViewSettings::Linear && !(v.fog_end > v.fog_start))
+      ctx.diag.error(f.slotOf(kEnd).loc.line ? f.slotOf(kEnd).loc : f.loc,
+                     "FogSettings: End must be beyond Start for linear fog");
+  }
 }
 
 }  // namespace simbob

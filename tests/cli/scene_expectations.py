@@ -311,8 +311,19 @@ def socket_robot(c):
     c.near("chassis height", p[1], 0.12, 2e-3)
 
 
+def gallery(c):
+    # The ball rolls without slipping (v = w r from the start, no rolling resistance): x = -3 + t
+    # until it reaches the sandbox wall at x = 6 - 0.3 m (t = 8.7 s); the rod rests on the ground.
+    for t in (2.0, 5.0):
+        _, p, _ = c.at("Ball", t)
+        c.near(f"ball x at t = {t} s (m)", p[0], -3 + t, 0.05)
+        c.near(f"ball height at t = {t} s (m)", p[1], 0.3, 0.01)
+    _, p, _ = c.at("Rod", 10)
+    c.near("rod height at t = 10 s (m)", p[1], 0.1, 0.01)
+
+
 SCENES = {f.__name__: f for f in (pendulum, box_stack, chain, imported_bodies, mechanisms, bounce, robot, flywheel,
-                                  servo_arm, two_wheel_robot, wall_stop_robot, sliding_box, socket_robot)}
+                                  servo_arm, two_wheel_robot, wall_stop_robot, sliding_box, socket_robot, gallery)}
 
 if __name__ == "__main__":
     name, path = sys.argv[1], sys.argv[2]

@@ -1,0 +1,186 @@
+// simbob render (one still at a simulated time), simbob info (the GL back ends), and the view
+// options shared with `run --record` (issue #12).
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "cli.h"
+#include "commands.h"
+#include "simbob/render.h"
+#include "simbob/physics.h"
+#include "simbob/png.h"
+#include "simbob/robot.h"
+#include "simbob/run.h"
+#include "simbob/values.h"
+
+namespace simbob::cli {
+
+namespace {
+
+/// The party of `render --at T`: keeps the poses at T.
+class Still : public Party {
+ public:
+  Still(SimTime at, size_t bodies) : at_(at), poses_(bodies) {}
+  SimTime first() override { return at_; }
+  SimTime onGrant(SimTime /*now*/, World& world) override {
+    for (int i = 0; i < world.bodyCount(); ++i) poses_[static_cast<size_t>(i)] = world.body(i).pose;
+    taken_ = true;
+    return kNever;
+  }
+  bool taken() const { return taken_; }
+  const std::vector<Transform>& poses() const { return poses_; }
+
+ private:
+  SimTime at_;
+  std::vector<Transform> poses_;
+  bool taken_ = false;
+};
+
+}  // namespace
+
+void addViewOptions(CLI::App* app, ViewArgs& v) {
+  app->add_option("--size", v.size, "Image size WIDTHxHEIGHT in pixels (default 640x480)");
+  app->add_option("--camera", v.camera, "Camera key (default: the scene's first camera, else a view of every body)");
+  app->add_option("--quality", v.quality,
+                  "View quality: frame, wire, plane, flat, smooth, textures, shadows (default), transparency, fog");
+  app->add_option("--gl", v.gl, "GL back end: egl or osmesa (default: $SIMBOB_GL, else EGL, falling back to OSMesa)");
+}
+
+int renderOptions(const ViewArgs& v, const Common& common, RenderOptions* o) {
+  int w = 0, h = 0;
+  char extra = 0;
+  if (std::sscanf(v.size.c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 1 || h < 1 || w > kMaxImageSide ||
+      h > kMaxImageSide) {
+    g_log.error({ErrorKind::InvalidInput,
+                 {},
+                 "--size must be WIDTHxHEIGHT with 1 to " + std::to_string(kMaxImageSide) + " pixels each, got '" +
+                     v.size + "'"});
+    return kExitUsage;
+  }
+  o->width = w;
+  o->height = h;
+  if (!v.quality.empty() && !parseQuality(v.quality, &o->quality)) {
+    g_log.error({ErrorKind::InvalidInput,
+                 {},
+                 "--quality must be frame, wire, plane, flat, smooth, textures, shadows, transparency or fog, got '" +
+                     v.quality + "'"});
+    return kExitUsage;
+  }
+  std::string gl = v.gl;
+  std::string from = "--gl";
+  if (gl.empty()) {
+    const char* env = std::getenv("SIMBOB_GL");
+    gl = env ? env : "";
+    from = "SIMBOB_GL";
+  }
+  if (!parseGlBackend(gl, &o->backend)) {
+    g_log.error({ErrorKind::InvalidInput, {}, from + " must be egl or osmesa, got '" + gl + "'"});
+    return kExitUsage;
+  }
+  o->camera = v.camera;
+  o->texture_folder = common.texture_folder;
+  return 0;
+}
+
+int cmdRender(const RenderArgs& a, const Common& common) {
+  if (!std::isfinite(a.at) || a.at < 0 || a.at > kMaxTimeOption) {
+    g_log.error({ErrorKind::InvalidInput, {}, "--at must be between 0 and 1e9 s, got " + formatNumber(a.at)});
+    return kExitUsage;
+  }
+  if (a.dt != 0 && !(a.dt >= kMinTimeOption && a.dt <= kMaxTimeOption)) {
+    g_log.error({ErrorKind::InvalidInput, {}, "--dt must be between 1e-9 and 1e9 s, got " + formatNumber(a.dt)});
+    return kExitUsage;
+  }
+  RenderOptions ro;
+  if (int c = renderOptions(a.view, common, &ro)) return c;
+  exitOnStopSignals(a.scene, "loading");
+  Scene scene;
+  Model model;
+  int code = 0;
+  if (!loadAndCompile(a.scene, *common.registry, &scene, &model, &code, true, false, {{"--settings", common.settings}}))
+    return code;
+  {
+    std::vector<NamedPath> inputs;
+    for (const std::string& f : scene.files) inputs.push_back({f == a.scene ? "the scene" : "the import", f});
+    inputs.push_back({"--settings", common.settings});
+    if (int c = checkOutputs({{"--out", a.out}, {"--log-file", g_log.path}}, inputs)) return c;
+  }
+  scene = Scene{};
+  Error err;
+  std::unique_ptr<Renderer> renderer = Renderer::create(model, ro, &err);
+  if (!renderer) {
+    g_log.error(err);
+    return exitCodeFor(err.kind);
+  }
+  std::vector<Transform> poses = initialPoses(model);
+  if (a.at > 0) {
+    // Simulate up to T with the controllers acting, as `run` would.
+    RunOptions opts;
+    opts.duration = a.at;
+    opts.dt = a.dt;
+    opts.seed = a.seed;
+    catchStopSignals();
+    opts.stop = &g_stop;
+    std::vector<std::unique_ptr<Party>> owned = robotParties(model);
+    const std::optional<SimTime> at = toSimTime(a.at);
+    Still still(at ? *at : kNever, model.bodies.size());
+    std::vector<Party*> parties;
+    parties.reserve(owned.size() + 1);
+    for (auto& p : owned) parties.push_back(p.get());
+    parties.push_back(&still);
+    RunResult r = runParties(model, opts, parties);
+    if (r.status != RunStatus::Completed || !still.taken()) {
+      g_log.error(r.error.message.empty() ? Error{ErrorKind::Internal, {}, "the run ended before --at"} : r.error);
+      if (r.status == RunStatus::Interrupted) return stopExitCode();
+      return exitCodeFor(r.error.kind);
+    }
+    poses = still.poses();
+  }
+  Image img;
+  if (const Error* e = renderer->render(poses, a.at, &img)) {
+    g_log.error(*e);
+    return exitCodeFor(e->kind);
+  }
+  Error w = writePng(a.out, img);
+  if (!w.message.empty()) {
+    g_log.error(w);
+    return exitCodeFor(w.kind);
+  }
+  g_log.info("wrote " + a.out + " (" + std::to_string(img.width) + "x" + std::to_string(img.height) + ", camera " +
+             renderer->cameraName() + ", " + renderer->backendName() + ")");
+  return kExitOk;
+}
+
+int cmdInfo(const std::string& gl, const Common& /*common*/) {
+  std::printf("simbob %s\n", SIMBOB_VERSION);
+  std::vector<std::pair<const char*, GlBackend>> backends = {{"egl", GlBackend::Egl}, {"osmesa", GlBackend::OsMesa}};
+  if (!gl.empty()) {
+    GlBackend b;
+    if (!parseGlBackend(gl, &b) || b == GlBackend::Auto) {
+      g_log.error({ErrorKind::InvalidInput, {}, "--gl must be egl or osmesa, got '" + gl + "'"});
+      return kExitUsage;
+    }
+    backends = {{b == GlBackend::Egl ? "egl" : "osmesa", b}};
+  }
+  Model empty;
+  empty.skins.push_back(SkinDef{});
+  bool any = false;
+  for (const auto& [name, b] : backends) {
+    RenderOptions o;
+    o.width = o.height = 16;
+    o.backend = b;
+    Error err;
+    std::unique_ptr<Renderer> r = Renderer::create(empty, o, &err);
+    if (r) {
+      std::printf("gl %s: %s, GL_RENDERER %s\n", name, r->backendName().c_str(), r->glRenderer().c_str());
+      any = true;
+    } else {
+      std::printf("gl %s: unavailable (%s)\n", name, err.message.c_str());
+    }
+  }
+  return any ? kExitOk : kExitNoInput;
+}
+
+}  // namespace simbob::cli

@@ -1,0 +1,49 @@
+// The recorder party: frame n at t = n / fps, rendered from the world's poses and handed to a
+// FrameSink. It reads the world and never changes it, so the trajectory is the same with or
+// without --record.
+#include <optional>
+
+#include "simbob/physics.h"
+#include "simbob/render.h"
+
+namespace simbob {
+
+Recorder::Recorder(Renderer& renderer, FrameSink& sink, double fps, SimTime min_step, int body_count)
+    : renderer_(renderer), sink_(sink), fps_(fps), min_step_(min_step), poses_(static_cast<size_t>(body_count)) {}
+
+SimTime Recorder::first() { return 0; }
+
+SimTime Recorder::onGrant(SimTime now, World& world) {
+  for (int i = 0; i < world.bodyCount(); ++i) poses_[static_cast<size_t>(i)] = world.body(i).pose;
+  Image img;
+  if (const Error* e = renderer_.render(poses_, toSeconds(now), &img)) {
+    error_ = *e;
+    failed_ = true;
+    return kNever;
+  }
+  if (const Error* e = sink_.add(std::move(img))) {
+    error_ = *e;
+    failed_ = true;
+    return kNever;
+  }
+  ++frames_;
+  // Frame n shows t = n / fps: the next request is the first such time beyond MinTimeStep.
+  for (;;) {
+    const std::optional<SimTime> next = toSimTime(static_cast<double>(frames_) / fps_);
+    if (!next) return kNever;
+    if (*next - now > min_step_) return *next;
+    ++frames_;  // a frame closer than MinTimeStep to this one cannot be reached apart from it
+  }
+}
+
+void Recorder::finish(SimTime /*end*/, World& /*world*/) {
+  if (failed_) return;
+  if (const Error* e = sink_.finish()) {
+    error_ = *e;
+    failed_ = true;
+  }
+}
+
+const Error* Recorder::failure() const { return failed_ ? &error_ : nullptr; }
+
+}  // namespace simbob

@@ -1,0 +1,274 @@
+// Model primitives as GL quads and triangles. Segment counts follow guide 6.3.3: quadrangles
+// step pi / (8 Accuracy) in both spherical angles; triangles split an icosahedron's faces
+// Accuracy times (at most 4).
+#include "render/shapes.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "simbob/transform.h"
+
+namespace simbob::render {
+
+namespace {
+
+constexpr int kMaxSubdivisions = 4;
+
+// Texture coordinate along one axis: repeats per metre (TexScale > 0) or per extension (< 0).
+double texCoord(double x, double extent, double scale) { return scale >= 0 ? x * scale : (x / extent + 0.5) * -scale; }
+
+void vertex(const GlApi& gl, const Vec3& p, const Vec3& n) {
+  gl.Normal3d(n[0], n[1], n[2]);
+  gl.Vertex3d(p[0], p[1], p[2]);
+}
+
+void cuboid(const GlApi& gl, const VisualDef& v) {
+  const Vec3 lo{std::min(v.a[0], v.b[0]), std::min(v.a[1], v.b[1]), std::min(v.a[2], v.b[2])};
+  const Vec3 hi{std::max(v.a[0], v.b[0]), std::max(v.a[1], v.b[1]), std::max(v.a[2], v.b[2])};
+  const Vec3 ext{hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
+  gl.Begin(GL_QUADS);
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, w = (axis + 2) % 3;  // the face's in-plane axes, right-handed with axis
+    for (int side = 0; side < 2; ++side) {
+      if (!(v.mask & (1u << (axis * 2 + side)))) continue;
+      Vec3 n{0, 0, 0};
+      n[axis] = side ? 1 : -1;
+      // Corners counter-clockwise seen from outside.
+      const std::array<std::array<int, 2>, 4> order =
+          side ? std::array<std::array<int, 2>, 4>{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}}
+               : std::array<std::array<int, 2>, 4>{{{0, 0}, {0, 1}, {1, 1}, {1, 0}}};
+      for (const auto& c : order) {
+        Vec3 p{0, 0, 0};
+        p[axis] = side ? hi[axis] : lo[axis];
+        p[u] = c[0] ? hi[u] : lo[u];
+        p[w] = c[1] ? hi[w] : lo[w];
+        gl.TexCoord2d(texCoord(p[u], ext[u], v.tex_scale), texCoord(p[w], ext[w], v.tex_scale));
+        vertex(gl, p, n);
+      }
+    }
+  }
+  gl.End();
+}
+
+void plane(const GlApi& gl, const VisualDef& v) {
+  const double ex = v.size[0], ey = v.size[1];
+  auto cells = [&](double e) {
+    if (v.max_cell <= 0) return 1;
+    return static_cast<int>(std::min(1000.0, std::ceil(e / v.max_cell)));
+  };
+  const int nx = std::max(1, cells(ex)), ny = std::max(1, cells(ey));
+  gl.Begin(GL_QUADS);
+  gl.Normal3d(0, 0, 1);
+  for (int i = 0; i < nx; ++i)
+    for (int j = 0; j < ny; ++j) {
+      const double x0 = -ex / 2 + ex * i / nx, x1 = -ex / 2 + ex * (i + 1) / nx;
+      const double y0 = -ey / 2 + ey * j / ny, y1 = -ey / 2 + ey * (j + 1) / ny;
+      const double xs[4] = {x0, x1, x1, x0}, ys[4] = {y0, y0, y1, y1};
+      for (int k = 0; k < 4; ++k) {
+        gl.TexCoord2d(texCoord(xs[k], ex, v.tex_scale), texCoord(ys[k], ey, v.tex_scale));
+        gl.Vertex3d(xs[k], ys[k], 0);
+      }
+    }
+  gl.End();
+}
+
+// A point of the ellipsoid with radii r at polar angle th (from +Z) and azimuth ph, with its
+// normal (the gradient of the implicit surface).
+void ellipsoidVertex(const GlApi& gl, const Vec3& r, double th, double ph, const Vec3& center) {
+  const Vec3 s{std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)};
+  const Vec3 p{r[0] * s[0], r[1] * s[1], r[2] * s[2]};
+  Vec3 n{s[0] / r[0], s[1] / r[1], s[2] / r[2]};
+  const double len = norm(n);
+  n = scale(n, 1 / len);
+  gl.TexCoord2d(ph / (2 * kPi), th / kPi);
+  vertex(gl, add(p, center), n);
+}
+
+// Quadrangles between polar angles th0..th1 (a whole ellipsoid: 0..pi) shifted by `center`.
+void ellipsoidBand(const GlApi& gl, const Vec3& r, int accuracy, double th0, double th1, const Vec3& center) {
+  const double step = kPi / (8.0 * accuracy);
+  const int rings = std::max(1, static_cast<int>(std::lround((th1 - th0) / step)));
+  const int segs = 16 * accuracy;
+  gl.Begin(GL_QUADS);
+  for (int i = 0; i < rings; ++i) {
+    const double a = th0 + (th1 - th0) * i / rings, b = th0 + (th1 - th0) * (i + 1) / rings;
+    for (int j = 0; j < segs; ++j) {
+      const double p0 = 2 * kPi * j / segs, p1 = 2 * kPi * (j + 1) / segs;
+      ellipsoidVertex(gl, r, a, p0, center);
+      ellipsoidVertex(gl, r, b, p0, center);
+      ellipsoidVertex(gl, r, b, p1, center);
+      ellipsoidVertex(gl, r, a, p1, center);
+    }
+  }
+  gl.End();
+}
+
+void subdivided(const GlApi& gl, const Vec3& r, const Vec3& a, const Vec3& b, const Vec3& c, int depth) {
+  if (depth == 0) {
+    for (const Vec3* s : {&a, &b, &c}) {
+      const Vec3 p{r[0] * (*s)[0], r[1] * (*s)[1], r[2] * (*s)[2]};
+      Vec3 n{(*s)[0] / r[0], (*s)[1] / r[1], (*s)[2] / r[2]};
+      n = scale(n, 1 / norm(n));
+      vertex(gl, p, n);
+    }
+    return;
+  }
+  auto mid = [](const Vec3& x, const Vec3& y) {
+    Vec3 m = scale(add(x, y), 0.5);
+    return scale(m, 1 / norm(m));
+  };
+  const Vec3 ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
+  subdivided(gl, r, a, ab, ca, depth - 1);
+  subdivided(gl, r, ab, b, bc, depth - 1);
+  subdivided(gl, r, ca, bc, c, depth - 1);
+  subdivided(gl, r, ab, bc, ca, depth - 1);
+}
+
+// The guide's triangle mode: 12 * 4^Accuracy... faces of a split polyhedron; an icosahedron
+// (20 faces) split the same way.
+void ellipsoidTriangles(const GlApi& gl, const VisualDef& v) {
+  const double t = (1 + std::sqrt(5.0)) / 2;
+  std::array<Vec3, 12> p{{{-1, t, 0},
+                          {1, t, 0},
+                          {-1, -t, 0},
+                          {1, -t, 0},
+                          {0, -1, t},
+                          {0, 1, t},
+                          {0, -1, -t},
+                          {0, 1, -t},
+                          {t, 0, -1},
+                          {t, 0, 1},
+                          {-t, 0, -1},
+                          {-t, 0, 1}}};
+  for (Vec3& x : p) x = scale(x, 1 / norm(x));
+  static const int kFaces[20][3] = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                                    {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                                    {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  gl.Begin(GL_TRIANGLES);
+  for (const auto& f : kFaces)
+    subdivided(gl, v.size, p[static_cast<size_t>(f[0])], p[static_cast<size_t>(f[1])], p[static_cast<size_t>(f[2])],
+               std::min(v.accuracy, kMaxSubdivisions));
+  gl.End();
+}
+
+void disk(const GlApi& gl, double r, double z, double nz, int segs) {
+  gl.Begin(GL_TRIANGLE_FAN);
+  gl.Normal3d(0, 0, nz);
+  gl.TexCoord2d(0.5, 0.5);
+  gl.Vertex3d(0, 0, z);
+  for (int j = 0; j <= segs; ++j) {
+    const double ph = 2 * kPi * (nz > 0 ? j : segs - j) / segs;
+    gl.TexCoord2d(0.5 + 0.5 * std::cos(ph), 0.5 + 0.5 * std::sin(ph));
+    gl.Vertex3d(r * std::cos(ph), r * std::sin(ph), z);
+  }
+  gl.End();
+}
+
+void cylinder(const GlApi& gl, const VisualDef& v) {
+  const double r = v.size[0], l = v.size[1];
+  const int segs = 16 * v.accuracy;
+  if (v.mask & 1u) {
+    gl.Begin(GL_QUAD_STRIP);
+    for (int j = 0; j <= segs; ++j) {
+      const double ph = 2 * kPi * j / segs, c = std::cos(ph), s = std::sin(ph);
+      gl.Normal3d(c, s, 0);
+      gl.TexCoord2d(v.tex_scale * j / segs, v.tex_scale2 * 0);
+      gl.Vertex3d(r * c, r * s, -l / 2);
+      gl.TexCoord2d(v.tex_scale * j / segs, v.tex_scale2 * l);
+      gl.Vertex3d(r * c, r * s, l / 2);
+    }
+    gl.End();
+  }
+  if (v.mask & 2u) disk(gl, r, l / 2, 1, segs);
+  if (v.mask & 4u) disk(gl, r, -l / 2, -1, segs);
+  const Vec3 ball{r, r, r};
+  if (v.mask & 8u) ellipsoidBand(gl, ball, v.accuracy, 0, kPi / 2, {0, 0, l / 2});
+  if (v.mask & 16u) ellipsoidBand(gl, ball, v.accuracy, kPi / 2, kPi, {0, 0, -l / 2});
+}
+
+void cone(const GlApi& gl, const VisualDef& v) {
+  const double r = v.size[0], l = v.size[1];
+  const int segs = 16 * v.accuracy;
+  const double k = 1 / std::hypot(l, r);  // side normal: (l cos, l sin, r) / |.|
+  gl.Begin(GL_TRIANGLES);
+  for (int j = 0; j < segs; ++j) {
+    const double p0 = 2 * kPi * j / segs, p1 = 2 * kPi * (j + 1) / segs, pm = (p0 + p1) / 2;
+    vertex(gl, {r * std::cos(p0), r * std::sin(p0), 0}, {l * k * std::cos(p0), l * k * std::sin(p0), r * k});
+    vertex(gl, {r * std::cos(p1), r * std::sin(p1), 0}, {l * k * std::cos(p1), l * k * std::sin(p1), r * k});
+    vertex(gl, {0, 0, l}, {l * k * std::cos(pm), l * k * std::sin(pm), r * k});
+  }
+  gl.End();
+  if (v.mask & 1u) disk(gl, r, 0, -1, segs);
+}
+
+}  // namespace
+
+void drawShape(const GlApi& gl, const VisualDef& v) {
+  switch (v.shape) {
+    case VisualDef::Cuboid:
+      cuboid(gl, v);
+      return;
+    case VisualDef::Plane:
+      plane(gl, v);
+      return;
+    case VisualDef::Ellipsoid:
+      if (v.triangles)
+        ellipsoidTriangles(gl, v);
+      else
+        ellipsoidBand(gl, v.size, v.accuracy, 0, kPi, {0, 0, 0});
+      return;
+    case VisualDef::Cylinder:
+      cylinder(gl, v);
+      return;
+    case VisualDef::Cone:
+      cone(gl, v);
+      return;
+  }
+}
+
+void drawBoundingBox(const GlApi& gl, const VisualDef& v) {
+  Vec3 lo{0, 0, 0}, hi{0, 0, 0};
+  switch (v.shape) {
+    case VisualDef::Cuboid:
+      for (int i = 0; i < 3; ++i) {
+        lo[i] = std::min(v.a[i], v.b[i]);
+        hi[i] = std::max(v.a[i], v.b[i]);
+      }
+      break;
+    case VisualDef::Plane:
+      lo = {-v.size[0] / 2, -v.size[1] / 2, 0};
+      hi = {v.size[0] / 2, v.size[1] / 2, 0};
+      break;
+    case VisualDef::Ellipsoid:
+      lo = {-v.size[0], -v.size[1], -v.size[2]};
+      hi = v.size;
+      break;
+    case VisualDef::Cylinder: {
+      const double caps = (v.mask & 24u) ? v.size[0] : 0;
+      lo = {-v.size[0], -v.size[0], -v.size[1] / 2 - caps};
+      hi = {v.size[0], v.size[0], v.size[1] / 2 + caps};
+      break;
+    }
+    case VisualDef::Cone:
+      lo = {-v.size[0], -v.size[0], 0};
+      hi = {v.size[0], v.size[0], v.size[1]};
+      break;
+  }
+  gl.Begin(GL_LINES);
+  for (int axis = 0; axis < 3; ++axis)
+    for (int k = 0; k < 4; ++k) {
+      Vec3 p = lo, q = hi;
+      const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+      p[u] = q[u] = (k & 1) ? hi[u] : lo[u];
+      p[w] = q[w] = (k & 2) ? hi[w] : lo[w];
+      p[axis] = lo[axis];
+      q[axis] = hi[axis];
+      gl.Vertex3d(p[0], p[1], p[2]);
+      gl.Vertex3d(q[0], q[1], q[2]);
+    }
+  gl.End();
+}
+
+}  // namespace simbob::render

@@ -1,0 +1,124 @@
+// BMP and PNG readers for textures.
+#include "render/texture_file.h"
+
+#include "simbob/png.h"
+
+#include <array>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <vector>
+
+namespace simbob::render {
+
+namespace {
+
+constexpr int kMaxTextureSide = 16384;
+
+bool bad(Error* err, const std::string& path, const std::string& why) {
+  err->kind = ErrorKind::InvalidInput;
+  err->loc = SourceLoc{path, 0};
+  err->message = why;
+  return false;
+}
+
+uint32_t le32(const std::vector<uint8_t>& b, size_t at) {
+  return static_cast<uint32_t>(b[at]) | static_cast<uint32_t>(b[at + 1]) << 8 | static_cast<uint32_t>(b[at + 2]) << 16 |
+         static_cast<uint32_t>(b[at + 3]) << 24;
+}
+uint16_t le16(const std::vector<uint8_t>& b, size_t at) { return static_cast<uint16_t>(b[at] | b[at + 1] << 8); }
+
+bool readAll(const std::string& path, std::vector<uint8_t>* out, Error* err) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    err->kind = ErrorKind::MissingInput;
+    err->loc = SourceLoc{path, 0};
+    err->message = "cannot open the texture file";
+    return false;
+  }
+  out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return true;
+}
+
+bool readPngFile(const std::string& path, Image* out, Error* err) {
+  Error e = readPng(path, *out);
+  if (!e.message.empty()) {
+    *err = e;
+    return false;
+  }
+  if (out->width > kMaxTextureSide || out->height > kMaxTextureSide)
+    return bad(err, path, "texture larger than 16384 pixels per side");
+  return true;
+}
+
+}  // namespace
+
+bool readBmp(const std::string& path, Image* out, Error* err) {
+  std::vector<uint8_t> b;
+  if (!readAll(path, &b, err)) return false;
+  if (b.size() < 54 || b[0] != 'B' || b[1] != 'M') return bad(err, path, "not a BMP file");
+  const uint32_t offset = le32(b, 10);
+  const uint32_t header = le32(b, 14);
+  if (header < 40) return bad(err, path, "BMP: unsupported header (OS/2 bitmaps are not read)");
+  const auto w = static_cast<int32_t>(le32(b, 18));
+  const auto h_signed = static_cast<int32_t>(le32(b, 22));
+  const uint16_t bpp = le16(b, 28);
+  const uint32_t compression = le32(b, 30);
+  const bool top_down = h_signed < 0;
+  const int64_t h = top_down ? -static_cast<int64_t>(h_signed) : h_signed;
+  if (w <= 0 || h <= 0 || w > kMaxTextureSide || h > kMaxTextureSide)
+    return bad(err, path, "BMP: size must be 1 to 16384 pixels per side");
+  // BI_RGB, or BI_BITFIELDS with the usual 32-bit masks.
+  if (compression != 0 && !(compression == 3 && bpp == 32))
+    return bad(err, path, "BMP: compressed bitmaps are not read (save it uncompressed)");
+  if (bpp != 24 && bpp != 32 && bpp != 8) return bad(err, path, "BMP: only 8, 24 and 32 bits per pixel are read");
+  const size_t row = ((static_cast<size_t>(w) * bpp + 31) / 32) * 4;
+  if (offset > b.size() || b.size() - offset < row * static_cast<size_t>(h))
+    return bad(err, path, "BMP: file is shorter than its pixels");
+  std::vector<std::array<uint8_t, 3>> palette;
+  if (bpp == 8) {
+    uint32_t colors = le32(b, 46);
+    if (colors == 0) colors = 256;
+    const size_t pal = 14 + static_cast<size_t>(header);
+    if (colors > 256 || pal + static_cast<size_t>(colors) * 4 > offset) return bad(err, path, "BMP: bad palette");
+    for (size_t i = 0; i < colors; ++i) palette.push_back({b[pal + i * 4 + 2], b[pal + i * 4 + 1], b[pal + i * 4]});
+  }
+  Image im(w, static_cast<int>(h));
+  for (int64_t y = 0; y < h; ++y) {
+    const uint8_t* src = b.data() + offset + row * static_cast<size_t>(top_down ? y : h - 1 - y);
+    uint8_t* dst = im.pixel(0, static_cast<int>(y));
+    for (int x = 0; x < w; ++x, dst += 3) {
+      if (bpp == 8) {
+        const uint8_t i = src[x];
+        if (i >= palette.size()) return bad(err, path, "BMP: pixel outside the palette");
+        std::memcpy(dst, palette[i].data(), 3);
+      } else {
+        const uint8_t* p = src + static_cast<size_t>(x) * (bpp / 8);
+        dst[0] = p[2];
+        dst[1] = p[1];
+        dst[2] = p[0];
+      }
+    }
+  }
+  *out = std::move(im);
+  return true;
+}
+
+bool readTextureFile(const std::string& path, Image* out, Error* err) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    err->kind = ErrorKind::MissingInput;
+    err->loc = SourceLoc{path, 0};
+    err->message = "cannot open the texture file";
+    return false;
+  }
+  char magic[8] = {};
+  in.read(magic, sizeof magic);
+  if (magic[0] == 'B' && magic[1] == 'M') return readBmp(path, out, err);
+  if (std::memcmp(magic, "\x89PNG", 4) == 0) return readPngFile(path, out, err);
+  return bad(err, path, "texture is neither a BMP nor a PNG file");
+}
+
+}  // namespace simbob::render

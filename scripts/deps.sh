@@ -19,6 +19,7 @@ TEST_PACKAGES=(
   valgrind              # memcheck of the example scenes (tests/cli/valgrind.sh)
   clang libclang-rt-14-dev  # sanitizer and fuzz builds (scripts/sanitize.sh, scripts/fuzz.sh)
   clang-format clang-tidy   # scripts/check-style.sh
+  slurmctld slurmd slurm-client munge  # a real one-node Slurm cluster (tests/cluster/slurm_array.sh)
 )
 
 case "${1:-}" in

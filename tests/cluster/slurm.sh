@@ -121,11 +121,11 @@ slurm_start() {
   trap 'exit 130' INT
   trap 'exit 129' HUP
   local c
-  for c in munged slurmctld slurmd sinfo sbatch squeue scontrol python3; do
-    command -v "$c" >/dev/null || PATH="$PATH:/usr/sbin:/sbin" command -v "$c" >/dev/null ||
+  PATH="$PATH:/usr/sbin:/sbin"  # the daemons live in sbin, which a normal user's PATH may lack
+  for c in munged slurmctld slurmd sinfo sbatch scancel scontrol python3; do
+    command -v "$c" >/dev/null ||
       { slurm_skip "$c is not installed (scripts/deps.sh test installs slurmctld slurmd slurm-client munge)"; return 1; }
   done
-  PATH="$PATH:/usr/sbin:/sbin"
   [[ "$(id -u)" -eq 0 ]] || { slurm_skip "the test cluster runs its daemons as root; this is uid $(id -u)"; return 1; }
 
   local d=$SLURM_DIR

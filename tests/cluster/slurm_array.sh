@@ -44,8 +44,19 @@ EOF
 
 check "sbatch --wait runs the array to the end (bounded: 240 s)"
 t1=$SECONDS
-expect_status 0 timeout 240 sbatch --wait --parsable "$WORK/array.sbatch"
-jobid=$(head -n 1 "$LAST_OUT")
+status=0
+timeout 240 sbatch --wait --parsable "$WORK/array.sbatch" >"$WORK/sbatch.out" 2>"$WORK/sbatch.err" || status=$?
+if [[ $status -ne 0 ]]; then
+  {
+    printf 'sbatch --wait exited %s (124: the 240 s bound ran out)\n' "$status"
+    cat "$WORK/sbatch.out" "$WORK/sbatch.err"
+    squeue 2>&1 | head -n 10
+    for f in "$WORK"/slurm/task-*.log; do [[ -f "$f" ]] && { echo "--- $f"; tail -n 5 "$f"; }; done
+    slurm_log_tail
+  } >&2
+  fail "the job array did not finish cleanly"
+fi
+jobid=$(head -n 1 "$WORK/sbatch.out")
 say "array job $jobid finished after $((SECONDS - t1)) s"
 [[ "$jobid" =~ ^[0-9]+$ ]] || fail "sbatch --parsable printed '$jobid', not a job id"
 

@@ -24,6 +24,17 @@ if ! slurm_start "$WORK/cluster"; then
 fi
 say "cluster up after $((SECONDS - t0)) s"
 
+check "slurmctld and slurmd listen on 127.0.0.1 only"
+if command -v ss >/dev/null; then
+  ss -H -ltnp >"$WORK/listen"
+  for pid in "${SLURM_PIDS[@]:1}"; do  # [0] is munged (a Unix socket only)
+    grep "pid=$pid," "$WORK/listen" >"$WORK/listen.pid" || fail "pid $pid listens on no TCP port: $(cat "$WORK/listen")"
+    if awk '$4 !~ /^127\.0\.0\.1:/' "$WORK/listen.pid" | grep .; then fail "pid $pid listens beyond 127.0.0.1"; fi
+  done
+else
+  say "note: no ss here; the listening addresses are not checked"
+fi
+
 check "the job array script"
 mkdir -p "$WORK/slurm" "$WORK/local"
 # The scenes of the array, one a line: task I takes line I+1.

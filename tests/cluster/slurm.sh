@@ -97,16 +97,25 @@ slurm_steps() {
 
 # slurm_watchdog PARENT: runs in the background; if the test shell PARENT disappears without
 # slurm_stop (SIGKILL from a ctest timeout, say), it kills the daemons and job steps itself.
+# It keeps its own copy of the daemon list, in case the directory is gone by then.
 slurm_watchdog() {
-  local parent=$1 pid
-  while kill -0 "$parent" 2>/dev/null; do sleep 1; done
-  for pid in $(slurm_steps) $(cat "$SLURM_DIR/run/daemons" 2>/dev/null); do
+  local parent=$1 pid daemons=""
+  while kill -0 "$parent" 2>/dev/null; do
+    [[ -f "$SLURM_DIR/run/daemons" ]] && daemons=$(cat "$SLURM_DIR/run/daemons")
+    sleep 1
+  done
+  for pid in $(slurm_steps) $daemons; do
     kill -KILL "$pid" 2>/dev/null
   done
 }
 
 # slurm_start DIR: brings the cluster up in DIR (created if missing). 0 when the node is idle.
 slurm_start() {
+  if [[ ${#SLURM_PIDS[@]} -gt 0 ]]; then
+    SLURM_SKIP_REASON="slurm_start: a cluster is running already (in $SLURM_DIR); slurm_stop it first"
+    printf '%s\n' "$SLURM_SKIP_REASON" >&2
+    return 1
+  fi
   SLURM_DIR=$(mkdir -p "$1" && cd "$1" && pwd)
   SLURM_PIDS=()
   # Keep the caller's EXIT trap (e.g. the removal of its work directory) and stop the
@@ -115,7 +124,8 @@ slurm_start() {
   prev=$(trap -p EXIT)
   prev=${prev#"trap -- '"}
   prev=${prev%"' EXIT"}
-  SLURM_PREV_TRAP=${prev//"'\\''"/"'"}
+  # A second slurm_start keeps the first one's saved trap rather than saving its own.
+  [[ "$prev" == *slurm_stop* ]] || SLURM_PREV_TRAP=${prev//"'\\''"/"'"}
   trap 'slurm_stop; eval "$SLURM_PREV_TRAP"' EXIT
   trap 'exit 143' TERM
   trap 'exit 130' INT

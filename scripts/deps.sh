@@ -12,6 +12,7 @@ RUN_PACKAGES=(
   libcli11-dev          # command line
   nlohmann-json3-dev    # run summaries and reports
   libcairo2-dev         # trajectory plots (PNG, SVG)
+  libpng-dev libavformat-dev libavcodec-dev libavutil-dev libswscale-dev  # frames and videos (lib/image)
 )
 TEST_PACKAGES=(
   catch2                # unit tests
@@ -19,7 +20,8 @@ TEST_PACKAGES=(
   valgrind              # memcheck of the example scenes (tests/cli/valgrind.sh)
   clang libclang-rt-14-dev  # sanitizer and fuzz builds (scripts/sanitize.sh, scripts/fuzz.sh)
   clang-format clang-tidy   # scripts/check-style.sh
-  slurmctld slurmd slurm-client munge  # a real one-node Slurm cluster (tests/cluster/slurm_array.sh)
+  ffmpeg                # ffprobe checks the recorded videos (tests/image/ffprobe.sh)
+  slurmctld slurmd slurm-client munge  # a real one-node Slurm cluster (tests/cluster/slurm_*.sh)
 )
 
 case "${1:-}" in

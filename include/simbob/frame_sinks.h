@@ -46,7 +46,9 @@ std::string videoEncoderFor(const std::string& path, std::string* why);
 /// `queue_frames` frames: add() returns as soon as the frame is queued (it waits only while the
 /// queue is full). The first error of any sink stops the recording: it is returned by the next
 /// add() or by finish(), and the other sinks are abandoned (their outputs are not committed).
-/// finish() waits for the queue to drain and then finishes every sink.
+/// finish() waits for the queue to drain and then finishes the sinks in order; if one of those
+/// finish() calls fails, the sinks after it are abandoned but those before it stay committed.
+/// Destroying it without finish() stops the worker and abandons every sink.
 std::unique_ptr<FrameSink> makeAsyncSink(std::vector<std::unique_ptr<FrameSink>> sinks, size_t queue_frames = 4);
 
 }  // namespace simbob

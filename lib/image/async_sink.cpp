@@ -90,13 +90,13 @@ class AsyncSink : public FrameSink {
       }
       wake_producer_.notify_one();
       // Every sink but the last gets a copy; the last takes the frame itself.
-      for (size_t i = 0; i < sinks_.size(); ++i) {
-        const Error* e = i + 1 < sinks_.size() ? sinks_[i]->add(Image(frame)) : sinks_[i]->add(std::move(frame));
-        if (e) {
-          std::lock_guard<std::mutex> lock(mu_);
-          setError(*e);
-          return;
-        }
+      const Error* e = nullptr;
+      for (size_t i = 0; !e && i + 1 < sinks_.size(); ++i) e = sinks_[i]->add(Image(frame));
+      if (!e && !sinks_.empty()) e = sinks_.back()->add(std::move(frame));
+      if (e) {
+        std::lock_guard<std::mutex> lock(mu_);
+        setError(*e);
+        return;
       }
     }
   }

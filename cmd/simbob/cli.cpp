@@ -135,6 +135,8 @@ int exitCodeFor(ErrorKind k) {
       return kExitResultWrong;
     case ErrorKind::Internal:
       return kExitSoftware;
+    case ErrorKind::Unavailable:
+      return kExitUnavailable;
   }
   return kExitSoftware;
 }
@@ -211,9 +213,9 @@ int readSettings(Common& c) {
 }
 
 bool loadAndCompile(const std::string& path, const Registry& reg, Scene* scene, Model* model, int* code, bool warnings,
-                    bool collect_all, const std::vector<NamedPath>& inputs) {
+                    bool collect_all, const std::vector<NamedPath>& inputs, const std::vector<Override>& overrides) {
   Diagnostics d;
-  const bool loaded = loadScene(path, reg, scene, d);
+  const bool loaded = loadScene(path, reg, scene, d) && applyOverrides(*scene, overrides, d);
   // A scene that failed to load is still a consistent graph (bad links are empty), so `check`
   // compiles it too and reports what the compile step finds in the same pass.
   const bool ok = (loaded || (collect_all && !scene->comps.empty())) && compileScene(*scene, model, d) && loaded;
@@ -231,6 +233,19 @@ bool loadAndCompile(const std::string& path, const Registry& reg, Scene* scene, 
   }
   report(d, warnings);
   return true;
+}
+
+int parseSetOptions(const std::vector<std::string>& sets, std::vector<Override>* out) {
+  for (const std::string& text : sets) {
+    Override o;
+    std::string err;
+    if (!parseOverride(text, &o, &err)) {
+      g_log.error({ErrorKind::InvalidInput, {"--set " + quoteInput(text), 0}, err});
+      return kExitUsage;
+    }
+    out->push_back(std::move(o));
+  }
+  return kExitOk;
 }
 
 }  // namespace simbob::cli

@@ -12,18 +12,20 @@
 #include "simbob/error.h"
 #include "simbob/files.h"
 #include "simbob/graph.h"
+#include "simbob/overrides.h"
 
 namespace simbob::cli {
 
 // Exit statuses (README "Exit statuses").
 constexpr int kExitOk = 0;
-constexpr int kExitResultWrong = 1;  // diverged run, golden mismatch, failed scene in a batch
-constexpr int kExitUsage = 64;       // EX_USAGE
-constexpr int kExitDataErr = 65;     // EX_DATAERR: invalid scene or data file
-constexpr int kExitNoInput = 66;     // EX_NOINPUT
-constexpr int kExitSoftware = 70;    // EX_SOFTWARE: internal error
-constexpr int kExitCantCreate = 73;  // EX_CANTCREAT
-constexpr int kExitIoErr = 74;       // EX_IOERR
+constexpr int kExitResultWrong = 1;   // diverged run, golden mismatch, failed scene in a batch
+constexpr int kExitUsage = 64;        // EX_USAGE
+constexpr int kExitDataErr = 65;      // EX_DATAERR: invalid scene or data file
+constexpr int kExitNoInput = 66;      // EX_NOINPUT
+constexpr int kExitSoftware = 70;     // EX_SOFTWARE: internal error
+constexpr int kExitUnavailable = 69;  // EX_UNAVAILABLE: a party of the run exceeded MaxAccessTime
+constexpr int kExitCantCreate = 73;   // EX_CANTCREAT
+constexpr int kExitIoErr = 74;        // EX_IOERR
 constexpr int kExitSigInt = 130;
 constexpr int kExitSigTerm = 143;
 
@@ -80,8 +82,13 @@ struct NamedPath {
 /// an input, and that is a usage error.
 /// With `collect_all` (simbob check), a scene that failed to load is compiled too, so that one
 /// pass reports every problem the compile step can still see.
+/// `overrides` (--set) change the graph between loading and compiling.
 bool loadAndCompile(const std::string& path, const Registry& reg, Scene* scene, Model* model, int* code, bool warnings,
-                    bool collect_all, const std::vector<NamedPath>& inputs = {});
+                    bool collect_all, const std::vector<NamedPath>& inputs = {},
+                    const std::vector<Override>& overrides = {});
+
+/// The `--set` options as overrides; a malformed one is reported (usage error, 64).
+int parseSetOptions(const std::vector<std::string>& sets, std::vector<Override>* out);
 
 /// JSON text of a report or summary; invalid UTF-8 (from keys in input files) is replaced, never
 /// thrown.

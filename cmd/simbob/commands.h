@@ -10,7 +10,8 @@ class App;
 }
 namespace simbob {
 class Registry;
-}
+struct Override;
+}  // namespace simbob
 
 namespace simbob::cli {
 
@@ -26,11 +27,12 @@ struct RunArgs {
   uint32_t seed = 0;
   bool json = false;
   bool check_determinism = false;
-  bool batch_child = false;   ///< started by `simbob batch`: warnings stay out of the log
-  std::string space;          ///< overrides SceneSettings Space ("" = the scene's)
-  bool auto_disable = false;  ///< turns SceneSettings AutoDisable on
-  int max_contacts = 0;       ///< overrides SceneSettings MaxContacts (0 = the scene's)
-  bool out_given = false;     ///< --out was on the command line
+  bool batch_child = false;       ///< started by `simbob batch`: warnings stay out of the log
+  std::string space;              ///< overrides SceneSettings Space ("" = the scene's)
+  bool auto_disable = false;      ///< turns SceneSettings AutoDisable on
+  int max_contacts = 0;           ///< overrides SceneSettings MaxContacts (0 = the scene's)
+  bool out_given = false;         ///< --out was on the command line
+  std::vector<std::string> sets;  ///< --set KEY.PARAM=VALUE, in order
 };
 int cmdRun(RunArgs& a, const Common& common);
 
@@ -43,8 +45,13 @@ std::vector<NamedPath> runOutputs(const RunArgs& a);
 /// What is wrong with run options beyond their syntax ("" if nothing): time ranges, --out.
 std::string runArgsProblem(const RunArgs& a);
 
-int cmdCheck(const std::string& path, const Common& common);
-int cmdDump(const std::string& path, const std::string& format, const Common& common);
+int cmdCheck(const std::string& path, const Common& common, const std::vector<std::string>& sets = {});
+int cmdDump(const std::string& path, const std::string& format, const Common& common,
+            const std::vector<std::string>& sets = {});
+
+/// The overrides a run applies: the shorthands (--space, --auto-disable, --max-contacts) as
+/// SceneSettings overrides, then every --set in order. 64 after reporting a malformed one.
+int runOverrides(const RunArgs& a, std::vector<Override>* out);
 int cmdTypes(bool markdown, const Registry& reg);
 
 struct CompareArgs {
@@ -58,6 +65,7 @@ int cmdCompare(const CompareArgs& a, const Common& common);
 
 struct PlotArgs {
   std::string trajectory, golden, out, bodies, title;
+  std::string x, y;  ///< a sweep table's columns: metric y against parameter x
 };
 int cmdPlot(const PlotArgs& a, const Common& common);
 
@@ -76,5 +84,19 @@ struct BatchArgs {
   bool json = false;
 };
 int cmdBatch(const BatchArgs& a, const Common& common);
+
+struct SweepArgs {
+  std::string input;  ///< sweep description (plan), manifest (run, sbatch), output folder (gather)
+  std::string out;
+  int case_index = -1;
+  int jobs = 0;  ///< run: 0 = one case
+  bool force = false;
+  bool retry = false;
+  int max_parallel = 0;
+  std::string partition;
+  CLI::App *plan = nullptr, *run = nullptr, *gather = nullptr, *sbatch = nullptr;
+};
+CLI::App* addSweepCommands(CLI::App& app, SweepArgs& s, Common& common);
+int cmdSweep(const SweepArgs& a, const Common& common);
 
 }  // namespace simbob::cli

@@ -10,6 +10,7 @@
 #include "simbob/compare.h"
 #include "simbob/files.h"
 #include "simbob/plot.h"
+#include "simbob/sweep.h"
 #include "simbob/trajectory.h"
 
 namespace simbob::cli {
@@ -77,6 +78,36 @@ int cmdCompare(const CompareArgs& a, const Common& common) {
   return r.pass ? kExitOk : kExitResultWrong;
 }
 
+// `simbob plot TABLE --x PARAM --y METRIC`: one metric of a gathered sweep against a parameter.
+static int plotSweepTable(const PlotArgs& a) {
+  if (a.x.empty() || a.y.empty() || !a.golden.empty()) {
+    g_log.error({ErrorKind::InvalidInput, {}, "a sweep table plot needs both --x and --y (and no --golden)"});
+    return kExitUsage;
+  }
+  std::string text, reason;
+  if (!readFile(a.trajectory, size_t{1} << 30, &text, &reason, true)) {
+    g_log.error({ErrorKind::MissingInput, {a.trajectory, 0}, "cannot read: " + reason});
+    return kExitNoInput;
+  }
+  Trajectory t;
+  Error err;
+  if (!sweepTableSeries(text, a.trajectory, a.x, a.y, &t, &err)) {
+    g_log.error(err);
+    return exitCodeFor(err.kind);
+  }
+  PlotOptions opts;
+  opts.title = a.title.empty() ? a.y + " against " + a.x : a.title;
+  opts.panels = 1;
+  opts.panel_titles = {a.y};
+  opts.time_label = a.x;
+  if (!plotTrajectory(t, nullptr, opts, a.out, &err)) {
+    g_log.error(err);
+    return exitCodeFor(err.kind);
+  }
+  g_log.info("wrote " + a.out);
+  return kExitOk;
+}
+
 int cmdPlot(const PlotArgs& a, const Common& common) {
   std::string ext = std::filesystem::path(a.out).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -90,6 +121,7 @@ int cmdPlot(const PlotArgs& a, const Common& common) {
     return c;
   Trajectory actual, golden;
   int code = 0;
+  if (!a.x.empty() || !a.y.empty()) return plotSweepTable(a);
   if (!readOrReport(a.trajectory, &actual, &code)) return code;
   if (!a.golden.empty() && !readOrReport(a.golden, &golden, &code)) return code;
   PlotOptions opts;

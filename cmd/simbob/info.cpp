@@ -3,17 +3,21 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "simbob/overrides.h"
 #include "simbob/registry.h"
 #include "simbob/values.h"
 
 namespace simbob::cli {
 
-int cmdCheck(const std::string& path, const Common& common) {
+int cmdCheck(const std::string& path, const Common& common, const std::vector<std::string>& sets) {
+  std::vector<Override> overrides;
+  if (int c = parseSetOptions(sets, &overrides)) return c;
   exitOnStopSignals(path, "loading");
   Scene scene;
   Model model;
   int code = 0;
-  if (!loadAndCompile(path, *common.registry, &scene, &model, &code, true, true, {{"--settings", common.settings}}))
+  if (!loadAndCompile(path, *common.registry, &scene, &model, &code, true, true, {{"--settings", common.settings}},
+                      overrides))
     return code;
   Diagnostics lint;
   lintModel(model, lint);
@@ -23,11 +27,14 @@ int cmdCheck(const std::string& path, const Common& common) {
   return kExitOk;
 }
 
-int cmdDump(const std::string& path, const std::string& format, const Common& common) {
+int cmdDump(const std::string& path, const std::string& format, const Common& common,
+            const std::vector<std::string>& sets) {
+  std::vector<Override> overrides;
+  if (int c = parseSetOptions(sets, &overrides)) return c;
   exitOnStopSignals(path, "loading");
   Scene scene;
   Diagnostics d;
-  const bool ok = loadScene(path, *common.registry, &scene, d);
+  const bool ok = loadScene(path, *common.registry, &scene, d) && applyOverrides(scene, overrides, d);
   std::vector<NamedPath> read = {{"--settings", common.settings}};
   for (const std::string& f : scene.files) read.push_back({f == path ? "the scene" : "the import", f});
   if (int c = checkOutputs({{"--log-file", g_log.path}}, read)) return c;

@@ -38,10 +38,14 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
   run->add_flag("--auto-disable", ra.auto_disable, "Let ODE put resting bodies to sleep (changes trajectories)");
   run->add_option("--max-contacts", ra.max_contacts, "Contact points per colliding pair (overrides the scene)")
       ->check(CLI::Range(1, 64));
+  run->add_option("--set", ra.sets, "Override a scene parameter: KEY.PARAM=VALUE (repeatable; README \"Sweeps\")")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   run->add_flag("--batch-child", ra.batch_child, "(internal) started by simbob batch")->group("");
   addCommon(run, common);
-  // A batch manifest appends per-scene options after the batch-wide ones: the last one wins.
-  for (CLI::Option* o : run->get_options()) o->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  // A batch manifest appends per-scene options after the batch-wide ones: the last one wins
+  // (every --set counts).
+  for (CLI::Option* o : run->get_options())
+    if (o->get_name() != "--set") o->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
 }
 
 }  // namespace simbob::cli
@@ -60,11 +64,14 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   std::string check_scene;
   CLI::App* check = app.add_subcommand("check", "Load and validate a scene; report every problem found");
   check->add_option("scene", check_scene, "Scene file")->required();
+  std::vector<std::string> check_sets, dump_sets;
+  check->add_option("--set", check_sets, "Override a scene parameter: KEY.PARAM=VALUE (repeatable)");
   addCommon(check, common);
 
   std::string dump_scene, dump_format = "xml";
   CLI::App* dump = app.add_subcommand("dump", "Print the normalized scene with every default filled in");
   dump->add_option("scene", dump_scene, "Scene file")->required();
+  dump->add_option("--set", dump_sets, "Override a scene parameter: KEY.PARAM=VALUE (repeatable)");
   dump->add_option("--format", dump_format, "xml (default) or ini")->check(CLI::IsMember({"xml", "ini"}));
   addCommon(dump, common);
 
@@ -107,16 +114,22 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   plot->add_option("--bodies", pa.bodies, "Comma-separated body keys (default: all, at most 8)");
   plot->add_option("--title", pa.title, "Plot title");
   plot->add_option("--out", pa.out, "Output .png or .svg")->required();
+  plot->add_option("--x", pa.x, "With --y: TRAJ.csv is a sweep table; plot column --y against column --x");
+  plot->add_option("--y", pa.y, "With --x: the metric column of a sweep table");
   addCommon(plot, common);
+
+  SweepArgs sa;
+  CLI::App* sweep = addSweepCommands(app, sa, common);
 
   // Name an unknown subcommand instead of CLI11's "A subcommand is required".
   std::vector<std::string> names;
   for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
   if (argc > 1 && argv[1][0] != '-' && std::find(names.begin(), names.end(), argv[1]) == names.end()) {
     std::string near = simbob::didYouMean(argv[1], names);
-    std::fprintf(stderr,
-                 "simbob: error: unknown command '%s'%s; commands: run, check, dump, types, compare, batch, plot\n",
-                 argv[1], near.empty() ? "" : (" (did you mean '" + near + "'?)").c_str());
+    std::fprintf(
+        stderr,
+        "simbob: error: unknown command '%s'%s; commands: run, check, dump, types, compare, batch, plot, sweep\n",
+        argv[1], near.empty() ? "" : (" (did you mean '" + near + "'?)").c_str());
     return kExitUsage;
   }
   try {
@@ -159,12 +172,13 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
     }
     if (int c = setupLogging(common)) return c;
     if (*run) code = cmdRun(ra, common);
-    if (*check) code = cmdCheck(check_scene, common);
-    if (*dump) code = cmdDump(dump_scene, dump_format, common);
+    if (*check) code = cmdCheck(check_scene, common, check_sets);
+    if (*dump) code = cmdDump(dump_scene, dump_format, common, dump_sets);
     if (*types) code = cmdTypes(markdown, registry);
     if (*compare) code = cmdCompare(ca, common);
     if (*batch) code = cmdBatch(ba, common);
     if (*plot) code = cmdPlot(pa, common);
+    if (*sweep) code = cmdSweep(sa, common);
   } catch (const std::exception& e) {
     g_log.error({simbob::ErrorKind::Internal, {}, std::string("internal error: ") + e.what()});
     code = kExitSoftware;

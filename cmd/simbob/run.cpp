@@ -8,12 +8,14 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <thread>
 
 #include "cli.h"
 #include "commands.h"
 #include "simbob/files.h"
+#include "simbob/overrides.h"
 #include "simbob/physics.h"
 #include "simbob/robot.h"
 #include "simbob/run.h"
@@ -201,17 +203,38 @@ std::string runArgsProblem(const RunArgs& a) {
   return p;
 }
 
+int runOverrides(const RunArgs& a, std::vector<Override>* out) {
+  auto shorthand = [&](const std::string& option, const std::string& param, const std::string& value) {
+    Override o;
+    o.key = "SceneSettings";
+    o.param = param;
+    o.value = value;
+    o.text = o.key + "." + param + "=" + value;
+    o.place = option;
+    out->push_back(std::move(o));
+  };
+  static const std::map<std::string, std::string> kSpaces = {
+      {"hash", "Hash"}, {"sap", "SweepAndPrune"}, {"quadtree", "QuadTree"}, {"simple", "Simple"}};
+  if (auto it = kSpaces.find(a.space); it != kSpaces.end()) shorthand("--space " + a.space, "Space", it->second);
+  if (a.auto_disable) shorthand("--auto-disable", "AutoDisable", "True");
+  if (a.max_contacts > 0)
+    shorthand("--max-contacts " + std::to_string(a.max_contacts), "MaxContacts", std::to_string(a.max_contacts));
+  return parseSetOptions(a.sets, out);
+}
+
 int cmdRun(RunArgs& a, const Common& common) {
   if (std::string p = runArgsProblem(a); !p.empty()) {
     g_log.error({ErrorKind::InvalidInput, {}, p});
     return kExitUsage;
   }
+  std::vector<Override> overrides;
+  if (int c = runOverrides(a, &overrides)) return c;
   exitOnStopSignals(a.scene, "loading");
   Scene scene;
   Model model;
   int code = 0;
   if (!loadAndCompile(a.scene, *common.registry, &scene, &model, &code, !a.batch_child, false,
-                      {{"--settings", common.settings}}))
+                      {{"--settings", common.settings}}, overrides))
     return code;
   // A body that starts beyond the runaway limit would "diverge" at the first step; `simbob
   // check` reports it (lintModel) and so does run, before anything is written.
@@ -233,12 +256,6 @@ int cmdRun(RunArgs& a, const Common& common) {
     return kExitDataErr;
   }
   if (a.out.empty()) a.out = std::filesystem::path(a.scene).stem().string() + ".csv";
-  if (a.space == "hash") model.settings.space = SpaceKind::Hash;
-  if (a.space == "sap") model.settings.space = SpaceKind::SweepAndPrune;
-  if (a.space == "quadtree") model.settings.space = SpaceKind::QuadTree;
-  if (a.space == "simple") model.settings.space = SpaceKind::Simple;
-  if (a.auto_disable) model.settings.auto_disable = true;
-  if (a.max_contacts > 0) model.settings.max_contacts = a.max_contacts;
 
   // Every output is checked, and created under a temporary name, before the run starts: a run
   // must not end in "cannot create" after simulating for an hour.
@@ -331,6 +348,8 @@ int cmdRun(RunArgs& a, const Common& common) {
   summary["space"] = kSpaceNames[static_cast<int>(model.settings.space)];
   summary["auto_disable"] = model.settings.auto_disable;
   summary["max_contacts"] = model.settings.max_contacts;
+  summary["overrides"] = nlohmann::ordered_json::array();
+  for (const Override& o : overrides) summary["overrides"].push_back(o.text);
   summary["units"] = {{"time", "s"}, {"position", "m"}, {"orientation", "unit quaternion w x y z"}};
   summary["bodies"] = model.bodies.size();
   summary["steps"] = r.steps;

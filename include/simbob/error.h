@@ -58,6 +58,7 @@ enum class ErrorKind {
   IoError,       ///< writing an output failed (EX_IOERR 74)
   Diverged,      ///< the simulation produced a non-finite or runaway state (exit 1)
   Internal,      ///< a bug in simbob (EX_SOFTWARE 70)
+  Unavailable,   ///< a party of the run (controller, peer) held the simulation past MaxAccessTime (EX_UNAVAILABLE 69)
 };
 
 struct Error {

@@ -94,6 +94,15 @@ struct ActuatorDef {
   double smooth = 1.0;                                        ///< Servo: s, time constant of the final approach
 };
 
+/// A proximity sensor (guide 6.11.4, RCContactSensor): its geoms (GeomDef::sensor) report whether
+/// they touch another body and never push (no contact joints). See World::touching.
+struct SensorDef {
+  std::string key;  ///< fully qualified key of the periphery
+  SourceLoc loc;
+  int body = -1;           ///< index into Model::bodies it is attached to; -1 = static (fixed in the world)
+  std::vector<int> geoms;  ///< indices into Model::geoms, each with sensor = true
+};
+
 /// A built-in controller (guide 6.12) or a command schedule; runs as a party of the run loop.
 struct ControllerDef {
   std::string key;  ///< fully qualified key
@@ -103,6 +112,7 @@ struct ControllerDef {
     ServoTest,        ///< triangle wave between the limits of actuators[0]
     TwoWheel,         ///< (v, w) -> wheel velocities of actuators[0] (left), actuators[1] (right)
     CommandSchedule,  ///< timed commands to actuators[0], or to controllers[target] (TwoWheel)
+    WallStop,         ///< drives controllers[target] (TwoWheel) at `speed` until sensors[0] touches, then stops
   } kind = DriveTest;
   double period = 0.01;          ///< s, loop period (DriveTest, ServoTest)
   double variation = 6.0;        ///< 1/min (DriveTest, ServoTest); wheel radius in m (TwoWheel)
@@ -111,6 +121,8 @@ struct ControllerDef {
   int target = -1;               ///< CommandSchedule to a controller: index into Model::controllers
   int values = 1;                ///< CommandSchedule: values per row (1, or 2 for linear angular)
   std::vector<double> commands;  ///< CommandSchedule: rows of (time s, values...), times increasing
+  std::vector<int> sensors;      ///< indices into Model::sensors (WallStop)
+  double speed = 0.1;            ///< m/s (WallStop)
 };
 
 /// ODE collision space: how candidate pairs are found. Results differ between spaces (pairs
@@ -122,6 +134,7 @@ struct SolverSettings {
   Vec3 gravity{0, -9.81, 0};     ///< m/s^2
   double max_time_step = 0.001;  ///< s, the step size (MaxTimeStep; --dt overrides)
   double min_time_step = 1e-6;   ///< s, a requested time this close counts as reached
+  double max_access_time = 1.0;  ///< s of wall-clock time one grant (Party::onGrant) may take (MaxAccessTime)
   double erp = 0.2;              ///< error reduction parameter
   double cfm = 1e-10;            ///< constraint force mixing (ODE's double-precision default)
   int iterations = 20;           ///< QuickStep iterations
@@ -138,6 +151,7 @@ struct Model {
   std::vector<GeomDef> geoms;              ///< document order
   std::vector<JointDef> joints;            ///< document order
   std::vector<ActuatorDef> actuators;      ///< document order (after the joints they drive)
+  std::vector<SensorDef> sensors;          ///< document order (peripheries, after the joints)
   std::vector<ControllerDef> controllers;  ///< document order; a schedule's TwoWheel target may come first
 };
 

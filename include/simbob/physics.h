@@ -76,6 +76,15 @@ class World {
   /// (0 for servos and velocity drives, whose force comes from the solver).
   double driveEffort(int actuator) const;
 
+  /// Proximity sensors, in Model::sensors order.
+  int sensorCount() const;
+  /// Whether sensor i (0 <= i < sensorCount()) touches another body now: one of its geoms
+  /// overlaps (or meets) a geom of a body other than the one it is attached to and the bodies
+  /// joined to that one by a joint, static geoms (ground, walls) included; other sensors are
+  /// not seen. Computed from the poses the world is in -- when it is created and after every
+  /// step -- so a controller granted at t reads the state at t. A sensor never pushes anything.
+  bool touching(int sensor) const;
+
   /// Index of the first body whose state is non-finite or beyond `limit` (m or m/s, rad/s),
   /// or -1 when all are fine.
   int firstBadBody(double limit = 1e6) const;

@@ -28,6 +28,12 @@ struct PlotOptions {
   int width = 1200;
   /// Image height in pixels; 0 = 300 px per panel (900). Otherwise 300..10000.
   int height = 0;
+  /// Panels drawn, 1..3: the first `panels` of x, y, z (a sweep table's metric is one panel).
+  int panels = 3;
+  /// Titles of the panels instead of "x [m]", "y [m]", "z [m]" (empty = those).
+  std::vector<std::string> panel_titles;
+  /// Label of the horizontal axis instead of "time [s]" (empty = that).
+  std::string time_label;
 };
 
 /// An 8-bit sRGB colour.

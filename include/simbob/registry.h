@@ -67,6 +67,12 @@ struct ParamSpec {
   std::string doc;               ///< one line for `simbob types`
 };
 
+/// Parse `text` as the value of parameter `p` as a scene file gives it (guide 4.3), with the
+/// checks every parameter gets (magnitude within 1e9, the parameter's range). The error reads
+/// "parameter 'Friction': expected a number, got 'abc'"; the caller puts the place and the
+/// component in front. The loader and `--set` overrides both use it.
+ParseResult parseParam(const ParamSpec& p, std::string_view text);
+
 /// Typed names of parameters. A family file declares each parameter once as one of these and
 /// builds both its table entry and every read from it (`c.get(kWidth)`), so a misspelled name
 /// does not compile, and a read returns the type the table stores.

@@ -4,6 +4,7 @@
 // checked for a non-finite or runaway state.
 #pragma once
 
+#include <chrono>
 #include <csignal>
 #include <cstdint>
 #include <functional>
@@ -26,6 +27,7 @@ struct RunOptions {
   double dt = 0.0;                 ///< s; 0 = the scene's MaxTimeStep
   double sample_interval = 0.01;   ///< s of simulated time between trajectory samples (runModel)
   uint32_t seed = 0;               ///< ODE's random generator (QuickStep constraint order)
+  double max_access_time = 0.0;    ///< s of wall clock one grant may take; 0 = the scene's MaxAccessTime
   double runaway_limit = 1e6;      ///< |position| in m or |velocity| in m/s, rad/s beyond which a run diverged
   double joint_apart_limit = 0.1;  ///< m between a joint's anchors on its two bodies beyond which it came apart
   /// Called about every 1% of the run with the simulated time reached.
@@ -68,6 +70,22 @@ class Party {
   /// Non-null once the party cannot go on (its output failed, ...): the run stops with status
   /// Failed and this error. Checked after the grants of each instant before the end.
   virtual const Error* failure() const;
+
+  /// MaxAccessTime (guide 7.2): the wall-clock seconds one call of first() or onGrant() may
+  /// take; the run loop sets it before first(). The run loop measures every call and stops the
+  /// run (ErrorKind::Unavailable) after one that took longer. It cannot cut a call short: a party
+  /// that can block (a socket peer) must use accessDeadline() as its own timeout.
+  double accessLimit() const { return access_limit_; }
+  /// When the current call of first() or onGrant() must have returned (steady clock).
+  std::chrono::steady_clock::time_point accessDeadline() const { return access_deadline_; }
+  /// For messages: "controller 'Bot.Plan'", and where it is defined (empty: unknown).
+  std::string name = "a party of the run";
+  SourceLoc loc;
+
+ private:
+  friend RunResult runParties(const Model&, const RunOptions&, const std::vector<Party*>&);
+  double access_limit_ = 1.0;
+  std::chrono::steady_clock::time_point access_deadline_{};
 };
 
 /// Runs the model to opts.duration, serving `parties` (ignores sample_interval and on_sample).

@@ -89,6 +89,12 @@ class CompileContext {
     return it == actuator_index_.end() ? -1 : it->second;
   }
   void recordActuator(const std::string& model_key, int index) { actuator_index_[model_key] = index; }
+  /// Model::sensors index of the proximity sensor lowered under `model_key`, as actuatorIndex.
+  int sensorIndex(const std::string& model_key) const {
+    auto it = sensor_index_.find(model_key);
+    return it == sensor_index_.end() ? -1 : it->second;
+  }
+  void recordSensor(const std::string& model_key, int index) { sensor_index_[model_key] = index; }
   /// Controllers lowered so far: component index -> Model::controllers index (-1 while it is
   /// being lowered or after an error).
   std::map<int, int> controller_index;
@@ -120,6 +126,7 @@ class CompileContext {
   std::map<std::string, int> body_index_;
   std::map<std::string, int> joint_index_;
   std::map<std::string, int> actuator_index_;
+  std::map<std::string, int> sensor_index_;
   std::map<int, Transform> parent_frame_;
   std::set<int> checked_;
 };

@@ -154,6 +154,7 @@ class Linter {
     size_ = std::vector<double>(m_.bodies.size(), 0.0);
     thin_ = std::vector<double>(m_.bodies.size(), 1e300);
     for (const GeomDef& g : m_.geoms) {
+      if (g.sensor) continue;  // sensor volumes push nothing: overlapping is what they are for
       if (g.shape == GeomShape::Plane) {
         planes_.push_back(&g);
         continue;

@@ -1,7 +1,8 @@
 // ControllerComponents (guide 6.12): the software of an RCRobot. Each controller checks that
 // the components it refers to implement the interface it needs and lowers to a ControllerDef;
 // lib/robot runs them as parties of the run loop. RCCommandSchedule (simbob's own) sends timed
-// commands to a drive, a servo or an RC2DMotionControl.
+// commands to a drive, a servo or an RC2DMotionControl; RCWallStop drives an RC2DMotionControl
+// forward until an RCContactSensor touches something.
 #include <cmath>
 
 #include "compile/context.h"
@@ -11,7 +12,7 @@ namespace simbob {
 
 namespace {
 
-enum class ControllerKind { DriveTest, ServoTest, TwoWheelMotionControl, CommandSchedule };
+enum class ControllerKind { DriveTest, ServoTest, TwoWheelMotionControl, CommandSchedule, WallStop };
 
 constexpr LinkParam kDrive{"Drive"};
 constexpr LinkParam kPosControl{"PosControl"};
@@ -22,6 +23,9 @@ constexpr ValueParam<double> kVariation{"Variation"};
 constexpr ValueParam<double> kWheelDistance{"WheelDistance"};
 constexpr LinkParam kTarget{"Target"};
 constexpr ValueParam<std::string> kCommands{"Commands"};
+constexpr LinkParam kMotion{"Motion"};
+constexpr LinkParam kSensor{"Sensor"};
+constexpr ValueParam<double> kSpeed{"Speed"};
 
 /// Model::actuators index of a drive or servo component, or -1 after an error.
 int actuatorOf(CompileContext& ctx, const Component& c, const Link& l, const Component& drive) {
@@ -98,6 +102,29 @@ const Component* target(CompileContext& ctx, const Component& c, LinkParam param
   return &t;
 }
 
+/// Model::controllers index of an RC2DMotionControl controller (lowered now if it comes later in
+/// the document), or -1 after an error.
+int motionControlOf(CompileContext& ctx, const Component& c, LinkParam param) {
+  const Component* t = target(ctx, c, param, "RC2DMotionControl");
+  if (!t) return -1;
+  lowerController(ctx, *t);
+  auto it = ctx.controller_index.find(ctx.indexOf(*t));
+  return it == ctx.controller_index.end() ? -1 : it->second;
+}
+
+/// Model::sensors index of the RCContactSensor behind `param`, or -1 after an error.
+int sensorOf(CompileContext& ctx, const Component& c, LinkParam param) {
+  const Component* t = target(ctx, c, param, "RCContactSensor");
+  if (!t) return -1;
+  const int i = ctx.sensorIndex(ctx.modelKey(*t));
+  if (i == -1 && !ctx.failedQuietly())
+    ctx.error(c.get(param), c,
+              CompileContext::describe(*t) +
+                  " is not part of a construction built before this controller (put it in the ChildList of "
+                  "its robot's construction)");
+  return i < 0 ? -1 : i;
+}
+
 }  // namespace
 
 void registerControllers(Registry& r) {
@@ -140,6 +167,14 @@ void registerControllers(Registry& r) {
          {},
          "Timed commands to one drive, servo or motion control.",
          true});
+  r.add({"RCWallStop",
+         Family::Controller,
+         int(ControllerKind::WallStop),
+         {componentParam(kMotion, {Family::Controller}, "", "motion control to drive (Ref, RC2DMotionControl)"),
+          componentParam(kSensor, {Family::Periphery}, "", "front proximity sensor (Ref, RCContactSensor)"),
+          number(kSpeed, 0.1, "m/s", "forward speed until the sensor touches", Range::NonNegative), period},
+         {},
+         "Drives forward until its contact sensor touches something, then stops for good."});
 }
 
 void lowerController(CompileContext& ctx, const Component& c) {
@@ -223,6 +258,14 @@ void lowerController(CompileContext& ctx, const Component& c) {
       if (!parseCommands(ctx, c, d.values, &d.commands)) ok = false;
       break;
     }
+    case ControllerKind::WallStop:
+      d.kind = ControllerDef::WallStop;
+      d.period = c.get(kPeriod);
+      d.speed = c.get(kSpeed);
+      d.target = motionControlOf(ctx, c, kMotion);
+      d.sensors.push_back(sensorOf(ctx, c, kSensor));
+      if (d.target < 0 || d.sensors[0] < 0) ok = false;
+      break;
   }
   if (!ok) return;
   ctx.controller_index[ci] = static_cast<int>(ctx.model.controllers.size());

@@ -2,12 +2,14 @@
 // and the socket communicator. Each type names the interfaces it offers to controllers
 // (guide 6.12): RCDriver, RCPosControl, RCVelControl, RCContactSensor.
 // Drives and servos lower to Model::actuators (lib/physics/actuators.cpp makes them act); the
-// proximity sensor and the socket communicator are checked but do not act yet.
+// proximity sensor to Model::sensors and sensor geoms (lib/physics/sensors.cpp); the socket
+// communicator is checked but does not act yet.
 #include <cmath>
 #include <limits>
 
 #include "compile/context.h"
 #include "components/families.h"
+#include "simbob/transform.h"
 
 namespace simbob {
 
@@ -99,6 +101,49 @@ void lowerActuator(CompileContext& ctx, const Component& c, ActuatorDef::Kind ki
   ctx.model.actuators.push_back(a);
 }
 
+/// RCProximitySensor: its Geom, posed by Pose (local coordinates: relative to the body the
+/// construction's root is; global: in the world), becomes sensor geoms on that body.
+void lowerSensor(CompileContext& ctx, const Component& c, const Built& parent) {
+  const std::string key = ctx.modelKey(c);
+  if (!parent.ok) return;
+  if (c.get(kGeom).comp < 0) {
+    if (!c.get(kGeom).isRef()) ctx.error(c, "parameter 'Geom' is required (the volume the sensor watches)");
+    ctx.recordSensor(key, kFailedActuator);
+    return;
+  }
+  Transform pose;
+  if (!lowerPose(ctx, c.get(kPose), c, &parent.frame, &pose)) {
+    ctx.recordSensor(key, kFailedActuator);
+    return;
+  }
+  SensorDef s;
+  s.key = key;
+  s.loc = c.loc;
+  s.body = parent.index;
+  const size_t first = ctx.model.geoms.size();
+  static const Link kNoModel;
+  GeomTarget t{&c, parent.index, parent.frame, 0, &kNoModel};
+  lowerGeom(ctx, c.get(kGeom), t, compose(inverse(parent.frame), pose));
+  for (size_t gi = first; gi < ctx.model.geoms.size(); ++gi) {
+    GeomDef& g = ctx.model.geoms[gi];
+    if (g.shape == GeomShape::Plane) {
+      ctx.error(c, "a proximity sensor's Geom cannot be a plane (it would touch half the world)");
+      ctx.model.geoms.resize(first);
+      ctx.recordSensor(key, kFailedActuator);
+      return;
+    }
+    g.sensor = true;
+    s.geoms.push_back(static_cast<int>(gi));
+  }
+  if (s.geoms.empty()) {
+    if (!ctx.failedQuietly()) ctx.error(c, "parameter 'Geom' gives no volume to watch");
+    ctx.recordSensor(key, kFailedActuator);
+    return;
+  }
+  ctx.recordSensor(key, static_cast<int>(ctx.model.sensors.size()));
+  ctx.model.sensors.push_back(std::move(s));
+}
+
 }  // namespace
 
 void registerPeripheries(Registry& r) {
@@ -136,7 +181,9 @@ void registerPeripheries(Registry& r) {
   r.add(offering({"RCProximitySensor",
                   Family::Periphery,
                   int(PeripheryKind::ProximitySensor),
-                  {componentParam(kPose, {Family::Pose}, "", "sensor pose"),
+                  {componentParam(kPose, {Family::Pose}, "",
+                                  "pose of the geom: local coordinates relative to the construction's root body "
+                                  "(default: its frame), or global"),
                    componentParam(kGeom, {Family::Geom}, "", "sensing volume (no contact forces)")},
                   {},
                   "Reports whether its geom touches anything."},
@@ -165,7 +212,7 @@ bool peripheryLimits(const Component& c, double* lo, double* hi) {
   return false;
 }
 
-void lowerPeriphery(CompileContext& ctx, const Component& c, const Built& /*parent*/) {
+void lowerPeriphery(CompileContext& ctx, const Component& c, const Built& parent) {
   switch (kindOf(c)) {
     case PeripheryKind::GenericDrive:
       lowerActuator(ctx, c, ActuatorDef::Drive);
@@ -177,7 +224,7 @@ void lowerPeriphery(CompileContext& ctx, const Component& c, const Built& /*pare
       lowerActuator(ctx, c, ActuatorDef::VelDrive);
       break;
     case PeripheryKind::ProximitySensor:
-      ctx.warning(c, "proximity sensors are read but have no effect yet");
+      lowerSensor(ctx, c, parent);
       break;
     case PeripheryKind::LocalSocketCommunicator:
       if (c.get(kPort) > kMaxPort)

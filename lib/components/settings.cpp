@@ -63,7 +63,9 @@ void registerSettings(Registry& r) {
        {triple(kGravity, {0, -9.81, 0}, "m/s^2", "gravity; Y is up"),
         number(kMaxTimeStep, 0.001, "s", "largest physics step; the step size (--dt overrides)", Range::Positive),
         number(kMinTimeStep, 1e-6, "s", "a requested time this close to the clock counts as reached", Range::Positive),
-        number(kMaxAccessTime, 1.0, "s", "wall-clock limit of one access to the simulation (no effect in batch runs)",
+        number(kMaxAccessTime, 1.0, "s",
+               "wall-clock limit of one access to the simulation (a grant to a controller or peer); past it the run "
+               "stops (exit 69)",
                Range::Positive),
         enumParam(kSolverParam, ValueType::Enum, &kSolver, 0, "QuickStep (iterative) or Step (exact LCP)"),
         integer(kSolverIterations, 20, "QuickStep iterations per step", Range::Positive),
@@ -111,6 +113,7 @@ void lowerSettings(CompileContext& ctx, int comp) {
   s.gravity = {g[0], g[1], g[2]};
   s.max_time_step = c.get(kMaxTimeStep);
   s.min_time_step = c.get(kMinTimeStep);
+  s.max_access_time = c.get(kMaxAccessTime);
   s.quickstep = c.get(kSolverParam) == 0;
   if (c.get(kSolverIterations) > kMaxSolverIterations || c.get(kMaxContacts) > kMaxContactsLimit)
     ctx.diag.error(c.loc, "SceneSettings: SolverIterations must be at most 100000 and MaxContacts at most 64");

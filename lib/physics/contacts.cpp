@@ -22,7 +22,7 @@ void collidePair(WorldImpl& im, dGeomID g1, dGeomID g2) {
   if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
   const GeomInfo& i1 = infoOf(im, g1);
   const GeomInfo& i2 = infoOf(im, g2);
-  // Sensors create no contact joints; nothing reads sensor contacts yet, so skip dCollide too.
+  // Sensors create no contact joints (their geoms are in a space of their own: never reached).
   if (i1.sensor || i2.sensor) return;
 
   const int maxContacts = static_cast<int>(im.contactBuffer.size());

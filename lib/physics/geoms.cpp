@@ -53,22 +53,25 @@ void createGeoms(WorldImpl& im, const Model& model) {
   im.geomInfo.reserve(model.geoms.size());
   for (size_t gi = 0; gi < model.geoms.size(); ++gi) {
     const GeomDef& gd = model.geoms[gi];
+    // Sensor geoms go to a space of their own: the collision space stays what it is without them.
+    if (gd.sensor && !im.sensorSpace) im.sensorSpace = dSimpleSpaceCreate(nullptr);
+    dSpaceID space = gd.sensor ? im.sensorSpace : im.space;
     dGeomID g = nullptr;
     switch (gd.shape) {
       case GeomShape::Box:
-        g = dCreateBox(im.space, gd.size[0], gd.size[1], gd.size[2]);
+        g = dCreateBox(space, gd.size[0], gd.size[1], gd.size[2]);
         break;
       case GeomShape::Sphere:
-        g = dCreateSphere(im.space, gd.size[0]);
+        g = dCreateSphere(space, gd.size[0]);
         break;
       case GeomShape::Cylinder:
-        g = dCreateCylinder(im.space, gd.size[0], gd.size[1]);
+        g = dCreateCylinder(space, gd.size[0], gd.size[1]);
         break;
       case GeomShape::Capsule:
-        g = dCreateCapsule(im.space, gd.size[0], gd.size[1]);
+        g = dCreateCapsule(space, gd.size[0], gd.size[1]);
         break;
       case GeomShape::Plane:
-        g = dCreatePlane(im.space, gd.plane[0], gd.plane[1], gd.plane[2], gd.plane[3]);
+        g = dCreatePlane(space, gd.plane[0], gd.plane[1], gd.plane[2], gd.plane[3]);
         break;
     }
     const dQuaternion q = {gd.offset.q[0], gd.offset.q[1], gd.offset.q[2], gd.offset.q[3]};

@@ -31,6 +31,7 @@ WorldImpl::~WorldImpl() {
   // world with its bodies and remaining joints.
   if (contactGroup) dJointGroupDestroy(contactGroup);
   if (space) dSpaceDestroy(space);  // cleanup mode is on by default: destroys its geoms
+  if (sensorSpace) dSpaceDestroy(sensorSpace);
   if (world) dWorldDestroy(world);
 }
 
@@ -69,7 +70,7 @@ std::unique_ptr<World> World::create(const Model& model, uint32_t seed) {
   createGeoms(im, model);
   createJoints(im, model);
   createActuators(im, model);
-  // Sensors: createSensors(im, model) goes here.
+  createSensors(im, model);
   return w;
 }
 
@@ -83,6 +84,7 @@ void World::step(double h) {
     dWorldStep(im.world, h);
   }
   dJointGroupEmpty(im.contactGroup);
+  if (!im.sensors.empty()) updateSensors(im);
 }
 
 int World::bodyCount() const { return static_cast<int>(impl_->bodies.size()); }
@@ -110,6 +112,10 @@ int World::actuatorCount() const { return static_cast<int>(impl_->actuators.size
 void World::setCommand(int actuator, double value) { commandActuator(*impl_, actuator, value); }
 
 double World::driveEffort(int actuator) const { return impl_->actuators[static_cast<size_t>(actuator)].effort; }
+
+int World::sensorCount() const { return static_cast<int>(impl_->sensors.size()); }
+
+bool World::touching(int sensor) const { return impl_->sensors[static_cast<size_t>(sensor)].touching; }
 
 int World::firstBadBody(double limit) const {
   // Runs after every step: read ODE's arrays in place. `!(|x| <= limit)` is also true for NaN;

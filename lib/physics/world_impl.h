@@ -7,6 +7,7 @@
 //   joints.cpp    joints and joint state (simbob's sign convention)
 //   contacts.cpp  the near callback: contact joints per the material rules of guide 7.1
 //   actuators.cpp drives, servos and velocity drives on hinge and slider joints
+//   sensors.cpp   proximity sensors: sensor geoms, in a space of their own, that only detect
 //   world.cpp     World: create, step, accessors
 //
 // Actuators and sensors join as files of their own: a create function called by World::create
@@ -38,6 +39,13 @@ struct JointInfo {
   double zero;  ///< ODE's position (rad or m) at creation, subtracted so that the start pose reads 0
 };
 
+/// A proximity sensor: its geoms (in WorldImpl::sensorSpace, never in the collision space) and
+/// whether one of them touched another body at the last update (see World::touching).
+struct SensorState {
+  std::vector<dGeomID> geoms;
+  bool touching = false;
+};
+
 /// An actuator's definition and its current command (see World::setCommand).
 struct ActuatorState {
   ActuatorDef def;
@@ -52,6 +60,9 @@ struct ActuatorState {
 struct WorldImpl {
   dWorldID world = nullptr;
   dSpaceID space = nullptr;
+  /// Sensor geoms live here, so the collision space (and the order in which it reports pairs)
+  /// is the same with or without sensors. Created with the first sensor geom.
+  dSpaceID sensorSpace = nullptr;
   dJointGroupID contactGroup = nullptr;
   std::vector<dBodyID> bodies;
   std::vector<Vec3> com;  ///< centre of mass in the body frame, per body (m)
@@ -60,6 +71,7 @@ struct WorldImpl {
   std::vector<dJointID> joints;
   std::vector<JointInfo> jointInfo;
   std::vector<ActuatorState> actuators;
+  std::vector<SensorState> sensors;
   std::vector<dContact> contactBuffer;  ///< sized max_contacts once; reused by every collision
   int lastContacts = 0;
   bool quickstep = true;
@@ -99,6 +111,12 @@ double jointSeparation(const WorldImpl& im, int i);
 void createActuators(WorldImpl& im, const Model& model);
 /// Records a command (clamped as World::setCommand says); the next step acts on it.
 void commandActuator(WorldImpl& im, int i, double value);
+
+// sensors.cpp
+/// Collects each Model sensor's geoms (created by createGeoms) and computes its first reading.
+void createSensors(WorldImpl& im, const Model& model);
+/// Recomputes every sensor's reading from the current poses (after each step).
+void updateSensors(WorldImpl& im);
 
 // contacts.cpp
 /// Collides the space and creates this step's contact joints (guide 7.1); counts them in lastContacts.

@@ -376,6 +376,9 @@ struct Scene {
   double t_lo = 0, t_hi = 1;
   double v_lo[kPanels] = {0, 0, 0};
   double v_hi[kPanels] = {0, 0, 0};
+  int panels = kPanels;
+  std::string titles[kPanels] = {kPanelTitles[0], kPanelTitles[1], kPanelTitles[2]};
+  std::string time_label = "time [s]";
 };
 
 /// Lays out and draws everything; returns why the image is too small for the layout, else "".
@@ -419,7 +422,7 @@ std::string render(cairo_t* cr, const Scene& sc, double width, double height) {
     lx += w + 20;
   }
   const double panels_top = row_y + kLegendRowH * 0.5 + 6;
-  const double slot_h = (height - kFooterH - panels_top) / kPanels;
+  const double slot_h = (height - kFooterH - panels_top) / sc.panels;
   const double box_h = slot_h - kPanelTitleH - kTickLabelH - kPanelGap;
   if (box_h < kMinBoxSide) {
     return "plot height " + std::to_string(static_cast<int>(height)) +
@@ -429,7 +432,7 @@ std::string render(cairo_t* cr, const Scene& sc, double width, double height) {
   // Value axes first: their widest label decides the left margin.
   Axis vaxes[kPanels];
   double label_w = 0;
-  for (int p = 0; p < kPanels; ++p) {
+  for (int p = 0; p < sc.panels; ++p) {
     vaxes[p] = makeAxis(sc.v_lo[p], sc.v_hi[p], box_h, 40);
     for (const std::string& l : vaxes[p].labels) label_w = std::max(label_w, textWidth(cr, l));
   }
@@ -445,7 +448,7 @@ std::string render(cairo_t* cr, const Scene& sc, double width, double height) {
   if (sc.golden) golden_cols = sampleColumns(*sc.golden, sc.t_lo, sc.t_hi, box_w);
   std::vector<size_t> run;
 
-  for (int p = 0; p < kPanels; ++p) {
+  for (int p = 0; p < sc.panels; ++p) {
     const double slot_y = panels_top + p * slot_h;
     Mapper m;
     m.box = Rect{box_x, std::floor(slot_y + kPanelTitleH), box_w, std::floor(box_h)};
@@ -457,7 +460,7 @@ std::string render(cairo_t* cr, const Scene& sc, double width, double height) {
 
     setFont(cr, kPanelTitleSize, true);
     setGray(cr, 0.1);
-    drawText(cr, kPanelTitles[p], b.x, b.y - 7, 0);
+    drawText(cr, sc.titles[p], b.x, b.y - 7, 0);
 
     // Grid (half-pixel offsets keep 1 px lines crisp).
     cairo_set_line_width(cr, 1.0);
@@ -517,7 +520,7 @@ std::string render(cairo_t* cr, const Scene& sc, double width, double height) {
 
   setFont(cr, kTextSize, true);
   setGray(cr, 0.1);
-  drawText(cr, "time [s]", box_x + box_w * 0.5, height - 9, 0.5);
+  drawText(cr, sc.time_label, box_x + box_w * 0.5, height - 9, 0.5);
   return "";
 }
 
@@ -628,7 +631,11 @@ bool plotTrajectory(const Trajectory& actual, const Trajectory* golden, const Pl
   }
 
   const int width = options.width;
-  const int height = options.height == 0 ? kPanelHeight * kPanels : options.height;
+  if (options.panels < 1 || options.panels > kPanels) {
+    setError(err, ErrorKind::InvalidInput, "", "plot panels must be 1 to 3");
+    return false;
+  }
+  const int height = options.height == 0 ? kPanelHeight * options.panels : options.height;
   if (width < kMinWidth || width > kMaxSide || height < kMinHeight || height > kMaxSide) {
     setError(err, ErrorKind::InvalidInput, "",
              "plot size " + std::to_string(width) + "x" + std::to_string(height) + " out of range (width " +
@@ -675,6 +682,10 @@ bool plotTrajectory(const Trajectory& actual, const Trajectory* golden, const Pl
   sc.actual = &actual;
   sc.golden = (golden && golden->sampleCount() > 0) ? golden : nullptr;
   sc.title = displayText(options.title.empty() ? "trajectory" : options.title, 200) + note;
+  sc.panels = options.panels;
+  for (size_t p = 0; p < options.panel_titles.size() && p < static_cast<size_t>(kPanels); ++p)
+    sc.titles[p] = displayText(options.panel_titles[p], kMaxLabelChars);
+  if (!options.time_label.empty()) sc.time_label = displayText(options.time_label, kMaxLabelChars);
   std::unordered_map<std::string, size_t> golden_index;
   if (sc.golden) golden_index = bodyIndex(*golden);
   double lo[kPanels], hi[kPanels];

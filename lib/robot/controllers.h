@@ -32,5 +32,7 @@ std::unique_ptr<Party> makeServoTest(const ControllerDef& c, const Model& model)
 std::unique_ptr<MotionControl2D> makeTwoWheel(const ControllerDef& c);
 /// `target`: the controller a 2-D schedule commands (nullptr for an actuator schedule).
 std::unique_ptr<Party> makeCommandSchedule(const ControllerDef& c, MotionControl2D* target);
+/// `motion`: the RC2DMotionControl it drives (never nullptr).
+std::unique_ptr<Party> makeWallStop(const ControllerDef& c, MotionControl2D* motion);
 
 }  // namespace simbob::robot

@@ -43,7 +43,14 @@ std::vector<std::unique_ptr<Party>> robotParties(const Model& model) {
       case ControllerDef::CommandSchedule:
         out[i] = robot::makeCommandSchedule(c, c.target >= 0 ? motion[static_cast<size_t>(c.target)] : nullptr);
         break;
+      case ControllerDef::WallStop:
+        out[i] = robot::makeWallStop(c, motion[static_cast<size_t>(c.target)]);
+        break;
     }
+  }
+  for (size_t i = 0; i < out.size(); ++i) {
+    out[i]->name = "controller '" + model.controllers[i].key + "'";
+    out[i]->loc = model.controllers[i].loc;
   }
   return out;
 }

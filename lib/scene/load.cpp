@@ -56,69 +56,6 @@ std::string familiesText(const ParamSpec& p) {
 // "RCSphereGeom 'Ball.Geom': " before a message; nothing for the scene root.
 std::string prefix(const std::string& what) { return what.empty() ? std::string() : what + ": "; }
 
-constexpr double kMaxMagnitude = 1e9;  // m, kg, m/s, ...: far beyond any robot scene
-
-// The largest finite absolute number inside a value (infinities are checked by the parser).
-double largestFinite(const Value& v) {
-  double big = 0;
-  auto take = [&](double d) {
-    if (std::isfinite(d)) big = std::max(big, std::fabs(d));
-  };
-  std::visit(
-      [&](const auto& x) {
-        using T = std::decay_t<decltype(x)>;
-        if constexpr (std::is_same_v<T, double>)
-          take(x);
-        else if constexpr (std::is_same_v<T, int64_t>)
-          take(static_cast<double>(x));
-        else if constexpr (std::is_same_v<T, Triple>)
-          for (double d : x) take(d);
-        else if constexpr (std::is_same_v<T, Vector4>)
-          for (double d : x.v) take(d);
-        else if constexpr (std::is_same_v<T, Quaternion>)
-          for (double d : x.q) take(d);
-        else if constexpr (std::is_same_v<T, Pose>) {
-          for (double d : x.pos) take(d);
-          for (double d : x.euler_deg) take(d);
-        } else if constexpr (std::is_same_v<T, Matrix4>)
-          for (double d : x.m) take(d);
-        else if constexpr (std::is_same_v<T, Cuboid>) {
-          for (double d : x.a) take(d);
-          for (double d : x.b) take(d);
-        }
-      },
-      v);
-  return big;
-}
-
-const char* rangeText(Range r) {
-  switch (r) {
-    case Range::Any:
-      return "";
-    case Range::Positive:
-      return "must be > 0";
-    case Range::NonNegative:
-      return "must be >= 0";
-    case Range::Unit:
-      return "must be in [0, 1]";
-  }
-  return "";
-}
-
-bool inRange(Range r, double v) {
-  switch (r) {
-    case Range::Any:
-      return true;
-    case Range::Positive:
-      return v > 0;
-    case Range::NonNegative:
-      return v >= 0;
-    case Range::Unit:
-      return v >= 0 && v <= 1;
-  }
-  return true;
-}
-
 class Builder {
  public:
   Builder(const Registry& reg, Scene& scene, Diagnostics& diag) : reg_(reg), scene_(scene), diag_(diag) {}
@@ -337,28 +274,10 @@ class Builder {
  private:
   bool parseInto(const ParamSpec& p, const std::string& text, Value* out, const SourceLoc& loc,
                  const std::string& what) {
-    ParseOptions opts;
-    opts.allow_infinite = p.allow_infinite;
-    ParseResult r = parseValue(p.type, text, p.table, opts);
+    ParseResult r = parseParam(p, text);
     if (!r) {
-      diag_.error(loc, prefix(what) + "parameter '" + p.name + "': " + r.error);
+      diag_.error(loc, prefix(what) + r.error);
       return false;
-    }
-    // Absurd magnitudes (1e300 m) overflow inertia and contact math inside ODE: refuse them here.
-    if (double big = largestFinite(*r.value); big > kMaxMagnitude) {
-      diag_.error(loc, prefix(what) + "parameter '" + p.name + "': " + formatNumber(big) +
-                           " is beyond the supported magnitude " + formatNumber(kMaxMagnitude));
-      return false;
-    }
-    if (p.range != Range::Any) {
-      double v = 0;
-      if (auto* d = std::get_if<double>(&*r.value)) v = *d;
-      if (auto* i = std::get_if<int64_t>(&*r.value)) v = static_cast<double>(*i);
-      if (!inRange(p.range, v)) {
-        diag_.error(loc, prefix(what) + "parameter '" + p.name + "' " + rangeText(p.range) + ", got '" +
-                             quoteInput(text) + "'");
-        return false;
-      }
     }
     *out = std::move(*r.value);
     return true;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <vector>
 
@@ -54,7 +55,34 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
     return res;
   }
   Clock clock(std::max<SimTime>(step, 1), min_step);
-  for (Party* p : parties) clock.addParty(p->first());
+  // MaxAccessTime (guide 7.2): every call that hands a party the world is timed; one that took
+  // longer stops the run. (A blocking party bounds its own waits by accessDeadline().)
+  const double limit = opts.max_access_time > 0 ? opts.max_access_time : model.settings.max_access_time;
+  const auto limit_d = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(std::min(limit, 1e9)));
+  auto overran = [&](Party& p, std::chrono::steady_clock::time_point started) {
+    const auto took = std::chrono::steady_clock::now() - started;
+    if (took <= limit_d) return false;
+    res.status = RunStatus::Failed;
+    char held[32];
+    std::snprintf(held, sizeof held, "%.3g", std::chrono::duration<double>(took).count());
+    res.error = {ErrorKind::Unavailable, p.loc,
+                 p.name + " held the simulation for " + held +
+                     " s of wall-clock time at t=" + formatNumber(toSeconds(clock.now())) +
+                     " s, longer than MaxAccessTime (" + formatNumber(limit) + " s)"};
+    return true;
+  };
+  auto open = [&](Party& p) {
+    const auto started = std::chrono::steady_clock::now();
+    p.access_limit_ = limit;
+    p.access_deadline_ = started + limit_d;
+    return started;
+  };
+  for (Party* p : parties) {
+    const auto started = open(*p);
+    clock.addParty(p->first());
+    if (overran(*p, started)) break;
+  }
 
   const SimTime progress_every = std::max<SimTime>(end / 100, 1);
   SimTime next_progress = progress_every;
@@ -62,10 +90,14 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
     // Grant every due request, earliest first, ties in list order; nothing else runs meanwhile.
     bool granted = false;
     int id = -1;
-    while ((id = clock.grantable()) >= 0) {
-      clock.granted(id, parties[static_cast<size_t>(id)]->onGrant(clock.now(), *world));
+    while (res.error.message.empty() && (id = clock.grantable()) >= 0) {
+      Party& p = *parties[static_cast<size_t>(id)];
+      const auto started = open(p);
+      clock.granted(id, p.onGrant(clock.now(), *world));
+      overran(p, started);
       granted = true;
     }
+    if (!res.error.message.empty()) break;
     if (clock.now() >= end) break;
     if (granted) {
       for (const Party* p : parties)
@@ -140,6 +172,7 @@ RunResult runModel(const Model& model, const RunOptions& opts, TrajectoryWriter*
                             opts.on_sample);
   std::vector<std::unique_ptr<Party>> more;
   if (opts.make_parties) more = opts.make_parties();
+  sampler.name = "the trajectory sampler";
   std::vector<Party*> parties{&sampler};
   for (auto& p : more) parties.push_back(p.get());
   RunResult res = runParties(model, opts, parties);

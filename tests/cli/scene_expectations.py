@@ -209,7 +209,91 @@ def robot(c):
     c.near("caster ball height (its radius)", c.at("Bot.Cart.CasterSocket.CasterBall", 10)[1][1], 0.04, 2e-3)
 
 
-SCENES = {f.__name__: f for f in (pendulum, box_stack, chain, imported_bodies, mechanisms, bounce, robot)}
+def turned(q0, q, axis):
+    """Angle (rad) of the rotation from q0 to q about a global axis (0: X, 1: Y, 2: Z), in (-pi, pi]."""
+    r = qmul(q, conj(q0))
+    return 2 * math.atan2(r[1 + axis], r[0])
+
+
+def unwrap(angles):
+    out, turns = [], 0.0
+    for i, a in enumerate(angles):
+        if i:
+            d = a - angles[i - 1]
+            if d > math.pi:
+                turns -= 2 * math.pi
+            elif d < -math.pi:
+                turns += 2 * math.pi
+        out.append(a + turns)
+    return out
+
+
+def flywheel(c):
+    rows = c.body("Bot.Base.Axle.Wheel")
+    q0 = rows[0][2]
+    theta = unwrap([turned(q0, q, 1) for _, _, q in rows])
+    # theta(t) = (P / I) / w * (t - sin(w t) / w), w = 2 pi Variation / 60 = pi, P = pi/2, I = 1.
+    law = lambda t: 0.5 * (t - math.sin(math.pi * t) / math.pi)
+    for t in (1.0, 2.0, 5.0, 10.0):
+        i = min(range(len(rows)), key=lambda k: abs(rows[k][0] - t))
+        c.near(f"flywheel angle at t={t:g} (integral of the sine torque)", theta[i], law(t), 0.01 * law(t))
+    c.below("largest deviation from the law over the run (rad)",
+            max(abs(a - law(t)) for (t, _, _), a in zip(rows, theta)), 0.03)
+    c.below("axle drift (m)", max(math.dist(p, (0, 1, 0)) for _, p, _ in rows), 1e-6)
+
+
+def servo_arm(c):
+    rows = c.body("Bot.Base.Joint.Arm")
+    q0 = rows[0][2]
+    angle = [turned(q0, q, 2) for _, _, q in rows]
+    c.below("largest arm angle (MaxPos 1 rad)", max(angle), 1.0 + 1e-3)
+    c.above("smallest arm angle (MinPos -1 rad)", min(angle), -1.0 - 1e-3)
+
+    def target(t):
+        f = (t * 6 / 60) % 1.0
+        return -1 + 2 * (2 * f if f < 0.5 else 2 - 2 * f)
+    # After the start (the arm begins at 0, the target at MinPos) it follows the triangle about
+    # speed x Smooth = 0.04 rad behind; near the turns the lag cuts the corner by as much.
+    lag = max(abs(a - target(t)) for (t, _, _), a in zip(rows, angle) if t >= 2.0)
+    c.below("largest distance from the target after 2 s (rad)", lag, 0.06)
+    c.near("arm angle at t=5 (target turns at MaxPos)", angle[min(range(len(rows)), key=lambda k: abs(rows[k][0] - 5))],
+           1.0, 0.05)
+    c.below("pivot drift (m)", max(abs(math.dist(p, (0, 1, 0)) - 0.25) for _, p, _ in rows), 1e-3)
+
+
+def two_wheel_robot(c):
+    rows = c.body("Bot.Cart.Chassis")
+    x = lambda t: c.at("Bot.Cart.Chassis", t)[1][0]
+    c.near("forward between 1 s and 2 s (v = 0.2 m/s)", x(2) - x(1), 0.2, 2e-3)
+    q0 = rows[0][2]
+    yaw = lambda t: turned(q0, c.at("Bot.Cart.Chassis", t)[2], 1)
+    c.near("heading gained between 3 s and 4 s (w = 0.5 rad/s)", yaw(4) - yaw(3), 0.5, 1e-3)
+    c.below("motion after the stop (4.5 s to 10 s, m)", math.dist(c.at("Bot.Cart.Chassis", 4.5)[1],
+                                                                   c.at("Bot.Cart.Chassis", 10)[1]), 1e-3)
+
+
+def wall_stop_robot(c):
+    rows = c.body("Bot.Cart.Chassis")
+    front = max(p[0] for _, p, _ in rows) + 0.2
+    c.near("chassis front's gap to the wall at x = 1.4 when stopped (m)", 1.4 - front, 0.095, 0.005)
+    c.below("motion over the last 2 s (m)", math.dist(c.at("Bot.Cart.Chassis", 8)[1], rows[-1][1]), 1e-4)
+    c.below("sideways drift (m)", max(abs(p[2]) for _, p, _ in rows), 1e-4)
+
+
+def sliding_box(c):
+    # v0 = 2 m/s, mu = 0.5: stops at v0^2 / (2 mu g) = 0.408 m after v0 / (mu g) = 0.41 s; the
+    # stop comes within one 1 ms step (v0 h = 2 mm).
+    want = 2.0**2 / (2 * 0.5 * 9.81)
+    _, p, q = c.at("Crate", 10)
+    c.near("stopping distance v0^2/(2 mu g)", p[0], want, 0.005 * want + 0.002)
+    c.near("height (half its 0.1 m)", p[1], 0.05, 1e-3)
+    c.below("sideways drift", abs(p[2]), 1e-4)
+    _, p1, _ = c.at("Crate", 1.0)
+    c.below("at rest after 0.41 s", math.dist(p, p1), 1e-4)
+
+
+SCENES = {f.__name__: f for f in (pendulum, box_stack, chain, imported_bodies, mechanisms, bounce, robot, flywheel,
+                                  servo_arm, two_wheel_robot, wall_stop_robot, sliding_box)}
 
 if __name__ == "__main__":
     name, path = sys.argv[1], sys.argv[2]

@@ -55,9 +55,11 @@ TEST_CASE("robot: a scheduled two-wheel robot drives v t forward and turns w t",
   CHECK(std::fabs(tr.z[4]) < 1e-6);
   CHECK(std::fabs(tr.yaw[4]) < 1e-6);
   // Turning on the spot from 2 s: heading gained over [3 s, 4 s] is w * 1 s = 0.5 rad to the
-  // left (positive). Tolerance 10 %: the caster ball slides sideways against its friction and the
-  // wheels slip a little, so the turn runs about 9 % slow.
-  CHECK(tr.yaw[8] - tr.yaw[6] == Approx(0.5).epsilon(0.1));
+  // left (positive). The round tyres touch the ground at WheelDistance / 2 from the centre, as
+  // the kinematics assume, and roll without slipping (the velocity motors reach their targets
+  // within the first second): measured 0.4999997 rad. (Flat cylinder tyres roll on their outer
+  // rims, an effective track of 0.42 m: 0.38 / 0.42 of w, 9.5 % slow.) Tolerance 1e-4 rad.
+  CHECK(tr.yaw[8] - tr.yaw[6] == Approx(0.5).margin(1e-4));
   // Stopped after 4 s: nothing moves between 4.5 s and 5 s.
   CHECK(tr.x[10] == Approx(tr.x[9]).margin(1e-6));
   CHECK(tr.yaw[10] == Approx(tr.yaw[9]).margin(1e-6));

@@ -42,7 +42,10 @@ std::string driveConstruction(const std::string& key, const std::string& qkey, c
          qkey +
          ".H\"/><MinPos Value=\"-1\"/><MaxPos Value=\"1\"/></RCGenericServo>"
          "<RCGenericVelControlledDrive Key=\"V\"><Joint Ref=\"" +
-         qkey + ".H\"/></RCGenericVelControlledDrive>" + more_children + "</ChildList></RCConstruction>";
+         qkey +
+         ".H\"/></RCGenericVelControlledDrive>"
+         "<RCProximitySensor Key=\"P\"><Geom><RCSphereGeom/></Geom></RCProximitySensor>" +
+         more_children + "</ChildList></RCConstruction>";
 }
 
 /// The type element with Key "X" and the parameters it cannot do without (by parameter name,
@@ -71,6 +74,7 @@ std::string element(const TypeSpec& t, const std::string& construction_key) {
       break;
     case Family::Periphery:
       if (has("Joint")) p += "<Joint Ref=\"" + construction_key + ".H\"/>";
+      if (has("Geom")) p += "<Geom><RCSphereGeom/></Geom>";
       break;
     case Family::Controller:
       if (has("Drive")) p += "<Drive Ref=\"Bot.C.D\"/>";
@@ -78,6 +82,8 @@ std::string element(const TypeSpec& t, const std::string& construction_key) {
       if (has("ControlLeft")) p += "<ControlLeft Ref=\"Bot.C.V\"/>";
       if (has("ControlRight")) p += "<ControlRight Ref=\"Bot.C.V\"/>";
       if (has("Target")) p += "<Target Ref=\"Bot.C.D\"/><Commands Value=\"0 0.5; 1 -0.5\"/>";
+      if (has("Motion")) p += "<Motion Ref=\"Bot.M\"/>";
+      if (has("Sensor")) p += "<Sensor Ref=\"Bot.C.P\"/>";
       break;
     case Family::Camera:
       if (has("Body")) p += "<Body Ref=\"Ball\"/>";
@@ -124,7 +130,9 @@ std::string sceneWith(const TypeSpec& t) {
       break;
     case Family::Controller:
       components += "<RCRobot Key=\"Bot\"><Construction>" + driveConstruction("C", "Bot.C") +
-                    "</Construction><ControllerList>" + x + "</ControllerList></RCRobot>";
+                    "</Construction><ControllerList>" + x +
+                    "<RCTwoWheelMotionControl Key=\"M\"><ControlLeft Ref=\"Bot.C.V\"/><ControlRight "
+                    "Ref=\"Bot.C.V\"/></RCTwoWheelMotionControl></ControllerList></RCRobot>";
       break;
     case Family::Camera:
       cameras = x;

@@ -23,6 +23,7 @@ TEST_PACKAGES=(
   clang libclang-rt-14-dev  # sanitizer and fuzz builds (scripts/sanitize.sh, scripts/fuzz.sh)
   clang-format clang-tidy   # scripts/check-style.sh
   ffmpeg                # ffprobe checks the recorded videos (tests/image/ffprobe.sh)
+  slurmctld slurmd slurm-client munge  # a real one-node Slurm cluster (tests/cluster/slurm_*.sh)
 )
 
 case "${1:-}" in

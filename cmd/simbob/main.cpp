@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "plugins.h"
 #include "simbob/registry.h"
+#include "version.h"
 
 using namespace simbob::cli;
 
@@ -63,7 +64,7 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
 int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   CLI::App app{"simbob: headless batch simulator for mobile robots (Simulator Bob scenes on ODE)"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("simbob ") + SIMBOB_VERSION);
+  app.set_version_flag("--version", versionLine());
   Common common;
 
   RunArgs ra;

@@ -1,0 +1,27 @@
+# `cmake --install build --prefix P` and `cpack -G DEB` (README "Installing on cluster nodes").
+#   P/bin/simbob
+#   P/share/simbob/scenes/     the example scenes with the parts they import
+#   P/share/doc/simbob/README.md
+# The .deb installs under /usr; its Depends comes from dpkg-shlibdeps over the binary, so it
+# names Debian's runtime library packages (libode8, libcairo2, ...) and never a -dev package:
+# `apt install ./simbob_*.deb` on a Debian 12 node pulls exactly those.
+include(GNUInstallDirs)
+install(TARGETS simbob RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes/ DESTINATION ${CMAKE_INSTALL_DATADIR}/simbob/scenes)
+install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+
+set(CPACK_GENERATOR "DEB")
+set(CPACK_PACKAGE_NAME "simbob")
+set(CPACK_PACKAGE_VENDOR "simbob")
+set(CPACK_PACKAGE_CONTACT "simbob maintainers <simbob@localhost>")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "headless batch simulator for mobile robots (Simulator Bob scenes on ODE)")
+set(CPACK_PACKAGE_DESCRIPTION
+    "simbob runs Simulator Bob XML scenes on the Open Dynamics Engine without a display and\n writes pose trajectories, run summaries and plots; it runs parameter sweeps one case per\n Slurm array task. The example scenes are in /usr/share/simbob/scenes.")
+set(CPACK_PACKAGING_INSTALL_PREFIX "/usr")
+# The RelWithDebInfo binary carries its debug information; the package does not need it.
+set(CPACK_STRIP_FILES ON)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # simbob_0.1.0_amd64.deb
+set(CPACK_DEBIAN_PACKAGE_SECTION "science")
+set(CPACK_DEBIAN_PACKAGE_PRIORITY "optional")
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+include(CPack)

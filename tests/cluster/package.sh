@@ -1,0 +1,137 @@
+#!/usr/bin/env bash
+# The install rules and the .deb (cmake/package.cmake):
+#   - `cmake --install BUILD --prefix P` puts bin/simbob, the example scenes with the parts they
+#     import, and the README under P, and the installed binary runs a scene from there;
+#   - `cpack -G DEB` builds simbob_VERSION_ARCH.deb whose Depends is exactly the Debian packages
+#     of the libraries the binary links (dpkg-shlibdeps), none of them -dev or from outside
+#     Debian; `apt-get --simulate install ./simbob_*.deb` accepts it on this machine;
+#   - the package unpacked into a temporary root (`dpkg -x`: a real chroot would need
+#     debootstrap and a network) runs `simbob --version` and an example scene, byte-identical
+#     to the build tree's binary.
+#
+#   bash tests/cluster/package.sh /path/to/simbob /path/to/repo /path/to/build
+set -euo pipefail
+HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+source "$HERE/../cli/lib.sh"
+BUILD=$(realpath "${3:?usage: package.sh SIMBOB REPO BUILD}")
+cli_setup "$1" "$2"
+[[ -f "$BUILD/CPackConfig.cmake" ]] || fail "$BUILD has no CPackConfig.cmake: configure it with CMake first"
+
+for c in cpack dpkg-deb dpkg-shlibdeps objdump; do
+  if ! command -v "$c" >/dev/null; then
+    printf 'SKIP: %s is not installed (dpkg-dev and binutils come with build-essential)\n' "$c"
+    exit 77
+  fi
+done
+
+version=$(sed -n 's/^CMAKE_PROJECT_VERSION:[A-Z]*=//p' "$BUILD/CMakeCache.txt")
+[[ "$version" =~ ^[0-9]+\.[0-9]+\.[0-9]+$ ]] || fail "no project version in $BUILD/CMakeCache.txt: '$version'"
+expect_status 0 "$SIMBOB" --version
+version_line=$(cat "$LAST_OUT")
+
+# A scene that imports parts/ (so the installed scenes must bring their data files along).
+SCENE=imported_bodies
+expect_status 0 "$SIMBOB" run "$SCENES/$SCENE.xml" --duration 1 --quiet --out "$WORK/reference.csv"
+
+check "cmake --install --prefix puts the binary, the scenes with their parts, and the README there"
+t0=$SECONDS
+expect_status 0 cmake --install "$BUILD" --prefix "$WORK/prefix"
+say "cmake --install took $((SECONDS - t0)) s"
+P=$WORK/prefix
+[[ -x "$P/bin/simbob" ]] || fail "no executable $P/bin/simbob"
+for f in "$SCENES"/*.xml "$SCENES"/parts/*; do
+  expect_same_file "$f" "$P/share/simbob/scenes/${f#"$SCENES"/}"
+done
+expect_same_file "$REPO/README.md" "$P/share/doc/simbob/README.md"
+expect_status 0 "$P/bin/simbob" run "$P/share/simbob/scenes/$SCENE.xml" --duration 1 --quiet --out "$WORK/prefix.csv"
+expect_same_file "$WORK/prefix.csv" "$WORK/reference.csv"
+
+check "cpack -G DEB builds simbob_${version}_*.deb"
+t0=$SECONDS
+expect_status 0 cpack --config "$BUILD/CPackConfig.cmake" -G DEB -B "$WORK/pkg"
+say "cpack took $((SECONDS - t0)) s"
+debs=("$WORK"/pkg/simbob_"$version"_*.deb)
+[[ ${#debs[@]} -eq 1 && -f "${debs[0]}" ]] || fail "expected one simbob_${version}_*.deb in $WORK/pkg: $(ls "$WORK/pkg")"
+deb=${debs[0]}
+say "$(basename "$deb"): $(wc -c <"$deb") bytes"
+expect_eq "Package" "$(dpkg-deb -f "$deb" Package)" simbob
+expect_eq "Version" "$(dpkg-deb -f "$deb" Version)" "$version"
+expect_eq "Architecture" "$(dpkg-deb -f "$deb" Architecture)" "$(dpkg --print-architecture)"
+expect_eq "file name" "$(basename "$deb")" "simbob_${version}_$(dpkg --print-architecture).deb"
+
+say "at $SECONDS s"
+check "the package holds the binary, every scene and part, and the README under /usr"
+dpkg-deb -c "$deb" | awk '{print $6}' | sed 's|^\./|/|' >"$WORK/contents"
+for f in /usr/bin/simbob /usr/share/doc/simbob/README.md; do
+  grep -qxF "$f" "$WORK/contents" || fail "the package lacks $f"
+done
+for f in "$SCENES"/*.xml "$SCENES"/parts/*; do
+  grep -qxF "/usr/share/simbob/scenes/${f#"$SCENES"/}" "$WORK/contents" || fail "the package lacks scene file ${f#"$SCENES"/}"
+done
+
+say "at $SECONDS s"
+check "Depends: exactly the Debian packages of the libraries the binary links, no -dev"
+depends=$(dpkg-deb -f "$deb" Depends)
+say "Depends: $depends"
+[[ -n "$depends" ]] || fail "the package has no Depends (CPACK_DEBIAN_PACKAGE_SHLIBDEPS is off?)"
+# Package names only: drop version constraints, split alternatives.
+tr ',|' '\n\n' <<<"$depends" | sed 's/(.*)//; s/^ *//; s/ *$//' | sed '/^$/d' | sort -u >"$WORK/depends"
+if grep -E -- '-(dev|dbg)$' "$WORK/depends"; then fail "Depends names a development package"; fi
+# The packages that own the libraries the binary needs (NEEDED entries, resolved by ldd).
+objdump -p "$SIMBOB" | awk '/NEEDED/ {print $2}' >"$WORK/needed"
+[[ -s "$WORK/needed" ]] || fail "objdump found no NEEDED libraries in $SIMBOB"
+ldd "$SIMBOB" >"$WORK/ldd"
+# Each library under every name dpkg may know it by (merged /usr: /lib/... or /usr/lib/...),
+# all asked in one dpkg -S call (each call reads the whole file database).
+: >"$WORK/spellings"
+while read -r lib; do
+  path=$(awk -v l="$lib" '$1 == l && $3 ~ /^\// {print $3}' "$WORK/ldd")
+  [[ -n "$path" ]] || fail "ldd does not resolve $lib"
+  real=$(realpath "$path")
+  for p in "$path" "$real"; do printf '%s %s\n%s %s\n%s %s\n' "$lib" "$p" "$lib" "${p#/usr}" "$lib" "/usr${p#/usr}"; done
+done <"$WORK/needed" | sort -u >"$WORK/spellings"
+dpkg -S $(awk '{print $2}' "$WORK/spellings") >"$WORK/dpkg-S" 2>/dev/null || true
+: >"$WORK/owners"
+while read -r lib; do
+  owner=$(awk -v l="$lib" 'NR == FNR { if ($1 == l) want[$2] = 1; next }
+    ($2 in want) { sub(/:.*/, "", $1); print $1; exit }' "$WORK/spellings" "$WORK/dpkg-S")
+  [[ -n "$owner" ]] || fail "no package owns $lib ($(grep "^$lib " "$WORK/spellings" | head -n 1))"
+  printf '%s\n' "$owner" >>"$WORK/owners"
+done <"$WORK/needed"
+sort -u -o "$WORK/owners" "$WORK/owners"
+expect_eq "Depends vs the owners of the NEEDED libraries" "$(tr '\n' ' ' <"$WORK/depends")" "$(tr '\n' ' ' <"$WORK/owners")"
+# Each comes from Debian's archive (when this machine has apt lists to tell). One apt-cache
+# call for all: it reads the lists each time.
+apt-cache policy $(cat "$WORK/depends") >"$WORK/policy" 2>&1 || true
+# PACKAGE ORIGIN-URL lines: the archives apt knows each package from.
+awk '/^[^ ]+:$/ {p = substr($1, 1, length($1) - 1)} $2 ~ /^https?:/ {print p, $2}' "$WORK/policy" >"$WORK/origins"
+if grep -q '^libc6 .*debian\.org/debian' "$WORK/origins"; then
+  while read -r p; do
+    grep -q "^$p .*debian\.org/debian" "$WORK/origins" || fail "$p is not in a Debian archive known to apt: $(cat "$WORK/policy")"
+  done <"$WORK/depends"
+else
+  say "note: apt knows no Debian archive for libc6 here (no apt-get update?); the origin of Depends is not checked"
+fi
+
+say "at $SECONDS s"
+check "apt-get --simulate install ./$(basename "$deb") resolves on this machine"
+if command -v apt-get >/dev/null; then
+  (cd "$WORK/pkg" && expect_status 0 apt-get --simulate -o Debug::NoLocking=1 install "./$(basename "$deb")")
+  expect_match "apt installs simbob" "$WORK/last.out" "^Inst simbob "
+  if grep -E '^Inst [^ ]+-dev ' "$WORK/last.out"; then fail "apt would install a -dev package for simbob"; fi
+else
+  say "note: no apt-get here; the apt install simulation is not run"
+fi
+
+say "at $SECONDS s"
+check "the package unpacked into a temporary root runs --version and an example scene"
+mkdir "$WORK/root"
+expect_status 0 dpkg -x "$deb" "$WORK/root"
+R=$WORK/root
+expect_status 0 "$R/usr/bin/simbob" --version
+expect_eq "installed --version" "$(cat "$LAST_OUT")" "$version_line"
+[[ "$version_line" =~ ^simbob\ $version\ \(git\ [^\ ]+\)$ ]] || fail "--version prints '$version_line'"
+expect_status 0 "$R/usr/bin/simbob" run "$R/usr/share/simbob/scenes/$SCENE.xml" --duration 1 --quiet --out "$WORK/deb.csv"
+expect_same_file "$WORK/deb.csv" "$WORK/reference.csv"
+expect_eq "scene in the installed run's summary" "$(json_get "$WORK/deb.json" 'j["scene"]')" "$R/usr/share/simbob/scenes/$SCENE.xml"
+say "ok ($SECONDS s)"

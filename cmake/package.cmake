@@ -7,6 +7,8 @@
 # `apt install ./simbob_*.deb` on a Debian 12 node pulls exactly those.
 include(GNUInstallDirs)
 install(TARGETS simbob RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# Opened by the binary as ../lib/simbob/libsimbob_video.so when it writes a video.
+install(TARGETS simbob_video LIBRARY DESTINATION lib/simbob)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes/ DESTINATION ${CMAKE_INSTALL_DATADIR}/simbob/scenes)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
 
@@ -24,4 +26,6 @@ set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # simbob_0.1.0_amd64.deb
 set(CPACK_DEBIAN_PACKAGE_SECTION "science")
 set(CPACK_DEBIAN_PACKAGE_PRIORITY "optional")
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+# Opened with dlopen only when recording (lib/render), so not in the shlibs Depends.
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "libegl-mesa0, libgl1-mesa-dri, libosmesa6")
 include(CPack)

@@ -4,6 +4,7 @@ extern "C" {
 #include <libswscale/swscale.h>
 }
 
+#include "image/video_module.h"
 #include "simbob/video_probe.h"
 
 namespace simbob {
@@ -44,7 +45,7 @@ Image toRgb(const AVFrame* f) {
 
 }  // namespace
 
-Error probeVideo(const std::string& path, VideoInfo* info, int64_t frame_index, Image* frame) {
+Error ffmpegProbeVideo(const std::string& path, VideoInfo* info, int64_t frame_index, Image* frame) {
   av_log_set_level(AV_LOG_QUIET);
   *info = VideoInfo();
   if (frame) *frame = Image();

@@ -19,6 +19,7 @@ extern "C" {
 #include <cstring>
 #include <mutex>
 
+#include "image/video_module.h"
 #include "simbob/frame_sinks.h"
 
 namespace simbob {
@@ -295,7 +296,7 @@ class VideoSink : public FrameSink {
 
 }  // namespace
 
-std::string videoEncoderFor(const std::string& path, std::string* why) {
+std::string ffmpegEncoderFor(const std::string& path, std::string* why) {
   Choice c = choose(path);
   if (!c.codec) {
     if (why) *why = c.why;
@@ -304,7 +305,7 @@ std::string videoEncoderFor(const std::string& path, std::string* why) {
   return c.codec->name;
 }
 
-std::unique_ptr<FrameSink> makeVideoSink(const std::string& path, double fps, Error* err) {
+std::unique_ptr<FrameSink> ffmpegVideoSink(const std::string& path, double fps, Error* err) {
   return VideoSink::open(path, fps, err);
 }
 

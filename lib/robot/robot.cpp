@@ -59,7 +59,11 @@ std::vector<std::unique_ptr<Party>> robotParties(const Model& model) {
   std::vector<std::pair<std::string, robot::MotionControl2D*>> motions;
   for (size_t i = 0; i < model.controllers.size(); ++i)
     if (motion[i]) motions.emplace_back(model.controllers[i].key, motion[i]);
-  for (const SocketDef& d : model.sockets) out.push_back(robot::makeSocketPeer(d, model, motions));
+  for (const SocketDef& d : model.sockets) {
+    out.push_back(robot::makeSocketPeer(d, model, motions));
+    out.back()->name = "RCLocalSocketCommunicator '" + d.key + "'";
+    out.back()->loc = d.loc;
+  }
   return out;
 }
 

@@ -63,6 +63,7 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
   auto overran = [&](Party& p, std::chrono::steady_clock::time_point started) {
     const auto took = std::chrono::steady_clock::now() - started;
     if (took <= limit_d) return false;
+    if (p.failure()) return false;  // it gave up at its deadline and says why (checked below)
     res.status = RunStatus::Failed;
     char held[32];
     std::snprintf(held, sizeof held, "%.3g", std::chrono::duration<double>(took).count());

@@ -78,14 +78,17 @@ say "Depends: $depends"
 tr ',|' '\n\n' <<<"$depends" | sed 's/(.*)//; s/^ *//; s/ *$//' | sed '/^$/d' | sort -u >"$WORK/depends"
 if grep -E -- '-(dev|dbg)$' "$WORK/depends"; then fail "Depends names a development package"; fi
 # The packages that own the libraries the binary needs (NEEDED entries, resolved by ldd).
-objdump -p "$SIMBOB" | awk '/NEEDED/ {print $2}' >"$WORK/needed"
+# The binary and the video module it opens on demand (libsimbob_video.so: FFmpeg) both count.
+ELVES=("$SIMBOB" "$(dirname "$SIMBOB")/libsimbob_video.so")
+[[ -f "${ELVES[1]}" ]] || fail "no video module beside the binary: ${ELVES[1]}"
+for elf in "${ELVES[@]}"; do objdump -p "$elf" | awk '/NEEDED/ && $2 !~ /^ld-linux/ {print $2}'; done | sort -u >"$WORK/needed"
 [[ -s "$WORK/needed" ]] || fail "objdump found no NEEDED libraries in $SIMBOB"
-ldd "$SIMBOB" >"$WORK/ldd"
+for elf in "${ELVES[@]}"; do ldd "$elf"; done >"$WORK/ldd"
 # Each library under every name dpkg may know it by (merged /usr: /lib/... or /usr/lib/...),
 # all asked in one dpkg -S call (each call reads the whole file database).
 : >"$WORK/spellings"
 while read -r lib; do
-  path=$(awk -v l="$lib" '$1 == l && $3 ~ /^\// {print $3}' "$WORK/ldd")
+  path=$(awk -v l="$lib" '$1 == l && $3 ~ /^\// {print $3; exit}' "$WORK/ldd")
   [[ -n "$path" ]] || fail "ldd does not resolve $lib"
   real=$(realpath "$path")
   for p in "$path" "$real"; do printf '%s %s\n%s %s\n%s %s\n' "$lib" "$p" "$lib" "${p#/usr}" "$lib" "/usr${p#/usr}"; done

@@ -18,15 +18,16 @@ namespace simbob::cli {
 
 // Exit statuses (README "Exit statuses").
 constexpr int kExitOk = 0;
-constexpr int kExitResultWrong = 1;   // diverged run, golden mismatch, failed scene in a batch
-constexpr int kExitUsage = 64;        // EX_USAGE
-constexpr int kExitDataErr = 65;      // EX_DATAERR: invalid scene or data file
-constexpr int kExitNoInput = 66;      // EX_NOINPUT
-constexpr int kExitUnavailable = 69;  // EX_UNAVAILABLE: a party held the simulation past MaxAccessTime, or a socket peer is not there
-constexpr int kExitSoftware = 70;     // EX_SOFTWARE: internal error
-constexpr int kExitCantCreate = 73;   // EX_CANTCREAT
-constexpr int kExitIoErr = 74;        // EX_IOERR
-constexpr int kExitProtocol = 76;     // EX_PROTOCOL: a socket peer broke the protocol
+constexpr int kExitResultWrong = 1;  // diverged run, golden mismatch, failed scene in a batch
+constexpr int kExitUsage = 64;       // EX_USAGE
+constexpr int kExitDataErr = 65;     // EX_DATAERR: invalid scene or data file
+constexpr int kExitNoInput = 66;     // EX_NOINPUT
+constexpr int kExitUnavailable =
+    69;  // EX_UNAVAILABLE: a party held the simulation past MaxAccessTime, or a socket peer is not there
+constexpr int kExitSoftware = 70;    // EX_SOFTWARE: internal error
+constexpr int kExitCantCreate = 73;  // EX_CANTCREAT
+constexpr int kExitIoErr = 74;       // EX_IOERR
+constexpr int kExitProtocol = 76;    // EX_PROTOCOL: a socket peer broke the protocol
 constexpr int kExitSigInt = 130;
 constexpr int kExitSigTerm = 143;
 
@@ -65,7 +66,7 @@ struct Common {
   std::string settings;
   std::vector<std::string> plugins;  ///< --plugin FILE, in order
   std::string extension_folder;      ///< the global setting ExtensionFolder (--settings)
-  std::string texture_folder;  ///< TextureFolder of the global settings (relative to the settings file)
+  std::string texture_folder;        ///< TextureFolder of the global settings (relative to the settings file)
   /// The component types: built once by main (registerBuiltins) and passed down with the options.
   const Registry* registry = nullptr;
 };

@@ -46,11 +46,11 @@ struct RunArgs {
   int max_contacts = 0;           ///< overrides SceneSettings MaxContacts (0 = the scene's)
   bool out_given = false;         ///< --out was on the command line
   std::vector<std::string> sets;  ///< --set KEY.PARAM=VALUE, in order
-  int port_offset = 0;             ///< added to every socket communicator's Port
-  double peer_timeout = 10;        ///< wall-clock s for a socket peer to connect or answer
-  std::string record;         ///< --record DIR: frames as DIR/frame_000000.png ("" = no GL context at all)
-  std::string video;          ///< --video FILE.avi|FILE.mp4: the same frames as one video
-  double fps = 30;            ///< frames per simulated second of --record and --video
+  int port_offset = 0;            ///< added to every socket communicator's Port
+  double peer_timeout = 10;       ///< wall-clock s for a socket peer to connect or answer
+  std::string record;             ///< --record DIR: frames as DIR/frame_000000.png ("" = no GL context at all)
+  std::string video;              ///< --video FILE.avi|FILE.mp4: the same frames as one video
+  double fps = 30;                ///< frames per simulated second of --record and --video
   ViewArgs view;
 };
 int cmdRun(RunArgs& a, const Common& common);

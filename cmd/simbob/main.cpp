@@ -55,7 +55,8 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
   // A batch manifest appends per-scene options after the batch-wide ones: the last one wins
   // (every --set and --plugin counts).
   for (CLI::Option* o : run->get_options())
-    if (o->get_name() != "--set" && o->get_name() != "--plugin") o->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    if (o->get_name() != "--set" && o->get_name() != "--plugin")
+      o->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
 }
 
 }  // namespace simbob::cli

@@ -58,8 +58,8 @@ enum class ErrorKind {
   IoError,       ///< writing an output failed (EX_IOERR 74)
   Diverged,      ///< the simulation produced a non-finite or runaway state (exit 1)
   Internal,      ///< a bug in simbob (EX_SOFTWARE 70)
-  Unavailable,   ///< a party held the simulation past MaxAccessTime, or a socket peer never connected, went away or fell silent (EX_UNAVAILABLE 69)
-  Protocol,      ///< a socket peer sent a line the protocol does not allow (EX_PROTOCOL 76)
+  Unavailable,  ///< a party held the simulation past MaxAccessTime, or a socket peer never connected, went away or fell silent (EX_UNAVAILABLE 69)
+  Protocol,     ///< a socket peer sent a line the protocol does not allow (EX_PROTOCOL 76)
 };
 
 struct Error {

@@ -308,9 +308,7 @@ class SocketPeer : public Party {
         pollfd p{conn_, POLLIN, 0};
         const int r = ::poll(&p, 1, msLeft(until));
         if (r < 0 && errno == EINTR) continue;
-        if (r == 0)
-          return fail(ErrorKind::Unavailable,
-                      "the peer sent no 'step' within " + limit + at + which);
+        if (r == 0) return fail(ErrorKind::Unavailable, "the peer sent no 'step' within " + limit + at + which);
         char buf[4096];
         const ssize_t n = ::recv(conn_, buf, sizeof buf, 0);
         if (n < 0 && (errno == EINTR || errno == EAGAIN || errno == EWOULDBLOCK)) continue;

@@ -31,6 +31,8 @@ struct RunArgs {
   bool auto_disable = false;  ///< turns SceneSettings AutoDisable on
   int max_contacts = 0;       ///< overrides SceneSettings MaxContacts (0 = the scene's)
   bool out_given = false;     ///< --out was on the command line
+  std::string log;            ///< --log: comma list of joints, sensors, commands ("" = no run log)
+  std::string log_out;        ///< --log-out: the run log (default: --out with .csv -> .log.csv)
 };
 int cmdRun(RunArgs& a, const Common& common);
 

@@ -37,6 +37,8 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
   run->add_flag("--auto-disable", ra.auto_disable, "Let ODE put resting bodies to sleep (changes trajectories)");
   run->add_option("--max-contacts", ra.max_contacts, "Contact points per colliding pair (overrides the scene)")
       ->check(CLI::Range(1, 64));
+  run->add_option("--log", ra.log, "Also write a run log: comma list of joints, sensors, commands");
+  run->add_option("--log-out", ra.log_out, "The run log CSV (default: --out with .csv replaced by .log.csv)");
   run->add_flag("--batch-child", ra.batch_child, "(internal) started by simbob batch")->group("");
   addCommon(run, common);
   // A batch manifest appends per-scene options after the batch-wide ones: the last one wins.

@@ -113,16 +113,21 @@ struct ControllerDef {
     TwoWheel,         ///< (v, w) -> wheel velocities of actuators[0] (left), actuators[1] (right)
     CommandSchedule,  ///< timed commands to actuators[0], or to controllers[target] (TwoWheel)
     WallStop,         ///< drives controllers[target] (TwoWheel) at `speed` until sensors[0] touches, then stops
+    GoToPoint,        ///< steers controllers[target] (TwoWheel) until bodies[body] is within `tolerance` of goal
   } kind = DriveTest;
-  double period = 0.01;          ///< s, loop period (DriveTest, ServoTest)
-  double variation = 6.0;        ///< 1/min (DriveTest, ServoTest); wheel radius in m (TwoWheel)
-  double wheel_distance = 0.5;   ///< m (TwoWheel)
-  std::vector<int> actuators;    ///< indices into Model::actuators
-  int target = -1;               ///< CommandSchedule to a controller: index into Model::controllers
-  int values = 1;                ///< CommandSchedule: values per row (1, or 2 for linear angular)
-  std::vector<double> commands;  ///< CommandSchedule: rows of (time s, values...), times increasing
-  std::vector<int> sensors;      ///< indices into Model::sensors (WallStop)
-  double speed = 0.1;            ///< m/s (WallStop)
+  double period = 0.01;           ///< s, loop period (DriveTest, ServoTest)
+  double variation = 6.0;         ///< 1/min (DriveTest, ServoTest); wheel radius in m (TwoWheel)
+  double wheel_distance = 0.5;    ///< m (TwoWheel)
+  std::vector<int> actuators;     ///< indices into Model::actuators
+  int target = -1;                ///< CommandSchedule to a controller: index into Model::controllers
+  int values = 1;                 ///< CommandSchedule: values per row (1, or 2 for linear angular)
+  std::vector<double> commands;   ///< CommandSchedule: rows of (time s, values...), times increasing
+  std::vector<int> sensors;       ///< indices into Model::sensors (WallStop)
+  double speed = 0.1;             ///< m/s (WallStop, GoToPoint)
+  int body = -1;                  ///< GoToPoint: index into Model::bodies whose pose it reads
+  double goal_x = 0, goal_z = 0;  ///< GoToPoint: the target point on the ground plane (m)
+  double turn_rate = 1.0;         ///< GoToPoint: largest angular velocity commanded (rad/s)
+  double tolerance = 0.05;        ///< GoToPoint: m from the goal at which it stops
 };
 
 /// ODE collision space: how candidate pairs are found. Results differ between spaces (pairs

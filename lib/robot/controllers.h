@@ -34,5 +34,7 @@ std::unique_ptr<MotionControl2D> makeTwoWheel(const ControllerDef& c);
 std::unique_ptr<Party> makeCommandSchedule(const ControllerDef& c, MotionControl2D* target);
 /// `motion`: the RC2DMotionControl it drives (never nullptr).
 std::unique_ptr<Party> makeWallStop(const ControllerDef& c, MotionControl2D* motion);
+/// A SimControllerComponent: reads its body's pose from the World. `motion` never nullptr.
+std::unique_ptr<Party> makeGoToPoint(const ControllerDef& c, MotionControl2D* motion);
 
 }  // namespace simbob::robot

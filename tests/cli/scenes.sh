@@ -7,7 +7,8 @@ cli_setup "$@"
 
 # Mobile bodies of each documented scene (static bodies, ground and walls are not in the CSV).
 declare -A MOBILE=([pendulum]=1 [box_stack]=6 [chain]=5 [imported_bodies]=3 [mechanisms]=6 [bounce]=3 [robot]=4
-  [two_wheel_robot]=4 [wall_stop_robot]=4 [flywheel]=1 [servo_arm]=1)
+  [two_wheel_robot]=4 [wall_stop_robot]=4 [flywheel]=1 [servo_arm]=1
+  [go_to_point_robot]=4)
 
 count=0
 while read -r scene; do

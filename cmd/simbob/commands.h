@@ -52,6 +52,8 @@ struct RunArgs {
   std::string video;              ///< --video FILE.avi|FILE.mp4: the same frames as one video
   double fps = 30;                ///< frames per simulated second of --record and --video
   ViewArgs view;
+  std::string log;      ///< --log: comma list of joints, sensors, commands ("" = no run log)
+  std::string log_out;  ///< --log-out: the run log (default: --out with .csv -> .log.csv)
 };
 int cmdRun(RunArgs& a, const Common& common);
 

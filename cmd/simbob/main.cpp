@@ -46,6 +46,8 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
                   "Added to the Port of every RCLocalSocketCommunicator, so parallel runs do not clash (default 0)");
   run->add_option("--peer-timeout", ra.peer_timeout,
                   "Wall-clock s a socket peer may take to connect or to answer, 0.001 to 86400 (default 10)");
+  run->add_option("--log", ra.log, "Also write a run log: comma list of joints, sensors, commands");
+  run->add_option("--log-out", ra.log_out, "The run log CSV (default: --out with .csv replaced by .log.csv)");
   run->add_flag("--batch-child", ra.batch_child, "(internal) started by simbob batch")->group("");
   run->add_option("--record", ra.record, "Render frames to DIR/frame_000000.png, ... (frame n at t = n / fps)");
   run->add_option("--video", ra.video, "Render the frames into one video: FILE.avi (MJPEG) or FILE.mp4 (H.264)");

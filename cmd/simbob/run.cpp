@@ -21,6 +21,7 @@
 #include "simbob/render.h"
 #include "simbob/robot.h"
 #include "simbob/run.h"
+#include "simbob/run_log.h"
 #include "simbob/transform.h"
 #include "simbob/values.h"
 
@@ -200,11 +201,31 @@ class PartyRef : public Party {
 
 }  // namespace
 
+namespace {
+
+// The run log's path ("" without --log): --log-out, or --out with .csv replaced by .log.csv.
+std::string runLogPath(const RunArgs& a, const std::string& out) {
+  if (a.log.empty()) return "";
+  return a.log_out.empty() ? replaceExtension(out, ".log.csv") : a.log_out;
+}
+
+}  // namespace
+
 std::vector<NamedPath> runOutputs(const RunArgs& a) {
   const std::string out = a.out.empty() ? std::filesystem::path(a.scene).stem().string() + ".csv" : a.out;
-  if (isStreamOutput(out)) return {{"--out", out}};
-  return {
-      {"--out", out}, {"the summary", replaceExtension(out, ".json")}, {"the partial trajectory", partialPath(out)}};
+  std::vector<NamedPath> all;
+  if (isStreamOutput(out))
+    all = {{"--out", out}};
+  else
+    all = {
+        {"--out", out}, {"the summary", replaceExtension(out, ".json")}, {"the partial trajectory", partialPath(out)}};
+  // The run log and its partial come after those three (cmdRun counts on the order).
+  const std::string log = runLogPath(a, out);
+  if (!log.empty()) {
+    all.push_back({a.log_out.empty() ? "the run log" : "--log-out", log});
+    if (!isStreamOutput(log)) all.push_back({"the partial run log", partialPath(log)});
+  }
+  return all;
 }
 
 std::string runArgsProblem(const RunArgs& a) {
@@ -220,6 +241,15 @@ std::string runArgsProblem(const RunArgs& a) {
     p = "--peer-timeout must be between 0.001 and 86400 s, got " + formatNumber(a.peer_timeout);
   if (p.empty() && (a.port_offset < -65535 || a.port_offset > 65535))
     p = "--port-offset must be between -65535 and 65535, got " + std::to_string(a.port_offset);
+  if (p.empty() && !a.log_out.empty() && a.log.empty()) p = "--log-out needs --log (what to log)";
+  if (p.empty() && !a.log.empty()) {
+    RunLogWhat what;
+    if (!parseRunLogWhat(a.log, &what, &p)) return p;
+    if (a.log_out.empty() && !a.out.empty() && isStreamOutput(a.out))
+      p = "--log with --out " + a.out + " needs --log-out FILE";
+    else if (a.log_out == "-" && (a.out == "-" || a.json))
+      p = std::string("--log-out - and ") + (a.json ? "--json" : "--out -") + " would both write to stdout; drop one";
+  }
   return p;
 }
 
@@ -291,8 +321,15 @@ int cmdRun(RunArgs& a, const Common& common) {
   // Every output is checked, and created under a temporary name, before the run starts: a run
   // must not end in "cannot create" after simulating for an hour.
   std::vector<NamedPath> outputs = runOutputs(a);
-  const std::string summary_path = outputs.size() > 1 ? outputs[1].path : std::string();
-  const std::string partial = outputs.size() > 2 ? outputs[2].path : std::string();
+  auto outputNamed = [&outputs](const std::string& name) {
+    for (const NamedPath& o : outputs)
+      if (o.what == name) return o.path;
+    return std::string();
+  };
+  const std::string summary_path = outputNamed("the summary");
+  const std::string partial = outputNamed("the partial trajectory");
+  const std::string log_path = runLogPath(a, a.out);
+  const std::string log_partial = outputNamed("the partial run log");
   {
     std::vector<NamedPath> inputs;
     for (const std::string& f : scene.files) inputs.push_back({f == a.scene ? "the scene" : "the import", f});
@@ -376,11 +413,23 @@ int cmdRun(RunArgs& a, const Common& common) {
       return exitCodeFor(err.kind);
     }
   }
-  std::error_code ec;
-  if (!partial.empty() && std::filesystem::is_directory(partial, ec)) {
-    g_log.error({ErrorKind::CannotCreate, {partial, 0}, "cannot create: is a directory"});
-    return kExitCantCreate;
+  std::unique_ptr<OutputFile> log_file;
+  RunLogWhat log_what;
+  if (!log_path.empty()) {
+    std::string unused;
+    parseRunLogWhat(a.log, &log_what, &unused);  // checked by runArgsProblem
+    log_file = OutputFile::open(log_path, &err);
+    if (!log_file) {
+      g_log.error(err);
+      return exitCodeFor(err.kind);
+    }
   }
+  std::error_code ec;
+  for (const std::string& kept : {partial, log_partial})
+    if (!kept.empty() && std::filesystem::is_directory(kept, ec)) {
+      g_log.error({ErrorKind::CannotCreate, {kept, 0}, "cannot create: is a directory"});
+      return kExitCantCreate;
+    }
   catchStopSignals();
 
   RunOptions opts;
@@ -396,9 +445,16 @@ int cmdRun(RunArgs& a, const Common& common) {
   if (renderer)
     recorder = std::make_unique<Recorder>(*renderer, *sink, a.fps, toSimTime(model.settings.min_time_step).value_or(0),
                                           static_cast<int>(model.bodies.size()));
+  // Controllers after the sampler; the run log (first pass only) after the controllers, so that
+  // it records the commands they gave at each sample time; the recorder last (it sees what the
+  // controllers did at t), in the first run only.
   opts.make_parties = [&] {
-    std::vector<std::unique_ptr<Party>> parties = robotParties(model);  // controllers, after the sampler
-    // The recorder last (it sees what the controllers did at t), in the first run only.
+    std::vector<std::unique_ptr<Party>> parties = robotParties(model);
+    if (log_file && first_pass) {
+      const SimTime interval = std::max<SimTime>(toSimTime(opts.sample_interval).value_or(1), 1);
+      const SimTime min_step = toSimTime(model.settings.min_time_step).value_or(0);
+      parties.push_back(std::make_unique<RunLogParty>(model, log_what, interval, min_step, log_file.get()));
+    }
     if (recorder && first_pass) parties.push_back(std::make_unique<PartyRef>(*recorder));
     return parties;
   };
@@ -415,6 +471,7 @@ int cmdRun(RunArgs& a, const Common& common) {
                  "interrupted at t=" + formatNumber(last_sample) +
                      " s (the last whole sample; the step under way was abandoned)"});
     if (summary_file) summary_file->abandon();
+    if (log_file) log_file->abandon();  // the main thread may be writing it: keep none of it
     Error perr;
     if (writer->keepPartialFromOtherThread(partial, &perr)) {
       if (!writer->isStream()) g_log.info("kept the trajectory so far in " + partial);
@@ -481,6 +538,7 @@ int cmdRun(RunArgs& a, const Common& common) {
         watchdog.loopReturned();
         writer->abandon();
         if (summary_file) summary_file->abandon();
+        if (log_file) log_file->abandon();
         if (a.json) std::fputs(jsonText(summary).c_str(), stdout);
         g_log.error({ErrorKind::Diverged, {a.scene, 0}, "two runs in one process differ: " + where});
         return kExitResultWrong;
@@ -502,12 +560,14 @@ int cmdRun(RunArgs& a, const Common& common) {
   if (r.status == RunStatus::Completed) {
     summary["trajectory"] = a.out;
     summary["csv_bytes"] = writer->bytesWritten();
+    if (log_file) summary["run_log"] = log_path;
     const std::string text = jsonText(summary);
     std::vector<OutputFile*> also;
     if (summary_file) {
       summary_file->write(text);
       also.push_back(summary_file.get());
     }
+    if (log_file) also.push_back(log_file.get());
     // The trajectory and its summary replace the old pair together, or neither does.
     if (!writer->commit(&err, also)) {
       g_log.error(err);
@@ -535,12 +595,20 @@ int cmdRun(RunArgs& a, const Common& common) {
   // A failed run keeps what it computed, beside the output and never over it.
   Error perr;
   if (writer->keepPartial(partial, &perr) && !writer->isStream()) summary["partial_trajectory"] = partial;
+  Error lerr;
+  if (log_file && !log_file->isStream()) {
+    if (log_file->close(&lerr) && log_file->rename(log_partial, &lerr)) summary["partial_run_log"] = log_partial;
+  }
   if (a.json) std::fputs(jsonText(summary).c_str(), stdout);
   g_log.error(r.error);
   if (!perr.message.empty())
     g_log.error(perr);
   else if (!writer->isStream())
     g_log.info("kept the trajectory so far in " + partial);
+  if (!lerr.message.empty())
+    g_log.error(lerr);
+  else if (log_file && !log_file->isStream())
+    g_log.info("kept the run log so far in " + log_partial);
   if (r.status == RunStatus::Interrupted) return stopExitCode();
   return exitCodeFor(r.error.kind);
 }

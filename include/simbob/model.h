@@ -112,6 +112,7 @@ struct ControllerDef {
     CommandSchedule,  ///< timed commands to actuators[0], or to controllers[target] (TwoWheel)
     WallStop,         ///< drives controllers[target] (TwoWheel) at `speed` until sensors[0] touches, then stops
     Plugin,           ///< a plug-in's type: `make` builds its party
+    GoToPoint,        ///< steers controllers[target] (TwoWheel) until bodies[body] is within `tolerance` of goal
   } kind = DriveTest;
   double period = 0.01;               ///< s, loop period (DriveTest, ServoTest)
   double variation = 6.0;             ///< 1/min (DriveTest, ServoTest); wheel radius in m (TwoWheel)
@@ -124,7 +125,11 @@ struct ControllerDef {
   std::vector<double> numbers;        ///< Plugin: its number parameters, in the order it declared them
   PluginPartyFactory make = nullptr;  ///< Plugin
   std::vector<int> sensors;           ///< indices into Model::sensors (WallStop)
-  double speed = 0.1;                 ///< m/s (WallStop)
+  double speed = 0.1;                 ///< m/s (WallStop, GoToPoint)
+  int body = -1;                      ///< GoToPoint: index into Model::bodies whose pose it reads
+  double goal_x = 0, goal_z = 0;      ///< GoToPoint: the target point on the ground plane (m)
+  double turn_rate = 1.0;             ///< GoToPoint: largest angular velocity commanded (rad/s)
+  double tolerance = 0.05;            ///< GoToPoint: m from the goal at which it stops
 };
 
 /// An RCLocalSocketCommunicator (guide 6.11.6): a peer program on 127.0.0.1 that reads the

@@ -75,6 +75,9 @@ class World {
   /// The force (N) or torque (N m) drive i applied in the last step, in the joint's sense
   /// (0 for servos and velocity drives, whose force comes from the solver).
   double driveEffort(int actuator) const;
+  /// Actuator i's current command as recorded by setCommand (clamped), or its value before the
+  /// first command (0; a servo's start position). For logs (`run --log commands`).
+  double command(int actuator) const;
 
   /// Proximity sensors, in Model::sensors order.
   int sensorCount() const;

@@ -2,7 +2,8 @@
 // the components it refers to implement the interface it needs and lowers to a ControllerDef;
 // lib/robot runs them as parties of the run loop. RCCommandSchedule (simbob's own) sends timed
 // commands to a drive, a servo or an RC2DMotionControl; RCWallStop drives an RC2DMotionControl
-// forward until an RCContactSensor touches something.
+// forward until an RCContactSensor touches something; RCSimGoToPoint (a SimControllerComponent,
+// guide 2.1) reads a body's pose and steers an RC2DMotionControl to a point.
 #include <cmath>
 
 #include "compile/context.h"
@@ -13,7 +14,7 @@ namespace simbob {
 
 namespace {
 
-enum class ControllerKind { DriveTest, ServoTest, TwoWheelMotionControl, CommandSchedule, WallStop, Plugin };
+enum class ControllerKind { DriveTest, ServoTest, TwoWheelMotionControl, CommandSchedule, WallStop, GoToPoint, Plugin };
 
 constexpr LinkParam kDrive{"Drive"};
 constexpr LinkParam kPosControl{"PosControl"};
@@ -27,6 +28,10 @@ constexpr ValueParam<std::string> kCommands{"Commands"};
 constexpr LinkParam kMotion{"Motion"};
 constexpr LinkParam kSensor{"Sensor"};
 constexpr ValueParam<double> kSpeed{"Speed"};
+constexpr LinkParam kBody{"Body"};
+constexpr ValueParam<std::string> kGoal{"Target"};  // RCSimGoToPoint's point (not a Ref)
+constexpr ValueParam<double> kTurnRate{"TurnRate"};
+constexpr ValueParam<double> kTolerance{"Tolerance"};
 
 /// Model::actuators index of a drive or servo component, or -1 after an error.
 int actuatorOf(CompileContext& ctx, const Component& c, const Link& l, const Component& drive) {
@@ -126,6 +131,38 @@ int sensorOf(CompileContext& ctx, const Component& c, LinkParam param) {
   return i < 0 ? -1 : i;
 }
 
+/// Model::bodies index of the mobile body behind `param`, or -1 after an error.
+int mobileBodyOf(CompileContext& ctx, const Component& c, LinkParam param) {
+  const Link& l = c.get(param);
+  if (l.comp < 0) {
+    if (!l.isRef()) ctx.error(c, std::string("parameter '") + param.name + "' is required (a Ref to a mobile body)");
+    return -1;
+  }
+  const Component& t = ctx.at(l.comp);
+  const int i = ctx.bodyIndex(ctx.modelKey(t));
+  if (i < 0 && !ctx.failedQuietly())
+    ctx.error(l, c,
+              std::string("parameter '") + param.name +
+                  "' must refer to a mobile body built before this controller, but " + CompileContext::describe(t) +
+                  " is not one");
+  return i < 0 ? -1 : i;
+}
+
+/// RCSimGoToPoint's Target "x z"; false after an error.
+bool parseGoal(CompileContext& ctx, const Component& c, double* x, double* z) {
+  std::string err;
+  auto nums = parseNumberList(c.get(kGoal), &err);
+  if (!nums || nums->size() != 2) {
+    ctx.errorAt(c.slotOf(kGoal), c,
+                "parameter 'Target' must be a point 'x z' on the ground plane (2 numbers, m)" +
+                    (nums ? ", got " + std::to_string(nums->size()) + " numbers" : ": " + err));
+    return false;
+  }
+  *x = (*nums)[0];
+  *z = (*nums)[1];
+  return true;
+}
+
 }  // namespace
 
 void registerControllers(Registry& r) {
@@ -176,6 +213,17 @@ void registerControllers(Registry& r) {
           number(kSpeed, 0.1, "m/s", "forward speed until the sensor touches", Range::NonNegative), period},
          {},
          "Drives forward until its contact sensor touches something, then stops for good."});
+  r.add({"RCSimGoToPoint",
+         Family::Controller,
+         int(ControllerKind::GoToPoint),
+         {componentParam(kMotion, {Family::Controller}, "", "motion control to steer (Ref, RC2DMotionControl)"),
+          componentParam(kBody, {Family::Body}, "", "the robot's body whose pose it reads (Ref, mobile body)"),
+          text(kGoal, "", "the point to reach, 'x z' on the ground plane (m; Y is up)"),
+          number(kSpeed, 0.1, "m/s", "linear speed when heading straight at the target", Range::NonNegative),
+          number(kTurnRate, 1.0, "rad/s", "largest angular velocity", Range::NonNegative),
+          number(kTolerance, 0.05, "m", "distance to the target at which it stops for good", Range::Positive), period},
+         {},
+         "Sim controller: reads its body's pose and steers a motion control to a point, then stops."});
 }
 
 PluginHost::~PluginHost() = default;
@@ -292,6 +340,17 @@ void lowerController(CompileContext& ctx, const Component& c) {
       for (const PluginNumber& n : t.numbers) d.numbers.push_back(c.get(ValueParam<double>{n.name.c_str()}));
       break;
     }
+    case ControllerKind::GoToPoint:
+      d.kind = ControllerDef::GoToPoint;
+      d.period = c.get(kPeriod);
+      d.speed = c.get(kSpeed);
+      d.turn_rate = c.get(kTurnRate);
+      d.tolerance = c.get(kTolerance);
+      d.target = motionControlOf(ctx, c, kMotion);
+      d.body = mobileBodyOf(ctx, c, kBody);
+      if (!parseGoal(ctx, c, &d.goal_x, &d.goal_z)) ok = false;
+      if (d.target < 0 || d.body < 0) ok = false;
+      break;
   }
   if (!ok) return;
   ctx.controller_index[ci] = static_cast<int>(ctx.model.controllers.size());

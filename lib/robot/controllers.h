@@ -41,5 +41,7 @@ std::unique_ptr<Party> makeWallStop(const ControllerDef& c, MotionControl2D* mot
 /// RC2DMotionControl in `motions` (key, controller).
 std::unique_ptr<Party> makeSocketPeer(const SocketDef& d, const Model& model,
                                       std::vector<std::pair<std::string, MotionControl2D*>> motions);
+/// A SimControllerComponent: reads its body's pose from the World. `motion` never nullptr.
+std::unique_ptr<Party> makeGoToPoint(const ControllerDef& c, MotionControl2D* motion);
 
 }  // namespace simbob::robot

@@ -49,6 +49,9 @@ std::vector<std::unique_ptr<Party>> robotParties(const Model& model) {
       case ControllerDef::WallStop:
         out[i] = robot::makeWallStop(c, motion[static_cast<size_t>(c.target)]);
         break;
+      case ControllerDef::GoToPoint:
+        out[i] = robot::makeGoToPoint(c, motion[static_cast<size_t>(c.target)]);
+        break;
     }
   }
   for (size_t i = 0; i < out.size(); ++i) {

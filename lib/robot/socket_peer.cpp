@@ -150,7 +150,7 @@ class SocketPeer : public Party {
   /// Milliseconds left until `deadline` (0 when past it), for poll(2).
   static int msLeft(Wall::time_point deadline) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Wall::now()).count();
-    return left <= 0 ? 0 : static_cast<int>(std::min<long long>(left, 1000 * 1000));
+    return left <= 0 ? 0 : static_cast<int>(std::min<long long>(left, 1000LL * 1000));
   }
 
   Wall::time_point deadline() const {

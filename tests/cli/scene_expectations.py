@@ -322,8 +322,22 @@ def gallery(c):
     c.near("rod height at t = 10 s (m)", p[1], 0.1, 0.01)
 
 
+def go_to_point_robot(c):
+    # RCSimGoToPoint stops for good once the chassis centre is within Tolerance (0.05 m) of the
+    # target (1, -1); the last command may be up to one Period (0.01 s) old at Speed 0.3 m/s.
+    # The braking distance of the velocity drives (MaxPower 5 N m) is well below 1 mm.
+    rows = c.body("Bot.Cart.Chassis")
+    end = rows[-1][1]
+    c.below("distance to the target (1, -1) at the end (m)", math.hypot(end[0] - 1, end[2] + 1), 0.05 + 0.3 * 0.01)
+    c.below("motion over the last 4 s (m)", math.dist(c.at("Bot.Cart.Chassis", 6)[1], end), 1e-4)
+    # It got there, rather than starting near: it covered most of the 1.41 m.
+    c.below("distance to the target after 2 s, less than at the start (m)",
+            math.hypot(c.at("Bot.Cart.Chassis", 2)[1][0] - 1, c.at("Bot.Cart.Chassis", 2)[1][2] + 1), 1.0)
+
+
 SCENES = {f.__name__: f for f in (pendulum, box_stack, chain, imported_bodies, mechanisms, bounce, robot, flywheel,
-                                  servo_arm, two_wheel_robot, wall_stop_robot, sliding_box, socket_robot, gallery)}
+                                  servo_arm, two_wheel_robot, wall_stop_robot, sliding_box, socket_robot, gallery,
+                                  go_to_point_robot)}
 
 if __name__ == "__main__":
     name, path = sys.argv[1], sys.argv[2]

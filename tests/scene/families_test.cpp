@@ -81,7 +81,9 @@ std::string element(const TypeSpec& t, const std::string& construction_key) {
       if (has("PosControl")) p += "<PosControl Ref=\"Bot.C.S\"/>";
       if (has("ControlLeft")) p += "<ControlLeft Ref=\"Bot.C.V\"/>";
       if (has("ControlRight")) p += "<ControlRight Ref=\"Bot.C.V\"/>";
-      if (has("Target")) p += "<Target Ref=\"Bot.C.D\"/><Commands Value=\"0 0.5; 1 -0.5\"/>";
+      if (has("Commands")) p += "<Target Ref=\"Bot.C.D\"/><Commands Value=\"0 0.5; 1 -0.5\"/>";
+      if (has("Target") && !has("Commands")) p += "<Target Value=\"1 0\"/>";  // RCSimGoToPoint's point
+      if (has("Body")) p += "<Body Ref=\"Bot.C.H.Wheel\"/>";
       if (has("Motion")) p += "<Motion Ref=\"Bot.M\"/>";
       if (has("Sensor")) p += "<Sensor Ref=\"Bot.C.P\"/>";
       break;

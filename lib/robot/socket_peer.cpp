@@ -32,7 +32,7 @@ namespace simbob::robot {
 namespace {
 
 constexpr int kProtocolVersion = 2;  ///< 2: sensor lines (version 1 did not promise to skip unknown lines)
-constexpr size_t kMaxLine = 4096;  ///< bytes of one line from the peer, newline excluded
+constexpr size_t kMaxLine = 4096;    ///< bytes of one line from the peer, newline excluded
 
 using Wall = std::chrono::steady_clock;
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Example peer of simbob's RCLocalSocketCommunicator (README "Socket protocol", version 1).
+"""Example peer of simbob's RCLocalSocketCommunicator (README "Socket protocol", version 2).
 
 Drives a two-wheeled robot through its RC2DMotionControl (scenes/socket_robot.xml): forward at
 0.2 m/s for 2 s, then a turn to the left on the spot with a proportional law on the heading
@@ -18,7 +18,7 @@ import socket
 import sys
 import time
 
-PROTOCOL = 1
+PROTOCOL = 2
 
 
 class Peer:
@@ -100,13 +100,15 @@ def main():
     first = peer.line().split()
     if len(first) != 4 or first[0] != "simbob" or first[1] != str(PROTOCOL):
         sys.exit(f"simbob_client: not a simbob protocol {PROTOCOL} hello: {' '.join(first)}")
-    motions, bodies = [], []
+    motions, bodies, sensors = [], [], {}
     while (line := peer.line()) != "end":
         kind, key = line.split()[:2]
         if kind == "motion":
             motions.append(key)
         elif kind == "body":
             bodies.append(key)
+        elif kind == "sensor":
+            sensors[key] = None  # its reading comes with each period's state
     motion = args.motion or (motions[0] if motions else None)
     body = args.body or (bodies[0] if bodies else None)
     if motion not in motions or body not in bodies:
@@ -128,6 +130,12 @@ def main():
             w = line.split()
             if w[0] == "body":
                 poses[w[1]] = [float(v) for v in w[2:]]
+            elif w[0] == "sensor":
+                # This control law does not use sensors; it reports when one switches.
+                touching = w[2] == "1"
+                if sensors.get(w[1]) is not None and sensors[w[1]] != touching:
+                    print(f"simbob_client: t={words[1]} s sensor {w[1]} {w[2]}", file=sys.stderr)
+                sensors[w[1]] = touching
         linear, angular = command(t, poses[body])
         # repr() writes the shortest round-trip form: the same commands give the same bytes.
         peer.send(f"set {motion} {linear!r} {angular!r}\nstep\n")

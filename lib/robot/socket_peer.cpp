@@ -31,8 +31,8 @@ namespace simbob::robot {
 
 namespace {
 
-constexpr int kProtocolVersion = 1;
-constexpr size_t kMaxLine = 4096;  ///< bytes of one line from the peer, newline excluded
+constexpr int kProtocolVersion = 2;  ///< 2: sensor lines (version 1 did not promise to skip unknown lines)
+constexpr size_t kMaxLine = 4096;    ///< bytes of one line from the peer, newline excluded
 
 using Wall = std::chrono::steady_clock;
 
@@ -259,6 +259,7 @@ class SocketPeer : public Party {
     for (const ActuatorDef& a : model_.actuators) s += "actuator " + a.key + " " + actuatorKind(a.kind) + "\n";
     for (const auto& m : motions_) s += "motion " + m.first + "\n";
     for (const JointDef& j : model_.joints) s += "joint " + j.key + " " + jointKind(j.kind) + "\n";
+    for (const SensorDef& d : model_.sensors) s += "sensor " + d.key + "\n";
     for (const BodyDef& b : model_.bodies) s += "body " + b.key + "\n";
     s += "end\n";
     return s;
@@ -274,6 +275,8 @@ class SocketPeer : public Party {
       appendNumber(s, js.velocity);
       s += '\n';
     }
+    for (size_t i = 0; i < model_.sensors.size(); ++i)
+      s += "sensor " + model_.sensors[i].key + (world.touching(static_cast<int>(i)) ? " 1\n" : " 0\n");
     for (size_t i = 0; i < model_.bodies.size(); ++i) {
       const BodyState b = world.body(static_cast<int>(i));
       s += "body " + model_.bodies[i].key;

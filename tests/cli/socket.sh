@@ -157,4 +157,23 @@ expect_eq "port range message" "$(cat "$LAST_ERR")" \
   "$SCENE:$LINE: error: RCLocalSocketCommunicator 'Bot.Cart.Link': Port 47311 + --port-offset 20000 is outside 1 to 65535"
 expect_status 64 "$SIMBOB" run "$SCENE" --duration 1 --peer-timeout 0 --out x.csv -q
 expect_match "timeout range message" "$LAST_ERR" "--peer-timeout must be between 0.001 and 86400 s, got 0"
+check "a peer reads the front sensor of wall_stop_robot: 0 at t=0, then 1 from the touch on, switching once"
+# wall_stop_robot.xml with a communicator added; its RCWallStop still drives. The sensor reaches
+# the wall after the chassis has gone 1.1 m at no more than 0.2 m/s: not before t=5.5 s.
+port=$(free_port)
+sed "s|<!-- Velocity-controlled wheel drives. -->|<RCLocalSocketCommunicator Key=\"Link\"><IsServer Value=\"true\"/><Port Value=\"$BASE_PORT\"/><Period Value=\"0.05\"/></RCLocalSocketCommunicator>|" \
+  "$SCENES/wall_stop_robot.xml" >sensor_robot.xml
+grep -q RCLocalSocketCommunicator sensor_robot.xml || fail "the communicator was not added"
+start_peer python3 "$CLI_DIR/socket_sensor_peer.py" --port "$port"
+expect_status 0 "$SIMBOB" run sensor_robot.xml --duration 8 --port-offset $((port - BASE_PORT)) --out sensor.csv -q
+expect_peer_status 0
+expect_eq "hello names the sensor" "$(grep '^hello' peer.out)" "hello sensor Bot.Cart.Front"
+expect_eq "one reading per exchange (t = 0, 0.05, ..., 8)" "$(grep -vc '^hello' peer.out)" 161
+expect_eq "reading at t=0" "$(sed -n 2p peer.out)" "0 Bot.Cart.Front 0"
+expect_eq "reading at the end" "$(tail -n 1 peer.out)" "8 Bot.Cart.Front 1"
+switches=$(grep -v '^hello' peer.out | awk '$3 != prev && NR > 1 {n++} {prev = $3} END {print n + 0}')
+expect_eq "the reading switches once" "$switches" 1
+first_touch=$(grep -v '^hello' peer.out | awk '$3 == 1 {print $1; exit}')
+python3 -c "import sys; t = float('$first_touch'); sys.exit(0 if 5.5 <= t <= 6.5 else 1)" ||
+  fail "the sensor switched at t=$first_touch s, expected 5.5 to 6.5 s"
 say "ok: socket"

@@ -91,16 +91,16 @@ expect_file gone.partial.csv
 last=$(tail -n 1 gone.partial.csv | cut -d, -f1)
 expect_eq "partial ends with the sample at the failure" "$last" "1"
 
-check "a peer that stops answering at t=1 s: exit 69 after MaxAccessTime (1 s, below --peer-timeout 2 s); the peer is told why"
+check "a peer that stops answering at t=1 s: exit 69 after MaxAccessTime (2 s, below --peer-timeout 30 s); the peer is told why"
 port=$(free_port)
 start_fault_peer --port "$port" --mode stall --at 1
-expect_status 69 "$SIMBOB" run "$SCENE" --duration 10 --peer-timeout 2 --port-offset $((port - BASE_PORT)) \
+expect_status 69 "$SIMBOB" run "$SCENE" --duration 10 --peer-timeout 30 --set SceneSettings.MaxAccessTime=2 --port-offset $((port - BASE_PORT)) \
   --out stall.csv -q
 expect_peer_status 0
 expect_eq "stall message" "$(cat "$LAST_ERR")" \
-  "$SCENE:$LINE: error: RCLocalSocketCommunicator 'Bot.Cart.Link' (127.0.0.1:$port): the peer sent no 'step' within 1 s at t=1 s (MaxAccessTime)"
+  "$SCENE:$LINE: error: RCLocalSocketCommunicator 'Bot.Cart.Link' (127.0.0.1:$port): the peer sent no 'step' within 2 s at t=1 s (MaxAccessTime)"
 expect_eq "the peer got an error line" "$(cat peer.out)" \
-  "error the peer sent no 'step' within 1 s at t=1 s (MaxAccessTime)"
+  "error the peer sent no 'step' within 2 s at t=1 s (MaxAccessTime)"
 
 check "a peer that breaks the protocol: exit 76 quoting its line"
 port=$(free_port)
@@ -165,7 +165,7 @@ sed "s|<!-- Velocity-controlled wheel drives. -->|<RCLocalSocketCommunicator Key
   "$SCENES/wall_stop_robot.xml" >sensor_robot.xml
 grep -q RCLocalSocketCommunicator sensor_robot.xml || fail "the communicator was not added"
 start_peer python3 "$CLI_DIR/socket_sensor_peer.py" --port "$port"
-expect_status 0 "$SIMBOB" run sensor_robot.xml --duration 8 --port-offset $((port - BASE_PORT)) --out sensor.csv -q
+expect_status 0 "$SIMBOB" run sensor_robot.xml --duration 8 --set SceneSettings.MaxAccessTime=30 --port-offset $((port - BASE_PORT)) --out sensor.csv -q
 expect_peer_status 0
 expect_eq "hello names the sensor" "$(grep '^hello' peer.out)" "hello sensor Bot.Cart.Front"
 expect_eq "one reading per exchange (t = 0, 0.05, ..., 8)" "$(grep -vc '^hello' peer.out)" 161

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "components/families.h"
+#include "simbob/document_ini.h"
 #include "simbob/registry.h"
 #include "simbob/values.h"
 
@@ -216,12 +217,20 @@ int readSettings(Common& c) {
   c.extension_folder = holder.at(comp).get(kExtensionFolderParam);
   if (!c.extension_folder.empty() && std::filesystem::path(c.extension_folder).is_relative())
     c.extension_folder = (std::filesystem::path(c.settings).parent_path() / c.extension_folder).string();
+  c.document_ini = holder.at(comp).get(kDocumentIniParam);
   const std::string& tex = holder.at(comp).get(kTextureFolderParam);
   if (!tex.empty()) {
     const size_t slash = c.settings.find_last_of('/');
     c.texture_folder = tex[0] == '/' || slash == std::string::npos ? tex : c.settings.substr(0, slash + 1) + tex;
   }
   return 0;
+}
+
+void appendSceneInputs(const Scene& scene, const std::string& path, const std::vector<Override>& overrides,
+                       std::vector<NamedPath>* inputs) {
+  for (const std::string& f : scene.files) inputs->push_back({f == path ? "the scene" : "the import", f});
+  for (const Override& o : overrides)
+    if (o.line > 0) inputs->push_back({"the DocumentIni", o.place});
 }
 
 bool loadAndCompile(const std::string& path, const Registry& reg, Scene* scene, Model* model, int* code, bool warnings,
@@ -232,7 +241,7 @@ bool loadAndCompile(const std::string& path, const Registry& reg, Scene* scene, 
   // compiles it too and reports what the compile step finds in the same pass.
   const bool ok = (loaded || (collect_all && !scene->comps.empty())) && compileScene(*scene, model, d) && loaded;
   std::vector<NamedPath> read = inputs;
-  for (const std::string& f : scene->files) read.push_back({f == path ? "the scene" : "the import", f});
+  appendSceneInputs(*scene, path, overrides, &read);
   if (g_log.file) {
     if (int c = checkOutputs({{"--log-file", g_log.path}}, read)) {
       *code = c;
@@ -258,6 +267,15 @@ int parseSetOptions(const std::vector<std::string>& sets, std::vector<Override>*
     out->push_back(std::move(o));
   }
   return kExitOk;
+}
+
+int sceneOverrides(const Common& c, const std::string& scene, const std::vector<std::string>& sets,
+                   std::vector<Override>* out) {
+  if (c.document_ini) {
+    Diagnostics d;
+    if (!readDocumentIni(documentIniPath(scene), out, d)) return report(d, true);
+  }
+  return parseSetOptions(sets, out);
 }
 
 }  // namespace simbob::cli

@@ -67,6 +67,7 @@ struct Common {
   std::vector<std::string> plugins;  ///< --plugin FILE, in order
   std::string extension_folder;      ///< the global setting ExtensionFolder (--settings)
   std::string texture_folder;        ///< TextureFolder of the global settings (relative to the settings file)
+  bool document_ini = false;         ///< DocumentIni of the global settings: read <scene>.ini's cameras
   /// The component types: built once by main (registerBuiltins) and passed down with the options.
   const Registry* registry = nullptr;
 };
@@ -82,18 +83,29 @@ struct NamedPath {
   std::string path;
 };
 
+/// Appends the files a loaded scene was read from, as inputs no output may replace: the scene,
+/// its imports, and the DocumentIni its overrides came from.
+void appendSceneInputs(const Scene& scene, const std::string& path, const std::vector<Override>& overrides,
+                       std::vector<NamedPath>* inputs);
+
 /// Load and compile a scene, reporting problems; *code is the exit status on failure. The log
 /// file must not be any file read (the scene, its imports, `inputs`): nothing is appended to
 /// an input, and that is a usage error.
 /// With `collect_all` (simbob check), a scene that failed to load is compiled too, so that one
 /// pass reports every problem the compile step can still see.
-/// `overrides` (--set) change the graph between loading and compiling.
+/// `overrides` (--set, a DocumentIni) change the graph between loading and compiling.
 bool loadAndCompile(const std::string& path, const Registry& reg, Scene* scene, Model* model, int* code, bool warnings,
                     bool collect_all, const std::vector<NamedPath>& inputs = {},
                     const std::vector<Override>& overrides = {});
 
 /// The `--set` options as overrides; a malformed one is reported (usage error, 64).
 int parseSetOptions(const std::vector<std::string>& sets, std::vector<Override>* out);
+
+/// The overrides of a scene: with the global setting DocumentIni, the camera settings of the INI
+/// beside the scene (README "Recording"), then the `--set` options (which win). Appends to out;
+/// returns 0 or the exit status of the error it reported.
+int sceneOverrides(const Common& c, const std::string& scene, const std::vector<std::string>& sets,
+                   std::vector<Override>* out);
 
 /// JSON text of a report or summary; invalid UTF-8 (from keys in input files) is replaced, never
 /// thrown.

@@ -71,8 +71,9 @@ int cmdDump(const std::string& path, const std::string& format, const Common& co
             const std::vector<std::string>& sets = {});
 
 /// The overrides a run applies: the shorthands (--space, --auto-disable, --max-contacts) as
-/// SceneSettings overrides, then every --set in order. 64 after reporting a malformed one.
-int runOverrides(const RunArgs& a, std::vector<Override>* out);
+/// SceneSettings overrides, then the DocumentIni's cameras (when the global setting is on), then
+/// every --set in order. 64 after reporting a malformed one.
+int runOverrides(const RunArgs& a, const Common& common, std::vector<Override>* out);
 int cmdTypes(bool markdown, const Registry& reg);
 
 struct CompareArgs {

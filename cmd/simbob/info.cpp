@@ -11,7 +11,7 @@ namespace simbob::cli {
 
 int cmdCheck(const std::string& path, const Common& common, const std::vector<std::string>& sets) {
   std::vector<Override> overrides;
-  if (int c = parseSetOptions(sets, &overrides)) return c;
+  if (int c = sceneOverrides(common, path, sets, &overrides)) return c;
   exitOnStopSignals(path, "loading");
   Scene scene;
   Model model;
@@ -30,13 +30,13 @@ int cmdCheck(const std::string& path, const Common& common, const std::vector<st
 int cmdDump(const std::string& path, const std::string& format, const Common& common,
             const std::vector<std::string>& sets) {
   std::vector<Override> overrides;
-  if (int c = parseSetOptions(sets, &overrides)) return c;
+  if (int c = sceneOverrides(common, path, sets, &overrides)) return c;
   exitOnStopSignals(path, "loading");
   Scene scene;
   Diagnostics d;
   const bool ok = loadScene(path, *common.registry, &scene, d) && applyOverrides(scene, overrides, d);
   std::vector<NamedPath> read = {{"--settings", common.settings}};
-  for (const std::string& f : scene.files) read.push_back({f == path ? "the scene" : "the import", f});
+  appendSceneInputs(scene, path, overrides, &read);
   if (int c = checkOutputs({{"--log-file", g_log.path}}, read)) return c;
   if (!ok) return report(d, true);
   std::string text = writeScene(scene, format == "ini" ? Format::Ini : Format::Xml, true);

@@ -95,16 +95,18 @@ int cmdRender(const RenderArgs& a, const Common& common) {
   }
   RenderOptions ro;
   if (int c = renderOptions(a.view, common, &ro)) return c;
+  std::vector<Override> overrides;
+  if (int c = sceneOverrides(common, a.scene, {}, &overrides)) return c;
   exitOnStopSignals(a.scene, "loading");
   Scene scene;
   Model model;
   int code = 0;
-  if (!loadAndCompile(a.scene, *common.registry, &scene, &model, &code, true, false, {{"--settings", common.settings}}))
+  if (!loadAndCompile(a.scene, *common.registry, &scene, &model, &code, true, false, {{"--settings", common.settings}},
+                      overrides))
     return code;
   {
-    std::vector<NamedPath> inputs;
-    for (const std::string& f : scene.files) inputs.push_back({f == a.scene ? "the scene" : "the import", f});
-    inputs.push_back({"--settings", common.settings});
+    std::vector<NamedPath> inputs = {{"--settings", common.settings}};
+    appendSceneInputs(scene, a.scene, overrides, &inputs);
     if (int c = checkOutputs({{"--out", a.out}, {"--log-file", g_log.path}}, inputs)) return c;
   }
   scene = Scene{};

@@ -253,7 +253,7 @@ std::string runArgsProblem(const RunArgs& a) {
   return p;
 }
 
-int runOverrides(const RunArgs& a, std::vector<Override>* out) {
+int runOverrides(const RunArgs& a, const Common& common, std::vector<Override>* out) {
   auto shorthand = [&](const std::string& option, const std::string& param, const std::string& value) {
     Override o;
     o.key = "SceneSettings";
@@ -269,7 +269,7 @@ int runOverrides(const RunArgs& a, std::vector<Override>* out) {
   if (a.auto_disable) shorthand("--auto-disable", "AutoDisable", "True");
   if (a.max_contacts > 0)
     shorthand("--max-contacts " + std::to_string(a.max_contacts), "MaxContacts", std::to_string(a.max_contacts));
-  return parseSetOptions(a.sets, out);
+  return sceneOverrides(common, a.scene, a.sets, out);
 }
 
 int cmdRun(RunArgs& a, const Common& common) {
@@ -278,7 +278,7 @@ int cmdRun(RunArgs& a, const Common& common) {
     return kExitUsage;
   }
   std::vector<Override> overrides;
-  if (int c = runOverrides(a, &overrides)) return c;
+  if (int c = runOverrides(a, common, &overrides)) return c;
   exitOnStopSignals(a.scene, "loading");
   Scene scene;
   Model model;
@@ -331,9 +331,8 @@ int cmdRun(RunArgs& a, const Common& common) {
   const std::string log_path = runLogPath(a, a.out);
   const std::string log_partial = outputNamed("the partial run log");
   {
-    std::vector<NamedPath> inputs;
-    for (const std::string& f : scene.files) inputs.push_back({f == a.scene ? "the scene" : "the import", f});
-    inputs.push_back({"--settings", common.settings});
+    std::vector<NamedPath> inputs = {{"--settings", common.settings}};
+    appendSceneInputs(scene, a.scene, overrides, &inputs);
     outputs.push_back({"--log-file", g_log.path});
     if (!a.video.empty()) outputs.push_back({"--video", a.video});
     if (int c = checkOutputs(outputs, inputs)) return c;

@@ -22,6 +22,9 @@ struct Override {
   /// Where messages about it point: "--set Crate.Material.Friction=abc" (parseOverride), or
   /// the shorthand it stands for ("--space sap").
   std::string place;
+  int line = 0;  ///< line in place when that is a file (a DocumentIni), else 0
+  /// Only a camera's parameters may be set (DocumentIni, guide 3.3.1).
+  bool cameras_only = false;
 };
 
 /// Splits `KEY.PARAM=VALUE` at the first '=' and the last '.' before it. Returns false with a

@@ -33,9 +33,11 @@ class EglContext : public GlContext {
     if (display_ != EGL_NO_DISPLAY) {
       egl_.MakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
       if (context_ != EGL_NO_CONTEXT) egl_.DestroyContext(display_, context_);
-      egl_.Terminate(display_);
     }
-    // The library stays loaded: Mesa registers exit handlers inside it.
+    // Neither the library nor the display is ever let go: Mesa registers exit handlers inside
+    // libEGL, and eglTerminate unloads its driver, which the next context would load again.
+    // eglGetPlatformDisplay hands every context the same display and eglInitialize of an
+    // initialized display does nothing, so contexts still come and go freely.
   }
   std::string name() const override { return name_; }
 

@@ -199,19 +199,22 @@ class IniSource : public Source {
 
 }  // namespace
 
-std::shared_ptr<IniDoc> parseIni(const std::string& text, std::string* error, int* error_line) {
+bool scanIni(const std::string& text, const IniEntryFn& entry, std::string* error, int* error_line) {
   // A NUL byte is no text: the XML writer (C strings) would silently cut the value there.
   if (size_t nul = text.find('\0'); nul != std::string::npos) {
     *error = "NUL byte in INI text";
     *error_line = static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(nul), '\n')) + 1;
-    return nullptr;
+    return false;
   }
-  auto doc = std::make_shared<IniDoc>();
-  doc->root.line = 1;
   std::string section;
   // A UTF-8 byte order mark (Windows editors write one) is no part of the first key.
   size_t pos = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
   int line_no = 0;
+  auto failAt = [&](std::string message) {
+    *error = std::move(message);
+    *error_line = line_no;
+    return false;
+  };
   while (pos <= text.size()) {
     size_t end = text.find('\n', pos);
     if (end == std::string::npos) end = text.size();
@@ -223,39 +226,36 @@ std::shared_ptr<IniDoc> parseIni(const std::string& text, std::string* error, in
       continue;
     }
     if (line.front() == '[') {
-      if (line.back() != ']' || line.size() < 3) {
-        *error = "malformed section header '" + quoteInput(line) + "'";
-        *error_line = line_no;
-        return nullptr;
-      }
+      if (line.back() != ']' || line.size() < 3) return failAt("malformed section header '" + quoteInput(line) + "'");
       section = std::string(trim(line.substr(1, line.size() - 2)));
       if (end == text.size()) break;
       continue;
     }
     size_t eq = line.find('=');
-    if (eq == std::string_view::npos) {
-      *error = "expected 'key = value', got '" + quoteInput(line) + "'";
-      *error_line = line_no;
-      return nullptr;
-    }
+    if (eq == std::string_view::npos) return failAt("expected 'key = value', got '" + quoteInput(line) + "'");
     std::string key(trim(line.substr(0, eq)));
     std::string_view value = trim(line.substr(eq + 1));
     if (value.size() >= 2 && value.front() == '"' && value.back() == '"') value = value.substr(1, value.size() - 2);
-    if (key.empty()) {
-      *error = "empty key before '='";
-      *error_line = line_no;
-      return nullptr;
-    }
-    std::string full = section.empty() ? key : section + "." + key;
+    if (key.empty()) return failAt("empty key before '='");
+    std::string message;
+    if (!entry(section.empty() ? key : section + "." + key, value, line_no, &message)) return failAt(message);
+    if (end == text.size()) break;
+  }
+  return true;
+}
+
+std::shared_ptr<IniDoc> parseIni(const std::string& text, std::string* error, int* error_line) {
+  auto doc = std::make_shared<IniDoc>();
+  doc->root.line = 1;
+  auto entry = [&](const std::string& full, std::string_view value, int line_no, std::string* message) {
     IniNode* node = &doc->root;
     size_t start = 0;
     while (true) {
       size_t dot = full.find('.', start);
       std::string part = full.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
       if (part.empty()) {
-        *error = "empty name in key '" + quoteInput(full) + "'";
-        *error_line = line_no;
-        return nullptr;
+        *message = "empty name in key '" + quoteInput(full) + "'";
+        return false;
       }
       std::string lp = lower(part);
       IniNode* next = node->child(lp);
@@ -271,15 +271,15 @@ std::shared_ptr<IniDoc> parseIni(const std::string& text, std::string* error, in
       start = dot + 1;
     }
     if (node->has_value) {
-      *error = "key '" + quoteInput(full) + "' assigned twice (first on line " + std::to_string(node->line) + ")";
-      *error_line = line_no;
-      return nullptr;
+      *message = "key '" + quoteInput(full) + "' assigned twice (first on line " + std::to_string(node->line) + ")";
+      return false;
     }
     node->has_value = true;
     node->value = std::string(value);
     node->line = line_no;
-    if (end == text.size()) break;
-  }
+    return true;
+  };
+  if (!scanIni(text, entry, error, error_line)) return nullptr;
   return doc;
 }
 

@@ -20,6 +20,16 @@ std::string what(const Component& c, const std::string& key) {
   return c.type->name + " '" + (c.qkey.empty() ? key : c.qkey) + "'";
 }
 
+/// Whether KEY is a camera or lies inside one ("Side", "Side.Pose"): some prefix of it, cut at a
+/// dot, is the key of a camera component.
+bool namesCamera(const Scene& scene, const std::string& key) {
+  for (size_t end = key.size(); end != std::string::npos && end > 0; end = key.rfind('.', end - 1)) {
+    auto it = scene.by_qkey.find(key.substr(0, end));
+    if (it != scene.by_qkey.end() && scene.at(it->second).type->family == Family::Camera) return true;
+  }
+  return false;
+}
+
 class Resolver {
  public:
   explicit Resolver(Scene& scene) : scene_(scene) {}
@@ -81,7 +91,7 @@ bool parseOverride(std::string_view text, Override* out, std::string* error) {
 bool applyOverrides(Scene& scene, const std::vector<Override>& overrides, Diagnostics& diag) {
   Resolver resolver(scene);
   for (const Override& o : overrides) {
-    const SourceLoc at{o.place, 0};
+    const SourceLoc at{o.place, o.line};
     const int index = resolver.resolve(o.key);
     if (index < 0) {
       std::vector<std::string> keys;
@@ -93,6 +103,10 @@ bool applyOverrides(Scene& scene, const std::vector<Override>& overrides, Diagno
       continue;
     }
     Component& c = scene.at(index);
+    if (o.cameras_only && !namesCamera(scene, o.key)) {
+      diag.error(at, what(c, o.key) + " is no camera: a DocumentIni sets camera parameters only (guide 3.3.1)");
+      continue;
+    }
     const int pi = c.type->paramIndex(o.param);
     if (pi < 0) {
       std::vector<std::string> names;

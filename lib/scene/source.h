@@ -2,8 +2,10 @@
 // driven by the registry's parameter tables, reads both XML (4.2) and INI (4.1).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "simbob/error.h"
@@ -69,6 +71,13 @@ std::unique_ptr<Source> xmlRoot(const std::shared_ptr<XmlDoc>& doc, std::string*
 /// The document node itself, whose one parameter is the root element: imports read
 /// component("Body") / component("Joint") / list("RefList") from it.
 std::unique_ptr<Source> xmlDocument(const std::shared_ptr<XmlDoc>& doc);
+
+/// One `key = value` line of an INI text: the key with its section as prefix ("[A] b = 1" gives
+/// "A.b"), the value trimmed and unquoted, the line number. Returns false with a message to stop.
+using IniEntryFn = std::function<bool(const std::string& key, std::string_view value, int line, std::string* message)>;
+/// The INI syntax of guide 4.1, line by line: comments (';', '#'), [sections], key = value.
+/// Returns false with the message and line of the first malformed line or refused entry.
+bool scanIni(const std::string& text, const IniEntryFn& entry, std::string* error, int* error_line);
 
 struct IniDoc;
 std::shared_ptr<IniDoc> parseIni(const std::string& text, std::string* error, int* error_line);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "simbob/document_ini.h"
 #include "test_registry.h"
 #include "scene/scene_helpers.h"
 
@@ -817,4 +818,14 @@ Component3.Key = Rubber
   CHECK(full.find("<MaxTimeStep Value=\"0.001\" />") != std::string::npos);
   CHECK(full.find("<CameraList />") != std::string::npos);
   CHECK(full.find("Key=\"Pose\"") == std::string::npos);
+}
+
+TEST_CASE("load: the DocumentIni beside a scene has the scene's name with .ini", "[scene][load]") {
+  CHECK(documentIniPath("robot.xml") == "robot.ini");
+  CHECK(documentIniPath("scenes/v1.2/robot.xml") == "scenes/v1.2/robot.ini");
+  // A dot in a folder is no extension; a name without one gets .ini appended.
+  CHECK(documentIniPath("scenes/v1.2/robot") == "scenes/v1.2/robot.ini");
+  CHECK(documentIniPath(".hidden") == ".hidden.ini");
+  // An INI scene would be its own DocumentIni: there is none.
+  CHECK(documentIniPath("robot.ini").empty());
 }

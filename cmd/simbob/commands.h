@@ -25,6 +25,9 @@ struct ViewArgs {
   std::string camera;            ///< a camera's key ("" = the scene's first, else a default view)
   std::string quality;           ///< view quality level ("" = shadows)
   std::string gl;                ///< egl, osmesa ("" = $SIMBOB_GL, else EGL falling back to OSMesa)
+  /// Frames per simulated second: of --record and --video; for `render --at T`, those of the
+  /// recording whose camera moves the still repeats.
+  double fps = 30;
 };
 void addViewOptions(CLI::App* app, ViewArgs& v);
 /// Checks the view options and fills `o` (the back end from $SIMBOB_GL when --gl is not given);
@@ -50,7 +53,6 @@ struct RunArgs {
   double peer_timeout = 10;       ///< wall-clock s for a socket peer to connect or answer
   std::string record;             ///< --record DIR: frames as DIR/frame_000000.png ("" = no GL context at all)
   std::string video;              ///< --video FILE.avi|FILE.mp4: the same frames as one video
-  double fps = 30;                ///< frames per simulated second of --record and --video
   ViewArgs view;
   std::string log;      ///< --log: comma list of joints, sensors, commands ("" = no run log)
   std::string log_out;  ///< --log-out: the run log (default: --out with .csv -> .log.csv)

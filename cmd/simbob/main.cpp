@@ -51,7 +51,6 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
   run->add_flag("--batch-child", ra.batch_child, "(internal) started by simbob batch")->group("");
   run->add_option("--record", ra.record, "Render frames to DIR/frame_000000.png, ... (frame n at t = n / fps)");
   run->add_option("--video", ra.video, "Render the frames into one video: FILE.avi (MJPEG) or FILE.mp4 (H.264)");
-  run->add_option("--fps", ra.fps, "Frames per simulated second of --record and --video (default 30)");
   addViewOptions(run, ra.view);
   addCommon(run, common);
   // A batch manifest appends per-scene options after the batch-wide ones: the last one wins

@@ -38,6 +38,29 @@ class Still : public Party {
   bool taken_ = false;
 };
 
+/// The frames a recording at --fps draws before --at, replayed without drawing, so that a
+/// camera that moves (RCTrackingCamera) or remembers (AutoViewAngle) is where it would be.
+class Follower : public Party {
+ public:
+  Follower(Renderer& renderer, double fps, SimTime at, SimTime min_step, size_t bodies)
+      : renderer_(renderer), fps_(fps), at_(at), min_step_(min_step), poses_(bodies) {}
+  SimTime first() override { return at_ > 0 ? 0 : kNever; }
+  SimTime onGrant(SimTime now, World& world) override {
+    for (int i = 0; i < world.bodyCount(); ++i) poses_[static_cast<size_t>(i)] = world.body(i).pose;
+    renderer_.follow(poses_);
+    ++frames_;
+    const SimTime next = nextFrameTime(&frames_, fps_, now, min_step_);
+    return next < at_ ? next : kNever;
+  }
+
+ private:
+  Renderer& renderer_;
+  double fps_;
+  SimTime at_, min_step_;
+  std::vector<Transform> poses_;
+  uint64_t frames_ = 0;
+};
+
 }  // namespace
 
 void addViewOptions(CLI::App* app, ViewArgs& v) {
@@ -45,6 +68,9 @@ void addViewOptions(CLI::App* app, ViewArgs& v) {
   app->add_option("--camera", v.camera, "Camera key (default: the scene's first camera, else a view of every body)");
   app->add_option("--quality", v.quality,
                   "View quality: frame, wire, plane, flat, smooth, textures, shadows (default), transparency, fog");
+  app->add_option("--fps", v.fps,
+                  "Frames per simulated second (default 30): of --record and --video; of the recording a still at "
+                  "--at matches (moving cameras follow its frames)");
   app->add_option("--gl", v.gl, "GL back end: egl or osmesa (default: $SIMBOB_GL, else EGL, falling back to OSMesa)");
 }
 
@@ -61,6 +87,10 @@ int renderOptions(const ViewArgs& v, const Common& common, RenderOptions* o) {
   }
   o->width = w;
   o->height = h;
+  if (!(v.fps > 0 && v.fps <= 1000)) {
+    g_log.error({ErrorKind::InvalidInput, {}, "--fps must be above 0 and at most 1000, got " + formatNumber(v.fps)});
+    return kExitUsage;
+  }
   if (!v.quality.empty() && !parseQuality(v.quality, &o->quality)) {
     g_log.error({ErrorKind::InvalidInput,
                  {},
@@ -128,9 +158,12 @@ int cmdRender(const RenderArgs& a, const Common& common) {
     std::vector<std::unique_ptr<Party>> owned = robotParties(model);
     const std::optional<SimTime> at = toSimTime(a.at);
     Still still(at ? *at : kNever, model.bodies.size());
+    Follower follower(*renderer, a.view.fps, at ? *at : kNever, toSimTime(model.settings.min_time_step).value_or(0),
+                      model.bodies.size());
     std::vector<Party*> parties;
-    parties.reserve(owned.size() + 1);
+    parties.reserve(owned.size() + 2);
     for (auto& p : owned) parties.push_back(p.get());
+    parties.push_back(&follower);
     parties.push_back(&still);
     RunResult r = runParties(model, opts, parties);
     if (r.status != RunStatus::Completed || !still.taken()) {

@@ -343,10 +343,6 @@ int cmdRun(RunArgs& a, const Common& common) {
   std::unique_ptr<Renderer> renderer;
   std::unique_ptr<FrameSink> sink;
   if (!a.record.empty() || !a.video.empty()) {
-    if (!(a.fps > 0 && a.fps <= 1000)) {
-      g_log.error({ErrorKind::InvalidInput, {}, "--fps must be above 0 and at most 1000, got " + formatNumber(a.fps)});
-      return kExitUsage;
-    }
     RenderOptions ro;
     if (int c = renderOptions(a.view, common, &ro)) return c;
     std::vector<std::unique_ptr<FrameSink>> sinks;
@@ -376,7 +372,7 @@ int cmdRun(RunArgs& a, const Common& common) {
         g_log.error({ErrorKind::InvalidInput, {}, "--size must be even in both directions for H.264 (--video .mp4)"});
         return kExitUsage;
       }
-      std::unique_ptr<FrameSink> video = makeVideoSink(a.video, a.fps, &err_early);
+      std::unique_ptr<FrameSink> video = makeVideoSink(a.video, a.view.fps, &err_early);
       if (!video) {
         g_log.error(err_early);
         return exitCodeFor(err_early.kind);
@@ -442,7 +438,7 @@ int cmdRun(RunArgs& a, const Common& common) {
   bool first_pass = true;
   std::unique_ptr<Recorder> recorder;
   if (renderer)
-    recorder = std::make_unique<Recorder>(*renderer, *sink, a.fps, toSimTime(model.settings.min_time_step).value_or(0),
+    recorder = std::make_unique<Recorder>(*renderer, *sink, a.view.fps, toSimTime(model.settings.min_time_step).value_or(0),
                                           static_cast<int>(model.bodies.size()));
   // Controllers after the sampler; the run log (first pass only) after the controllers, so that
   // it records the commands they gave at each sample time; the recorder last (it sees what the

@@ -50,7 +50,12 @@ class Renderer {
   static std::unique_ptr<Renderer> create(const Model& model, const RenderOptions& opts, Error* err);
   virtual ~Renderer();
   /// Draws the model with body i at poses[i] at simulated time `t` (s) into `out` (rows top first).
+  /// A tracking camera moves and a spotlight with AutoViewAngle takes its first distance here,
+  /// so the picture depends on the frames drawn before it.
   virtual const Error* render(const std::vector<Transform>& poses, double t, Image* out) = 0;
+  /// Moves the camera as drawing a frame at these poses would, without drawing: a still at T
+  /// follows the frames a recording would have drawn before T.
+  virtual void follow(const std::vector<Transform>& poses) = 0;
   /// "EGL (surfaceless)", "EGL (device)" or "OSMesa".
   virtual std::string backendName() const = 0;
   /// GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
@@ -58,6 +63,11 @@ class Renderer {
   /// The camera drawn through: its key, or "(default)".
   virtual std::string cameraName() const = 0;
 };
+
+/// The time of the frame after the one just drawn as frame number `drawn - 1` at `now`: frame n
+/// shows t = n / fps, skipping frames closer than `min_step` to now (the clock cannot reach them
+/// apart from it). Advances *drawn past the skipped frames; kNever beyond the clock's range.
+SimTime nextFrameTime(uint64_t* drawn, double fps, SimTime now, SimTime min_step);
 
 /// The recorder: a party that renders frame n at t = n / fps (each at the time the clock
 /// reached, within MinTimeStep of the request) and hands it to `sink`. It only reads the world.

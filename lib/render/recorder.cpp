@@ -27,12 +27,16 @@ SimTime Recorder::onGrant(SimTime now, World& world) {
     return kNever;
   }
   ++frames_;
+  return nextFrameTime(&frames_, fps_, now, min_step_);
+}
+
+SimTime nextFrameTime(uint64_t* drawn, double fps, SimTime now, SimTime min_step) {
   // Frame n shows t = n / fps: the next request is the first such time beyond MinTimeStep.
   for (;;) {
-    const std::optional<SimTime> next = toSimTime(static_cast<double>(frames_) / fps_);
+    const std::optional<SimTime> next = toSimTime(static_cast<double>(*drawn) / fps);
     if (!next) return kNever;
-    if (*next - now > min_step_) return *next;
-    ++frames_;  // a frame closer than MinTimeStep to this one cannot be reached apart from it
+    if (*next - now > min_step) return *next;
+    ++*drawn;  // a frame closer than MinTimeStep to this one cannot be reached apart from it
   }
 }
 

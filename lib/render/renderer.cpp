@@ -101,6 +101,11 @@ class GlRenderer : public Renderer {
   }
   std::string cameraName() const override { return camera_ < 0 ? "(default)" : model_.cameras[camera_].key; }
 
+  void follow(const std::vector<Transform>& poses) override {
+    double va = 0, near_clip = 0, far_clip = 0;
+    cameraFrame(poses, &va, &near_clip, &far_clip);
+  }
+
   const Error* render(const std::vector<Transform>& poses, double /*t*/, Image* out) override {
     const int w = opts_.width, h = opts_.height;
     const ViewSettings& view = model_.view;

@@ -61,6 +61,16 @@ check "render --at 0 draws the same picture as frame 0 of a recording"
 expect_status 0 "$SIMBOB" render "$BASIC" --out still.png --size 160x120 --camera Front
 [[ -d rec-egl ]] && expect_same_file still.png rec-egl/frame_000000.png
 
+check "render --at T follows the frames of a recording at --fps: the tracking camera's still is frame T*fps"
+GALLERY="$SCENES/gallery.xml"
+expect_status 0 "$SIMBOB" run "$GALLERY" --duration 1 --out chase.csv --record chase --fps 10 --size 96x72 --camera Chase
+expect_status 0 "$SIMBOB" render "$GALLERY" --at 1 --fps 10 --out chase-still.png --size 96x72 --camera Chase
+expect_same_file chase-still.png chase/frame_000010.png
+# The camera did move: the still from frame 0's place differs (else the check proves nothing).
+cmp -s chase/frame_000000.png chase/frame_000010.png && fail "Chase frames 0 and 10 are the same picture"
+expect_status 64 "$SIMBOB" render "$GALLERY" --at 1 --fps 0 --out x.png
+expect_match "--fps" "$LAST_ERR" "--fps must be above 0 and at most 1000, got 0"
+
 check "DocumentIni: camera Front given Top's pose in basic.ini draws Top's picture (the same bytes)"
 mkdir docini
 cp "$BASIC" docini/basic.xml

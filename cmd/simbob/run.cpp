@@ -438,8 +438,9 @@ int cmdRun(RunArgs& a, const Common& common) {
   bool first_pass = true;
   std::unique_ptr<Recorder> recorder;
   if (renderer)
-    recorder = std::make_unique<Recorder>(*renderer, *sink, a.view.fps, toSimTime(model.settings.min_time_step).value_or(0),
-                                          static_cast<int>(model.bodies.size()));
+    recorder =
+        std::make_unique<Recorder>(*renderer, *sink, a.view.fps, toSimTime(model.settings.min_time_step).value_or(0),
+                                   static_cast<int>(model.bodies.size()));
   // Controllers after the sampler; the run log (first pass only) after the controllers, so that
   // it records the commands they gave at each sample time; the recorder last (it sees what the
   // controllers did at t), in the first run only.

@@ -140,7 +140,9 @@ double record(const Model& model, Renderer& renderer, const Settings& s, bool pi
     inner.push_back(std::move(sink));
     sink = simbob::makeAsyncSink(std::move(inner), s.queue);
   }
-  simbob::Recorder recorder(renderer, *sink, s.fps, simbob::toSimTime(model.settings.min_time_step).value_or(0),
+  std::unique_ptr<simbob::FrameDrawer> drawer =
+      pipelined ? simbob::drawOnRenderThread(renderer, *sink) : simbob::drawInline(renderer, *sink);
+  simbob::Recorder recorder(*drawer, s.fps, simbob::toSimTime(model.settings.min_time_step).value_or(0),
                             static_cast<int>(model.bodies.size()));
   simbob::RunOptions opts;
   opts.duration = (s.frames - 1) / s.fps;  // frames at 0, 1/fps, ..., duration

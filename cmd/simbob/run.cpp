@@ -338,8 +338,9 @@ int cmdRun(RunArgs& a, const Common& common) {
     if (int c = checkOutputs(outputs, inputs)) return c;
   }
 
-  // --record / --video: the renderer (a GL context) exists only then. Frames are encoded on
-  // another thread (makeAsyncSink) while the next ones render and the physics steps on.
+  // --record / --video: the renderer (a GL context) exists only then. Frames are drawn on a
+  // render thread (drawOnRenderThread) and encoded on another (makeAsyncSink) while the physics
+  // steps on.
   std::unique_ptr<Renderer> renderer;
   std::unique_ptr<FrameSink> sink;
   if (!a.record.empty() || !a.video.empty()) {
@@ -436,11 +437,12 @@ int cmdRun(RunArgs& a, const Common& common) {
   std::vector<double> rec_times, rec_poses;
   std::atomic<double> last_sample{0.0};
   bool first_pass = true;
+  std::unique_ptr<FrameDrawer> drawer;
   std::unique_ptr<Recorder> recorder;
-  if (renderer)
-    recorder =
-        std::make_unique<Recorder>(*renderer, *sink, a.view.fps, toSimTime(model.settings.min_time_step).value_or(0),
-                                   static_cast<int>(model.bodies.size()));
+  if (renderer) drawer = drawOnRenderThread(*renderer, *sink);
+  if (drawer)
+    recorder = std::make_unique<Recorder>(*drawer, a.view.fps, toSimTime(model.settings.min_time_step).value_or(0),
+                                          static_cast<int>(model.bodies.size()));
   // Controllers after the sampler; the run log (first pass only) after the controllers, so that
   // it records the commands they gave at each sample time; the recorder last (it sees what the
   // controllers did at t), in the first run only.

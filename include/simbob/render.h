@@ -1,7 +1,8 @@
 // Off-screen rendering of a compiled model (issue #12, Record): lib/render, the only code with
 // GL headers. A Renderer owns one GL context (EGL without a display, or OSMesa), draws the
 // model's visuals at given body poses through one camera and returns an Image. The Recorder is
-// a party of the run loop that renders at t = n / fps and hands the frames to a FrameSink.
+// a party of the run loop that asks for a frame at t = n / fps; a FrameDrawer draws it and hands
+// it to a FrameSink, on the run loop's thread or on a render thread of its own.
 #pragma once
 
 #include <memory>
@@ -56,6 +57,11 @@ class Renderer {
   /// Moves the camera as drawing a frame at these poses would, without drawing: a still at T
   /// follows the frames a recording would have drawn before T.
   virtual void follow(const std::vector<Transform>& poses) = 0;
+  /// The GL context is current on one thread at a time: the creating thread, until it calls
+  /// release(); then the thread that calls acquire(). Drawing happens on that thread only.
+  /// acquire() fails (null return is success) if the back end refuses the context.
+  virtual const Error* acquire() = 0;
+  virtual void release() = 0;
   /// "EGL (surfaceless)", "EGL (device)" or "OSMesa".
   virtual std::string backendName() const = 0;
   /// GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
@@ -69,11 +75,36 @@ class Renderer {
 /// apart from it). Advances *drawn past the skipped frames; kNever beyond the clock's range.
 SimTime nextFrameTime(uint64_t* drawn, double fps, SimTime now, SimTime min_step);
 
-/// The recorder: a party that renders frame n at t = n / fps (each at the time the clock
-/// reached, within MinTimeStep of the request) and hands it to `sink`. It only reads the world.
+/// What the recorder hands each frame to: the body poses at simulated time t, to be drawn by a
+/// Renderer and passed on to a FrameSink, in the order given.
+class FrameDrawer {
+ public:
+  virtual ~FrameDrawer() = default;
+  /// The frame at these poses. The first error of drawing or of the sink, else null.
+  virtual const Error* draw(const std::vector<Transform>& poses, double t) = 0;
+  /// Every frame drawn and handed on, then the sink finished. Null on success.
+  virtual const Error* finish() = 0;
+};
+
+/// Draws on the calling thread and hands each frame to the sink there: step, draw, encode, step.
+std::unique_ptr<FrameDrawer> drawInline(Renderer& renderer, FrameSink& sink);
+
+/// A render thread: the renderer's GL context moves to a thread of its own, which draws the
+/// frames in order from a queue of at most `queue_frames` pose sets and hands each to the sink
+/// there, so that the physics steps on while the last frame draws (issue #12 point 7). draw()
+/// returns once the poses are queued (waiting only while the queue is full). finish() waits for
+/// the queue to drain, gives the context back to the calling thread and finishes the sink;
+/// destroying it unfinished drops what is queued and gives the context back too. Neither the
+/// renderer nor the sink may be used elsewhere in between. The frames are the same bytes as
+/// drawInline's: one renderer, the same poses, the same order.
+std::unique_ptr<FrameDrawer> drawOnRenderThread(Renderer& renderer, FrameSink& sink, size_t queue_frames = 2);
+
+/// The recorder: a party that asks for frame n at t = n / fps (each at the time the clock
+/// reached, within MinTimeStep of the request) and hands the poses to a FrameDrawer. It only
+/// reads the world.
 class Recorder : public Party {
  public:
-  Recorder(Renderer& renderer, FrameSink& sink, double fps, SimTime min_step, int body_count);
+  Recorder(FrameDrawer& drawer, double fps, SimTime min_step, int body_count);
   SimTime first() override;
   SimTime onGrant(SimTime now, World& world) override;
   void finish(SimTime end, World& world) override;
@@ -81,8 +112,7 @@ class Recorder : public Party {
   uint64_t frames() const { return frames_; }
 
  private:
-  Renderer& renderer_;
-  FrameSink& sink_;
+  FrameDrawer& drawer_;
   double fps_;
   SimTime min_step_;
   std::vector<Transform> poses_;

@@ -40,6 +40,10 @@ class EglContext : public GlContext {
     // initialized display does nothing, so contexts still come and go freely.
   }
   std::string name() const override { return name_; }
+  bool makeCurrent() override {
+    return egl_.MakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_) == EGL_TRUE;
+  }
+  void release() override { egl_.MakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT); }
 
   bool open(Error* err) {
     void* lib = dlopen("libEGL.so.1", RTLD_NOW | RTLD_LOCAL);

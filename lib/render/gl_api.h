@@ -70,6 +70,11 @@ class GlContext {
  public:
   virtual ~GlContext() = default;
   virtual std::string name() const = 0;
+  /// Makes the context current on the calling thread (it must not be current on another one);
+  /// false if the back end refuses.
+  virtual bool makeCurrent() = 0;
+  /// Makes no context current on the calling thread, so that another thread may take it.
+  virtual void release() = 0;
   GlApi gl;
 };
 

@@ -1,6 +1,5 @@
-// The recorder party: frame n at t = n / fps, rendered from the world's poses and handed to a
-// FrameSink. It reads the world and never changes it, so the trajectory is the same with or
-// without --record.
+// The recorder party: frame n at t = n / fps, the world's poses handed to a FrameDrawer. It
+// reads the world and never changes it, so the trajectory is the same with or without --record.
 #include <optional>
 
 #include "simbob/physics.h"
@@ -8,20 +7,14 @@
 
 namespace simbob {
 
-Recorder::Recorder(Renderer& renderer, FrameSink& sink, double fps, SimTime min_step, int body_count)
-    : renderer_(renderer), sink_(sink), fps_(fps), min_step_(min_step), poses_(static_cast<size_t>(body_count)) {}
+Recorder::Recorder(FrameDrawer& drawer, double fps, SimTime min_step, int body_count)
+    : drawer_(drawer), fps_(fps), min_step_(min_step), poses_(static_cast<size_t>(body_count)) {}
 
 SimTime Recorder::first() { return 0; }
 
 SimTime Recorder::onGrant(SimTime now, World& world) {
   for (int i = 0; i < world.bodyCount(); ++i) poses_[static_cast<size_t>(i)] = world.body(i).pose;
-  Image img;
-  if (const Error* e = renderer_.render(poses_, toSeconds(now), &img)) {
-    error_ = *e;
-    failed_ = true;
-    return kNever;
-  }
-  if (const Error* e = sink_.add(std::move(img))) {
+  if (const Error* e = drawer_.draw(poses_, toSeconds(now))) {
     error_ = *e;
     failed_ = true;
     return kNever;
@@ -42,7 +35,7 @@ SimTime nextFrameTime(uint64_t* drawn, double fps, SimTime now, SimTime min_step
 
 void Recorder::finish(SimTime /*end*/, World& /*world*/) {
   if (failed_) return;
-  if (const Error* e = sink_.finish()) {
+  if (const Error* e = drawer_.finish()) {
     error_ = *e;
     failed_ = true;
   }

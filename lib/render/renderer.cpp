@@ -94,6 +94,13 @@ class GlRenderer : public Renderer {
     return loadTextures(err);
   }
 
+  const Error* acquire() override {
+    if (ctx_->makeCurrent()) return nullptr;
+    error_ = Error{ErrorKind::Internal, {}, ctx_->name() + " refused to make the GL context current on this thread"};
+    return &error_;
+  }
+  void release() override { ctx_->release(); }
+
   std::string backendName() const override { return ctx_->name(); }
   std::string glRenderer() const override {
     const auto* s = reinterpret_cast<const char*>(gl_.GetString(GL_RENDERER));

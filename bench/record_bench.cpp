@@ -1,5 +1,6 @@
-// bench/record_bench: frames per second of recording with the encoder on a worker thread
-// (makeAsyncSink, what `simbob run --record/--video` does) against the sequential loop
+// bench/record_bench: frames per second of recording as `simbob run --record/--video` does it
+// -- the physics on the run loop's thread, drawing on a render thread (drawOnRenderThread),
+// encoding on a third (makeAsyncSink) -- against the sequential loop
 // step -> render -> encode -> step -> ... on the same scene (issue #12 point 7). See
 // bench/README.md, "Recording".
 //
@@ -9,9 +10,10 @@
 //
 // Every timed run goes through the real pieces: the scene is loaded and compiled once, one
 // Renderer (GL context) is created once, and each run is runParties() with a Recorder party,
-// which at t = n / fps reads the poses, renders and hands the frame to the sink -- the sink
-// itself (sequential: encoding happens inside the grant, the physics waits) or makeAsyncSink
-// around it (pipelined: the grant returns once the frame is queued). The two alternate; the
+// which at t = n / fps reads the poses and hands them to a FrameDrawer: drawInline (sequential:
+// drawing and encoding happen inside the grant, the physics waits) or drawOnRenderThread
+// around makeAsyncSink (pipelined: the grant returns once the poses are queued). Both run with
+// the LP_NUM_THREADS the CLI would use (leaveCoresToThePipeline). The two alternate; the
 // program prints one line per run, the medians and their ratio. Before that it times each
 // stage alone on the same frames (physics, render, encode per frame, in process CPU time and
 // in wall time). Exits 0, or 1 when loading, rendering or a sink fails.
@@ -71,6 +73,13 @@ double cpuNowMs() {
   return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
 }
 
+// CPU time of the calling thread alone, ms.
+double threadCpuNowMs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
+}
+
 double wallNowMs() { return std::chrono::duration<double, std::milli>(Clock::now().time_since_epoch()).count(); }
 
 // One stage's time, summed over the frames.
@@ -126,9 +135,11 @@ bool timeStages(const Model& model, Renderer& renderer, const Settings& s, const
 }
 
 // One recording through the run loop, as `simbob run --video` makes it: a Recorder party
-// renders frame n at t = n / fps into the sink, or into makeAsyncSink around it (pipelined).
+// hands frame n at t = n / fps to drawInline around the sink (sequential), or to
+// drawOnRenderThread around makeAsyncSink around it (pipelined).
 // Returns frames per second of wall time (world creation to the sink's finish), or -1.
-double record(const Model& model, Renderer& renderer, const Settings& s, bool pipelined, const std::string& dir) {
+double record(const Model& model, Renderer& renderer, const Settings& s, bool pipelined, const std::string& dir,
+              double* loop_cpu_ms) {
   Error err;
   std::unique_ptr<FrameSink> sink = makeSink(s, dir, &err);
   if (!sink) {
@@ -141,13 +152,15 @@ double record(const Model& model, Renderer& renderer, const Settings& s, bool pi
     sink = simbob::makeAsyncSink(std::move(inner), s.queue);
   }
   std::unique_ptr<simbob::FrameDrawer> drawer =
-      pipelined ? simbob::drawOnRenderThread(renderer, *sink) : simbob::drawInline(renderer, *sink);
+      pipelined ? simbob::drawOnRenderThread(renderer, *sink, s.queue) : simbob::drawInline(renderer, *sink);
   simbob::Recorder recorder(*drawer, s.fps, simbob::toSimTime(model.settings.min_time_step).value_or(0),
                             static_cast<int>(model.bodies.size()));
   simbob::RunOptions opts;
   opts.duration = (s.frames - 1) / s.fps;  // frames at 0, 1/fps, ..., duration
   const Clock::time_point start = Clock::now();
+  const double loop_cpu = threadCpuNowMs();
   const simbob::RunResult r = simbob::runParties(model, opts, {&recorder});
+  *loop_cpu_ms = (threadCpuNowMs() - loop_cpu) / s.frames;
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   if (r.status != simbob::RunStatus::Completed) {
     fail(r.error);
@@ -253,6 +266,8 @@ int main(int argc, char** argv) {
   }
   scene = simbob::Scene{};
   Error err;
+  // As `simbob run --record` does, for both modes: the process has one llvmpipe screen.
+  const std::string lp_threads = simbob::leaveCoresToThePipeline();
   std::unique_ptr<Renderer> renderer = Renderer::create(model, ro, &err);
   if (!renderer) {
     fail(err);
@@ -263,17 +278,17 @@ int main(int argc, char** argv) {
   const bool own_out = s.out.empty();
   if (own_out) s.out = (fs::temp_directory_path() / ("simbob_record_bench_" + std::to_string(::getpid()))).string();
   fs::create_directories(s.out + "/stages");
-  const char* lp_threads = std::getenv("LP_NUM_THREADS");
   std::printf("scene %s: %zu bodies; %d frames at %g fps, %dx%d, format %s, queue %zu\n", s.scene.c_str(),
               model.bodies.size(), s.frames, s.fps, s.width, s.height, s.format.c_str(), s.queue);
   std::printf("load average %s\n", loadAverage().c_str());
   std::printf("renderer %s, %s, camera %s; LP_NUM_THREADS=%s\n", renderer->backendName().c_str(),
-              renderer->glRenderer().c_str(), renderer->cameraName().c_str(), lp_threads ? lp_threads : "(unset)");
+              renderer->glRenderer().c_str(), renderer->cameraName().c_str(), lp_threads.c_str());
 
   // Each stage alone: one untimed pass first (llvmpipe compiles its shader variants during the
   // first frames; x264 and zlib warm up too), then three timed passes; each stage's median.
-  // With one thread per stage, overlapping encoding with physics + rendering on two free cores
-  // can at best reach (P + R + E) / max(P + R, E) times the sequential rate.
+  // With one thread per stage (physics, render, encode), the pipeline can at best reach
+  // (P + R + E) / max(P, R, E) times the sequential rate, and on two cores no more than
+  // (P + R + E) / max(P, R, E, (P + R + E) / 2).
   std::vector<StageTime> passes[3];
   for (int k = 0; k < 4; ++k) {
     StageTime stage[3];
@@ -286,13 +301,12 @@ int main(int argc, char** argv) {
   std::printf("per frame, CPU ms:  physics %.2f, render %.2f, encode %.2f\n", p, r, e);
   std::printf("per frame, wall ms: physics %.2f, render %.2f, encode %.2f\n", physics.wall / f, render.wall / f,
               encode.wall / f);
-  std::printf("best achievable ratio (P+R+E)/max(P+R, E), from CPU times: %.2f\n", (p + r + e) / std::max(p + r, e));
-  std::printf("the same without physics, (R+E)/max(R, E): %.2f\n", (r + e) / std::max(r, e));
-  // When the renderer runs on several threads (llvmpipe's default), its CPU time exceeds its
-  // wall time, and two cores bound the pipelined rate by the total CPU work as well.
+  std::printf("best achievable ratio (P+R+E)/max(P, R, E), from CPU times: %.2f\n", (p + r + e) / std::max({p, r, e}));
+  // The renderer's CPU time may exceed its wall time (llvmpipe's rasterizer threads), and two
+  // cores bound the pipelined rate by the total CPU work as well.
   const double seq_wall = (physics.wall + render.wall + encode.wall) / f;
-  const double par_bound = std::max({(p + r + e) / 2, (physics.wall + render.wall) / f, encode.wall / f});
-  std::printf("2-core bound: sequential %.2f ms / max((P+R+E)cpu/2, (P+R)wall, Ewall) %.2f ms = %.2f\n", seq_wall,
+  const double par_bound = std::max({(p + r + e) / 2, physics.wall / f, render.wall / f, encode.wall / f});
+  std::printf("2-core bound: sequential %.2f ms / max((P+R+E)cpu/2, Pwall, Rwall, Ewall) %.2f ms = %.2f\n", seq_wall,
               par_bound, seq_wall / par_bound);
 
   std::vector<double> seq, par;
@@ -300,10 +314,12 @@ int main(int argc, char** argv) {
     // Alternate the order so that drift of the machine's load favours neither.
     for (int k = 0; k < 2; ++k) {
       const bool pipelined = (rep + k) % 2 == 1;
-      const double fps = record(model, *renderer, s, pipelined, s.out);
+      double loop_cpu = 0;
+      const double fps = record(model, *renderer, s, pipelined, s.out, &loop_cpu);
       if (fps < 0) return 1;
       (pipelined ? par : seq).push_back(fps);
-      std::printf("run %d %-10s %7.1f fps\n", rep, pipelined ? "pipelined" : "sequential", fps);
+      std::printf("run %d %-10s %7.1f fps  (%5.2f ms/frame wall, run-loop thread CPU %5.2f ms/frame)\n", rep,
+                  pipelined ? "pipelined" : "sequential", fps, 1e3 / fps, loop_cpu);
     }
   }
   const double ms = median(seq), mp = median(par);

@@ -12,11 +12,10 @@
 // Renderer (GL context) is created once, and each run is runParties() with a Recorder party,
 // which at t = n / fps reads the poses and hands them to a FrameDrawer: drawInline (sequential:
 // drawing and encoding happen inside the grant, the physics waits) or drawOnRenderThread
-// around makeAsyncSink (pipelined: the grant returns once the poses are queued). Both run with
-// the LP_NUM_THREADS the CLI would use (leaveCoresToThePipeline). The two alternate; the
-// program prints one line per run, the medians and their ratio. Before that it times each
-// stage alone on the same frames (physics, render, encode per frame, in process CPU time and
-// in wall time). Exits 0, or 1 when loading, rendering or a sink fails.
+// around makeAsyncSink (pipelined: the grant returns once the poses are queued). The two
+// alternate; the program prints one line per run, the medians and their ratio. Before that it
+// times each stage alone on the same frames (physics, render, encode per frame, in process CPU
+// time and in wall time). Exits 0, or 1 when loading, rendering or a sink fails.
 #include <time.h>
 #include <unistd.h>
 
@@ -266,8 +265,6 @@ int main(int argc, char** argv) {
   }
   scene = simbob::Scene{};
   Error err;
-  // As `simbob run --record` does, for both modes: the process has one llvmpipe screen.
-  const std::string lp_threads = simbob::leaveCoresToThePipeline();
   std::unique_ptr<Renderer> renderer = Renderer::create(model, ro, &err);
   if (!renderer) {
     fail(err);
@@ -278,11 +275,12 @@ int main(int argc, char** argv) {
   const bool own_out = s.out.empty();
   if (own_out) s.out = (fs::temp_directory_path() / ("simbob_record_bench_" + std::to_string(::getpid()))).string();
   fs::create_directories(s.out + "/stages");
+  const char* lp_threads = std::getenv("LP_NUM_THREADS");
   std::printf("scene %s: %zu bodies; %d frames at %g fps, %dx%d, format %s, queue %zu\n", s.scene.c_str(),
               model.bodies.size(), s.frames, s.fps, s.width, s.height, s.format.c_str(), s.queue);
   std::printf("load average %s\n", loadAverage().c_str());
   std::printf("renderer %s, %s, camera %s; LP_NUM_THREADS=%s\n", renderer->backendName().c_str(),
-              renderer->glRenderer().c_str(), renderer->cameraName().c_str(), lp_threads.c_str());
+              renderer->glRenderer().c_str(), renderer->cameraName().c_str(), lp_threads ? lp_threads : "(unset)");
 
   // Each stage alone: one untimed pass first (llvmpipe compiles its shader variants during the
   // first frames; x264 and zlib warm up too), then three timed passes; each stage's median.

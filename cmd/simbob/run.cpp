@@ -380,7 +380,6 @@ int cmdRun(RunArgs& a, const Common& common) {
       }
       sinks.push_back(std::move(video));
     }
-    const std::string rasterizer_threads = leaveCoresToThePipeline();
     renderer = Renderer::create(model, ro, &err_early);
     if (!renderer) {
       g_log.error(err_early);
@@ -388,7 +387,7 @@ int cmdRun(RunArgs& a, const Common& common) {
     }
     sink = makeAsyncSink(std::move(sinks));
     g_log.debug("recording through " + renderer->backendName() + " (" + renderer->glRenderer() + "), camera " +
-                renderer->cameraName() + ", LP_NUM_THREADS=" + rasterizer_threads);
+                renderer->cameraName());
   }
 
   // The run needs only the compiled model: free the component graph before ODE allocates.

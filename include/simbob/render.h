@@ -75,14 +75,6 @@ class Renderer {
 /// apart from it). Advances *drawn past the skipped frames; kNever beyond the clock's range.
 SimTime nextFrameTime(uint64_t* drawn, double fps, SimTime now, SimTime min_step);
 
-/// Mesa's llvmpipe rasterizes on one thread per core by default; during a recording those
-/// threads crowd out the physics, render and encoder threads on a small machine. Unless the
-/// environment already sets LP_NUM_THREADS, sets it to max(1, cores - 2), counting the cores this
-/// process may run on (so a Slurm or container CPU limit counts). Call it before the first
-/// Renderer::create of the process, while no other thread runs; a GPU driver ignores it. Returns
-/// the value in force.
-std::string leaveCoresToThePipeline();
-
 /// What the recorder hands each frame to: the body poses at simulated time t, to be drawn by a
 /// Renderer and passed on to a FrameSink, in the order given.
 class FrameDrawer {

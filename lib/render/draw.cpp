@@ -5,11 +5,6 @@
 // three stages -- step the world to the frame's time, draw it, encode it -- each on its own
 // thread, linked by bounded queues. The frames stay in order and the renderer stays one object
 // with one camera history, so the bytes are those of the sequential loop.
-#include <sched.h>
-
-#include <algorithm>
-#include <cstdlib>
-#include <string>
 #include <thread>
 
 #include "image/work_queue.h"
@@ -101,20 +96,6 @@ class RenderThread : public FrameDrawer {
 };
 
 }  // namespace
-
-std::string leaveCoresToThePipeline() {
-  if (const char* set = std::getenv("LP_NUM_THREADS")) return set;
-  int cores = static_cast<int>(std::thread::hardware_concurrency());
-  cpu_set_t mask;
-  CPU_ZERO(&mask);
-  if (sched_getaffinity(0, sizeof mask, &mask) == 0) cores = CPU_COUNT(&mask);
-  // Physics, drawing and encoding each keep a thread busy; llvmpipe's rasterizer threads get the
-  // rest, at least one. On 2 cores this took the recording from 1.2-1.3x to about 1.5x the
-  // sequential loop (bench/README.md, "Recording").
-  const std::string n = std::to_string(std::max(1, cores - 2));
-  setenv("LP_NUM_THREADS", n.c_str(), 0);
-  return n;
-}
 
 std::unique_ptr<FrameDrawer> drawInline(Renderer& renderer, FrameSink& sink) {
   return std::make_unique<InlineDrawer>(renderer, sink);

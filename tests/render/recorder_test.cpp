@@ -11,17 +11,13 @@
 #include "simbob/graph.h"
 #include "simbob/render.h"
 #include "simbob/run.h"
+#include "render/reference_frames.h"
 #include "test_registry.h"
 
 using namespace simbob;
+using namespace simbob::test;
 
 namespace {
-
-GlBackend backend() {
-  GlBackend b = GlBackend::Auto;
-  parseGlBackend(std::getenv("SIMBOB_GL") ? std::getenv("SIMBOB_GL") : "", &b);
-  return b;
-}
 
 Model gallery() {
   Scene s;
@@ -32,10 +28,10 @@ Model gallery() {
   return m;
 }
 
-std::unique_ptr<Renderer> makeRenderer(const Model& m, const std::string& camera) {
+std::unique_ptr<Renderer> makeRenderer(const Model& m, const std::string& camera, int w = 96, int h = 72) {
   RenderOptions o;
-  o.width = 96;
-  o.height = 72;
+  o.width = w;
+  o.height = h;
   o.backend = backend();
   o.camera = camera;
   Error err;
@@ -130,4 +126,22 @@ TEST_CASE("a render thread destroyed unfinished never finishes the sink, and giv
   CHECK(sink.finished == 0);
   Image still;
   CHECK(r->render(initialPoses(m), 0, &still) == nullptr);
+}
+
+TEST_CASE("moving cameras in motion: the Chase and Spot frames at t = 1 s match their references") {
+  // The references at t = 0 (renderer_test.cpp) fix where the cameras start; these fix where
+  // they are after following the ball, which rolls 1 m along +X in that second (LinVelocity
+  // 1 0 0 with the matching spin): Chase keeps its distance behind it, Spot stays put and
+  // turns. A camera that did not follow would show the ball off centre or the wrong backdrop.
+  const Model m = gallery();
+  for (const char* camera : {"Chase", "Spot"}) {
+    INFO(camera);
+    std::unique_ptr<Renderer> r = makeRenderer(m, camera, 160, 120);
+    KeepingSink sink;
+    REQUIRE(record(m, *r, sink, true, 1.0).status == RunStatus::Completed);
+    REQUIRE(sink.frames.size() == 21);
+    checkReference(sink.frames.back(), std::string("gallery_") + (camera[0] == 'C' ? "chase" : "spot") + "_t1");
+    // ... and it differs from where the camera started.
+    CHECK_FALSE(imagesMatch(sink.frames.back(), sink.frames.front()));
+  }
 }

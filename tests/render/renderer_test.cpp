@@ -18,20 +18,13 @@
 #include "simbob/png.h"
 #include "simbob/render.h"
 #include "simbob/transform.h"
+#include "render/reference_frames.h"
 #include "test_registry.h"
 
 using namespace simbob;
+using namespace simbob::test;
 
 namespace {
-
-constexpr int kChannelTolerance = 24;
-constexpr double kDifferingFraction = 0.005;
-
-GlBackend backend() {
-  GlBackend b = GlBackend::Auto;
-  parseGlBackend(std::getenv("SIMBOB_GL") ? std::getenv("SIMBOB_GL") : "", &b);
-  return b;
-}
 
 Model compileFile(const std::string& rel) {
   Scene s;
@@ -67,31 +60,6 @@ Image draw(const Model& m, int w, int h, const std::string& camera = "", Quality
   const Error* e = r->render(initialPoses(m), 0, &img);
   REQUIRE(e == nullptr);
   return img;
-}
-
-/// lib/image's rule with the tolerance above.
-ImageComparison compared(const Image& a, const Image& b) {
-  return compareImages(a, b, ImageTolerance{kChannelTolerance, kDifferingFraction});
-}
-
-bool imagesMatch(const Image& a, const Image& b) { return compared(a, b).matches; }
-
-/// Compares with golden/frames/NAME.png, or writes it when SIMBOB_BLESS_FRAMES is set.
-void checkReference(const Image& img, const std::string& name) {
-  const std::string path = std::string(SIMBOB_SOURCE_DIR) + "/golden/frames/" + name + ".png";
-  if (std::getenv("SIMBOB_BLESS_FRAMES")) {
-    Error e = writePng(path, img);
-    REQUIRE(e.message.empty());
-    WARN("blessed " + path);
-    return;
-  }
-  Image ref;
-  Error err;
-  INFO(path + " (re-bless with scripts/update-frames.sh)");
-  err = readPng(path, ref);
-  REQUIRE(err.message.empty());
-  INFO(compared(img, ref).summary());
-  CHECK(imagesMatch(img, ref));
 }
 
 const uint8_t* at(const Image& img, int x, int y) { return img.pixel(x, y); }

@@ -16,8 +16,13 @@ namespace {
 
 constexpr int kMaxSubdivisions = 4;
 
-// Texture coordinate along one axis: repeats per metre (TexScale > 0) or per extension (< 0).
-double texCoord(double x, double extent, double scale) { return scale >= 0 ? x * scale : (x / extent + 0.5) * -scale; }
+// Texture coordinate along one axis (guide 6.2.1): TexScale > 0 is the size of one mapped image
+// in metres (0.5: an image every 0.5 m); < 0 is that size as a fraction of the extension (-0.5:
+// the image twice across). 0 maps one texel over the whole extent.
+double texCoord(double x, double extent, double scale) {
+  if (scale == 0) return 0;
+  return scale > 0 ? x / scale : (x / extent + 0.5) / -scale;
+}
 
 void vertex(const GlApi& gl, const Vec3& p, const Vec3& n) {
   gl.Normal3d(n[0], n[1], n[2]);

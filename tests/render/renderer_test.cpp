@@ -18,6 +18,7 @@
 #include "simbob/png.h"
 #include "simbob/render.h"
 #include "simbob/transform.h"
+#include "simbob/values.h"
 #include "render/reference_frames.h"
 #include "test_registry.h"
 
@@ -64,7 +65,71 @@ Image draw(const Model& m, int w, int h, const std::string& camera = "", Quality
 
 const uint8_t* at(const Image& img, int x, int y) { return img.pixel(x, y); }
 
+// A 2 m x 2 m board textured with scenes/textures/checker.bmp (8 squares across the image), seen
+// face-on from 2 m and lit from the front. Returns how often a row near the centre changes
+// between light and dark squares across the board, and the image.
+int checkerEdges(double tex_scale, Image* img) {
+  const std::string xml = R"(<Simulation>
+  <CameraList><RCStaticCamera Key="Face">
+    <Pose><RCGlobalCoordinates><Pose Value="0 0 2 0 0 0"/></RCGlobalCoordinates></Pose><ViewAngle Value="60"/>
+  </RCStaticCamera></CameraList>
+  <SceneSettings><ClearColor Value="0 0 0"/><LightPos Value="0 0 10 1"/></SceneSettings>
+  <ComponentList>
+    <RCTexturedSkin Key="Checker"><Texture Value="textures/checker.bmp"/></RCTexturedSkin>
+    <RCStaticRigidBody Key="Board">
+      <Pose><RCGlobalCoordinates><Pose Value="0 0 0 0 0 0"/></RCGlobalCoordinates></Pose>
+      <Model><RCPlaneModel><Skin Ref="Checker"/><ExtensionX Value="2"/><ExtensionY Value="2"/>
+        <TexScale Value=")" +
+                          formatNumber(tex_scale) + R"("/></RCPlaneModel></Model>
+    </RCStaticRigidBody>
+  </ComponentList>
+</Simulation>)";
+  const Model m = compileText(xml);
+  RenderOptions o;
+  o.width = 320;
+  o.height = 240;
+  o.backend = backend();
+  o.quality = Quality::Textures;
+  o.texture_folder = std::string(SIMBOB_SOURCE_DIR) + "/scenes";
+  Error err;
+  std::unique_ptr<Renderer> r = Renderer::create(m, o, &err);
+  INFO(err.message);
+  REQUIRE(r);
+  REQUIRE(r->render(initialPoses(m), 0, img) == nullptr);
+  if (const char* dir = std::getenv("SIMBOB_DEBUG_FRAMES"))
+    writePng(std::string(dir) + "/checker_" + formatNumber(tex_scale) + ".png", *img);
+  // The board's pixels on a row 4 pixels below the centre (the centre line is an edge between
+  // rows of squares; 4 pixels is inside a square at both scales here, whose squares are 17 and
+  // 8.7 pixels tall), split at the middle of their range into light and dark. The background
+  // is black.
+  const int y = img->height / 2 + 4;
+  std::vector<int> g;
+  for (int x = 0; x < img->width; ++x)
+    if (img->pixel(x, y)[1] > 20) g.push_back(img->pixel(x, y)[1]);
+  REQUIRE(g.size() > 250);  // 2 m of the 2.31 m in view: about 277 pixels
+  const auto [lo, hi] = std::minmax_element(g.begin(), g.end());
+  REQUIRE(*hi - *lo > 40);  // the texture's greys are 120 and 200
+  const int mid = (*lo + *hi) / 2;
+  int edges = 0;
+  for (size_t i = 1; i < g.size(); ++i) edges += (g[i] > mid) != (g[i - 1] > mid);
+  return edges;
+}
+
 }  // namespace
+
+TEST_CASE("TexScale (guide 6.2.1): the size of one texture image in metres, or a fraction of the extension") {
+  Image one_metre, half_metre, half_extent;
+  // 1 m images: 2 across the board, 16 squares, 15 edges between them.
+  CHECK(checkerEdges(1.0, &one_metre) == 15);
+  // 0.5 m images: 4 across, 32 squares.
+  CHECK(checkerEdges(0.5, &half_metre) == 31);
+  // -0.5: the image twice across the 2 m extension, so 1 m images again, starting at the edge.
+  CHECK(checkerEdges(-0.5, &half_extent) == 15);
+  // The 1 m images start at the board's centre and the half-extent ones at its edge, 1 m (one
+  // whole image) apart: the same picture.
+  CHECK(imagesMatch(one_metre, half_extent));
+  CHECK_FALSE(imagesMatch(one_metre, half_metre));
+}
 
 TEST_CASE("the basic scene matches its reference images from both cameras") {
   const Model m = compileFile("tests/data/render/basic.xml");

@@ -67,7 +67,8 @@ void registerGlobals(Registry& r) {
   const ParamSpec material = componentParam(kMaterial, {Family::Material}, "RCGenericMaterial", "contact properties");
   const ParamSpec skin = componentParam(kSkin, {Family::Skin}, "", "surface appearance");
   const ParamSpec extension = number(kExtension, 100.0, "m", "visible extension (physics: infinite)", Range::Positive);
-  const ParamSpec tex = number(kTexScale, 1.0, "", "size of one texture image in m (negative: as a fraction of the extension)");
+  const ParamSpec tex =
+      number(kTexScale, 1.0, "", "size of one texture image in m (negative: as a fraction of the extension)");
   const ParamSpec cell = number(kMaxCellSize, -1.0, "m", "largest cell (negative: one cell)");
   r.add({"RCGround",
          Family::GlobalSim,

@@ -78,7 +78,8 @@ void registerModels(Registry& r) {
                                     "model (children; global coordinates: relative to the body)"),
                      componentParam(kSkin, {Family::Skin}, "", "surface appearance"),
                      listParam(kChildList, {Family::Model}, "child models")});
-  const ParamSpec tex = number(kTexScale, 1.0, "", "size of one texture image in m (negative: as a fraction of the extension)");
+  const ParamSpec tex =
+      number(kTexScale, 1.0, "", "size of one texture image in m (negative: as a fraction of the extension)");
   const ParamSpec accuracy = integer(kAccuracy, 2, "tessellation level", Range::Positive);
   r.add({"RCCuboidModel",
          Family::Model,

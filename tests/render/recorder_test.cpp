@@ -74,6 +74,16 @@ RunResult record(const Model& m, Renderer& r, KeepingSink& sink, bool threaded, 
   return runParties(m, opts, {&recorder});
 }
 
+// The static Overview camera's still at t = 0 from `r` on this thread equals a new renderer's:
+// true only if r's GL context is current here again (else the read-back is empty).
+bool drawsLikeAFreshRenderer(const Model& m, Renderer& r) {
+  Image still, fresh;
+  if (r.render(initialPoses(m), 0, &still) != nullptr) return false;
+  std::unique_ptr<Renderer> other = makeRenderer(m, "Overview");
+  if (other->render(initialPoses(m), 0, &fresh) != nullptr) return false;
+  return still.rgb == fresh.rgb;
+}
+
 }  // namespace
 
 TEST_CASE("a render thread draws the frames the sequential loop draws, byte for byte and in order") {
@@ -94,10 +104,14 @@ TEST_CASE("a render thread draws the frames the sequential loop draws, byte for 
   // Not a still picture: the ball rolls 1 m in the second, so the first and last frames differ.
   CHECK(inline_sink.frames.front().rgb != inline_sink.frames.back().rgb);
 
-  // The context is back on this thread: a still draws here again.
-  Image still;
+  // The context is back on this thread: a still draws here again, the same picture as the
+  // renderer that never left it (both cameras followed the same frames). Without a current
+  // context the read-back would be empty.
+  Image still, inline_still;
   CHECK(threaded_renderer->render(initialPoses(m), 0, &still) == nullptr);
+  CHECK(inline_renderer->render(initialPoses(m), 0, &inline_still) == nullptr);
   CHECK(still.width == 96);
+  CHECK(still.rgb == inline_still.rgb);
 }
 
 TEST_CASE("a sink that fails stops a threaded recording with its error; the context comes back") {
@@ -110,8 +124,7 @@ TEST_CASE("a sink that fails stops a threaded recording with its error; the cont
   CHECK(sink.frames.size() == 3);
   CHECK(sink.finished == 0);  // a failed recording is never committed
   CHECK(result.sim_time < 2.0);
-  Image still;
-  CHECK(r->render(initialPoses(m), 0, &still) == nullptr);
+  CHECK(drawsLikeAFreshRenderer(m, *r));
 }
 
 TEST_CASE("a render thread destroyed unfinished never finishes the sink, and gives the context back") {
@@ -124,8 +137,7 @@ TEST_CASE("a render thread destroyed unfinished never finishes the sink, and giv
     for (int i = 0; i < 5; ++i) REQUIRE(drawer->draw(poses, i / 20.0) == nullptr);
   }
   CHECK(sink.finished == 0);
-  Image still;
-  CHECK(r->render(initialPoses(m), 0, &still) == nullptr);
+  CHECK(drawsLikeAFreshRenderer(m, *r));
 }
 
 TEST_CASE("moving cameras in motion: the Chase and Spot frames at t = 1 s match their references") {

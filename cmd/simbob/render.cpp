@@ -47,9 +47,9 @@ class Follower : public Party {
   SimTime first() override { return at_ > 0 ? 0 : kNever; }
   SimTime onGrant(SimTime now, World& world) override {
     for (int i = 0; i < world.bodyCount(); ++i) poses_[static_cast<size_t>(i)] = world.body(i).pose;
-    renderer_.follow(poses_);
-    ++frames_;
-    const SimTime next = nextFrameTime(&frames_, fps_, now, min_step_);
+    for (uint64_t k = framesDue(frames_, fps_, now, min_step_); k > 0; --k) renderer_.follow(poses_);
+    frames_ += framesDue(frames_, fps_, now, min_step_);
+    const SimTime next = frameTime(frames_, fps_);
     return next < at_ ? next : kNever;
   }
 

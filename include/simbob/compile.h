@@ -14,7 +14,11 @@ bool compileScene(const Scene& scene, Model* model, Diagnostics& diag);
 /// Warnings about legal scenes that make ODE unstable or wrong (`simbob check`): mass ratios
 /// across joints, bodies thin and fast enough to tunnel, a step too large for the fastest
 /// pendulum, joints far from their bodies, bodies overlapping at t = 0. Each says why and what
-/// to change.
-void lintModel(const Model& model, Diagnostics& diag);
+/// to change. `dt` is the step the run takes (0: the scene's MaxTimeStep).
+void lintModel(const Model& model, Diagnostics& diag, double dt = 0);
+
+/// The largest step that lintModel accepts without a step-size or tunnelling warning, in s
+/// (infinity when nothing in the scene limits it): what a diverged run recommends.
+double recommendedStep(const Model& model);
 
 }  // namespace simbob

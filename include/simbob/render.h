@@ -70,10 +70,13 @@ class Renderer {
   virtual std::string cameraName() const = 0;
 };
 
-/// The time of the frame after the one just drawn as frame number `drawn - 1` at `now`: frame n
-/// shows t = n / fps, skipping frames closer than `min_step` to now (the clock cannot reach them
-/// apart from it). Advances *drawn past the skipped frames; kNever beyond the clock's range.
-SimTime nextFrameTime(uint64_t* drawn, double fps, SimTime now, SimTime min_step);
+/// Frame n of a recording at `fps` asks for t = n / fps (kNever beyond the clock's range); it
+/// shows the first grid instant at or after that time (Clock), while a video keeps the nominal
+/// n / fps timestamps.
+SimTime frameTime(uint64_t n, double fps);
+/// How many frames from number `drawn` on are due at grid instant `now` (at or before now +
+/// min_step): each of them shows `now`. More than one when frames come faster than the step.
+uint64_t framesDue(uint64_t drawn, double fps, SimTime now, SimTime min_step);
 
 /// What the recorder hands each frame to: the body poses at simulated time t, to be drawn by a
 /// Renderer and passed on to a FrameSink, in the order given.
@@ -99,9 +102,9 @@ std::unique_ptr<FrameDrawer> drawInline(Renderer& renderer, FrameSink& sink);
 /// drawInline's: one renderer, the same poses, the same order.
 std::unique_ptr<FrameDrawer> drawOnRenderThread(Renderer& renderer, FrameSink& sink, size_t queue_frames = 2);
 
-/// The recorder: a party that asks for frame n at t = n / fps (each at the time the clock
-/// reached, within MinTimeStep of the request) and hands the poses to a FrameDrawer. It only
-/// reads the world.
+/// The recorder: a party that asks for frame n at t = n / fps, is granted at the first grid
+/// instant at or after it (frameTime, framesDue) and hands the poses to a FrameDrawer once per
+/// frame due. It only reads the world.
 class Recorder : public Party {
  public:
   Recorder(FrameDrawer& drawer, double fps, SimTime min_step, int body_count);

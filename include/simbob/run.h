@@ -50,7 +50,7 @@ struct RunResult {
   double sim_time = 0.0;  ///< s reached
   uint64_t samples = 0;   ///< trajectory samples (runModel; 0 from runParties)
   double wall_seconds = 0.0;
-  double dt = 0.0;  ///< step size used
+  double dt = 0.0;  ///< the step taken: dt (or MaxTimeStep) on the nanosecond grid
 };
 
 /// Something that needs the simulation at given simulated times (guide 7.2): a sampler, a
@@ -89,18 +89,18 @@ class Party {
 };
 
 /// Runs the model to opts.duration, serving `parties` (ignores sample_interval and on_sample).
-/// Requests are served in time order; requests for the same time in the order of `parties`
-/// (document order, so the sampler first). A request within MinTimeStep of the time reached is
-/// granted without another step; otherwise the world steps towards the earliest request (or
-/// the end) in steps of at most dt. A party is granted at most once per instant: a request
-/// it returns within MinTimeStep of that instant is granted after the next step.
-/// Times that do not fit the clock (toSimTime) fail the run (status Failed, InvalidInput).
+/// The world advances only in whole steps of dt (the fixed grid of Clock): a request is granted
+/// at the first grid instant at or after it (within MinTimeStep); requests due at the same
+/// instant are served in time order, ties in the order of `parties` (document order, so the
+/// sampler first). A party is granted at most once per instant: a request it returns that is
+/// already due waits for the next step. The run ends at the first grid instant at or after the
+/// duration. Times that do not fit the clock (toSimTime) fail the run (status Failed, InvalidInput).
 RunResult runParties(const Model& model, const RunOptions& opts, const std::vector<Party*>& parties);
 
-/// The trajectory sampler: records every body's pose at t = 0, interval, 2 interval, ... (each
-/// sample at the time the clock reached, within MinTimeStep of the request; the next request
-/// is the first multiple of the interval beyond MinTimeStep from it), and once more at the end
-/// of a completed run unless a sample was just taken there.
+/// The trajectory sampler: sample n asks for t = n interval and records the first grid instant
+/// at or after it (the time written is that instant); the next request is the first multiple of
+/// the interval beyond MinTimeStep from it, so an interval below the step samples every step.
+/// Once more at the end of a completed run unless a sample was just taken there.
 class TrajectorySampler : public Party {
  public:
   /// `interval` >= 1 ns, `min_step` the scene's MinTimeStep in ns. Samples go to `writer`

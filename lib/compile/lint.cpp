@@ -2,6 +2,7 @@
 // (plain data), so they see exactly what the physics layer will get.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -17,7 +18,7 @@ namespace {
 
 constexpr double kMassRatio = 100.0;      // QuickStep converges poorly beyond this
 constexpr double kInertiaRatio = 1e-5;    // own inertia below this fraction of m d^2: joints come apart
-constexpr double kStepsPerPeriod = 20.0;  // fewer steps per swing loses energy visibly
+constexpr double kStepsPerPeriod = 40.0;  // fewer steps per swing loses energy visibly or comes apart
 constexpr double kAnchorFar = 10.0;       // anchor farther than this many body sizes
 constexpr double kAnchorFarMin = 2.0;     // m; pendulum rods up to this length are normal
 constexpr double kOverlap = 1e-3;         // m of penetration that counts as overlap
@@ -113,7 +114,10 @@ struct Placed {
 
 class Linter {
  public:
-  Linter(const Model& m, Diagnostics& d) : m_(m), d_(d) {}
+  Linter(const Model& m, Diagnostics& d, double dt) : m_(m), d_(d), dt_(dt > 0 ? dt : m.settings.max_time_step) {}
+
+  /// The largest step no check warns about (infinity: none limits it).
+  double recommendedStep() const { return recommended_; }
 
   void run() {
     farAway();
@@ -178,7 +182,7 @@ class Linter {
     }
   }
 
-  double dt() const { return m_.settings.max_time_step; }
+  double dt() const { return dt_; }
   const BodyDef& body(int i) const { return m_.bodies[static_cast<size_t>(i)]; }
 
   void massRatios() {
@@ -256,12 +260,13 @@ class Linter {
       }
       if (lever < 1e-9 || g_eff <= 0 || i_pivot <= 0) continue;
       double period = 2 * kPi * std::sqrt(i_pivot / (b.mass * g_eff * lever));
+      recommended_ = std::min(recommended_, period / kStepsPerPeriod);
       if (dt() > period / kStepsPerPeriod)
         warn("step size", j.loc,
              "joint '" + j.key + "' makes a pendulum of period " + formatApprox(period) + " s but the step is " +
                  formatApprox(dt()) + " s (fewer than " + formatApprox(kStepsPerPeriod) +
                  " steps per swing): the motion loses energy or blows up; use --dt " +
-                 formatApprox(period / kStepsPerPeriod / 2) + " or smaller");
+                 formatApprox(period / kStepsPerPeriod) + " or smaller");
     }
   }
 
@@ -298,6 +303,7 @@ class Linter {
       }
       double speed = norm(b.lin_vel) + norm(b.ang_vel) * size_[i] + fall;
       double travel = speed * dt();
+      if (speed > 0) recommended_ = std::min(recommended_, 0.5 * thin_[i] / speed);
       if (travel > 0.5 * thin_[i])
         warn("tunneling", b.loc,
              "body '" + b.key + "' is " + formatApprox(thin_[i]) + " m thin and may move " + formatApprox(speed) +
@@ -371,6 +377,8 @@ class Linter {
 
   const Model& m_;
   Diagnostics& d_;
+  double dt_;
+  double recommended_ = std::numeric_limits<double>::infinity();
   std::vector<double> size_, thin_;
   std::vector<Placed> placed_;
   std::vector<const GeomDef*> planes_;
@@ -380,6 +388,13 @@ class Linter {
 
 }  // namespace
 
-void lintModel(const Model& model, Diagnostics& diag) { Linter(model, diag).run(); }
+void lintModel(const Model& model, Diagnostics& diag, double dt) { Linter(model, diag, dt).run(); }
+
+double recommendedStep(const Model& model) {
+  Diagnostics unused;
+  Linter l(model, unused, 0);
+  l.run();
+  return l.recommendedStep();
+}
 
 }  // namespace simbob

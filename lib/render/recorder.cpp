@@ -1,4 +1,5 @@
-// The recorder party: frame n at t = n / fps, the world's poses handed to a FrameDrawer. It
+// The recorder party: frame n shows the first grid instant at or after n / fps (within
+// MinTimeStep), the world's poses handed to a FrameDrawer. It
 // reads the world and never changes it, so the trajectory is the same with or without --record.
 #include <optional>
 
@@ -14,22 +15,30 @@ SimTime Recorder::first() { return 0; }
 
 SimTime Recorder::onGrant(SimTime now, World& world) {
   for (int i = 0; i < world.bodyCount(); ++i) poses_[static_cast<size_t>(i)] = world.body(i).pose;
-  if (const Error* e = drawer_.draw(poses_, toSeconds(now))) {
-    error_ = *e;
-    failed_ = true;
-    return kNever;
+  // Every frame due at this grid instant shows it: frames closer together than the step repeat
+  // the instant, so the video keeps one frame per 1/fps.
+  const uint64_t due = framesDue(frames_, fps_, now, min_step_);
+  for (uint64_t k = 0; k < due; ++k) {
+    if (const Error* e = drawer_.draw(poses_, toSeconds(now))) {
+      error_ = *e;
+      failed_ = true;
+      return kNever;
+    }
+    ++frames_;
   }
-  ++frames_;
-  return nextFrameTime(&frames_, fps_, now, min_step_);
+  return frameTime(frames_, fps_);
 }
 
-SimTime nextFrameTime(uint64_t* drawn, double fps, SimTime now, SimTime min_step) {
-  // Frame n shows t = n / fps: the next request is the first such time beyond MinTimeStep.
+SimTime frameTime(uint64_t n, double fps) {
+  return toSimTime(static_cast<double>(n) / fps).value_or(kNever);
+}
+
+uint64_t framesDue(uint64_t drawn, double fps, SimTime now, SimTime min_step) {
+  uint64_t n = drawn;
   for (;;) {
-    const std::optional<SimTime> next = toSimTime(static_cast<double>(*drawn) / fps);
-    if (!next) return kNever;
-    if (*next - now > min_step) return *next;
-    ++*drawn;  // a frame closer than MinTimeStep to this one cannot be reached apart from it
+    const SimTime t = frameTime(n, fps);
+    if (t == kNever || (t > now && t - now > min_step)) return n - drawn;
+    ++n;
   }
 }
 

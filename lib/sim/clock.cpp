@@ -37,24 +37,22 @@ void Clock::granted(int party, SimTime next) {
   any_waiting_ = any_waiting_ || r.waits;
 }
 
-SimTime Clock::nextRequest() const {
-  SimTime t = kNever;
-  for (const Request& r : requests_)
-    if (!r.waits) t = std::min(t, r.next);
-  return t;
-}
-
-SimTime Clock::stepToward(SimTime until) const {
-  if (due(until)) return 0;
-  return std::min(until - now_, max_step_);
-}
-
-void Clock::advance(SimTime h) {
-  now_ += h;
-  if (h > 0 && any_waiting_) {
+void Clock::advance() {
+  ++steps_;
+  now_ += step_;
+  if (any_waiting_) {
     for (Request& r : requests_) r.waits = false;
     any_waiting_ = false;
   }
+}
+
+SimTime gridInstant(SimTime t, SimTime step, SimTime min_step) {
+  if (t == kNever) return kNever;
+  const SimTime from = t - min_step;  // t >= 0 and min_step >= 0: no overflow
+  if (from <= 0) return 0;
+  const SimTime k = from / step + (from % step != 0 ? 1 : 0);
+  if (k > kNever / step) return kNever;
+  return k * step;
 }
 
 }  // namespace simbob

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "simbob/clock.h"
+#include "simbob/compile.h"
 #include "simbob/physics.h"
 #include "simbob/values.h"
 
@@ -38,6 +39,17 @@ SimTime clockTime(double seconds, const char* what, Error* err) {
   return 0;
 }
 
+// "with a step of 0.05 s (`simbob check` recommends at most 0.041 s)": what a diverged run says.
+std::string stepAdvice(const Model& model, SimTime step) {
+  std::string s = "with a step of " + formatNumber(toSeconds(step)) + " s";
+  const double rec = recommendedStep(model);
+  if (std::isfinite(rec))
+    s += toSeconds(step) > rec ? " (`simbob check` recommends at most " + formatApprox(rec) + " s: try --dt " +
+                                     formatApprox(rec) + ")"
+                               : " (within the " + formatApprox(rec) + " s that `simbob check` recommends)";
+  return s;
+}
+
 }  // namespace
 
 RunResult runParties(const Model& model, const RunOptions& opts, const std::vector<Party*>& parties) {
@@ -55,6 +67,7 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
     return res;
   }
   Clock clock(std::max<SimTime>(step, 1), min_step);
+  res.dt = toSeconds(clock.step());  // the step actually taken (the nanosecond grid)
   // MaxAccessTime (guide 7.2): every grant (onGrant) is timed; one that took longer stops the
   // run. (A blocking party bounds its own waits by accessDeadline().)
   const double limit = opts.max_access_time > 0 ? opts.max_access_time : model.settings.max_access_time;
@@ -110,21 +123,14 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
         }
       if (!res.error.message.empty()) break;
     }
-    if (clock.now() >= end) break;
+    if (clock.reached(end)) break;  // the first grid instant at or after the duration
     if (opts.stop && *opts.stop) {
       res.status = RunStatus::Interrupted;
       res.error = {ErrorKind::Diverged, {}, "interrupted at t=" + formatNumber(toSeconds(clock.now())) + " s"};
       break;
     }
-    const SimTime until = std::min(clock.nextRequest(), end);
-    const SimTime h = clock.stepToward(until);
-    if (h == 0) {
-      // The end is within MinTimeStep: it counts as reached.
-      clock.advance(until - clock.now());
-      continue;
-    }
-    world->step(toSeconds(h));
-    clock.advance(h);
+    world->step(toSeconds(clock.step()));
+    clock.advance();
     ++res.steps;
     int bad = world->firstBadBody(opts.runaway_limit);
     if (bad >= 0) {
@@ -132,8 +138,8 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
       const BodyDef& b = model.bodies[static_cast<size_t>(bad)];
       res.error = {ErrorKind::Diverged, b.loc,
                    "body '" + b.key + "' diverged at t=" + formatNumber(toSeconds(clock.now())) +
-                       " s (non-finite or beyond " + formatNumber(opts.runaway_limit) +
-                       " m or m/s); a smaller step (--dt) or softer joints (ERP/CFM) may help"};
+                       " s (non-finite or beyond " + formatNumber(opts.runaway_limit) + " m or m/s) " +
+                       stepAdvice(model, clock.step()) + "; softer joints (ERP/CFM) may help too"};
       break;
     }
     double apart = 0;
@@ -144,7 +150,7 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
       res.error = {ErrorKind::Diverged, j.loc,
                    "joint '" + j.key + "' came apart at t=" + formatNumber(toSeconds(clock.now())) +
                        " s: its anchor on the two bodies is " + formatNumber(apart) + " m apart (more than " +
-                       formatNumber(opts.joint_apart_limit) + " m)"};
+                       formatNumber(opts.joint_apart_limit) + " m) " + stepAdvice(model, clock.step())};
       break;
     }
     if (opts.progress && clock.now() >= next_progress) {

@@ -37,7 +37,7 @@ TEST_CASE("clock: toSimTime refuses what does not fit instead of wrapping", "[si
 }
 
 TEST_CASE("clock: due requests are granted earliest first, ties to the first party", "[sim][clock]") {
-  Clock c(1000, 10);  // steps of at most 1000 ns; within 10 ns counts as reached
+  Clock c(1000, 10);  // a grid of 1000 ns; within 10 ns counts as reached
   const int a = c.addParty(5);
   const int b = c.addParty(0);
   const int d = c.addParty(0);
@@ -50,11 +50,14 @@ TEST_CASE("clock: due requests are granted earliest first, ties to the first par
   CHECK(c.grantable() == a);  // 5 ns away: within MinTimeStep
   c.granted(a, 2000);
   CHECK(c.grantable() == -1);
-  CHECK(c.nextRequest() == 2000);
-  CHECK(c.stepToward(2000) == 1000);  // capped by MaxTimeStep
-  c.advance(1000);
-  CHECK(c.stepToward(2000) == 1000);
-  c.advance(1000);
+  CHECK_FALSE(c.reached(2000));
+  c.advance();
+  CHECK(c.now() == 1000);
+  CHECK(c.grantable() == -1);
+  c.advance();
+  CHECK(c.now() == 2000);
+  CHECK(c.steps() == 2);
+  CHECK(c.reached(2000));
   CHECK(c.grantable() == a);  // all three at 2000: list order
   c.granted(a, kNever);
   CHECK(c.grantable() == b);
@@ -62,7 +65,39 @@ TEST_CASE("clock: due requests are granted earliest first, ties to the first par
   CHECK(c.grantable() == d);
   c.granted(d, kNever);
   CHECK(c.grantable() == -1);
-  CHECK(c.nextRequest() == kNever);
+}
+
+TEST_CASE("clock: a request between grid instants is granted at the next one, never splitting a step",
+          "[sim][clock]") {
+  Clock c(1000, 10);
+  const int a = c.addParty(1500);  // between the 1000 and 2000 ns instants
+  const int b = c.addParty(2995);  // 5 ns before the 3000 ns instant: granted there
+  const int e = c.addParty(3995);  // within MinTimeStep of 4000 from below: granted at 4000
+  CHECK(c.grantable() == -1);
+  c.advance();
+  CHECK(c.grantable() == -1);  // 1000 < 1500 - 10
+  c.advance();
+  CHECK(c.now() == 2000);
+  CHECK(c.grantable() == a);
+  c.granted(a, kNever);
+  c.advance();
+  CHECK(c.grantable() == b);
+  c.granted(b, kNever);
+  c.advance();
+  CHECK(c.grantable() == e);
+  c.granted(e, kNever);
+  // gridInstant says the same without a clock.
+  CHECK(gridInstant(1500, 1000, 10) == 2000);
+  CHECK(gridInstant(2995, 1000, 10) == 3000);
+  CHECK(gridInstant(3000, 1000, 10) == 3000);
+  CHECK(gridInstant(3005, 1000, 10) == 3000);  // MinTimeStep after an instant still counts as it
+  CHECK(gridInstant(3011, 1000, 10) == 4000);
+  CHECK(gridInstant(0, 1000, 10) == 0);
+  CHECK(gridInstant(kNever, 1000, 10) == kNever);
+  CHECK(gridInstant(kNever - 1, 1000, 0) == kNever);  // the instant after does not fit
+  // 30 fps on a 1 ms grid: frame 1 (33333333 ns) shows 34 ms, frame 3 (1e8 ns) 100 ms.
+  CHECK(gridInstant(33333333, 1000000, 1000) == 34000000);
+  CHECK(gridInstant(99999999, 1000000, 1000) == 100000000);
 }
 
 TEST_CASE("clock: a party asking again within MinTimeStep waits for the next step", "[sim][clock]") {
@@ -72,16 +107,14 @@ TEST_CASE("clock: a party asking again within MinTimeStep waits for the next ste
   REQUIRE(c.grantable() == a);
   c.granted(a, 3);  // within 10 ns of now: not again at this instant
   CHECK(c.grantable() == -1);
-  CHECK(c.nextRequest() == 500);  // the step aims at b, not at a's 3 ns
-  CHECK(c.stepToward(500) == 500);
-  c.advance(500);
+  c.advance();
   CHECK(c.grantable() == a);  // 3 ns is past: a first (earliest), then b
   c.granted(a, kNever);
   CHECK(c.grantable() == b);
   // A request in the past is granted after the next step too, never twice at one instant.
   c.granted(b, 100);
   CHECK(c.grantable() == -1);
-  CHECK(c.stepToward(505) == 0);  // within MinTimeStep: counts as reached
-  c.advance(1);
+  c.advance();
+  CHECK(c.now() == 2000);
   CHECK(c.grantable() == b);
 }

@@ -65,15 +65,13 @@ TEST_CASE("run: two parties are served in time order, ties in list order", "[sim
   const Grants expected = {{"3ms", 0},        {"5ms", 0},       {"3ms", 3 * kMs},  {"5ms", 5 * kMs},
                            {"3ms", 6 * kMs},  {"3ms", 9 * kMs}, {"5ms", 10 * kMs}, {"3ms", 12 * kMs},
                            {"3ms", 15 * kMs}, {"5ms", 15 * kMs}};
-  for (double dt : {0.001, 0.002}) {
+  {
     Grants log;
     Periodic a("3ms", 0, 3 * kMs, &log), b("5ms", 0, 5 * kMs, &log);
-    const RunResult r = runParties(m, options(0.015, dt), {&a, &b});
-    INFO("dt " << dt);
+    const RunResult r = runParties(m, options(0.015), {&a, &b});
     REQUIRE(r.status == RunStatus::Completed);
     CHECK(log == expected);
-    // Steps land on every request: 15 of 1 ms; at 2 ms 0-2-3-5-6-8-9-10-12-14-15, 10 steps.
-    CHECK(r.steps == (dt == 0.001 ? 15u : 10u));
+    CHECK(r.steps == 15u);
     CHECK(r.sim_time == 0.015);
     CHECK(a.finished_at == 15 * kMs);
     CHECK(b.finished_at == 15 * kMs);
@@ -86,6 +84,26 @@ TEST_CASE("run: two parties are served in time order, ties in list order", "[sim
   std::swap(swapped[0], swapped[1]);
   std::swap(swapped[8], swapped[9]);
   CHECK(log == swapped);
+}
+
+TEST_CASE("run: the world advances in whole steps; requests between grid instants wait for the next one",
+          "[sim][run]") {
+  // 2 ms steps, a party asking 3 ms after each grant: granted at 0, 4 (asked 3), 8 (asked 7),
+  // 12, 16 (asked 15; the 15 ms end is reached at the 16 ms instant). No step is ever split:
+  // before the fixed grid the clock stepped 0-2-3-5-6-8-9-10-12-14-15.
+  const Model m = ballModel();
+  Grants log;
+  Periodic p("3ms", 0, 3 * kMs, &log);
+  const RunResult r = runParties(m, options(0.015, 0.002), {&p});
+  REQUIRE(r.status == RunStatus::Completed);
+  CHECK(log == Grants{{"3ms", 0}, {"3ms", 4 * kMs}, {"3ms", 8 * kMs}, {"3ms", 12 * kMs}, {"3ms", 16 * kMs}});
+  CHECK(r.steps == 8u);
+  CHECK(r.sim_time == 0.016);
+  CHECK(r.dt == 0.002);
+  CHECK(p.finished_at == 16 * kMs);
+  // The ball is where eight whole 2 ms steps put it, whoever watched (semi-implicit Euler).
+  const double h = 0.002;
+  CHECK(std::fabs(p.heights.back() - (10 - 9.81 * h * h * 8 * 9 / 2)) < 1e-12);
 }
 
 TEST_CASE("run: a party acts on the world at its time, alone", "[sim][run]") {
@@ -117,10 +135,10 @@ TEST_CASE("run: a request within MinTimeStep is granted without another step", "
   }
   {
     Grants log;
-    Periodic p("p", 1 * kMs + 1500, kNever, &log, 1);  // 1.5 us past: one extra short step
+    Periodic p("p", 1 * kMs + 1500, kNever, &log, 1);  // 1.5 us past: the next grid instant
     const RunResult r = runParties(m, options(0.002), {&p});
-    CHECK(log == Grants{{"p", 1 * kMs + 1500}});
-    CHECK(r.steps == 3u);  // 0 -> 1 ms -> 1.0015 ms -> 2 ms
+    CHECK(log == Grants{{"p", 2 * kMs}});
+    CHECK(r.steps == 2u);  // 0 -> 1 ms -> 2 ms: never a short step
   }
   {
     // Asking again within MinTimeStep of the grant: once per instant, again after each step;
@@ -146,15 +164,16 @@ TEST_CASE("run: a party returning kNever stops asking", "[sim][run]") {
 
 TEST_CASE("run: the run ends at the duration", "[sim][run]") {
   const Model m = ballModel();
+  // A duration between grid instants ends at the next one: 2.5 ms at 1 ms steps runs 3 steps.
   for (const auto& [duration, steps] : std::vector<std::pair<double, uint64_t>>{{0.0025, 3}, {0.01, 10}, {0.0, 0}}) {
     Grants log;
     Periodic p("p", 0, 2 * kMs, &log);
     const RunResult r = runParties(m, options(duration), {&p});
     INFO("duration " << duration);
     REQUIRE(r.status == RunStatus::Completed);
-    CHECK(r.sim_time == duration);
-    CHECK(r.steps == steps);  // 2.5 ms: 1 + 1 + 0.5 ms
-    CHECK(p.finished_at == *toSimTime(duration));
+    CHECK(r.sim_time == static_cast<double>(steps) * 0.001);
+    CHECK(r.steps == steps);
+    CHECK(p.finished_at == static_cast<SimTime>(steps) * kMs);
     CHECK(r.samples == 0u);  // no sampler among the parties
   }
   // The end within MinTimeStep of a step counts as reached, without a step.
@@ -162,7 +181,7 @@ TEST_CASE("run: the run ends at the duration", "[sim][run]") {
   Periodic p("p", 0, kNever, &log, 1);
   const RunResult r = runParties(m, options(0.0020005), {&p});
   CHECK(r.steps == 2u);
-  CHECK(r.sim_time == 0.0020005);
+  CHECK(r.sim_time == 0.002);
   // Without parties the world still runs to the end.
   const RunResult none = runParties(m, options(0.005), {});
   CHECK(none.status == RunStatus::Completed);
@@ -223,20 +242,26 @@ TEST_CASE("run: the sampler keeps its times", "[sim][run]") {
   CHECK(times(ballModel(), o) == std::vector<double>{0, 0.1, 0.2, 0.25});
   o.duration = 0.3;
   CHECK(times(ballModel(), o) == std::vector<double>{0, 0.1, 0.2, 0.3});
-  // The clock steps onto the sample times: 3 ms samples with 2 ms steps, 0-2-3-4-6-8-9-10.
+  // 3 ms samples with 2 ms steps: each at the first grid instant at or after its request
+  // (3 -> 4, 6 -> 6, 9 -> 10), the time written is the instant; the world takes 5 whole steps.
   RunResult r;
   o = options(0.01, 0.002);
   o.sample_interval = 0.003;
-  CHECK(times(ballModel(), o, &r) == std::vector<double>{0, 0.003, 0.006, 0.009, 0.01});
-  CHECK(r.steps == 7u);
-  // MinTimeStep 1.5 ms: a sample is taken up to 1.5 ms early, the next request is the first
+  CHECK(times(ballModel(), o, &r) == std::vector<double>{0, 0.004, 0.006, 0.01});
+  CHECK(r.steps == 5u);
+  // An interval below the step samples every step.
+  o = options(0.006, 0.002);
+  o.sample_interval = 0.001;
+  CHECK(times(ballModel(), o, &r) == std::vector<double>{0, 0.002, 0.004, 0.006});
+  CHECK(r.steps == 3u);
+  // MinTimeStep 1.5 ms: a request up to 1.5 ms ahead is due; the next request is the first
   // multiple of the interval more than 1.5 ms later.
   Model m = ballModel();
   m.settings.min_time_step = 0.0015;
   o = options(0.01, 0.001);
   o.sample_interval = 0.002;
-  CHECK(times(m, o, &r) == std::vector<double>{0, 0.001, 0.003, 0.005, 0.007, 0.009, 0.01});
-  // At 9 ms the end is within MinTimeStep: reached without a tenth step.
+  CHECK(times(m, o, &r) == std::vector<double>{0, 0.001, 0.003, 0.005, 0.007, 0.009});
+  // At 9 ms the 10 ms end is within MinTimeStep: reached without a tenth step.
   CHECK(r.steps == 9u);
 }
 

@@ -9,7 +9,7 @@
 
 namespace simbob::cli {
 
-int cmdCheck(const std::string& path, const Common& common, const std::vector<std::string>& sets) {
+int cmdCheck(const std::string& path, const Common& common, const std::vector<std::string>& sets, double dt) {
   std::vector<Override> overrides;
   if (int c = sceneOverrides(common, path, sets, &overrides)) return c;
   exitOnStopSignals(path, "loading");
@@ -20,7 +20,7 @@ int cmdCheck(const std::string& path, const Common& common, const std::vector<st
                       overrides))
     return code;
   Diagnostics lint;
-  lintModel(model, lint);
+  lintModel(model, lint, dt);
   if (int c = report(lint, true)) return c;
   g_log.info(path + ": ok (" + std::to_string(model.bodies.size()) + " mobile bodies, " +
              std::to_string(model.geoms.size()) + " geoms, " + std::to_string(model.joints.size()) + " joints)");

@@ -78,6 +78,9 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   check->add_option("scene", check_scene, "Scene file")->required();
   std::vector<std::string> check_sets, dump_sets;
   check->add_option("--set", check_sets, "Override a scene parameter: KEY.PARAM=VALUE (repeatable)");
+  double check_dt = 0;
+  check->add_option("--dt", check_dt, "Check for this step (s) as `run --dt` takes it (default: MaxTimeStep)")
+      ->check(CLI::Range(kMinTimeOption, kMaxTimeOption));
   addCommon(check, common);
 
   std::string dump_scene, dump_format = "xml";
@@ -202,7 +205,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
     }
     if (int c = setupLogging(common)) return c;
     if (*run) code = cmdRun(ra, common);
-    if (*check) code = cmdCheck(check_scene, common, check_sets);
+    if (*check) code = cmdCheck(check_scene, common, check_sets, check_dt);
     if (*dump) code = cmdDump(dump_scene, dump_format, common, dump_sets);
     if (*types) code = cmdTypes(markdown, registry);
     if (*compare) code = cmdCompare(ca, common);

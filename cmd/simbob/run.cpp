@@ -305,6 +305,9 @@ int cmdRun(RunArgs& a, const Common& common) {
                  "SceneSettings MaxTimeStep " + formatNumber(dt) + " s is outside 1e-9 to 1e9 s (give --dt)"});
     return kExitDataErr;
   }
+  for (const std::string& note :
+       gridNotes(dt, a.sample_interval, a.record.empty() && a.video.empty() ? 0.0 : a.view.fps))
+    g_log.info(note);
   if (a.out.empty()) a.out = std::filesystem::path(a.scene).stem().string() + ".csv";
   for (SocketDef& d : model.sockets) {
     d.timeout = a.peer_timeout;

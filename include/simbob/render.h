@@ -70,10 +70,6 @@ class Renderer {
   virtual std::string cameraName() const = 0;
 };
 
-/// Frame n of a recording at `fps` asks for t = n / fps (kNever beyond the clock's range); it
-/// shows the first grid instant at or after that time (Clock), while a video keeps the nominal
-/// n / fps timestamps.
-SimTime frameTime(uint64_t n, double fps);
 /// How many frames from number `drawn` on are due at grid instant `now` (at or before now +
 /// min_step): each of them shows `now`. More than one when frames come faster than the step.
 uint64_t framesDue(uint64_t drawn, double fps, SimTime now, SimTime min_step);

@@ -133,6 +133,17 @@ class TrajectorySampler : public Party {
 /// according to the result.
 RunResult runModel(const Model& model, const RunOptions& opts, TrajectoryWriter* writer);
 
+/// Frame n of a recording at `fps` asks for t = n / fps (kNever beyond the clock's range); it
+/// shows the first grid instant at or after that time, while a video keeps the nominal n / fps
+/// timestamps.
+SimTime frameTime(uint64_t n, double fps);
+
+/// What a run should say once about its observers and the step grid: a sample interval or a
+/// frame rate (0: no recording) whose times are not whole multiples of `step` (samples and
+/// frames show the first grid instant at or after their nominal times), and a sample interval
+/// below the step (a sample every step). Empty when everything lands on the grid.
+std::vector<std::string> gridNotes(double step, double sample_interval, double fps);
+
 /// "out.csv" -> "out.partial.csv" (the trajectory kept by a failed or interrupted run).
 std::string partialPath(const std::string& out);
 

@@ -29,10 +29,6 @@ SimTime Recorder::onGrant(SimTime now, World& world) {
   return frameTime(frames_, fps_);
 }
 
-SimTime frameTime(uint64_t n, double fps) {
-  return toSimTime(static_cast<double>(n) / fps).value_or(kNever);
-}
-
 uint64_t framesDue(uint64_t drawn, double fps, SimTime now, SimTime min_step) {
   uint64_t n = drawn;
   for (;;) {

@@ -167,6 +167,34 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
   return res;
 }
 
+SimTime frameTime(uint64_t n, double fps) { return toSimTime(static_cast<double>(n) / fps).value_or(kNever); }
+
+std::vector<std::string> gridNotes(double step_s, double sample_interval_s, double fps) {
+  std::vector<std::string> notes;
+  const SimTime step = std::max<SimTime>(toSimTime(step_s).value_or(1), 1);
+  const SimTime interval = std::max<SimTime>(toSimTime(sample_interval_s).value_or(1), 1);
+  const std::string h = formatNumber(toSeconds(step)) + " s";
+  if (interval < step)
+    notes.push_back("the sample interval " + formatNumber(sample_interval_s) + " s is below the step " + h +
+                    ": a sample is taken every step");
+  else if (interval % step != 0)
+    notes.push_back("the sample interval " + formatNumber(sample_interval_s) + " s is not a multiple of the step " + h +
+                    ": sample n is taken at the first step at or after n x " + formatNumber(sample_interval_s) +
+                    " s and its row shows that time");
+  if (fps > 0) {
+    bool aligned = true;
+    for (uint64_t n = 1; n <= 1000 && aligned; ++n) {
+      const SimTime t = frameTime(n, fps);
+      aligned = t != kNever && t % step == 0;
+    }
+    if (!aligned)
+      notes.push_back("frames at " + formatNumber(fps) + " fps do not fall on the step " + h +
+                      ": frame n shows the first step at or after n/" + formatNumber(fps) +
+                      " s (a video keeps the n/fps timestamps)");
+  }
+  return notes;
+}
+
 RunResult runModel(const Model& model, const RunOptions& opts, TrajectoryWriter* writer) {
   Error err;
   const SimTime interval = clockTime(opts.sample_interval, "the sample interval", &err);

@@ -3,11 +3,25 @@
 #   - every relative link and image in README.md and docs/*.md names a file of the repository
 #     (outside code blocks and code spans), and a `#fragment` names a heading of its target
 #     (GitHub's heading anchors);
-#   - no file of the repository points at the original guide outside it (the path ../shared
-#     or shared/seed), so nothing depends on the guide lying beside the repository.
+#   - no file of the repository points at the original guide in the folder beside the
+#     repository (a path through "shared" one level up, or its "seed" folder), so nothing
+#     depends on the guide lying beside the repository.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 cli_setup "$@"
+
+check "no file of the repository points at the guide outside it"
+cd "$REPO"
+if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+  git ls-files -z >"$WORK/files"
+else  # a source tarball: every file but build output
+  find . -path ./build -prune -o -path './build-*' -prune -o -type f -print0 >"$WORK/files"
+fi
+[[ -s "$WORK/files" ]] || fail "no files listed in $REPO"
+# The patterns are written so that this file does not match them itself.
+hits=$(xargs -0 grep -I -l -E -e '\.\./shared' -e 'shared/se[e]d' -- <"$WORK/files" 2>/dev/null || true)
+[[ -z "$hits" ]] || fail "these files point at the guide outside the repository: $hits"
+cd "$WORK"
 
 check "README.md and every docs/*.md link only to files and headings that exist"
 /usr/bin/python3 - "$REPO" <<'PY' || fail "broken links (above)"
@@ -71,15 +85,4 @@ if count < 20:
 print(f"{count} relative links in {len(docs)} files, all there")
 PY
 
-check "no file of the repository points at the guide outside it"
-cd "$REPO"
-if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
-  git ls-files -z >"$WORK/files"
-else  # a source tarball: every file but build output
-  find . -path ./build -prune -o -path './build-*' -prune -o -type f -print0 >"$WORK/files"
-fi
-[[ -s "$WORK/files" ]] || fail "no files listed in $REPO"
-# The patterns are written so that this file does not match them itself.
-hits=$(xargs -0 grep -I -l -E -e '\.\./shared' -e 'shared/seed' -- <"$WORK/files" 2>/dev/null || true)
-[[ -z "$hits" ]] || fail "these files point at ../shared or shared/seed: $hits"
 say "ok"

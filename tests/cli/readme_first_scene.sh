@@ -83,7 +83,9 @@ for ti, yi in zip(t, y):
         if abs(yi - want) > 1e-9:
             bad.append(f"free fall: y({ti}) = {yi}, expected {want} (y0 - g t^2/2 - g h t/2)")
 # It lands within one sample interval of t_c: the first sample at or below 0.1 m + 1 mm.
-land = next(ti for ti, yi in zip(t, y) if yi <= half + 1e-3)
+land = next((ti for ti, yi in zip(t, y) if yi <= half + 1e-3), None)
+if land is None:
+    sys.exit("\n".join(bad + [f"the box never came down to y = {half} m: lowest {min(y)}"]))
 interval = t[1] - t[0]
 if not (t_c - interval < land <= t_c + interval):
     bad.append(f"landed at t = {land}, expected within one sample ({interval} s) of {t_c:.4f}")

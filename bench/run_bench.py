@@ -34,7 +34,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 # N, simulated seconds (1 ms steps), repetitions. Durations give runs of about 2 s (quick:
-# 0.5 s) of bare ODE on the 2-core AMD EPYC VM of README.md; the boxes land after 14 ms.
+# 0.5 s) of bare ODE on the 2-core AMD EPYC VM of docs/performance.md; the boxes land after 14 ms.
 FULL = [(10, 40.0, 5), (100, 3.0, 5), (1000, 0.5, 5), (5000, 0.15, 3)]
 QUICK = [(10, 10.0, 3), (100, 0.8, 3), (1000, 0.1, 3), (5000, 0.05, 1)]
 # CSV writing: LOAD_BODIES falling boxes for CSV_STEPS steps (all before they land, so the steps

@@ -1,7 +1,7 @@
-# `cmake --install build --prefix P` and `cpack -G DEB` (README "Installing on cluster nodes").
+# `cmake --install build --prefix P` and `cpack -G DEB` (docs/install.md, "Installing on cluster nodes").
 #   P/bin/simbob
 #   P/share/simbob/scenes/     the example scenes with the parts they import
-#   P/share/doc/simbob/README.md
+#   P/share/doc/simbob/README.md and P/share/doc/simbob/docs/ (the reference README links to)
 # The .deb installs under /usr; its Depends comes from dpkg-shlibdeps over the binary, so it
 # names Debian's runtime library packages (libode8, libcairo2, ...) and never a -dev package:
 # `apt install ./simbob_*.deb` on a Debian 12 node pulls exactly those.
@@ -11,6 +11,7 @@ install(TARGETS simbob RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS simbob_video LIBRARY DESTINATION lib/simbob)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes/ DESTINATION ${CMAKE_INSTALL_DATADIR}/simbob/scenes)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs)
 
 set(CPACK_GENERATOR "DEB")
 set(CPACK_PACKAGE_NAME "simbob")

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds simbob (scripts/build.sh; extra arguments go to cmake) and its Debian package,
 # build/simbob_VERSION_ARCH.deb, for `apt install ./simbob_*.deb` on Debian 12 nodes
-# (README "Installing on cluster nodes"). dpkg-shlibdeps (dpkg-dev, part of build-essential)
+# (docs/install.md, "Installing on cluster nodes"). dpkg-shlibdeps (dpkg-dev, part of build-essential)
 # works out the package's Depends.
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Example peer of simbob's RCLocalSocketCommunicator (README "Socket protocol", version 2).
+"""Example peer of simbob's RCLocalSocketCommunicator (docs/socket-protocol.md, version 2).
 
 Drives a two-wheeled robot through its RC2DMotionControl (scenes/socket_robot.xml): forward at
 0.2 m/s for 2 s, then a turn to the left on the spot with a proportional law on the heading

@@ -102,7 +102,7 @@ bool loadAndCompile(const std::string& path, const Registry& reg, Scene* scene, 
 int parseSetOptions(const std::vector<std::string>& sets, std::vector<Override>* out);
 
 /// The overrides of a scene: with the global setting DocumentIni, the camera settings of the INI
-/// beside the scene (README "Recording"), then the `--set` options (which win). Appends to out;
+/// beside the scene (docs/recording.md, "DocumentIni"), then the `--set` options (which win). Appends to out;
 /// returns 0 or the exit status of the error it reported.
 int sceneOverrides(const Common& c, const std::string& scene, const std::vector<std::string>& sets,
                    std::vector<Override>* out);

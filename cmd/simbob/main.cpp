@@ -40,7 +40,7 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
   run->add_flag("--auto-disable", ra.auto_disable, "Let ODE put resting bodies to sleep (changes trajectories)");
   run->add_option("--max-contacts", ra.max_contacts, "Contact points per colliding pair (overrides the scene)")
       ->check(CLI::Range(1, 64));
-  run->add_option("--set", ra.sets, "Override a scene parameter: KEY.PARAM=VALUE (repeatable; README \"Sweeps\")")
+  run->add_option("--set", ra.sets, "Override a scene parameter: KEY.PARAM=VALUE (repeatable; docs/sweeps.md)")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   run->add_option("--port-offset", ra.port_offset,
                   "Added to the Port of every RCLocalSocketCommunicator, so parallel runs do not clash (default 0)");

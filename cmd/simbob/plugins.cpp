@@ -1,4 +1,4 @@
-// Loads plug-ins (README "Plug-ins"): every --plugin FILE in command-line order, then every
+// Loads plug-ins (docs/plugins.md): every --plugin FILE in command-line order, then every
 // `.so` in the global setting ExtensionFolder in sorted order, each through its
 // simbob_plugin_v1 entry point, adding its types to the one Registry before any scene is read.
 #include "plugins.h"

@@ -1,4 +1,4 @@
-// Plug-in loading for the CLI (README "Plug-ins").
+// Plug-in loading for the CLI (docs/plugins.md).
 #pragma once
 
 #include <string>

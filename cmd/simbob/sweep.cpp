@@ -1,5 +1,5 @@
 // simbob sweep: plan a parameter sweep into a manifest, run its cases (one per Slurm array
-// task, or all on local workers), gather their results, write Slurm scripts (README "Sweeps").
+// task, or all on local workers), gather their results, write Slurm scripts (docs/sweeps.md).
 #include <fcntl.h>
 #include <sys/prctl.h>
 #include <sys/stat.h>

@@ -1,4 +1,4 @@
-// Example plug-in (README "Plug-ins"): the controller type SquareDriver drives a two-wheeled
+// Example plug-in (docs/plugins.md): the controller type SquareDriver drives a two-wheeled
 // robot along a square through its wheels' RCVelControl drives. Each cycle of Side + Turn
 // seconds: both wheels at +WheelSpeed rad/s for Side s (straight ahead), then the left wheel at
 // -WheelSpeed and the right at +WheelSpeed for Turn s (a turn to the left on the spot). With

@@ -134,7 +134,7 @@ struct ControllerDef {
 
 /// An RCLocalSocketCommunicator (guide 6.11.6): a peer program on 127.0.0.1 that reads the
 /// robot's state and sets its commands in lockstep with simulated time (lib/robot/socket_peer.cpp,
-/// README "Socket protocol").
+/// docs/socket-protocol.md).
 struct SocketDef {
   std::string key;  ///< fully qualified key of the periphery
   SourceLoc loc;

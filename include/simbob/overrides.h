@@ -12,7 +12,7 @@
 
 namespace simbob {
 
-/// One `KEY.PARAM=VALUE`. KEY is a fully qualified component key (README "Conventions"; as
+/// One `KEY.PARAM=VALUE`. KEY is a fully qualified component key (docs/scene-format.md, "Conventions"; as
 /// `simbob dump` and the CSV show it), PARAM the name of one of its value parameters.
 struct Override {
   std::string text;   ///< as given, "Crate.Material.Friction=0.3"

@@ -66,7 +66,7 @@ class World {
 
   /// Actuators, in Model::actuators order.
   int actuatorCount() const;
-  /// Commands actuator i (0 <= i < actuatorCount()) from now on (see README, "Actuators"):
+  /// Commands actuator i (0 <= i < actuatorCount()) from now on (see docs/scene-format.md, "Actuators"):
   /// Drive: voltage, clamped to [-1, 1]; Servo: target position (m or rad), clamped to
   /// [MinPos, MaxPos]; VelDrive: target velocity (m/s or rad/s), clamped to +-MaxVelocity.
   /// Before its first command a drive has voltage 0, a servo holds its start position (0,

@@ -4,8 +4,8 @@
 // through which it adds controller types to the same Registry as the built-ins. A plug-in
 // controller's party is made by the plug-in's factory from the lowered ControllerDef and acts
 // through World (simbob/physics.h), like the built-in controllers. The ABI is C++: a plug-in
-// must be built with the same compiler and simbob headers as the simbob that loads it (README
-// "Plug-ins"); the version number changes whenever this header or the types it uses change.
+// must be built with the same compiler and simbob headers as the simbob that loads it
+// (docs/plugins.md); the version number changes whenever this header or the types it uses change.
 #pragma once
 
 #include <cstdint>

@@ -12,7 +12,7 @@
 namespace simbob {
 
 /// One party per Model::controllers entry, in that order (ties in the run loop follow it), then
-/// one per Model::sockets entry (the socket peers, README "Socket protocol").
+/// one per Model::sockets entry (the socket peers, docs/socket-protocol.md).
 std::vector<std::unique_ptr<Party>> robotParties(const Model& model);
 
 }  // namespace simbob

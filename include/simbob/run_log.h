@@ -1,5 +1,5 @@
 // The run log (`simbob run --log joints,sensors,commands`): what the robots did, sampled at the
-// trajectory's times, as a long-format CSV `time,component,quantity,value` (README, "Log format").
+// trajectory's times, as a long-format CSV `time,component,quantity,value` (docs/formats.md, "Log format").
 #pragma once
 
 #include <memory>

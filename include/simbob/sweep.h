@@ -1,4 +1,4 @@
-// Parameter sweeps (README "Sweeps"): a sweep description (JSON) expands into numbered cases,
+// Parameter sweeps (docs/sweeps.md): a sweep description (JSON) expands into numbered cases,
 // written as a manifest (JSON lines, one case per line); each case runs on its own (a Slurm
 // array task, a local worker) into OUT/case-NNNN/, and gather merges the results into a table.
 // Plain data and text only: no ODE, no processes (cmd/simbob/sweep.cpp runs them).

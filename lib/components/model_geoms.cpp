@@ -214,7 +214,7 @@ void registerModelGeoms(Registry& r) {
           enumParam(kAlignmentParam, ValueType::Enum, &kAlignment, 2, "axis of a cylindric wrap"),
           flag(kIgnoreChilds, false, "wrap only the root model")},
          {"RCMoelWrapGeom"},
-         "A geom of GeomType around the body's whole model (see README for how tight).",
+         "A geom of GeomType around the body's whole model (docs/scene-format.md says how tight).",
          true});
 }
 

@@ -196,8 +196,8 @@ void registerPeripheries(Registry& r) {
           integer(kPort, 5000, "TCP port on 127.0.0.1 (1 to 65535; run --port-offset adds to it)", Range::Positive),
           number(kPeriod, 0.01, "s", "simulated time between exchanges with the peer (simbob's own)", Range::Positive)},
          {},
-         "Lets another program on this computer read the robot and command it, in lockstep (README \"Socket "
-         "protocol\")."});
+         "Lets another program on this computer read the robot and command it, in lockstep "
+         "(docs/socket-protocol.md)."});
 }
 
 bool peripheryLimits(const Component& c, double* lo, double* hi) {

@@ -1,7 +1,7 @@
 // RCLocalSocketCommunicator (guide 6.11.6): another program on this computer (the peer) reads
 // the robot's state and sets its commands over a TCP connection on 127.0.0.1, in lockstep with
 // simulated time. At every Period simbob sends the state and waits for the peer's commands and
-// "step" before the simulation goes on; the line protocol is README "Socket protocol".
+// "step" before the simulation goes on; the line protocol is docs/socket-protocol.md.
 // Every wait is a poll(2) with a wall-clock deadline (SocketDef::timeout): a peer that never
 // connects, goes away or falls silent fails the run (ErrorKind::Unavailable), a line the
 // protocol does not allow fails it too (ErrorKind::Protocol). No threads.

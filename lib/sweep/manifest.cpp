@@ -1,4 +1,4 @@
-// Sweep manifests: one case per line as compact JSON (README "Sweeps").
+// Sweep manifests: one case per line as compact JSON (docs/sweeps.md).
 #include <cstdio>
 #include <nlohmann/json.hpp>
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Plug-ins (README "Plug-ins"): the example square_driver.so adds the controller type
+# Plug-ins (docs/plugins.md): the example square_driver.so adds the controller type
 # SquareDriver to the registry (types, check, run), given by --plugin or found in the global
 # setting ExtensionFolder; examples/plugins/square_robot.xml moves as its law says, the same
 # bytes twice. A wrong ABI version, a type name that is taken, a library without the entry point

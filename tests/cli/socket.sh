@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# RCLocalSocketCommunicator end to end (README "Socket protocol"): scenes/socket_robot.xml driven
+# RCLocalSocketCommunicator end to end (docs/socket-protocol.md): scenes/socket_robot.xml driven
 # by scripts/simbob_client.py matches its golden byte for byte, twice, and moves as the client's
 # law says; the same run with simbob as the client gives the same bytes; a peer that
 # disconnects, stalls, breaks the protocol or never comes, and a client with no server, stop the

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""A misbehaving peer for tests/cli/socket.sh: speaks simbob's socket protocol (README "Socket
-protocol") correctly, answering every exchange with a bare "step", until simulated time reaches
+"""A misbehaving peer for tests/cli/socket.sh: speaks simbob's socket protocol
+(docs/socket-protocol.md) correctly, answering every exchange with a bare "step", until simulated time reaches
 --at, then does what --mode says:
   disconnect  closes the connection
   stall       stops answering but keeps the connection open (until simbob closes it)

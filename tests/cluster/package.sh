@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The install rules and the .deb (cmake/package.cmake):
 #   - `cmake --install BUILD --prefix P` puts bin/simbob, the example scenes with the parts they
-#     import, and the README under P, and the installed binary runs a scene from there;
+#     import, the README and docs/ under P, and the installed binary runs a scene from there;
 #   - `cpack -G DEB` builds simbob_VERSION_ARCH.deb whose Depends is exactly the Debian packages
 #     of the libraries the binary links (dpkg-shlibdeps), none of them -dev or from outside
 #     Debian; `apt-get --simulate install ./simbob_*.deb` accepts it on this machine;
@@ -33,7 +33,7 @@ version_line=$(cat "$LAST_OUT")
 SCENE=imported_bodies
 expect_status 0 "$SIMBOB" run "$SCENES/$SCENE.xml" --duration 1 --quiet --out "$WORK/reference.csv"
 
-check "cmake --install --prefix puts the binary, the scenes with their parts, and the README there"
+check "cmake --install --prefix puts the binary, the scenes with their parts, the README and docs/ there"
 t0=$SECONDS
 expect_status 0 cmake --install "$BUILD" --prefix "$WORK/prefix"
 say "cmake --install took $((SECONDS - t0)) s"
@@ -43,6 +43,9 @@ for f in "$SCENES"/*.xml "$SCENES"/parts/*; do
   expect_same_file "$f" "$P/share/simbob/scenes/${f#"$SCENES"/}"
 done
 expect_same_file "$REPO/README.md" "$P/share/doc/simbob/README.md"
+for f in "$REPO"/docs/*.md; do
+  expect_same_file "$f" "$P/share/doc/simbob/docs/${f#"$REPO"/docs/}"
+done
 expect_status 0 "$P/bin/simbob" run "$P/share/simbob/scenes/$SCENE.xml" --duration 1 --quiet --out "$WORK/prefix.csv"
 expect_same_file "$WORK/prefix.csv" "$WORK/reference.csv"
 
@@ -60,9 +63,9 @@ expect_eq "Architecture" "$(dpkg-deb -f "$deb" Architecture)" "$(dpkg --print-ar
 expect_eq "file name" "$(basename "$deb")" "simbob_${version}_$(dpkg --print-architecture).deb"
 
 say "at $SECONDS s"
-check "the package holds the binary, every scene and part, and the README under /usr"
+check "the package holds the binary, every scene and part, the README and docs/ under /usr"
 dpkg-deb -c "$deb" | awk '{print $6}' | sed 's|^\./|/|' >"$WORK/contents"
-for f in /usr/bin/simbob /usr/share/doc/simbob/README.md; do
+for f in /usr/bin/simbob /usr/share/doc/simbob/README.md /usr/share/doc/simbob/docs/scene-format.md; do
   grep -qxF "$f" "$WORK/contents" || fail "the package lacks $f"
 done
 for f in "$SCENES"/*.xml "$SCENES"/parts/*; do

@@ -39,7 +39,7 @@ TEST_CASE("transform: conversions keep w x y z and row-major order", "[compile][
 }
 
 TEST_CASE("transform: textbook rotations", "[compile][transform]") {
-  // 90 deg about Z takes X onto Y; about X takes Y onto Z (README: Conventions).
+  // 90 deg about Z takes X onto Y; about X takes Y onto Z (docs/scene-format.md: Conventions).
   const Vec3 y = rotate(quatFromEulerDeg({0, 0, 90}), {1, 0, 0});
   CHECK(y[0] == Approx(0).margin(1e-15));
   CHECK(y[1] == Approx(1));

@@ -61,8 +61,10 @@ void registerSettings(Registry& r) {
        Family::Struct,
        int(StructKind::SceneSettings),
        {triple(kGravity, {0, -9.81, 0}, "m/s^2", "gravity; Y is up"),
-        number(kMaxTimeStep, 0.001, "s", "largest physics step; the step size (--dt overrides)", Range::Positive),
-        number(kMinTimeStep, 1e-6, "s", "a requested time this close to the clock counts as reached", Range::Positive),
+        number(kMaxTimeStep, 0.001, "s", "the step size: the physics advances in whole steps of it (--dt overrides)",
+               Range::Positive),
+        number(kMinTimeStep, 1e-6, "s", "a request this close after a step instant is served at it, not at the next",
+               Range::Positive),
         number(kMaxAccessTime, 1.0, "s",
                "wall-clock limit of one access to the simulation (a grant to a controller or peer); past it the run "
                "stops (exit 69)",

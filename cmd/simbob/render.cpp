@@ -66,7 +66,8 @@ class Follower : public Party {
 
 void addViewOptions(CLI::App* app, ViewArgs& v) {
   app->add_option("--size", v.size, "Image size WIDTHxHEIGHT in pixels (default 640x480)");
-  app->add_option("--camera", v.camera, "Camera key (default: the scene's first camera, else a view of every body)");
+  app->add_option("--camera", v.camera,
+                  "Camera key (default: the scene's first camera, else a view framing every body where it is drawn)");
   app->add_option(
       "--quality", v.quality,
       "View quality, each level adding to the one before: frame (bounding boxes), wire, plane (unlit fill), "

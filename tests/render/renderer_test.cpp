@@ -534,3 +534,36 @@ TEST_CASE("the default quality draws transparent skins: a glass panel does not h
   CHECK(std::abs(beside[0] - 77) <= 3);
   CHECK(std::abs(beside[2] - 77) <= 3);
 }
+
+TEST_CASE("collision shapes: drawn when asked, and the default view frames the bodies where they are drawn") {
+  const Model pendulum = compileFile("scenes/pendulum.xml");  // a sphere geom, no models
+  CHECK(modelsShowNoBody(pendulum));
+  CHECK_FALSE(modelsShowNoBody(compileFile("tests/data/render/basic.xml")));
+  RenderOptions o;
+  o.width = 120;
+  o.height = 90;
+  o.backend = backend();
+  const uint8_t bg[3] = {77, 77, 128};  // the default ClearColor 0.3 0.3 0.5
+  auto offBackground = [&](const Image& img, int x, int y) {
+    const uint8_t* p = img.pixel(x, y);
+    return std::abs(p[0] - bg[0]) > 8 || std::abs(p[1] - bg[1]) > 8 || std::abs(p[2] - bg[2]) > 8;
+  };
+  std::vector<Transform> moved = initialPoses(pendulum);
+  moved[0].p = add(moved[0].p, Vec3{3, -2, 1});
+  for (bool geoms : {false, true}) {
+    o.draw_geoms = geoms;
+    o.draw_models = !geoms;
+    Error err;
+    std::unique_ptr<Renderer> r = Renderer::create(pendulum, o, &err);
+    REQUIRE(r);
+    Image at_start, at_moved;
+    REQUIRE(r->render(initialPoses(pendulum), 0, &at_start) == nullptr);
+    // A fresh renderer for the moved pose: a still frames the bodies of its own instant.
+    std::unique_ptr<Renderer> r2 = Renderer::create(pendulum, o, &err);
+    REQUIRE(r2);
+    REQUIRE(r2->render(moved, 1, &at_moved) == nullptr);
+    INFO("collision shapes drawn: " << geoms);
+    CHECK(offBackground(at_start, 60, 45) == geoms);
+    CHECK(offBackground(at_moved, 60, 45) == geoms);
+  }
+}

@@ -319,8 +319,9 @@ class GlRenderer : public Renderer {
     gl_.StencilOp(GL_KEEP, GL_KEEP, GL_INCR);
     for (size_t i = 0; i < visuals_.size(); ++i) {
       const VisualDef& v = visuals_[i];
-      // Nor does a plane (a shadow plane, or a collision plane drawn as a wire grid over it).
-      if (i == pi || (v.shape == VisualDef::Plane && (v.shadow_plane || v.wire))) continue;
+      // Nor does a shadow plane, nor a collision shape drawn as a wire frame over the models.
+      const bool overlay = v.wire && v.skin >= static_cast<int>(model_.skins.size());
+      if (i == pi || (v.shape == VisualDef::Plane && v.shadow_plane) || overlay) continue;
       // Only what lies on the light's side of the plane casts a shadow on it.
       const Transform t = worldPose(v, poses);
       if (dot(n, t.p) + d < 0) continue;

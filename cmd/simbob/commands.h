@@ -23,16 +23,20 @@ struct NamedPath;
 struct ViewArgs {
   std::string size = "640x480";  ///< WIDTHxHEIGHT in pixels
   std::string camera;            ///< a camera's key ("" = the scene's first, else a default view)
-  std::string quality;           ///< view quality level ("" = shadows)
+  std::string quality;           ///< view quality level ("" = transparency)
   std::string gl;                ///< egl, osmesa ("" = $SIMBOB_GL, else EGL falling back to OSMesa)
   /// Frames per simulated second: of --record and --video; for `render --at T`, those of the
   /// recording whose camera moves the still repeats.
   double fps = 30;
+  std::string draw;  ///< models, geoms, or both ("" = models, else geoms when no body has a model)
 };
 void addViewOptions(CLI::App* app, ViewArgs& v);
 /// Checks the view options and fills `o` (the back end from $SIMBOB_GL when --gl is not given);
 /// 0, or the exit status after logging the problem.
 int renderOptions(const ViewArgs& v, const Common& common, RenderOptions* o);
+/// Without --draw, draws the collision shapes instead of models that show no body, saying so
+/// once on stderr.
+void drawFallback(const ViewArgs& v, const Model& model, RenderOptions* o);
 
 struct RunArgs {
   std::string scene;

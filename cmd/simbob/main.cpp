@@ -140,7 +140,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   CLI::App* render = app.add_subcommand("render", "Draw the scene at a simulated time to a PNG");
   render->add_option("scene", rna.scene, "Scene file")->required();
   render->add_option("--at", rna.at, "Simulated time in s (default 0; the scene is simulated up to it)");
-  render->add_option("--out", rna.out, "Output PNG")->required();
+  render->add_option("--out", rna.out, "Output PNG (the name must end in .png)")->required();
   render->add_option("--dt", rna.dt, "Step size in s (default: the scene's MaxTimeStep)");
   render->add_option("--seed", rna.seed, "Seed of ODE's random generator (default 0)");
   addViewOptions(render, rna.view);

@@ -1,6 +1,7 @@
 // simbob render (one still at a simulated time), simbob info (the GL back ends), and the view
 // options shared with `run --record` (issue #12).
 #include <CLI/CLI.hpp>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -65,12 +66,18 @@ class Follower : public Party {
 
 void addViewOptions(CLI::App* app, ViewArgs& v) {
   app->add_option("--size", v.size, "Image size WIDTHxHEIGHT in pixels (default 640x480)");
-  app->add_option("--camera", v.camera, "Camera key (default: the scene's first camera, else a view of every body)");
-  app->add_option("--quality", v.quality,
-                  "View quality: frame, wire, plane, flat, smooth, textures, shadows (default), transparency, fog");
+  app->add_option("--camera", v.camera,
+                  "Camera key (default: the scene's first camera, else a view framing every body where it is drawn)");
+  app->add_option(
+      "--quality", v.quality,
+      "View quality, each level adding to the one before: frame (bounding boxes), wire, plane (unlit fill), "
+      "flat, smooth (lit), textures, shadows, transparency (default: all but fog), fog");
   app->add_option("--fps", v.fps,
                   "Frames per simulated second (default 30): of --record and --video; of the recording a still at "
                   "--at matches (moving cameras follow its frames)");
+  app->add_option("--draw", v.draw,
+                  "What to draw: models (default), geoms (the collision shapes), or models,geoms (collision shapes "
+                  "as wire frames over the models); without it, geoms when no body has a model");
   app->add_option("--gl", v.gl, "GL back end: egl or osmesa (default: $SIMBOB_GL, else EGL, falling back to OSMesa)");
 }
 
@@ -109,12 +116,49 @@ int renderOptions(const ViewArgs& v, const Common& common, RenderOptions* o) {
     g_log.error({ErrorKind::InvalidInput, {}, from + " must be egl or osmesa, got '" + gl + "'"});
     return kExitUsage;
   }
+  if (!v.draw.empty()) {
+    o->draw_models = o->draw_geoms = false;
+    size_t start = 0;
+    while (start <= v.draw.size()) {
+      const size_t comma = std::min(v.draw.find(',', start), v.draw.size());
+      const std::string item = v.draw.substr(start, comma - start);
+      if (item == "models") {
+        o->draw_models = true;
+      } else if (item == "geoms") {
+        o->draw_geoms = true;
+      } else {
+        g_log.error(
+            {ErrorKind::InvalidInput, {}, "--draw must be models, geoms or models,geoms, got '" + v.draw + "'"});
+        return kExitUsage;
+      }
+      start = comma + 1;
+    }
+  }
   o->camera = v.camera;
   o->texture_folder = common.texture_folder;
   return 0;
 }
 
+void drawFallback(const ViewArgs& v, const Model& model, RenderOptions* o) {
+  if (!v.draw.empty() || !modelsShowNoBody(model)) return;
+  o->draw_models = false;
+  o->draw_geoms = true;
+  g_log.info("no body has a model: drawing the collision shapes (--draw geoms; --draw models for the models alone)");
+}
+
 int cmdRender(const RenderArgs& a, const Common& common) {
+  {
+    // A still is PNG bytes: a name that says otherwise is refused, as `plot` refuses its formats.
+    std::string ext = std::filesystem::path(a.out).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".png") {
+      g_log.error({ErrorKind::InvalidInput,
+                   {},
+                   "--out " + quoteInput(a.out, 400) + ": a still is a .png, not " +
+                       (ext.empty() ? std::string("a name without extension") : quoteInput(ext, 40))});
+      return kExitUsage;
+    }
+  }
   if (!std::isfinite(a.at) || a.at < 0 || a.at > kMaxTimeOption) {
     g_log.error({ErrorKind::InvalidInput, {}, "--at must be between 0 and 1e9 s, got " + formatNumber(a.at)});
     return kExitUsage;
@@ -140,6 +184,7 @@ int cmdRender(const RenderArgs& a, const Common& common) {
     if (int c = checkOutputs({{"--out", a.out}, {"--log-file", g_log.path}}, inputs)) return c;
   }
   scene = Scene{};
+  drawFallback(a.view, model, &ro);
   Error err;
   std::unique_ptr<Renderer> renderer = Renderer::create(model, ro, &err);
   if (!renderer) {

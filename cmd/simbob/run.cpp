@@ -349,6 +349,7 @@ int cmdRun(RunArgs& a, const Common& common) {
   if (!a.record.empty() || !a.video.empty()) {
     RenderOptions ro;
     if (int c = renderOptions(a.view, common, &ro)) return c;
+    drawFallback(a.view, model, &ro);
     std::vector<std::unique_ptr<FrameSink>> sinks;
     if (!a.record.empty()) {
       std::error_code dir_ec;

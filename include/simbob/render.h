@@ -33,10 +33,16 @@ struct RenderOptions {
   int width = 640;   ///< pixels
   int height = 480;  ///< pixels
   GlBackend backend = GlBackend::Auto;
-  Quality quality = Quality::Shadows;  ///< Smooth with textures and shadows
-  std::string camera;                  ///< a camera's qualified key; "" = the first, else a default view
-  std::string texture_folder;          ///< global setting TextureFolder ("" = only beside the scene)
+  Quality quality = Quality::Transparency;  ///< textures, shadows and transparent skins; no fog
+  std::string camera;                       ///< a camera's qualified key; "" = the first, else a default view
+  std::string texture_folder;               ///< global setting TextureFolder ("" = only beside the scene)
+  bool draw_models = true;                  ///< the models (visuals) of the scene
+  bool draw_geoms = false;                  ///< the collision shapes: filled alone, wire frames over models
 };
+
+/// True when the models show none of the bodies there are (no model on any mobile body, or no
+/// model at all while there are collision shapes): drawing them alone gives an empty picture.
+bool modelsShowNoBody(const Model& model);
 
 constexpr int kMaxImageSide = 8192;  ///< pixels, per side
 

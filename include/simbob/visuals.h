@@ -46,10 +46,11 @@ struct VisualDef {
   int skin = 0;        ///< Model::skins index ([0] is the default skin)
   uint32_t mask = 63;  ///< Cuboid SideMask (1 -X, 2 +X, 4 -Y, 8 +Y, 16 -Z, 32 +Z); Cylinder ComponentMask
                        ///< (1 jacket, 2 flat front +Z, 4 flat back -Z, 8 capped front, 16 capped back); Cone 1 = base
-  bool wire = false;   ///< Cuboid: always a wire frame
+  bool wire = false;   ///< always a wire frame (a Cuboid's Wire; collision shapes over models)
   bool triangles = false;     ///< Ellipsoid: subdivided icosahedron instead of quads
   int accuracy = 2;           ///< tessellation level (guide 6.3.3)
   bool shadow_plane = false;  ///< Plane: shadows are projected onto it
+  bool one_sided = false;     ///< drawn only where its front faces the eye (collision planes)
   double tex_scale = 1;       ///< texture repeats per metre (negative: per extension)
   double tex_scale2 = 1;      ///< Cylinder: LinTexScale (tex_scale is AngTexScale)
   double max_cell = -1;       ///< Plane: largest cell, m (negative: one cell)

@@ -82,7 +82,10 @@ struct Texture {
 class GlRenderer : public Renderer {
  public:
   GlRenderer(const Model& m, const RenderOptions& o, std::unique_ptr<render::GlContext> ctx)
-      : model_(m), opts_(o), ctx_(std::move(ctx)), gl_(ctx_->gl) {}
+      : model_(m), opts_(o), ctx_(std::move(ctx)), gl_(ctx_->gl), skins_(m.skins) {
+    if (o.draw_models) visuals_ = m.visuals;
+    if (o.draw_geoms) addGeomVisuals(!o.draw_models);
+  }
 
   ~GlRenderer() override {
     for (const Texture& t : textures_)
@@ -126,6 +129,7 @@ class GlRenderer : public Renderer {
     gl_.DepthFunc(GL_LEQUAL);
     gl_.Enable(GL_NORMALIZE);
 
+    if (camera_ < 0) frameBodies(poses);
     // Projection: ViewAngle is the horizontal field of view (guide 3.5).
     double va = 60, near_clip = 0.1, far_clip = 1000;
     const Transform eye = cameraFrame(poses, &va, &near_clip, &far_clip);
@@ -175,8 +179,8 @@ class GlRenderer : public Renderer {
     // Shadow planes first (stencil 1 where they show), then the shadows on them, then the rest.
     const bool shadows = q >= Quality::Shadows;
     std::vector<size_t> planes, opaque, transparent;
-    for (size_t i = 0; i < model_.visuals.size(); ++i) {
-      const VisualDef& v = model_.visuals[i];
+    for (size_t i = 0; i < visuals_.size(); ++i) {
+      const VisualDef& v = visuals_[i];
       if (shadows && v.shape == VisualDef::Plane && v.shadow_plane)
         planes.push_back(i);
       else if (q >= Quality::Transparency && isTransparent(v))
@@ -221,7 +225,7 @@ class GlRenderer : public Renderer {
 
  private:
   bool isTransparent(const VisualDef& v) const {
-    const SkinDef& s = model_.skins[static_cast<size_t>(v.skin)];
+    const SkinDef& s = skins_[static_cast<size_t>(v.skin)];
     return (s.mode == SkinDef::TransparentColor || s.mode == SkinDef::TransparentLighting) && s.color[3] < 1;
   }
 
@@ -231,8 +235,8 @@ class GlRenderer : public Renderer {
   }
 
   void drawVisual(size_t i, const std::vector<Transform>& poses) {
-    const VisualDef& v = model_.visuals[i];
-    const SkinDef& s = model_.skins[static_cast<size_t>(v.skin)];
+    const VisualDef& v = visuals_[i];
+    const SkinDef& s = skins_[static_cast<size_t>(v.skin)];
     const Quality q = opts_.quality;
     const bool unlit = q <= Quality::Plane || s.mode == SkinDef::Color || s.mode == SkinDef::TransparentColor;
     const double alpha = q >= Quality::Transparency ? s.color[3] : 1.0;
@@ -264,10 +268,20 @@ class GlRenderer : public Renderer {
     if (q == Quality::Frame) {
       gl_.Disable(GL_LIGHTING);
       render::drawBoundingBox(gl_, v);
-    } else if (v.wire && v.shape == VisualDef::Cuboid && q != Quality::Wire) {
+    } else if (v.wire && q != Quality::Wire) {
+      // Pulled towards the eye a little, so that lines on a model's surface (a collision
+      // shape over its model) are not hidden by it.
       gl_.PolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+      gl_.Enable(GL_POLYGON_OFFSET_LINE);
+      gl_.PolygonOffset(-1, -1);
       render::drawShape(gl_, v);
+      gl_.Disable(GL_POLYGON_OFFSET_LINE);
       gl_.PolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    } else if (v.one_sided) {
+      gl_.Enable(GL_CULL_FACE);
+      gl_.CullFace(GL_BACK);
+      render::drawShape(gl_, v);
+      gl_.Disable(GL_CULL_FACE);
     } else {
       render::drawShape(gl_, v);
     }
@@ -276,10 +290,14 @@ class GlRenderer : public Renderer {
   }
 
   /// Projects every other visual onto shadow plane `pi` from the light (a planar shadow
-  /// matrix), blended black at ShadowIntensity where the plane showed (stencil 1), each pixel
-  /// once (the stencil is cleared where a shadow lands).
+  /// matrix) into the stencil only (1 -> 2 where the plane showed), then draws the plane again
+  /// in black at ShadowIntensity over those pixels, each once. The second pass has the plane's
+  /// own depths, so fog treats a shadow as the ground it lies on: GL's fog colour of the black
+  /// blended over the fogged ground gives fog(ground * (1 - ShadowIntensity)) exactly. (The
+  /// projected vertices have w != 1, and fixed-function fog reads their eye z undivided: drawn
+  /// directly, the shadows came out as fully fogged, brighter than the lit ground.)
   void drawShadows(size_t pi, const std::vector<Transform>& poses) {
-    const VisualDef& pv = model_.visuals[pi];
+    const VisualDef& pv = visuals_[pi];
     const Transform pt = worldPose(pv, poses);
     const Vec3 n = rotate(pt.q, {0, 0, 1});
     const double d = -dot(n, pt.p);
@@ -287,7 +305,7 @@ class GlRenderer : public Renderer {
     const std::array<double, 4>& l = model_.view.light_pos;
     const double dl = plane[0] * l[0] + plane[1] * l[1] + plane[2] * l[2] + plane[3] * l[3];
     if (!(dl > 0)) return;  // the light is behind the plane: no shadows on it
-    // M = (P.L) I - L P^T, column-major; a tiny lift along n keeps the shadow above the plane.
+    // M = (P.L) I - L P^T, column-major.
     std::array<double, 16> m{};
     for (int c = 0; c < 4; ++c)
       for (int r = 0; r < 4; ++r)
@@ -295,14 +313,15 @@ class GlRenderer : public Renderer {
     gl_.Disable(GL_LIGHTING);
     gl_.Disable(GL_DEPTH_TEST);
     gl_.Enable(GL_STENCIL_TEST);
+    gl_.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    gl_.DepthMask(GL_FALSE);
     gl_.StencilFunc(GL_EQUAL, 1, 0xFF);
-    gl_.StencilOp(GL_KEEP, GL_KEEP, GL_ZERO);
-    gl_.Enable(GL_BLEND);
-    gl_.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    gl_.Color4d(0, 0, 0, model_.view.shadow_intensity);
-    for (size_t i = 0; i < model_.visuals.size(); ++i) {
-      const VisualDef& v = model_.visuals[i];
-      if (i == pi || (v.shape == VisualDef::Plane && v.shadow_plane)) continue;
+    gl_.StencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+    for (size_t i = 0; i < visuals_.size(); ++i) {
+      const VisualDef& v = visuals_[i];
+      // Nor does a shadow plane, nor a collision shape drawn as a wire frame over the models.
+      const bool overlay = v.wire && v.skin >= static_cast<int>(model_.skins.size());
+      if (i == pi || (v.shape == VisualDef::Plane && v.shadow_plane) || overlay) continue;
       // Only what lies on the light's side of the plane casts a shadow on it.
       const Transform t = worldPose(v, poses);
       if (dot(n, t.p) + d < 0) continue;
@@ -313,9 +332,23 @@ class GlRenderer : public Renderer {
       render::drawShape(gl_, v);
       gl_.PopMatrix();
     }
+    gl_.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl_.StencilFunc(GL_EQUAL, 2, 0xFF);
+    gl_.StencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    gl_.Enable(GL_BLEND);
+    gl_.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    gl_.Color4d(0, 0, 0, model_.view.shadow_intensity);
+    gl_.PushMatrix();
+    const std::array<double, 16> pm = matrixOf(pt);
+    gl_.MultMatrixd(pm.data());
+    render::drawShape(gl_, pv);
+    gl_.PopMatrix();
     gl_.Disable(GL_BLEND);
     gl_.Disable(GL_STENCIL_TEST);
+    gl_.DepthMask(GL_TRUE);
     gl_.Enable(GL_DEPTH_TEST);
+    // The next shadow plane starts from a clear stencil: no shadow of it lands on this one.
+    gl_.Clear(GL_STENCIL_BUFFER_BIT);
   }
 
   /// The camera's world frame and view at these poses.
@@ -376,16 +409,16 @@ class GlRenderer : public Renderer {
     } else if (!model_.cameras.empty()) {
       camera_ = 0;
     }
-    if (camera_ < 0) defaultView();
     return true;
   }
 
-  /// A view of every body at t = 0: from the front (+Z), a little above, far enough for the
-  /// sphere around the bodies (and the static models that are not planes) to fit the view.
-  void defaultView() {
-    const std::vector<Transform> poses = initialPoses(model_);
+  /// The default view (no camera in the scene): from the front (+Z), a little above, far enough
+  /// for the sphere around the bodies (and the static models that are not planes) to fit the
+  /// view. It frames the bodies at the poses drawn; in a recording, at every pose drawn so far,
+  /// so the view only widens as they spread and never jumps back.
+  void frameBodies(const std::vector<Transform>& poses) {
     std::vector<std::pair<Vec3, double>> balls;  // centre, radius
-    for (const VisualDef& v : model_.visuals) {
+    for (const VisualDef& v : visuals_) {
       if (v.shape == VisualDef::Plane && v.body < 0) continue;  // grounds, skies: unbounded in effect
       const Transform t = worldPose(v, poses);
       double r = 0;
@@ -410,17 +443,16 @@ class GlRenderer : public Renderer {
       balls.push_back({t.p, r});
     }
     for (const Transform& p : poses) balls.push_back({p.p, 0.1});
-    Vec3 lo{0, 0, 0}, hi{0, 0, 0};
-    if (!balls.empty()) {
-      lo = hi = balls[0].first;
-      for (const auto& b : balls)
-        for (int k = 0; k < 3; ++k) {
-          lo[k] = std::min(lo[k], b.first[k] - b.second);
-          hi[k] = std::max(hi[k], b.first[k] + b.second);
-        }
-    }
-    const Vec3 center = scale(add(lo, hi), 0.5);
-    const double radius = std::max(0.5, norm(sub(hi, lo)) / 2);
+    if (balls.empty()) balls.push_back({{0, 0, 0}, 0});
+    if (!framed_) frame_lo_ = frame_hi_ = balls[0].first;
+    framed_ = true;
+    for (const auto& b : balls)
+      for (int k = 0; k < 3; ++k) {
+        frame_lo_[k] = std::min(frame_lo_[k], b.first[k] - b.second);
+        frame_hi_[k] = std::max(frame_hi_[k], b.first[k] + b.second);
+      }
+    const Vec3 center = scale(add(frame_lo_, frame_hi_), 0.5);
+    const double radius = std::max(0.5, norm(sub(frame_hi_, frame_lo_)) / 2);
     // The narrower of the two view angles decides the distance.
     const double half_h = default_va_ * kPi / 360;
     const double half_v = std::atan(std::tan(half_h) * opts_.height / opts_.width);
@@ -431,11 +463,80 @@ class GlRenderer : public Renderer {
     default_far_ = dist + radius * 4 + 100;
   }
 
+  /// The collision shapes as visuals: filled and lit in their own skins (`alone`), else as
+  /// wire frames over the models. Sensor geoms detect contacts only and are not drawn.
+  void addGeomVisuals(bool alone) {
+    SkinDef mobile, fixed;
+    mobile.key = "(collision shapes)";
+    mobile.color = alone ? Rgba{0.9, 0.55, 0.2, 1} : Rgba{1, 0.9, 0, 1};
+    fixed.key = "(static collision shapes)";
+    fixed.color = alone ? Rgba{0.6, 0.6, 0.6, 1} : Rgba{1, 0.9, 0, 1};
+    for (SkinDef* s : {&mobile, &fixed}) {
+      s->ambient = s->diffuse = {s->color[0] / 2, s->color[1] / 2, s->color[2] / 2, 1};
+      s->specular = {0, 0, 0, 1};
+      s->mode = alone ? SkinDef::Shading : SkinDef::Color;
+    }
+    const int mobile_skin = static_cast<int>(skins_.size());
+    skins_.push_back(mobile);
+    skins_.push_back(fixed);
+    for (const GeomDef& g : model_.geoms) {
+      if (g.sensor) continue;
+      VisualDef v;
+      v.body = g.body;
+      v.pose = g.offset;
+      v.skin = g.body >= 0 ? mobile_skin : mobile_skin + 1;
+      v.key = g.key;
+      v.wire = !alone;
+      v.accuracy = 2;
+      switch (g.shape) {
+        case GeomShape::Box:
+          v.shape = VisualDef::Cuboid;
+          v.a = scale(g.size, -0.5);
+          v.b = scale(g.size, 0.5);
+          break;
+        case GeomShape::Sphere:
+          v.shape = VisualDef::Ellipsoid;
+          v.size = {g.size[0], g.size[0], g.size[0]};
+          break;
+        case GeomShape::Cylinder:
+          v.shape = VisualDef::Cylinder;
+          v.size = {g.size[0], g.size[1], 0};
+          v.mask = 1u | 2u | 4u;  // jacket and flat ends
+          break;
+        case GeomShape::Capsule:
+          v.shape = VisualDef::Cylinder;
+          v.size = {g.size[0], g.size[1], 0};
+          v.mask = 1u | 8u | 16u;  // jacket and round ends
+          break;
+        case GeomShape::Plane: {
+          // An infinite plane n.p = d: a 40 m square of 1 m cells around the point nearest the
+          // origin, catching the shadows when drawn alone. Seen only from the free side, so
+          // that a wall or a sky does not hide what it bounds from a camera beyond it.
+          const Vec3 n{g.plane[0], g.plane[1], g.plane[2]};
+          v.shape = VisualDef::Plane;
+          v.body = -1;
+          v.pose.p = scale(n, g.plane[3]);
+          const Vec3 z{0, 0, 1};
+          const Vec3 axis = cross(z, n);
+          const double s = norm(axis), c = dot(z, n);
+          v.pose.q = s > 1e-12 ? quatAxisAngle(scale(axis, 1 / s), std::atan2(s, c))
+                               : (c > 0 ? Quat{1, 0, 0, 0} : quatAxisAngle({1, 0, 0}, kPi));
+          v.size = {40, 40, 0};
+          v.max_cell = 1;
+          v.shadow_plane = alone;
+          v.one_sided = true;
+          break;
+        }
+      }
+      visuals_.push_back(v);
+    }
+  }
+
   bool loadTextures(Error* err) {
-    textures_.assign(model_.skins.size(), Texture{});
+    textures_.assign(skins_.size(), Texture{});
     if (opts_.quality < Quality::Textures) return true;
-    for (size_t i = 0; i < model_.skins.size(); ++i) {
-      const SkinDef& s = model_.skins[i];
+    for (size_t i = 0; i < skins_.size(); ++i) {
+      const SkinDef& s = skins_[i];
       if (s.texture.empty()) continue;
       std::vector<std::string> tried;
       std::string found;
@@ -465,7 +566,13 @@ class GlRenderer : public Renderer {
       gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
       gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
       gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-      gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB, img.width, img.height, 0, GL_RGB, GL_UNSIGNED_BYTE, img.rgb.data());
+      // GL's first row is t = 0, the bottom of the image: the rows go in bottom first, so that
+      // t grows upwards in the picture and a face seen from its front shows the image upright.
+      std::vector<uint8_t> rows(img.rgb.size());
+      const size_t stride = static_cast<size_t>(img.width) * 3;
+      for (int y = 0; y < img.height; ++y)
+        std::copy_n(img.pixel(0, img.height - 1 - y), stride, rows.data() + stride * static_cast<size_t>(y));
+      gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB, img.width, img.height, 0, GL_RGB, GL_UNSIGNED_BYTE, rows.data());
       textures_[i].id = id;
     }
     return true;
@@ -476,7 +583,11 @@ class GlRenderer : public Renderer {
   std::unique_ptr<render::GlContext> ctx_;
   const GlApi& gl_;
   int camera_ = -1;
+  std::vector<SkinDef> skins_;      ///< the model's, then those of the collision shapes
+  std::vector<VisualDef> visuals_;  ///< what is drawn: the models and/or the collision shapes
   Transform default_eye_;
+  Vec3 frame_lo_{0, 0, 0}, frame_hi_{0, 0, 0};  ///< what the default view has framed so far
+  bool framed_ = false;
   double default_va_ = 60, default_near_ = 0.1, default_far_ = 1000;
   double spot_dist0_ = -1;
   bool track_init_ = false;
@@ -517,6 +628,17 @@ std::vector<Transform> initialPoses(const Model& model) {
   p.reserve(model.bodies.size());
   for (const BodyDef& b : model.bodies) p.push_back(b.pose);
   return p;
+}
+
+bool modelsShowNoBody(const Model& model) {
+  bool any_geom = false;
+  for (const GeomDef& g : model.geoms) any_geom |= !g.sensor;
+  if (!any_geom) return false;
+  if (model.visuals.empty()) return true;
+  if (model.bodies.empty()) return false;
+  for (const VisualDef& v : model.visuals)
+    if (v.body >= 0) return false;
+  return true;
 }
 
 Renderer::~Renderer() = default;

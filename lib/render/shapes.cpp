@@ -29,29 +29,53 @@ void vertex(const GlApi& gl, const Vec3& p, const Vec3& n) {
   gl.Vertex3d(p[0], p[1], p[2]);
 }
 
+// Each face of a cuboid as seen from outside: the local axis pointing right in the image and the
+// one pointing up, each as (axis, sign). The four sides have +Y up; the top (+Y) is seen from
+// above with -Z up, the bottom from below with +Z up (the ground's and the sky's orientation).
+struct FaceAxes {
+  int right, right_sign, up, up_sign;
+};
+// Indexed by axis * 2 + side (side 1 = the + face), the bit order of SideMask.
+constexpr FaceAxes kFaceAxes[6] = {
+    {2, 1, 1, 1},   // -X: right +Z, up +Y
+    {2, -1, 1, 1},  // +X: right -Z, up +Y
+    {0, 1, 2, 1},   // -Y: right +X, up +Z
+    {0, 1, 2, -1},  // +Y: right +X, up -Z
+    {0, -1, 1, 1},  // -Z: right -X, up +Y
+    {0, 1, 1, 1},   // +Z: right +X, up +Y
+};
+
+// Texture coordinate of a point at `x` along a face direction that spans [lo, hi] (already
+// turned by the direction's sign): TexScale > 0 repeats from the local origin, < 0 from the face's
+// edge, so -1 maps the image exactly once onto the face.
+double faceCoord(double x, double lo, double hi, double scale) {
+  if (scale == 0) return 0;
+  return scale > 0 ? x / scale : (x - lo) / (hi - lo) / -scale;
+}
+
 void cuboid(const GlApi& gl, const VisualDef& v) {
   const Vec3 lo{std::min(v.a[0], v.b[0]), std::min(v.a[1], v.b[1]), std::min(v.a[2], v.b[2])};
   const Vec3 hi{std::max(v.a[0], v.b[0]), std::max(v.a[1], v.b[1]), std::max(v.a[2], v.b[2])};
-  const Vec3 ext{hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
   gl.Begin(GL_QUADS);
-  for (int axis = 0; axis < 3; ++axis) {
-    const int u = (axis + 1) % 3, w = (axis + 2) % 3;  // the face's in-plane axes, right-handed with axis
-    for (int side = 0; side < 2; ++side) {
-      if (!(v.mask & (1u << (axis * 2 + side)))) continue;
-      Vec3 n{0, 0, 0};
-      n[axis] = side ? 1 : -1;
-      // Corners counter-clockwise seen from outside.
-      const std::array<std::array<int, 2>, 4> order =
-          side ? std::array<std::array<int, 2>, 4>{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}}
-               : std::array<std::array<int, 2>, 4>{{{0, 0}, {0, 1}, {1, 1}, {1, 0}}};
-      for (const auto& c : order) {
-        Vec3 p{0, 0, 0};
-        p[axis] = side ? hi[axis] : lo[axis];
-        p[u] = c[0] ? hi[u] : lo[u];
-        p[w] = c[1] ? hi[w] : lo[w];
-        gl.TexCoord2d(texCoord(p[u], ext[u], v.tex_scale), texCoord(p[w], ext[w], v.tex_scale));
-        vertex(gl, p, n);
-      }
+  for (int face = 0; face < 6; ++face) {
+    if (!(v.mask & (1u << face))) continue;
+    const int axis = face / 2;
+    const bool plus = face % 2 == 1;
+    const FaceAxes& f = kFaceAxes[face];
+    Vec3 n{0, 0, 0};
+    n[axis] = plus ? 1 : -1;
+    // Corners counter-clockwise seen from outside: (right, up) = (0,0), (1,0), (1,1), (0,1).
+    const int corners[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (const auto& c : corners) {
+      Vec3 p{0, 0, 0};
+      p[axis] = plus ? hi[axis] : lo[axis];
+      p[f.right] = (c[0] == 1) == (f.right_sign > 0) ? hi[f.right] : lo[f.right];
+      p[f.up] = (c[1] == 1) == (f.up_sign > 0) ? hi[f.up] : lo[f.up];
+      auto coord = [&](int k, int sign) {
+        return sign > 0 ? faceCoord(p[k], lo[k], hi[k], v.tex_scale) : faceCoord(-p[k], -hi[k], -lo[k], v.tex_scale);
+      };
+      gl.TexCoord2d(coord(f.right, f.right_sign), coord(f.up, f.up_sign));
+      vertex(gl, p, n);
     }
   }
   gl.End();
@@ -87,7 +111,7 @@ void ellipsoidVertex(const GlApi& gl, const Vec3& r, double th, double ph, const
   Vec3 n{s[0] / r[0], s[1] / r[1], s[2] / r[2]};
   const double len = norm(n);
   n = scale(n, 1 / len);
-  gl.TexCoord2d(ph / (2 * kPi), th / kPi);
+  gl.TexCoord2d(ph / (2 * kPi), 1 - th / kPi);  // the image's top row at the +Z pole
   vertex(gl, add(p, center), n);
 }
 
@@ -165,7 +189,8 @@ void disk(const GlApi& gl, double r, double z, double nz, int segs) {
   gl.Vertex3d(0, 0, z);
   for (int j = 0; j <= segs; ++j) {
     const double ph = 2 * kPi * (nz > 0 ? j : segs - j) / segs;
-    gl.TexCoord2d(0.5 + 0.5 * std::cos(ph), 0.5 + 0.5 * std::sin(ph));
+    // Seen from outside: +X right on the +Z disk, -X right on the -Z one.
+    gl.TexCoord2d(0.5 + 0.5 * nz * std::cos(ph), 0.5 + 0.5 * std::sin(ph));
     gl.Vertex3d(r * std::cos(ph), r * std::sin(ph), z);
   }
   gl.End();

@@ -9,8 +9,11 @@
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
+#include <unistd.h>
 
 #include "simbob/compile.h"
 #include "simbob/graph.h"
@@ -273,4 +276,294 @@ TEST_CASE("a scene without cameras gets a default view that frames every body") 
     }
   CHECK(red);
   CHECK(blue);
+}
+
+namespace {
+
+/// Where a world point shows on an image of w x h pixels drawn by a camera at `eye` looking
+/// along -Z with +Y up and a horizontal field of view `va` degrees (x right, y down).
+std::pair<int, int> project(const Vec3& p, const Vec3& eye, double va, int w, int h) {
+  const double f = (w / 2.0) / std::tan(va * kPi / 360);
+  const double depth = eye[2] - p[2];
+  return {int(std::lround(w / 2.0 + f * (p[0] - eye[0]) / depth - 0.5)),
+          int(std::lround(h / 2.0 - f * (p[1] - eye[1]) / depth - 0.5))};
+}
+
+}  // namespace
+
+TEST_CASE("fog: a shadow is fogged like the ground it lies on, darker than the lit ground beside it") {
+  // A grey ground, a 1 m box 10 m ahead, a point light 5 m up and 5 m to the right of it (its
+  // shadow covers x in about [-1.9, -0.5] on the ground), linear fog from 2 to 30 m in a light
+  // colour. GL fogs per vertex: the ground has 1 m cells, as the gallery has 2 m ones. (A point
+  // light matters: its shadow matrix gives the projected vertices w != 1.)
+  const Model boxed = compileText(R"(<Simulation>
+  <CameraList><RCStaticCamera Key="C"><Pose><RCGlobalCoordinates><Pose Value="0 1.5 0 0 0 0"/></RCGlobalCoordinates></Pose>
+    <ViewAngle Value="60"/></RCStaticCamera></CameraList>
+  <SceneSettings><LightPos Value="5 5 -10 1"/><ClearColor Value="0 0 0"/><ShadowIntensity Value="0.5"/>
+    <FogSettings><Mode Value="Linear"/><Start Value="2"/><End Value="30"/><Color Value="0.9 0.9 0.95"/></FogSettings>
+  </SceneSettings>
+  <ComponentList>
+    <RCColoredSkin Key="Grey"><Color Value="0.6 0.6 0.6"/></RCColoredSkin>
+    <RCGround Key="Ground"><Skin Ref="Grey"/><Extension Value="80"/><MaxCellSize Value="1"/></RCGround>
+    <RCStaticRigidBody Key="Box"><Pose><RCGlobalCoordinates><Pose Value="0 0.5 -10 0 0 0"/></RCGlobalCoordinates></Pose>
+      <Model><RCCuboidModel><Skin Ref="Grey"/></RCCuboidModel></Model></RCStaticRigidBody>
+  </ComponentList>
+</Simulation>)");
+  Model open = boxed;  // the same ground without the box: no shadow
+  open.visuals.erase(std::remove_if(open.visuals.begin(), open.visuals.end(),
+                                    [](const VisualDef& v) { return v.shape == VisualDef::Cuboid; }),
+                     open.visuals.end());
+  REQUIRE(open.visuals.size() + 1 == boxed.visuals.size());
+  const int w = 320, h = 240;
+  const Vec3 eye{0, 1.5, 0};
+  const auto [sx, sy] = project({-1.0, 0, -10}, eye, 60, w, h);  // in the shadow
+  const auto [lx, ly] = project({-2.5, 0, -10}, eye, 60, w, h);  // lit ground, same distance
+  const Image clear = draw(boxed, w, h, "C", Quality::Shadows);
+  const Image fog = draw(boxed, w, h, "C", Quality::Fog);
+  const Image open_clear = draw(open, w, h, "C", Quality::Shadows);
+  const Image open_fog = draw(open, w, h, "C", Quality::Fog);
+  if (const char* dir = std::getenv("SIMBOB_DEBUG_FRAMES")) {
+    writePng(std::string(dir) + "/fog_shadow_clear.png", clear);
+    writePng(std::string(dir) + "/fog_shadow_fog.png", fog);
+  }
+  for (int c = 0; c < 3; ++c) {
+    const double ground = open_clear.pixel(sx, sy)[c], ground_fog = open_fog.pixel(sx, sy)[c];
+    const double shade = clear.pixel(sx, sy)[c], shade_fog = fog.pixel(sx, sy)[c];
+    const double lit_fog = fog.pixel(lx, ly)[c];
+    const double fc = 255 * (c == 2 ? 0.95 : 0.9);
+    INFO("channel " << c << ": ground there " << ground << ", fogged " << ground_fog << "; its shadow " << shade
+                    << ", fogged " << shade_fog << "; the lit ground beside it fogged " << lit_fog);
+    // Without fog the shadow halves the ground (ShadowIntensity 0.5).
+    CHECK(std::abs(shade - ground / 2) <= 2);
+    // With fog the ground there is f * ground + (1 - f) * fog colour, its shadow the same with
+    // f * shade: darker than the ground by f * (ground - shade), and than the lit ground beside.
+    const double f = (ground_fog - fc) / (ground - fc);
+    REQUIRE(f > 0.3);
+    REQUIRE(f < 0.9);
+    CHECK(std::abs(shade_fog - (f * shade + (1 - f) * fc)) <= 3);
+    CHECK(shade_fog < lit_fog - 10);
+  }
+}
+
+namespace {
+
+/// A 32 x 32 white texture with a red 8 x 8 marker in its top-left corner, as PNG and as a
+/// bottom-up 24-bit BMP (the usual layout), in a fresh folder.
+std::string markerTextures() {
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("simbob_marker_textures_" + std::to_string(getpid()))).string();
+  std::filesystem::create_directories(dir);
+  Image img(32, 32);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) {
+      uint8_t* p = img.pixel(x, y);
+      const bool marker = x < 8 && y < 8;
+      p[0] = 255;
+      p[1] = p[2] = marker ? 0 : 255;
+    }
+  REQUIRE(writePng(dir + "/marker.png", img).message.empty());
+  std::vector<uint8_t> b(54 + 32 * 32 * 3, 0);
+  auto le32 = [&](size_t at, uint32_t v) {
+    for (int k = 0; k < 4; ++k) b[at + k] = static_cast<uint8_t>(v >> (8 * k));
+  };
+  b[0] = 'B';
+  b[1] = 'M';
+  le32(2, static_cast<uint32_t>(b.size()));
+  le32(10, 54);
+  le32(14, 40);
+  le32(18, 32);
+  le32(22, 32);  // positive height: bottom row first
+  b[26] = 1;
+  b[28] = 24;
+  for (int row = 0; row < 32; ++row)
+    for (int x = 0; x < 32; ++x) {
+      const uint8_t* p = img.pixel(x, 31 - row);
+      uint8_t* q = b.data() + 54 + (static_cast<size_t>(row) * 32 + x) * 3;
+      q[0] = p[2];
+      q[1] = p[1];
+      q[2] = p[0];
+    }
+  std::FILE* f = std::fopen((dir + "/marker.bmp").c_str(), "wb");
+  REQUIRE(f);
+  REQUIRE(std::fwrite(b.data(), 1, b.size(), f) == b.size());
+  std::fclose(f);
+  return dir;
+}
+
+/// Where the red marker is on the textured (non-black) part of the image: "top-left",
+/// "top-right", "bottom-left" or "bottom-right" of that part's bounding box; "none" if no marker.
+std::string markerCorner(const Image& img) {
+  int x0 = img.width, x1 = -1, y0 = img.height, y1 = -1;
+  double mx = 0, my = 0;
+  int red = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const uint8_t* p = img.pixel(x, y);
+      if (p[0] < 40) continue;  // background
+      x0 = std::min(x0, x);
+      x1 = std::max(x1, x);
+      y0 = std::min(y0, y);
+      y1 = std::max(y1, y);
+      if (p[0] > 100 && p[1] < 60 && p[2] < 60) {
+        mx += x;
+        my += y;
+        ++red;
+      }
+    }
+  if (red < 20) return "none";
+  mx /= red;
+  my /= red;
+  return std::string(my < (y0 + y1) / 2.0 ? "top" : "bottom") + (mx < (x0 + x1) / 2.0 ? "-left" : "-right");
+}
+
+Image drawTextured(const Model& m, const std::string& camera, const std::string& folder) {
+  RenderOptions o;
+  o.width = 160;
+  o.height = 120;
+  o.backend = backend();
+  o.camera = camera;
+  o.quality = Quality::Textures;
+  o.texture_folder = folder;
+  Error err;
+  std::unique_ptr<Renderer> r = Renderer::create(m, o, &err);
+  INFO(err.message);
+  REQUIRE(r);
+  Image img;
+  REQUIRE(r->render(initialPoses(m), 0, &img) == nullptr);
+  if (const char* dir = std::getenv("SIMBOB_DEBUG_FRAMES")) writePng(std::string(dir) + "/" + camera + ".png", img);
+  return img;
+}
+
+CameraDef cameraAt(const std::string& key, const Vec3& p, const Quat& q) {
+  CameraDef c;
+  c.key = key;
+  c.pose = Transform{p, q};
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("textures: an image's top-left corner shows top-left on every cuboid face seen from outside, PNG and BMP") {
+  const std::string folder = markerTextures();
+  for (const std::string file : {"marker.png", "marker.bmp"}) {
+    INFO(file);
+    const std::string skin =
+        R"(<RCTexturedSkin Key="Marker"><Texture Value=")" + file + R"("/><ColorMode Value="Color"/></RCTexturedSkin>)";
+    Model cube =
+        compileText(R"(<Simulation><SceneSettings><ClearColor Value="0 0 0"/></SceneSettings><ComponentList>)" + skin +
+                    R"(<RCStaticRigidBody Key="Cube">
+      <Model><RCCuboidModel><Skin Ref="Marker"/><TexScale Value="-1"/></RCCuboidModel></Model></RCStaticRigidBody>
+      </ComponentList></Simulation>)");
+    // Each camera 3 m out on an axis looking at the cube: the four sides with +Y up, the top
+    // from above with -Z up, the bottom from below with +Z up.
+    cube.cameras = {cameraAt("PlusZ", {0, 0, 3}, {1, 0, 0, 0}),
+                    cameraAt("PlusX", {3, 0, 0}, quatAxisAngle({0, 1, 0}, kPi / 2)),
+                    cameraAt("MinusZ", {0, 0, -3}, quatAxisAngle({0, 1, 0}, kPi)),
+                    cameraAt("MinusX", {-3, 0, 0}, quatAxisAngle({0, 1, 0}, -kPi / 2)),
+                    cameraAt("PlusY", {0, 3, 0}, quatAxisAngle({1, 0, 0}, -kPi / 2)),
+                    cameraAt("MinusY", {0, -3, 0}, quatAxisAngle({1, 0, 0}, kPi / 2))};
+    for (const CameraDef& c : cube.cameras) {
+      INFO("cube face seen by " << c.key);
+      CHECK(markerCorner(drawTextured(cube, c.key, folder)) == "top-left");
+    }
+  }
+}
+
+TEST_CASE("textures: a plane model, the ground and the sky show the image upright from their front side") {
+  const std::string folder = markerTextures();
+  for (const std::string file : {"marker.png", "marker.bmp"}) {
+    INFO(file);
+    const std::string head = R"(<Simulation><SceneSettings><ClearColor Value="0 0 0"/></SceneSettings><ComponentList>
+      <RCTexturedSkin Key="Marker"><Texture Value=")" +
+                             file + R"("/><ColorMode Value="Color"/></RCTexturedSkin>)";
+    const std::string tail = "</ComponentList></Simulation>";
+    // A plane model: local X right, local Y up, seen from its +Z side.
+    Model plane = compileText(head + R"(<RCStaticRigidBody Key="Board"><Model><RCPlaneModel><Skin Ref="Marker"/>
+      <ExtensionX Value="1"/><ExtensionY Value="1"/><TexScale Value="-1"/></RCPlaneModel></Model></RCStaticRigidBody>)" +
+                              tail);
+    plane.cameras = {cameraAt("Front", {0, 0, 3}, {1, 0, 0, 0})};
+    CHECK(markerCorner(drawTextured(plane, "Front", folder)) == "top-left");
+    // The ground seen from above with -Z (away from the default view) up, like a cuboid's top.
+    Model ground = compileText(
+        head + R"(<RCGround Key="Ground"><Skin Ref="Marker"/><Extension Value="1"/><TexScale Value="-1"/></RCGround>)" +
+        tail);
+    ground.cameras = {cameraAt("Above", {0, 3, 0}, quatAxisAngle({1, 0, 0}, -kPi / 2))};
+    CHECK(markerCorner(drawTextured(ground, "Above", folder)) == "top-left");
+    // The sky seen from below with +Z up, like a cuboid's bottom.
+    Model sky = compileText(
+        head +
+        R"(<RCSky Key="Sky"><Skin Ref="Marker"/><Height Value="4"/><Extension Value="1"/><TexScale Value="-1"/></RCSky>)" +
+        tail);
+    sky.cameras = {cameraAt("Below", {0, 1, 0}, quatAxisAngle({1, 0, 0}, kPi / 2))};
+    CHECK(markerCorner(drawTextured(sky, "Below", folder)) == "top-left");
+  }
+}
+
+TEST_CASE("the default quality draws transparent skins: a glass panel does not hide the ball behind it") {
+  // A red ball 5 m ahead behind a see-through white panel (alpha 0.3) 3 m ahead, on black.
+  const Model m = compileText(R"(<Simulation>
+  <CameraList><RCStaticCamera Key="C"><ViewAngle Value="60"/></RCStaticCamera></CameraList>
+  <SceneSettings><ClearColor Value="0 0 0"/></SceneSettings>
+  <ComponentList>
+    <RCColoredSkin Key="Red"><Color Value="1 0 0"/><ColorMode Value="Color"/></RCColoredSkin>
+    <RCColoredSkin Key="Glass"><Color Value="1 1 1 0.3"/><ColorMode Value="TransparentColor"/></RCColoredSkin>
+    <RCStaticRigidBody Key="Ball"><Pose><RCGlobalCoordinates><Pose Value="0 0 -5 0 0 0"/></RCGlobalCoordinates></Pose>
+      <Model><RCEllipsoidModel><Skin Ref="Red"/></RCEllipsoidModel></Model></RCStaticRigidBody>
+    <RCStaticRigidBody Key="Panel"><Pose><RCGlobalCoordinates><Pose Value="0 0 -3 0 0 0"/></RCGlobalCoordinates></Pose>
+      <Model><RCPlaneModel><Skin Ref="Glass"/><ExtensionX Value="4"/><ExtensionY Value="4"/></RCPlaneModel></Model>
+    </RCStaticRigidBody>
+  </ComponentList>
+</Simulation>)");
+  RenderOptions o;  // the default quality, as `render` and `run --record` use without --quality
+  o.width = 120;
+  o.height = 90;
+  o.backend = backend();
+  Error err;
+  std::unique_ptr<Renderer> r = Renderer::create(m, o, &err);
+  INFO(err.message);
+  REQUIRE(r);
+  Image img;
+  REQUIRE(r->render(initialPoses(m), 0, &img) == nullptr);
+  // The centre: 0.3 of the panel's white over 0.7 of the ball's red; beside the ball: 0.3 of
+  // the white over the black background.
+  const uint8_t* centre = img.pixel(60, 45);
+  INFO("centre " << int(centre[0]) << " " << int(centre[1]) << " " << int(centre[2]));
+  CHECK(std::abs(centre[0] - 255) <= 3);
+  CHECK(std::abs(centre[1] - 77) <= 3);
+  const uint8_t* beside = img.pixel(5, 45);
+  CHECK(std::abs(beside[0] - 77) <= 3);
+  CHECK(std::abs(beside[2] - 77) <= 3);
+}
+
+TEST_CASE("collision shapes: drawn when asked, and the default view frames the bodies where they are drawn") {
+  const Model pendulum = compileFile("scenes/pendulum.xml");  // a sphere geom, no models
+  CHECK(modelsShowNoBody(pendulum));
+  CHECK_FALSE(modelsShowNoBody(compileFile("tests/data/render/basic.xml")));
+  RenderOptions o;
+  o.width = 120;
+  o.height = 90;
+  o.backend = backend();
+  const uint8_t bg[3] = {77, 77, 128};  // the default ClearColor 0.3 0.3 0.5
+  auto offBackground = [&](const Image& img, int x, int y) {
+    const uint8_t* p = img.pixel(x, y);
+    return std::abs(p[0] - bg[0]) > 8 || std::abs(p[1] - bg[1]) > 8 || std::abs(p[2] - bg[2]) > 8;
+  };
+  std::vector<Transform> moved = initialPoses(pendulum);
+  moved[0].p = add(moved[0].p, Vec3{3, -2, 1});
+  for (bool geoms : {false, true}) {
+    o.draw_geoms = geoms;
+    o.draw_models = !geoms;
+    Error err;
+    std::unique_ptr<Renderer> r = Renderer::create(pendulum, o, &err);
+    REQUIRE(r);
+    Image at_start, at_moved;
+    REQUIRE(r->render(initialPoses(pendulum), 0, &at_start) == nullptr);
+    // A fresh renderer for the moved pose: a still frames the bodies of its own instant.
+    std::unique_ptr<Renderer> r2 = Renderer::create(pendulum, o, &err);
+    REQUIRE(r2);
+    REQUIRE(r2->render(moved, 1, &at_moved) == nullptr);
+    INFO("collision shapes drawn: " << geoms);
+    CHECK(offBackground(at_start, 60, 45) == geoms);
+    CHECK(offBackground(at_moved, 60, 45) == geoms);
+  }
 }

@@ -506,7 +506,9 @@ int cmdRun(RunArgs& a, const Common& common) {
   summary["steps"] = r.steps;
   summary["samples"] = r.samples;
   summary["wall_seconds"] = r.wall_seconds;
-  summary["steps_per_second"] = r.wall_seconds > 0 ? static_cast<double>(r.steps) / r.wall_seconds : 0.0;
+  // Waiting for a socket peer to connect is not simulation speed.
+  const double busy = r.wall_seconds - r.wait_seconds;
+  summary["steps_per_second"] = busy > 0 ? static_cast<double>(r.steps) / busy : 0.0;
   // What bit-identical reruns depend on.
   summary["reproducibility"] = {{"physics", physicsVersion()},
                                 {"precision", "double"},

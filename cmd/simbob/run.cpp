@@ -333,9 +333,11 @@ int cmdRun(RunArgs& a, const Common& common) {
   {
     std::vector<NamedPath> inputs = {{"--settings", common.settings}};
     appendSceneInputs(scene, a.scene, overrides, &inputs);
+    appendModelInputs(model, common, a.scene, &inputs);
     outputs.push_back({"--log-file", g_log.path});
     if (!a.video.empty()) outputs.push_back({"--video", a.video});
     if (int c = checkOutputs(outputs, inputs)) return c;
+    if (int c = checkRecordFolder(a.record, outputs, inputs)) return c;
   }
 
   // --record / --video: the renderer (a GL context) exists only then. Frames are drawn on a

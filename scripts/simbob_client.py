@@ -97,12 +97,17 @@ def main():
     peer = Peer(sock)
 
     # Hello: "simbob VERSION KEY PERIOD", then what the peer may read and set, then "end".
+    # From version 2 on, simbob promises that lines a peer does not know may be ignored, so
+    # this client takes any version from 2 up and skips lines (and extra words) it does not know.
     first = peer.line().split()
-    if len(first) != 4 or first[0] != "simbob" or first[1] != str(PROTOCOL):
-        sys.exit(f"simbob_client: not a simbob protocol {PROTOCOL} hello: {' '.join(first)}")
+    if len(first) < 4 or first[0] != "simbob" or not first[1].isdigit() or int(first[1]) < PROTOCOL:
+        sys.exit(f"simbob_client: not a simbob protocol {PROTOCOL} (or later) hello: {' '.join(first)}")
     motions, bodies, sensors = [], [], {}
     while (line := peer.line()) != "end":
-        kind, key = line.split()[:2]
+        w = line.split()
+        if len(w) < 2:
+            continue  # a line this client does not know
+        kind, key = w[:2]
         if kind == "motion":
             motions.append(key)
         elif kind == "body":
@@ -117,20 +122,22 @@ def main():
     steps = 0
     while True:
         words = peer.line().split()
+        if not words:
+            continue
         if words[0] == "bye":
             print(f"simbob_client: the run ended at t={words[1]} s after {steps} exchanges", file=sys.stderr)
             return 0
         if words[0] == "error":
             sys.exit("simbob_client: simbob says: " + " ".join(words[1:]))
-        if words[0] != "t":
-            sys.exit(f"simbob_client: unexpected line: {' '.join(words)}")
+        if words[0] != "t" or len(words) < 2:
+            continue  # a line this client does not know
         t = float(words[1])
         poses = {}
         while (line := peer.line()) != "end":
             w = line.split()
-            if w[0] == "body":
-                poses[w[1]] = [float(v) for v in w[2:]]
-            elif w[0] == "sensor":
+            if len(w) >= 9 and w[0] == "body":
+                poses[w[1]] = [float(v) for v in w[2:9]]
+            elif len(w) >= 3 and w[0] == "sensor":
                 # This control law does not use sensors; it reports when one switches.
                 touching = w[2] == "1"
                 if sensors.get(w[1]) is not None and sensors[w[1]] != touching:

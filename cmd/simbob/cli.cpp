@@ -9,6 +9,7 @@
 
 #include "components/families.h"
 #include "simbob/document_ini.h"
+#include "simbob/frame_sinks.h"
 #include "simbob/registry.h"
 #include "simbob/values.h"
 
@@ -231,6 +232,47 @@ void appendSceneInputs(const Scene& scene, const std::string& path, const std::v
   for (const std::string& f : scene.files) inputs->push_back({f == path ? "the scene" : "the import", f});
   for (const Override& o : overrides)
     if (o.line > 0) inputs->push_back({"the DocumentIni", o.place});
+}
+
+void appendModelInputs(const Model& model, const Common& common, const std::string& scene,
+                       std::vector<NamedPath>* inputs) {
+  // The renderer's lookup (lib/render/renderer.cpp loadTextures): every candidate that exists.
+  for (const SkinDef& s : model.skins) {
+    if (s.texture.empty()) continue;
+    for (const std::string& dir : {common.texture_folder, s.base_dir}) {
+      if (dir.empty()) continue;
+      for (const char* ext : {"", ".bmp", ".png"}) {
+        const std::string p = (s.texture[0] == '/' ? "" : dir + "/") + s.texture + ext;
+        std::error_code ec;
+        if (std::filesystem::is_regular_file(p, ec)) inputs->push_back({"the texture", p});
+      }
+    }
+  }
+  if (common.document_ini) inputs->push_back({"the DocumentIni", documentIniPath(scene)});
+}
+
+int checkRecordFolder(const std::string& dir, const std::vector<NamedPath>& outputs,
+                      const std::vector<NamedPath>& inputs) {
+  if (dir.empty()) return 0;
+  auto inFolder = [&](const std::string& p) {
+    if (p.empty() || p == "-" || isStreamOutput(p)) return false;
+    const std::filesystem::path path(p);
+    if (!isFrameFileName(path.filename().string())) return false;
+    const std::string parent = path.has_parent_path() ? path.parent_path().string() : ".";
+    return sameOutputPlace(parent, dir);
+  };
+  for (const auto* list : {&inputs, &outputs})
+    for (const NamedPath& f : *list)
+      if (inFolder(f.path)) {
+        g_log.error({ErrorKind::InvalidInput,
+                     {},
+                     f.what + " " + quoteInput(f.path, 400) + " is a frame file of --record " + quoteInput(dir, 400) +
+                         ", which the recording writes or removes: " +
+                         (list == &inputs ? "an output must not overwrite an input"
+                                          : "outputs of one command must not collide")});
+        return kExitUsage;
+      }
+  return 0;
 }
 
 bool loadAndCompile(const std::string& path, const Registry& reg, Scene* scene, Model* model, int* code, bool warnings,

@@ -88,6 +88,18 @@ struct NamedPath {
 void appendSceneInputs(const Scene& scene, const std::string& path, const std::vector<Override>& overrides,
                        std::vector<NamedPath>* inputs);
 
+/// Appends what else a compiled scene reads when it is drawn or set up: every texture file its
+/// skins may name (each place the renderer looks: TextureFolder, then beside the scene file,
+/// as written, .bmp, .png) and, with the global setting DocumentIni, the INI beside the scene.
+void appendModelInputs(const Model& model, const Common& common, const std::string& scene,
+                       std::vector<NamedPath>* inputs);
+
+/// `run --record DIR` writes DIR/frame_NNNNNN.png and removes such frames of an earlier, longer
+/// recording: a usage error (reported, 64) if an input or another output of the command is such
+/// a file in DIR; 0 otherwise.
+int checkRecordFolder(const std::string& dir, const std::vector<NamedPath>& outputs,
+                      const std::vector<NamedPath>& inputs);
+
 /// Load and compile a scene, reporting problems; *code is the exit status on failure. The log
 /// file must not be any file read (the scene, its imports, `inputs`): nothing is appended to
 /// an input, and that is a usage error.

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <deque>
+#include <exception>
 #include <filesystem>
 
 #include "cli.h"
@@ -25,14 +26,16 @@ std::deque<PluginControllerType>& keptTypes() {
 
 class Host : public PluginHost {
  public:
-  explicit Host(Registry& reg) : reg_(reg) {}
+  Host(Registry& reg, std::string plugin) : reg_(reg), plugin_(std::move(plugin)) {}
   bool addController(const PluginControllerType& type) override {
     keptTypes().push_back(type);
     if (!type.make) {
       problem_ = "controller type '" + type.name + "' has no party factory (make)";
       return false;
     }
-    if (reg_.add(controllerTypeSpec(keptTypes().back()))) return true;
+    TypeSpec spec = controllerTypeSpec(keptTypes().back());
+    spec.plugin_name = plugin_;  // run-time errors of its parties name the plug-in
+    if (reg_.add(std::move(spec))) return true;
     problem_ = reg_.problems().back();
     return false;
   }
@@ -40,6 +43,7 @@ class Host : public PluginHost {
 
  private:
   Registry& reg_;
+  std::string plugin_;
   std::string problem_;
 };
 
@@ -59,14 +63,36 @@ int loadOne(Registry& reg, const std::string& path) {
     return fail(ErrorKind::InvalidInput,
                 "not a simbob plug-in: it has no entry point simbob_plugin_v1 (see simbob/plugin.h)");
   using Entry = const SimbobPluginV1* (*)();
-  const SimbobPluginV1* p = reinterpret_cast<Entry>(sym)();  // NOLINT(cppcoreguidelines-pro-type-reinterpret-cast)
+  // Every call into a plug-in is guarded: an exception is an error naming the library (65).
+  auto threw = [&](const std::string& call, const char* what) {
+    return fail(ErrorKind::InvalidInput,
+                call + " threw" +
+                    (what ? std::string(": ") + what : std::string(" an exception that is not a std::exception")));
+  };
+  const SimbobPluginV1* p = nullptr;
+  try {
+    p = reinterpret_cast<Entry>(sym)();  // NOLINT(cppcoreguidelines-pro-type-reinterpret-cast)
+  } catch (const std::exception& e) {
+    return threw("simbob_plugin_v1()", e.what());
+  } catch (...) {
+    return threw("simbob_plugin_v1()", nullptr);
+  }
   if (!p) return fail(ErrorKind::InvalidInput, "simbob_plugin_v1 returned null");
   if (p->abi_version != SIMBOB_PLUGIN_ABI_VERSION)
     return fail(ErrorKind::InvalidInput,
                 "plug-in ABI version " + std::to_string(p->abi_version) + ", but this simbob loads version " +
                     std::to_string(SIMBOB_PLUGIN_ABI_VERSION) + " (rebuild it against this simbob's headers)");
-  Host host(reg);
-  if (!p->register_types || !p->register_types(&host))
+  const std::string name = p->name ? p->name : "?";
+  Host host(reg, name);
+  bool registered = false;
+  try {
+    registered = p->register_types && p->register_types(&host);
+  } catch (const std::exception& e) {
+    return threw("plug-in '" + name + "': register_types", e.what());
+  } catch (...) {
+    return threw("plug-in '" + name + "': register_types", nullptr);
+  }
+  if (!registered)
     return fail(ErrorKind::InvalidInput, std::string("plug-in '") + (p->name ? p->name : "?") +
                                              "' could not register its types" +
                                              (host.problem().empty() ? std::string() : ": " + host.problem()));

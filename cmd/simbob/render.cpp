@@ -181,6 +181,7 @@ int cmdRender(const RenderArgs& a, const Common& common) {
   {
     std::vector<NamedPath> inputs = {{"--settings", common.settings}};
     appendSceneInputs(scene, a.scene, overrides, &inputs);
+    appendModelInputs(model, common, a.scene, &inputs);
     if (int c = checkOutputs({{"--out", a.out}, {"--log-file", g_log.path}}, inputs)) return c;
   }
   scene = Scene{};

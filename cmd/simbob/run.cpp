@@ -336,9 +336,11 @@ int cmdRun(RunArgs& a, const Common& common) {
   {
     std::vector<NamedPath> inputs = {{"--settings", common.settings}};
     appendSceneInputs(scene, a.scene, overrides, &inputs);
+    appendModelInputs(model, common, a.scene, &inputs);
     outputs.push_back({"--log-file", g_log.path});
     if (!a.video.empty()) outputs.push_back({"--video", a.video});
     if (int c = checkOutputs(outputs, inputs)) return c;
+    if (int c = checkRecordFolder(a.record, outputs, inputs)) return c;
   }
 
   // --record / --video: the renderer (a GL context) exists only then. Frames are drawn on a
@@ -346,6 +348,7 @@ int cmdRun(RunArgs& a, const Common& common) {
   // steps on.
   std::unique_ptr<Renderer> renderer;
   std::unique_ptr<FrameSink> sink;
+  std::unique_ptr<OutputFile> video_file;  ///< --video's temporary file, committed with the trajectory
   if (!a.record.empty() || !a.video.empty()) {
     RenderOptions ro;
     if (int c = renderOptions(a.view, common, &ro)) return c;
@@ -377,7 +380,17 @@ int cmdRun(RunArgs& a, const Common& common) {
         g_log.error({ErrorKind::InvalidInput, {}, "--size must be even in both directions for H.264 (--video .mp4)"});
         return kExitUsage;
       }
-      std::unique_ptr<FrameSink> video = makeVideoSink(a.video, a.view.fps, &err_early);
+      // The video is committed with the trajectory and summary (all new or all old), not by
+      // the sink when the recording ends: a run that fails after that publishes none of it.
+      if (!isStreamOutput(a.video)) {
+        video_file = OutputFile::open(a.video, &err_early);
+        if (!video_file) {
+          g_log.error(err_early);
+          return exitCodeFor(err_early.kind);
+        }
+      }
+      std::unique_ptr<FrameSink> video =
+          makeVideoSink(a.video, a.view.fps, &err_early, video_file ? video_file->tempPath() : std::string());
       if (!video) {
         g_log.error(err_early);
         return exitCodeFor(err_early.kind);
@@ -474,6 +487,7 @@ int cmdRun(RunArgs& a, const Common& common) {
                      " s (the last whole sample; the step under way was abandoned)"});
     if (summary_file) summary_file->abandon();
     if (log_file) log_file->abandon();  // the main thread may be writing it: keep none of it
+    if (video_file) video_file->abandon();
     Error perr;
     if (writer->keepPartialFromOtherThread(partial, &perr)) {
       if (!writer->isStream()) g_log.info("kept the trajectory so far in " + partial);
@@ -510,7 +524,9 @@ int cmdRun(RunArgs& a, const Common& common) {
   summary["steps"] = r.steps;
   summary["samples"] = r.samples;
   summary["wall_seconds"] = r.wall_seconds;
-  summary["steps_per_second"] = r.wall_seconds > 0 ? static_cast<double>(r.steps) / r.wall_seconds : 0.0;
+  // Waiting for a socket peer to connect is not simulation speed.
+  const double busy = r.wall_seconds - r.wait_seconds;
+  summary["steps_per_second"] = busy > 0 ? static_cast<double>(r.steps) / busy : 0.0;
   // What bit-identical reruns depend on.
   summary["reproducibility"] = {{"physics", physicsVersion()},
                                 {"precision", "double"},
@@ -541,6 +557,7 @@ int cmdRun(RunArgs& a, const Common& common) {
         writer->abandon();
         if (summary_file) summary_file->abandon();
         if (log_file) log_file->abandon();
+        if (video_file) video_file->abandon();
         if (a.json) std::fputs(jsonText(summary).c_str(), stdout);
         g_log.error({ErrorKind::Diverged, {a.scene, 0}, "two runs in one process differ: " + where});
         return kExitResultWrong;
@@ -570,6 +587,7 @@ int cmdRun(RunArgs& a, const Common& common) {
       also.push_back(summary_file.get());
     }
     if (log_file) also.push_back(log_file.get());
+    if (video_file) also.push_back(video_file.get());
     // The trajectory and its summary replace the old pair together, or neither does.
     if (!writer->commit(&err, also)) {
       g_log.error(err);
@@ -582,6 +600,7 @@ int cmdRun(RunArgs& a, const Common& common) {
     return kExitOk;
   }
   if (summary_file) summary_file->abandon();
+  if (video_file) video_file->abandon();
   if (r.status == RunStatus::Diverged) {
     // The checks of `simbob check` usually know why: name the first one about this body.
     Diagnostics lint;

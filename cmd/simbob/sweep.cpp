@@ -445,6 +445,14 @@ int sweepGather(const SweepArgs& a) {
   std::vector<SweepCase> cases;
   int code = 0;
   if (!readManifest(manifest, &text, &cases, &code)) return code;
+  const std::string out = a.out.empty() ? (fs::path(a.input) / "results.csv").string() : a.out;
+  {
+    // The table must not replace what it is gathered from.
+    std::vector<NamedPath> inputs = {{"the manifest", manifest}};
+    for (const SweepCase& c : cases)
+      inputs.push_back({"the case file", (fs::path(a.input) / caseDirName(c.index) / "case.json").string()});
+    if (int c = checkOutputs({{a.out.empty() ? "the table" : "-o", out}, {"--log-file", g_log.path}}, inputs)) return c;
+  }
   const SweepCase& first = cases.front();
   std::string csv = "case";
   for (const auto& [k, v] : first.vary) csv += "," + csvField(k);
@@ -485,7 +493,6 @@ int sweepGather(const SweepArgs& a) {
       if (!a.retry) g_log.error({ErrorKind::Diverged, {dir.string(), 0}, status + (error.empty() ? "" : ": " + error)});
     }
   }
-  const std::string out = a.out.empty() ? (fs::path(a.input) / "results.csv").string() : a.out;
   Error err;
   if (!writeFileAtomically(out, csv, &err)) {
     g_log.error(err);
@@ -513,6 +520,14 @@ int sweepSbatch(const SweepArgs& a) {
   std::vector<SweepCase> cases;
   int code = 0;
   if (!readManifest(a.input, &text, &cases, &code)) return code;
+  {
+    // The scripts must not replace the manifest they are written for.
+    std::vector<NamedPath> outputs;
+    for (const char* name : {"sweep.sbatch", "gather.sbatch", "submit.sh"})
+      outputs.push_back({std::string("the script"), (fs::path(a.out) / name).string()});
+    outputs.push_back({"--log-file", g_log.path});
+    if (int c = checkOutputs(outputs, {{"the manifest", a.input}})) return c;
+  }
   if (int c = claimOutDir(a.out, text)) return c;
   char exe[4096] = {};
   ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);

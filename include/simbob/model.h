@@ -130,6 +130,7 @@ struct ControllerDef {
   double goal_x = 0, goal_z = 0;      ///< GoToPoint: the target point on the ground plane (m)
   double turn_rate = 1.0;             ///< GoToPoint: largest angular velocity commanded (rad/s)
   double tolerance = 0.05;            ///< GoToPoint: m from the goal at which it stops
+  std::string plugin;                 ///< Plugin: the plug-in's name (SimbobPluginV1::name), for messages
 };
 
 /// An RCLocalSocketCommunicator (guide 6.11.6): a peer program on 127.0.0.1 that reads the

@@ -95,6 +95,11 @@ class World {
   /// Contact joints created by the last step (for tests and diagnostics).
   int lastContactCount() const;
 
+  /// The first call with an index out of range (setCommand(99999), joint(-1), ...), in words,
+  /// or "": such a call does nothing (a read gives zeros) and is recorded here, so that the
+  /// party that made it (a plug-in) fails the run with a message instead of a crash.
+  const std::string& misuse() const;
+
  private:
   World();
   std::unique_ptr<WorldImpl> impl_;

@@ -120,6 +120,7 @@ struct TypeSpec {
   std::vector<std::string> interfaces;  ///< guide interfaces it offers controllers ("RCDriver", ...)
   /// A plug-in's controller type (kept by its loader), or null.
   const PluginControllerType* plugin = nullptr;
+  std::string plugin_name;  ///< the plug-in that added the type (SimbobPluginV1::name), for messages
 
   /// Whether it offers `interface`.
   bool implements(std::string_view interface) const;

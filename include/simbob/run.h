@@ -50,6 +50,9 @@ struct RunResult {
   double sim_time = 0.0;  ///< s reached
   uint64_t samples = 0;   ///< trajectory samples (runModel; 0 from runParties)
   double wall_seconds = 0.0;
+  /// Of wall_seconds, the part spent in the parties' first() calls: waiting for socket peers
+  /// to connect (bounded by --peer-timeout, not MaxAccessTime). Not simulation work.
+  double wait_seconds = 0.0;
   double dt = 0.0;  ///< the step taken: dt (or MaxTimeStep) on the nanosecond grid
 };
 
@@ -70,6 +73,9 @@ class Party {
   /// Non-null once the party cannot go on (its output failed, ...): the run stops with status
   /// Failed and this error. Checked after the grants of each instant (the last one too).
   virtual const Error* failure() const;
+  /// Called once when the run ends without completing (diverged, interrupted, failed), with
+  /// the reason: a party that talks to another program tells it (a socket peer's `error` line).
+  virtual void abandon(const Error& why);
 
   /// MaxAccessTime (guide 7.2): the wall-clock seconds one call of first() or onGrant() may
   /// take; the run loop sets it before first(). The run loop measures every call and stops the
@@ -78,14 +84,27 @@ class Party {
   double accessLimit() const { return access_limit_; }
   /// When the current call of first() or onGrant() must have returned (steady clock).
   std::chrono::steady_clock::time_point accessDeadline() const { return access_deadline_; }
+  /// Whether the run was asked to stop (SIGINT/SIGTERM, RunOptions::stop): a party that waits
+  /// for another program checks it while it waits and returns, so the run can end.
+  bool stopRequested() const { return stop_ != nullptr && *stop_ != 0; }
   /// For messages: "controller 'Bot.Plan'", and where it is defined (empty: unknown).
   std::string name = "a party of the run";
   SourceLoc loc;
+
+ protected:
+  /// For a party that wraps another (a plug-in's, behind a guard): hands the wrapped one this
+  /// call's MaxAccessTime, deadline and stop request.
+  void passAccessTo(Party& inner) const {
+    inner.access_limit_ = access_limit_;
+    inner.access_deadline_ = access_deadline_;
+    inner.stop_ = stop_;
+  }
 
  private:
   friend RunResult runParties(const Model&, const RunOptions&, const std::vector<Party*>&);
   double access_limit_ = 1.0;
   std::chrono::steady_clock::time_point access_deadline_{};
+  const volatile std::sig_atomic_t* stop_ = nullptr;
 };
 
 /// Runs the model to opts.duration, serving `parties` (ignores sample_interval and on_sample).

@@ -334,6 +334,7 @@ void lowerController(CompileContext& ctx, const Component& c) {
       const PluginControllerType& t = *c.type->plugin;
       d.kind = ControllerDef::Plugin;
       d.type = t.name;
+      d.plugin = c.type->plugin_name;
       d.make = t.make;
       d.period = c.get(kPeriod);
       for (const PluginRef& r : t.refs) actuator(LinkParam{r.name.c_str()}, r.interface.c_str());

@@ -123,6 +123,8 @@ class PngSequenceSink : public FrameSink {
 
 }  // namespace
 
+bool isFrameFileName(const std::string& name) { return frameNumber(name) >= 0; }
+
 std::unique_ptr<FrameSink> makePngSequenceSink(const std::string& dir, Error* err) {
   auto fail = [&](const std::string& file, const std::string& what) {
     if (err) *err = makeError(ErrorKind::CannotCreate, file, what);

@@ -70,14 +70,14 @@ std::string videoEncoderFor(const std::string& path, std::string* why) {
   return m ? m->encoder_for(path, why) : std::string();
 }
 
-std::unique_ptr<FrameSink> makeVideoSink(const std::string& path, double fps, Error* err) {
+std::unique_ptr<FrameSink> makeVideoSink(const std::string& path, double fps, Error* err, const std::string& write_to) {
   std::string why;
   const VideoModule* m = videoModule(&why);
   if (!m) {
     if (err) *err = Error{ErrorKind::MissingInput, {path}, why};
     return nullptr;
   }
-  return m->make_sink(path, fps, err);
+  return m->make_sink(path, fps, err, write_to);
 }
 
 Error probeVideo(const std::string& path, VideoInfo* info, int64_t frame_index, Image* frame) {

@@ -15,17 +15,18 @@
 namespace simbob {
 
 std::string ffmpegEncoderFor(const std::string& path, std::string* why);
-std::unique_ptr<FrameSink> ffmpegVideoSink(const std::string& path, double fps, Error* err);
+std::unique_ptr<FrameSink> ffmpegVideoSink(const std::string& path, double fps, Error* err,
+                                           const std::string& write_to);
 Error ffmpegProbeVideo(const std::string& path, VideoInfo* info, int64_t frame_index, Image* frame);
 
 /// What simbob_video_module() returns; `abi` is kVideoModuleAbi of the module's build.
 struct VideoModule {
   int abi;
   std::string (*encoder_for)(const std::string& path, std::string* why);
-  std::unique_ptr<FrameSink> (*make_sink)(const std::string& path, double fps, Error* err);
+  std::unique_ptr<FrameSink> (*make_sink)(const std::string& path, double fps, Error* err, const std::string& write_to);
   Error (*probe)(const std::string& path, VideoInfo* info, int64_t frame_index, Image* frame);
 };
-constexpr int kVideoModuleAbi = 1;
+constexpr int kVideoModuleAbi = 2;  // 2: make_sink's write_to
 
 }  // namespace simbob
 

@@ -97,7 +97,7 @@ class VideoSink : public FrameSink {
     if (!committed_ && !temp_.empty()) ::unlink(temp_.c_str());
   }
 
-  static std::unique_ptr<FrameSink> open(const std::string& path, double fps, Error* err) {
+  static std::unique_ptr<FrameSink> open(const std::string& path, double fps, Error* err, const std::string& write_to) {
     auto fail = [&](ErrorKind kind, const std::string& what) {
       if (err) *err = makeError(kind, path, what);
       return nullptr;
@@ -114,7 +114,8 @@ class VideoSink : public FrameSink {
     s->path_ = path;
     s->choice_ = c;
     s->fps_ = av_d2q(fps, 1000000);
-    s->temp_ = path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
+    s->temp_ = write_to.empty() ? path + ".tmp." + std::to_string(static_cast<long>(::getpid())) : write_to;
+    s->keep_temp_ = !write_to.empty();
     // Created now so that an output that cannot be written fails before any frame is rendered.
     const int rc = avio_open(&s->io_, s->temp_.c_str(), AVIO_FLAG_WRITE);
     if (rc < 0) {
@@ -163,7 +164,8 @@ class VideoSink : public FrameSink {
     io_ = nullptr;
     if (rc < 0) return fail(ErrorKind::IoError, "write failed: " + avError(rc));
     release();
-    if (std::rename(temp_.c_str(), path_.c_str()) != 0)
+    // Given a file to write to, the caller commits it with the run's other outputs.
+    if (!keep_temp_ && std::rename(temp_.c_str(), path_.c_str()) != 0)
       return fail(ErrorKind::CannotCreate, std::string("cannot create: ") + std::strerror(errno));
     committed_ = true;
     finished_ = true;
@@ -291,6 +293,7 @@ class VideoSink : public FrameSink {
   bool failed_ = false;
   bool finished_ = false;
   bool committed_ = false;
+  bool keep_temp_ = false;  ///< temp_ is the caller's: finish() leaves it for the caller to commit
   Error error_;
 };
 
@@ -305,8 +308,9 @@ std::string ffmpegEncoderFor(const std::string& path, std::string* why) {
   return c.codec->name;
 }
 
-std::unique_ptr<FrameSink> ffmpegVideoSink(const std::string& path, double fps, Error* err) {
-  return VideoSink::open(path, fps, err);
+std::unique_ptr<FrameSink> ffmpegVideoSink(const std::string& path, double fps, Error* err,
+                                           const std::string& write_to) {
+  return VideoSink::open(path, fps, err, write_to);
 }
 
 }  // namespace simbob

@@ -111,6 +111,4 @@ void commandActuator(WorldImpl& im, int i, double value) {
   a.commanded = true;
 }
 
-double World::command(int actuator) const { return impl_->actuators[static_cast<size_t>(actuator)].command; }
-
 }  // namespace simbob

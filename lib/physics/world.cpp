@@ -89,11 +89,30 @@ void World::step(double h) {
 
 int World::bodyCount() const { return static_cast<int>(impl_->bodies.size()); }
 
-BodyState World::body(int i) const { return bodyState(*impl_, i); }
+namespace {
+// A party (a plug-in) gave an index out of range: recorded, and the call does nothing.
+bool inRange(WorldImpl& im, const char* call, int i, size_t n, const char* what) {
+  if (i >= 0 && static_cast<size_t>(i) < n) return true;
+  if (im.misuse.empty())
+    im.misuse = std::string("World::") + call + "(" + std::to_string(i) + "): there is no " + what + " " +
+                std::to_string(i) + " (the world has " + std::to_string(n) + ")";
+  return false;
+}
+}  // namespace
+
+const std::string& World::misuse() const { return impl_->misuse; }
+
+BodyState World::body(int i) const {
+  if (!inRange(*impl_, "body", i, impl_->bodies.size(), "body")) return BodyState{};
+  return bodyState(*impl_, i);
+}
 
 int World::jointCount() const { return static_cast<int>(impl_->joints.size()); }
 
-JointState World::joint(int i) const { return jointState(*impl_, i); }
+JointState World::joint(int i) const {
+  if (!inRange(*impl_, "joint", i, impl_->joints.size(), "joint")) return JointState{};
+  return jointState(*impl_, i);
+}
 
 int World::firstBrokenJoint(double limit, double* separation) const {
   const int n = jointCount();
@@ -109,13 +128,27 @@ int World::firstBrokenJoint(double limit, double* separation) const {
 
 int World::actuatorCount() const { return static_cast<int>(impl_->actuators.size()); }
 
-void World::setCommand(int actuator, double value) { commandActuator(*impl_, actuator, value); }
+void World::setCommand(int actuator, double value) {
+  if (inRange(*impl_, "setCommand", actuator, impl_->actuators.size(), "actuator"))
+    commandActuator(*impl_, actuator, value);
+}
 
-double World::driveEffort(int actuator) const { return impl_->actuators[static_cast<size_t>(actuator)].effort; }
+double World::driveEffort(int actuator) const {
+  if (!inRange(*impl_, "driveEffort", actuator, impl_->actuators.size(), "actuator")) return 0;
+  return impl_->actuators[static_cast<size_t>(actuator)].effort;
+}
+
+double World::command(int actuator) const {
+  if (!inRange(*impl_, "command", actuator, impl_->actuators.size(), "actuator")) return 0;
+  return impl_->actuators[static_cast<size_t>(actuator)].command;
+}
 
 int World::sensorCount() const { return static_cast<int>(impl_->sensors.size()); }
 
-bool World::touching(int sensor) const { return impl_->sensors[static_cast<size_t>(sensor)].touching; }
+bool World::touching(int sensor) const {
+  if (!inRange(*impl_, "touching", sensor, impl_->sensors.size(), "sensor")) return false;
+  return impl_->sensors[static_cast<size_t>(sensor)].touching;
+}
 
 int World::firstBadBody(double limit) const {
   // Runs after every step: read ODE's arrays in place. `!(|x| <= limit)` is also true for NaN;

@@ -75,6 +75,8 @@ struct WorldImpl {
   std::vector<dContact> contactBuffer;  ///< sized max_contacts once; reused by every collision
   int lastContacts = 0;
   bool quickstep = true;
+  /// The first call of World with an index out of range, in words (World::misuse).
+  std::string misuse;
   /// Run in order at the start of every step (before collision) with the step size in s: where
   /// motors, applied forces and sensors that act every step hook in. Empty today.
   std::vector<std::function<void(WorldImpl&, double)>> beforeStep;

@@ -1,7 +1,9 @@
 // The parties of a Model's controllers, and the periodic timing of the test controllers.
 #include <algorithm>
+#include <exception>
 
 #include "robot/controllers.h"
+#include "simbob/physics.h"
 #include "simbob/robot.h"
 
 namespace simbob {
@@ -16,6 +18,75 @@ SimTime Periodic::next(SimTime now) {
   if (next_ <= now) next_ = (now / period_ + 1) * period_;  // a grant late by more than a period
   return next_;
 }
+
+namespace {
+
+/// A plug-in controller's party behind a guard: every call into the plug-in (make, first,
+/// onGrant, finish, failure) is caught, and so is an index out of range it gave World
+/// (World::misuse); either fails the run with an error naming the plug-in and its type, where
+/// the controller is defined (exit 1, the trajectory so far kept), instead of a crash.
+class PluginGuard : public Party {
+ public:
+  explicit PluginGuard(const ControllerDef& c)
+      : who_("plug-in '" + c.plugin + "', type '" + c.type + "'"), loc_(c.loc), key_(c.key) {
+    call("make()", [&] { inner_ = c.make(c); });
+    if (!inner_) fail("make() returned no party");
+  }
+  SimTime first() override {
+    SimTime t = 0;
+    if (inner_ && error_.message.empty()) {
+      passAccessTo(*inner_);
+      call("first()", [&] { t = inner_->first(); });
+    }
+    return error_.message.empty() ? t : 0;  // granted at once, so the run stops at t = 0
+  }
+  SimTime onGrant(SimTime now, World& world) override {
+    SimTime next = kNever;
+    if (!error_.message.empty()) return kNever;
+    passAccessTo(*inner_);
+    call("onGrant()", [&] { next = inner_->onGrant(now, world); });
+    if (error_.message.empty() && !world.misuse().empty()) fail(world.misuse());
+    return error_.message.empty() ? next : kNever;
+  }
+  void finish(SimTime end, World& world) override {
+    if (error_.message.empty()) call("finish()", [&] { inner_->finish(end, world); });
+  }
+  const Error* failure() const override {
+    if (error_.message.empty() && inner_) {
+      const Error* e = nullptr;
+      call("failure()", [&] { e = inner_->failure(); });
+      if (e && error_.message.empty()) return e;
+    }
+    return error_.message.empty() ? nullptr : &error_;
+  }
+  void abandon(const Error& why) override {
+    if (inner_) call("abandon()", [&] { inner_->abandon(why); });
+  }
+
+ private:
+  template <class F>
+  void call(const char* what, F&& f) const {
+    try {
+      f();
+    } catch (const std::exception& e) {
+      fail(std::string(what) + " threw: " + e.what());
+    } catch (...) {
+      fail(std::string(what) + " threw an exception that is not a std::exception");
+    }
+  }
+  void fail(const std::string& what) const {
+    if (error_.message.empty())
+      error_ = {ErrorKind::Diverged, loc_, "controller '" + key_ + "' (" + who_ + "): " + what};
+  }
+
+  std::string who_;
+  SourceLoc loc_;
+  std::string key_;
+  std::unique_ptr<Party> inner_;
+  mutable Error error_;  ///< the first failure; set from const failure() too
+};
+
+}  // namespace
 
 }  // namespace robot
 
@@ -41,7 +112,7 @@ std::vector<std::unique_ptr<Party>> robotParties(const Model& model) {
       case ControllerDef::TwoWheel:
         break;  // made above
       case ControllerDef::Plugin:
-        out[i] = c.make(c);
+        out[i] = std::make_unique<robot::PluginGuard>(c);
         break;
       case ControllerDef::CommandSchedule:
         out[i] = robot::makeCommandSchedule(c, c.target >= 0 ? motion[static_cast<size_t>(c.target)] : nullptr);

@@ -95,19 +95,25 @@ class SocketPeer : public Party {
   SocketPeer& operator=(const SocketPeer&) = delete;
 
   SimTime first() override {
-    // A server takes its port at once, so a peer may connect while the world is being built.
-    if (def_.is_server) listen();
+    // Connecting is not a grant: it is bounded by --peer-timeout alone, not by MaxAccessTime
+    // (runParties does not time first(), and counts it apart from the simulation's wall time).
+    if (def_.is_server) {
+      listen();
+      if (error_.message.empty()) accept();
+    } else {
+      connect();
+    }
     return 0;
   }
 
   SimTime onGrant(SimTime now, World& world) override {
-    if (!error_.message.empty() || done_) return kNever;
-    if (conn_ < 0 && !(def_.is_server ? accept() : connect())) return kNever;
+    if (!error_.message.empty() || done_ || stopped_ || conn_ < 0) return kNever;
     if (!hello_sent_) {
       hello_sent_ = true;
       if (!send(hello())) return kNever;
     }
     if (!send(state(now, world)) || !exchange(now, world)) return kNever;
+    if (stopped_) return kNever;  // the run ends (interrupted); abandon() tells the peer
     if (done_) {
       closeFd(&conn_);
       return kNever;
@@ -122,6 +128,20 @@ class SocketPeer : public Party {
   }
 
   const Error* failure() const override { return error_.message.empty() ? nullptr : &error_; }
+
+  /// The run diverged, was interrupted or failed elsewhere: README promises the peer an `error`
+  /// line before the connection closes, not a bare EOF.
+  void abandon(const Error& why) override {
+    if (conn_ >= 0) {
+      std::string what = why.message;
+      for (char& ch : what)
+        if (ch == '\n' || ch == '\r') ch = ' ';
+      const std::string line = "error " + what + "\n";
+      (void)::send(conn_, line.data(), line.size(), MSG_NOSIGNAL);
+    }
+    closeFd(&conn_);
+    closeFd(&listen_);
+  }
 
  private:
   static void closeFd(int* fd) {
@@ -145,12 +165,20 @@ class SocketPeer : public Party {
     return false;
   }
 
+  /// A stop was requested while waiting for the peer: give up the wait, the run ends.
+  bool stop() {
+    stopped_ = true;
+    return true;
+  }
+
   std::string timeoutText() const { return formatNumber(def_.timeout) + " s"; }
 
-  /// Milliseconds left until `deadline` (0 when past it), for poll(2).
+  /// Milliseconds left until `deadline` (0 when past it), for poll(2); at most kSliceMs, so
+  /// that a wait sees a stop request (SIGINT, SIGTERM) soon.
+  static constexpr long long kSliceMs = 50;
   static int msLeft(Wall::time_point deadline) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Wall::now()).count();
-    return left <= 0 ? 0 : static_cast<int>(std::min<long long>(left, 1000LL * 1000));
+    return left <= 0 ? 0 : static_cast<int>(std::min<long long>(left, kSliceMs));
   }
 
   Wall::time_point deadline() const {
@@ -186,8 +214,10 @@ class SocketPeer : public Party {
     pollfd p{listen_, POLLIN, 0};
     const Wall::time_point until = deadline();
     while (true) {
+      if (stopRequested()) return stop();
       const int r = ::poll(&p, 1, msLeft(until));
       if (r < 0 && errno == EINTR) continue;
+      if (r == 0 && Wall::now() < until) continue;
       if (r <= 0)
         return fail(ErrorKind::Unavailable, "no peer connected within " + timeoutText() + " (--peer-timeout)");
       conn_ = ::accept4(listen_, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
@@ -211,8 +241,8 @@ class SocketPeer : public Party {
         pollfd p{conn_, POLLOUT, 0};
         const Wall::time_point until = deadline();
         int r;
-        while ((r = ::poll(&p, 1, msLeft(until))) < 0 && errno == EINTR) {
-        }
+        while (((r = ::poll(&p, 1, msLeft(until))) < 0 && errno == EINTR) || (r == 0 && Wall::now() < until))
+          if (stopRequested()) return stop();
         if (r <= 0) return fail(ErrorKind::Unavailable, "no answer from a server within " + timeoutText());
         socklen_t len = sizeof err;
         ::getsockopt(conn_, SOL_SOCKET, SO_ERROR, &err, &len);
@@ -243,8 +273,9 @@ class SocketPeer : public Party {
       if (n < 0 && errno == EINTR) continue;
       if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
         pollfd p{conn_, POLLOUT, 0};
-        if (::poll(&p, 1, msLeft(until)) == 0)
+        if (::poll(&p, 1, msLeft(until)) == 0 && Wall::now() >= until)
           return fail(ErrorKind::Unavailable, "the peer read nothing for " + timeoutText() + " (--peer-timeout)");
+        if (stopRequested()) return stop();
         continue;
       }
       return fail(ErrorKind::Unavailable,
@@ -304,14 +335,18 @@ class SocketPeer : public Party {
     const std::string which = by_access ? " (MaxAccessTime)" : " (--peer-timeout)";
     const std::string at = " at t=" + formatNumber(toSeconds(now)) + " s";
     while (true) {
+      // On every line, not only when poll times out: a peer streaming 'set' lines without
+      // 'step' must not hold the run past its deadline.
+      if (Wall::now() >= until)
+        return fail(ErrorKind::Unavailable, "the peer sent no 'step' within " + limit + at + which);
+      if (stopRequested()) return stop();
       const size_t nl = in_.find('\n');
       if (nl == std::string::npos) {
         if (in_.size() > kMaxLine)
           return fail(ErrorKind::Protocol, "a line longer than " + std::to_string(kMaxLine) + " bytes" + at);
         pollfd p{conn_, POLLIN, 0};
         const int r = ::poll(&p, 1, msLeft(until));
-        if (r < 0 && errno == EINTR) continue;
-        if (r == 0) return fail(ErrorKind::Unavailable, "the peer sent no 'step' within " + limit + at + which);
+        if (r <= 0) continue;  // EINTR or a slice without data: the deadline is checked above
         char buf[4096];
         const ssize_t n = ::recv(conn_, buf, sizeof buf, 0);
         if (n < 0 && (errno == EINTR || errno == EAGAIN || errno == EWOULDBLOCK)) continue;
@@ -381,6 +416,7 @@ class SocketPeer : public Party {
   int conn_ = -1;
   bool hello_sent_ = false;
   bool done_ = false;
+  bool stopped_ = false;  ///< a stop was requested while waiting for the peer
   std::string in_;
   std::string problem_;
   Error error_;

@@ -17,6 +17,7 @@ namespace simbob {
 Party::~Party() = default;
 void Party::finish(SimTime, World&) {}
 const Error* Party::failure() const { return nullptr; }
+void Party::abandon(const Error&) {}
 
 std::string partialPath(const std::string& out) {
   const std::string ext = ".csv";
@@ -94,11 +95,14 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
   };
   // first() is not a grant: a party that waits there (a socket server for its peer) bounds that
   // wait itself (--peer-timeout).
+  const auto waiting = std::chrono::steady_clock::now();
   for (Party* p : parties) {
     p->access_limit_ = limit;
     p->access_deadline_ = std::chrono::steady_clock::time_point::max();
+    p->stop_ = opts.stop;
     clock.addParty(p->first());
   }
+  res.wait_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - waiting).count();
 
   const SimTime progress_every = std::max<SimTime>(end / 100, 1);
   SimTime next_progress = progress_every;
@@ -161,6 +165,8 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
   if (res.status == RunStatus::Failed && res.error.message.empty()) {
     for (Party* p : parties) p->finish(clock.now(), *world);
     res.status = RunStatus::Completed;
+  } else {
+    for (Party* p : parties) p->abandon(res.error);
   }
   res.sim_time = toSeconds(clock.now());
   res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

@@ -97,4 +97,42 @@ expect_match "dlopen message" "$LAST_ERR" "^nowhere.so: error: cannot load the p
 printf 'not an ELF file\n' >fake.so
 expect_status 66 "$SIMBOB" check "$SCENE" --plugin fake.so
 expect_match "not ELF message" "$LAST_ERR" "^fake.so: error: cannot load the plug-in: "
+check "plug-in code that fails: an error naming the plug-in, never a crash (65 while loading, 1 during a run with the partial kept)"
+sed '/<SquareDriver/,/<\/SquareDriver>/c\        <BadController Key="Bad"/>' "$SCENE" >bad_robot.xml
+grep -q BadController bad_robot.xml || fail "the controller was not replaced"
+BLINE=$(grep -n '<BadController' bad_robot.xml | cut -d: -f1)
+expect_status 65 "$SIMBOB" check bad_robot.xml --plugin "$PLUGINS/bad_throw_register.so"
+expect_eq "register_types message" "$(cat "$LAST_ERR")" \
+  "$PLUGINS/bad_throw_register.so: error: plug-in 'bad': register_types threw: register_types failed on purpose"
+# bad_run NAME STATUS: runs bad_robot.xml for 1 s with bad_NAME.so into NAME.csv.
+bad_run() {
+  expect_status "$2" "$SIMBOB" run bad_robot.xml --duration 1 --plugin "$PLUGINS/bad_$1.so" --out "$1.csv" -q
+  expect_no_file "$1.csv"
+  expect_no_file "$1.json"
+  expect_eq "no temporary files after $1" "$(ls -a | grep -c '\.tmp\.' || true)" 0
+}
+bad_run throw_make 1
+expect_eq "constructor message" "$(cat "$LAST_ERR")" \
+  "bad_robot.xml:$BLINE: error: controller 'Bot.Bad' (plug-in 'bad', type 'BadController'): make() threw: constructor failed on purpose"
+expect_file throw_make.partial.csv
+bad_run null_make 1
+expect_eq "null make message" "$(cat "$LAST_ERR")" \
+  "bad_robot.xml:$BLINE: error: controller 'Bot.Bad' (plug-in 'bad', type 'BadController'): make() returned no party"
+bad_run throw_first 1
+expect_eq "first message" "$(cat "$LAST_ERR")" \
+  "bad_robot.xml:$BLINE: error: controller 'Bot.Bad' (plug-in 'bad', type 'BadController'): first() threw: first failed on purpose"
+for name in throw_grant bad_index neg_index; do
+  bad_run $name 1
+  expect_file $name.partial.csv
+  last=$(tail -n 1 $name.partial.csv | cut -d, -f1)
+  expect_eq "$name: the partial ends at the failure" "$last" "0.5"
+done
+expect_eq "setCommand(-1) message" "$(cat "$LAST_ERR")" \
+  "bad_robot.xml:$BLINE: error: controller 'Bot.Bad' (plug-in 'bad', type 'BadController'): World::setCommand(-1): there is no actuator -1 (the world has 2)"
+bad_run bad_index 1
+expect_eq "setCommand(99999) message" "$(cat "$LAST_ERR")" \
+  "bad_robot.xml:$BLINE: error: controller 'Bot.Bad' (plug-in 'bad', type 'BadController'): World::setCommand(99999): there is no actuator 99999 (the world has 2)"
+bad_run throw_grant 1
+expect_eq "onGrant message" "$(cat "$LAST_ERR")" \
+  "bad_robot.xml:$BLINE: error: controller 'Bot.Bad' (plug-in 'bad', type 'BadController'): onGrant() threw: onGrant failed on purpose"
 say "ok: plugins"

@@ -176,4 +176,106 @@ expect_eq "the reading switches once" "$switches" 1
 first_touch=$(grep -v '^hello' peer.out | awk '$3 == 1 {print $1; exit}')
 python3 -c "import sys; t = float('$first_touch'); sys.exit(0 if 5.5 <= t <= 6.5 else 1)" ||
   fail "the sensor switched at t=$first_touch s, expected 5.5 to 6.5 s"
+check "a peer streaming valid 'set' lines without 'step' is stopped at --peer-timeout (2 s), not when it stops streaming (20 s)"
+port=$(free_port)
+start_fault_peer --port "$port" --mode stream --at 0.5 --stream 20
+t0=$(date +%s.%N)
+expect_status 69 "$SIMBOB" run "$SCENE" --duration 10 --peer-timeout 2 --port-offset $((port - BASE_PORT)) --out stream.csv -q
+t1=$(date +%s.%N)
+expect_peer_status 0
+expect_eq "stream message" "$(cat "$LAST_ERR")" \
+  "$SCENE:$LINE: error: RCLocalSocketCommunicator 'Bot.Cart.Link' (127.0.0.1:$port): the peer sent no 'step' within 2 s at t=0.5 s (--peer-timeout)"
+python3 -c "import sys; sys.exit(0 if $t1 - $t0 < 8 else 1)" || fail "the streaming peer held simbob for $(python3 -c "print($t1 - $t0)") s"
+
+check "a peer that connects after 1.5 s with MaxAccessTime 1 s and --peer-timeout 10 s: the run completes; steps_per_second leaves the wait out"
+port=$(free_port)
+start_fault_peer --port "$port" --mode step --at 1e9 --delay 1.5
+expect_status 0 "$SIMBOB" run "$SCENE" --duration 1 --peer-timeout 10 --set SceneSettings.MaxAccessTime=1 \
+  --port-offset $((port - BASE_PORT)) --out late.csv --json -q
+expect_peer_status 0
+python3 - "$LAST_OUT" <<'PY' || fail "steps_per_second counts the wait for the peer: $(cat "$LAST_OUT")"
+import json, sys
+s = json.load(open(sys.argv[1]))
+busy = s["steps"] / s["steps_per_second"]
+print(f"check: wall {s['wall_seconds']:.3f} s, simulating {busy:.3f} s")
+sys.exit(0 if s["wall_seconds"] >= 1.0 and busy <= s["wall_seconds"] - 1.0 else 1)
+PY
+
+# stopped_run SIGNAL: a run under way with a peer that only steps, ended by SIGNAL; the peer's
+# output in peer.out.
+stopped_run() {
+  port=$(free_port)
+  start_fault_peer --port "$port" --mode step --at 0.2
+  "$SIMBOB" run "$SCENE" --duration 100000 --port-offset $((port - BASE_PORT)) --out sig.csv -q 2>sig.err &
+  local run=$!
+  for _ in $(seq 300); do grep -q '^at ' peer.out && break; sleep 0.05; done
+  grep -q '^at ' peer.out || fail "the run did not get under way: $(cat sig.err)"
+  kill "-$1" "$run"
+  RUN_STATUS=0
+  wait "$run" || RUN_STATUS=$?
+  expect_peer_status 0
+}
+check "SIGINT and SIGTERM: the peer gets an 'error' line before the connection closes, as README promises"
+stopped_run INT
+expect_eq "SIGINT exit" "$RUN_STATUS" 130
+expect_match "SIGINT error line" peer.out "^error interrupted at t=[0-9.]+ s$"
+stopped_run TERM
+expect_eq "SIGTERM exit" "$RUN_STATUS" 143
+expect_match "SIGTERM error line" peer.out "^error interrupted at t=[0-9.]+ s$"
+
+check "a run that diverges: the peer gets an 'error' line naming the body"
+port=$(free_port)
+sed 's|<RCGround Key="Ground"/>|&<RCMobileRigidBody Key="Rocket"><Pose><RCGlobalCoordinates><Pose Value="5 1 5 0 0 0"/></RCGlobalCoordinates></Pose><Motion><RCGlobalMotion><LinVelocity Value="0 1e7 0"/></RCGlobalMotion></Motion><Geom><RCSphereGeom><Radius Value="0.1"/></RCSphereGeom></Geom><Inertia><RCInertiaByGeom><Mass Value="1"/></RCInertiaByGeom></Inertia></RCMobileRigidBody>|' \
+  "$SCENE" >rocket_robot.xml
+grep -q Rocket rocket_robot.xml || fail "the rocket was not added"
+start_fault_peer --port "$port" --mode step --at 1e9
+expect_status 1 "$SIMBOB" run rocket_robot.xml --duration 1 --port-offset $((port - BASE_PORT)) --out rocket.csv -q
+expect_peer_status 0
+expect_match "divergence error line" peer.out "^error body 'Rocket' diverged at t="
+
+check "keys the protocol cannot carry (a space, non-ASCII) are refused by check (65, file:line)"
+sed 's|<RCTwoWheelMotionControl Key="Motion">|<RCTwoWheelMotionControl Key="Mo tion">|' "$SCENE" >space_key.xml
+grep -q 'Key="Mo tion"' space_key.xml || fail "the key was not changed"
+expect_status 65 "$SIMBOB" check space_key.xml
+mline=$(grep -n 'Key="Mo tion"' space_key.xml | cut -d: -f1)
+expect_match "space key message" "$LAST_ERR" \
+  "^space_key.xml:$mline: error: key 'Bot.Mo tion' cannot travel over the socket protocol of RCLocalSocketCommunicator 'Bot.Cart.Link': keys there are printable ASCII without spaces$"
+sed 's|<RCMobileRigidBody Key="Chassis">|<RCMobileRigidBody Key="Châssis">|' "$SCENE" >utf8_key.xml
+expect_status 65 "$SIMBOB" check utf8_key.xml
+expect_match "non-ASCII key message" "$LAST_ERR" "error: key 'Bot.Cart.Châssis' cannot travel over the socket protocol"
+# Without a communicator the same keys are fine (the trajectory CSV quotes them).
+sed '/<RCLocalSocketCommunicator/,/<\/RCLocalSocketCommunicator>/d' space_key.xml >space_nopeer.xml
+expect_status 0 "$SIMBOB" check space_nopeer.xml
+
+check "simbob_client.py takes a later protocol version and ignores lines it does not know (README)"
+port=$(free_port)
+cat >fake_simbob.py <<'PY'
+import socket, sys
+srv = socket.socket()
+srv.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+srv.bind(("127.0.0.1", int(sys.argv[1])))
+srv.listen(1)
+print("up", flush=True)
+conn, _ = srv.accept()
+conn.sendall(b"simbob 3 Bot.Cart.Link 0.05 extra\nnews\n\nactuator Bot.Cart.LeftDrive velocity\n"
+             b"motion Bot.Motion\nbody Bot.Cart.Chassis\nend\n"
+             b"t 0\nnews\n\nbody Bot.Cart.Chassis 0 0.1 0 1 0 0 0 more\nend\nnews 1 2\n")
+got = b""
+while b"step\n" not in got:
+    chunk = conn.recv(4096)
+    if not chunk:
+        sys.exit("fake simbob: the client closed before 'step': " + got.decode())
+    got += chunk
+print(got.decode(), end="", flush=True)
+conn.sendall(b"bye 0.05\n")
+conn.close()
+PY
+python3 fake_simbob.py "$port" >fake.out 2>fake.err &
+fake=$!
+for _ in $(seq 100); do grep -q up fake.out && break; sleep 0.05; done
+expect_status 0 python3 "$CLIENT" --port "$port" --wait 5
+wait "$fake" || fail "the fake simbob failed: $(cat fake.err)"
+expect_match "the client answered" fake.out "^set Bot.Motion 0.2 0.0$"
+expect_match "the client saw bye" "$LAST_ERR" "the run ended at t=0.05 s after 1 exchanges"
+
 say "ok: socket"

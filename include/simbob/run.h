@@ -101,10 +101,69 @@ class Party {
   }
 
  private:
-  friend RunResult runParties(const Model&, const RunOptions&, const std::vector<Party*>&);
+  friend class Runner;
   double access_limit_ = 1.0;
   std::chrono::steady_clock::time_point access_deadline_{};
   const volatile std::sig_atomic_t* stop_ = nullptr;
+};
+
+/// One run in progress: the world, the clock on its fixed grid and the parties, advanced piece
+/// by piece (create / grant / advance / complete) so that a caller can step it in pieces
+/// (Simulation, Python) or to the end (runParties). Not copyable; one thread at a time.
+class Runner {
+ public:
+  /// Builds the world (seeded with opts.seed) and asks each party for its first request. A time
+  /// that does not fit the clock or a world that cannot be built stops the run at once (see
+  /// result()). The model must outlive the runner; so must the parties.
+  Runner(const Model& model, const RunOptions& opts, std::vector<Party*> parties);
+  ~Runner();
+  Runner(const Runner&) = delete;
+  Runner& operator=(const Runner&) = delete;
+
+  /// A party joining the run now: its first() is asked at the current instant (after the
+  /// parties already there in tie order).
+  void addParty(Party& p);
+  /// Grants every due party at the current instant (idempotent: a party is granted at most
+  /// once per instant) and checks their failures. False once the run has stopped.
+  bool grantDue();
+  /// One whole step of the world (unless a stop was requested), then the divergence checks.
+  /// False once the run has stopped.
+  bool advance();
+  /// Serves and steps until the first grid instant at or after `t`, its grants included.
+  bool runUntil(SimTime t);
+  /// Serves the current instant, then `n` whole steps, each followed by the grants due there.
+  bool step(uint64_t n);
+  /// Ends the run once: finish() to every party if it has not stopped (status Completed), else
+  /// abandon(why). The result, with wall time and the time reached.
+  const RunResult& complete();
+
+  /// False once stopped: diverged, failed, interrupted (result() says which and why).
+  bool running() const { return !stopped_; }
+  const RunResult& result() const { return res_; }
+  /// opts.duration on the clock.
+  SimTime end() const { return end_; }
+  const Clock& clock() const { return clock_; }
+  /// Null only when the world could not be built (result() says why).
+  World* world() { return world_.get(); }
+  const World* world() const { return world_.get(); }
+
+ private:
+  void enroll(Party& p);
+  void stop(RunStatus status, Error e);
+
+  const Model& model_;
+  RunOptions opts_;
+  std::vector<Party*> parties_;
+  std::unique_ptr<World> world_;
+  Clock clock_{1, 0};
+  RunResult res_;
+  SimTime end_ = 0;
+  double limit_ = 1.0;
+  std::chrono::steady_clock::duration limit_d_{};
+  std::chrono::steady_clock::time_point wall0_;
+  SimTime progress_every_ = 1, next_progress_ = 1;
+  bool stopped_ = false;
+  bool completed_ = false;
 };
 
 /// Runs the model to opts.duration, serving `parties` (ignores sample_interval and on_sample).

@@ -53,124 +53,163 @@ std::string stepAdvice(const Model& model, SimTime step) {
 
 }  // namespace
 
-RunResult runParties(const Model& model, const RunOptions& opts, const std::vector<Party*>& parties) {
-  RunResult res;
-  auto wall0 = std::chrono::steady_clock::now();
+Runner::Runner(const Model& model, const RunOptions& opts, std::vector<Party*> parties)
+    : model_(model), opts_(opts), parties_(std::move(parties)), wall0_(std::chrono::steady_clock::now()) {
   const double dt = opts.dt > 0 ? opts.dt : model.settings.max_time_step;
-  res.dt = dt;
-  const SimTime end = clockTime(opts.duration, "the duration", &res.error);
-  const SimTime step = clockTime(dt, "the step", &res.error);
-  const SimTime min_step = clockTime(model.settings.min_time_step, "MinTimeStep", &res.error);
-  if (!res.error.message.empty()) return res;
-  std::unique_ptr<World> world = World::create(model, opts.seed);
-  if (!world) {
-    res.error = {ErrorKind::Internal, {}, "cannot create the physics world (another one is alive in this process)"};
-    return res;
+  res_.dt = dt;
+  end_ = clockTime(opts.duration, "the duration", &res_.error);
+  const SimTime step = clockTime(dt, "the step", &res_.error);
+  const SimTime min_step = clockTime(model.settings.min_time_step, "MinTimeStep", &res_.error);
+  if (!res_.error.message.empty()) {
+    stopped_ = true;
+    return;
   }
-  Clock clock(std::max<SimTime>(step, 1), min_step);
-  res.dt = toSeconds(clock.step());  // the step actually taken (the nanosecond grid)
+  world_ = World::create(model, opts.seed);
+  if (!world_) {
+    res_.error = {ErrorKind::Internal, {}, "cannot create the physics world (another one is alive in this process)"};
+    stopped_ = true;
+    return;
+  }
+  clock_ = Clock(std::max<SimTime>(step, 1), min_step);
+  res_.dt = toSeconds(clock_.step());  // the step actually taken (the nanosecond grid)
   // MaxAccessTime (guide 7.2): every grant (onGrant) is timed; one that took longer stops the
   // run. (A blocking party bounds its own waits by accessDeadline().)
-  const double limit = opts.max_access_time > 0 ? opts.max_access_time : model.settings.max_access_time;
-  const auto limit_d = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-      std::chrono::duration<double>(std::min(limit, 1e9)));
-  auto overran = [&](Party& p, std::chrono::steady_clock::time_point started) {
-    const auto took = std::chrono::steady_clock::now() - started;
-    if (took <= limit_d) return false;
-    if (p.failure()) return false;  // it gave up at its deadline and says why (checked below)
-    res.status = RunStatus::Failed;
-    char held[32];
-    std::snprintf(held, sizeof held, "%.3g", std::chrono::duration<double>(took).count());
-    res.error = {ErrorKind::Unavailable, p.loc,
-                 p.name + " held the simulation for " + held +
-                     " s of wall-clock time at t=" + formatNumber(toSeconds(clock.now())) +
-                     " s, longer than MaxAccessTime (" + formatNumber(limit) + " s)"};
-    return true;
-  };
-  auto open = [&](Party& p) {
-    const auto started = std::chrono::steady_clock::now();
-    p.access_limit_ = limit;
-    p.access_deadline_ = started + limit_d;
-    return started;
-  };
+  limit_ = opts.max_access_time > 0 ? opts.max_access_time : model.settings.max_access_time;
+  limit_d_ = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(std::min(limit_, 1e9)));
   // first() is not a grant: a party that waits there (a socket server for its peer) bounds that
   // wait itself (--peer-timeout).
   const auto waiting = std::chrono::steady_clock::now();
-  for (Party* p : parties) {
-    p->access_limit_ = limit;
-    p->access_deadline_ = std::chrono::steady_clock::time_point::max();
-    p->stop_ = opts.stop;
-    clock.addParty(p->first());
-  }
-  res.wait_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - waiting).count();
+  for (Party* p : parties_) enroll(*p);
+  res_.wait_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - waiting).count();
+  progress_every_ = std::max<SimTime>(end_ / 100, 1);
+  next_progress_ = progress_every_;
+}
 
-  const SimTime progress_every = std::max<SimTime>(end / 100, 1);
-  SimTime next_progress = progress_every;
-  while (true) {
-    // Grant every due request, earliest first, ties in list order; nothing else runs meanwhile.
-    bool granted = false;
-    int id = -1;
-    while (res.error.message.empty() && (id = clock.grantable()) >= 0) {
-      Party& p = *parties[static_cast<size_t>(id)];
-      const auto started = open(p);
-      clock.granted(id, p.onGrant(clock.now(), *world));
-      overran(p, started);
-      granted = true;
-    }
-    if (!res.error.message.empty()) break;
-    if (granted) {
-      for (const Party* p : parties)
-        if (const Error* e = p->failure()) {
-          res.status = RunStatus::Failed;
-          res.error = *e;
-          break;
-        }
-      if (!res.error.message.empty()) break;
-    }
-    if (clock.reached(end)) break;  // the first grid instant at or after the duration
-    if (opts.stop && *opts.stop) {
-      res.status = RunStatus::Interrupted;
-      res.error = {ErrorKind::Diverged, {}, "interrupted at t=" + formatNumber(toSeconds(clock.now())) + " s"};
-      break;
-    }
-    world->step(toSeconds(clock.step()));
-    clock.advance();
-    ++res.steps;
-    int bad = world->firstBadBody(opts.runaway_limit);
-    if (bad >= 0) {
-      res.status = RunStatus::Diverged;
-      const BodyDef& b = model.bodies[static_cast<size_t>(bad)];
-      res.error = {ErrorKind::Diverged, b.loc,
-                   "body '" + b.key + "' diverged at t=" + formatNumber(toSeconds(clock.now())) +
-                       " s (non-finite or beyond " + formatNumber(opts.runaway_limit) + " m or m/s) " +
-                       stepAdvice(model, clock.step()) + "; softer joints (ERP/CFM) may help too"};
-      break;
-    }
-    double apart = 0;
-    int broken = world->firstBrokenJoint(opts.joint_apart_limit, &apart);
-    if (broken >= 0) {
-      res.status = RunStatus::Diverged;
-      const JointDef& j = model.joints[static_cast<size_t>(broken)];
-      res.error = {ErrorKind::Diverged, j.loc,
-                   "joint '" + j.key + "' came apart at t=" + formatNumber(toSeconds(clock.now())) +
-                       " s: its anchor on the two bodies is " + formatNumber(apart) + " m apart (more than " +
-                       formatNumber(opts.joint_apart_limit) + " m) " + stepAdvice(model, clock.step())};
-      break;
-    }
-    if (opts.progress && clock.now() >= next_progress) {
-      opts.progress(toSeconds(clock.now()));
-      next_progress += progress_every;
+Runner::~Runner() = default;
+
+void Runner::addParty(Party& p) {
+  parties_.push_back(&p);
+  if (world_) enroll(p);
+}
+
+void Runner::enroll(Party& p) {
+  p.access_limit_ = limit_;
+  p.access_deadline_ = std::chrono::steady_clock::time_point::max();
+  p.stop_ = opts_.stop;
+  clock_.addParty(p.first());
+}
+
+void Runner::stop(RunStatus status, Error e) {
+  res_.status = status;
+  res_.error = std::move(e);
+  stopped_ = true;
+}
+
+bool Runner::grantDue() {
+  if (stopped_) return false;
+  // Grant every due request, earliest first, ties in list order; nothing else runs meanwhile.
+  bool granted = false;
+  int id = -1;
+  while ((id = clock_.grantable()) >= 0) {
+    Party& p = *parties_[static_cast<size_t>(id)];
+    const auto started = std::chrono::steady_clock::now();
+    p.access_limit_ = limit_;
+    p.access_deadline_ = started + limit_d_;
+    clock_.granted(id, p.onGrant(clock_.now(), *world_));
+    granted = true;
+    const auto took = std::chrono::steady_clock::now() - started;
+    if (took > limit_d_ && !p.failure()) {  // a party that gave up at its deadline says why below
+      char held[32];
+      std::snprintf(held, sizeof held, "%.3g", std::chrono::duration<double>(took).count());
+      stop(RunStatus::Failed, {ErrorKind::Unavailable, p.loc,
+                               p.name + " held the simulation for " + held + " s of wall-clock time at t=" +
+                                   formatNumber(toSeconds(clock_.now())) + " s, longer than MaxAccessTime (" +
+                                   formatNumber(limit_) + " s)"});
+      return false;
     }
   }
-  if (res.status == RunStatus::Failed && res.error.message.empty()) {
-    for (Party* p : parties) p->finish(clock.now(), *world);
-    res.status = RunStatus::Completed;
-  } else {
-    for (Party* p : parties) p->abandon(res.error);
+  if (granted)
+    for (const Party* p : parties_)
+      if (const Error* e = p->failure()) {
+        stop(RunStatus::Failed, *e);
+        return false;
+      }
+  return true;
+}
+
+bool Runner::advance() {
+  if (stopped_) return false;
+  if (opts_.stop && *opts_.stop) {
+    stop(RunStatus::Interrupted,
+         {ErrorKind::Diverged, {}, "interrupted at t=" + formatNumber(toSeconds(clock_.now())) + " s"});
+    return false;
   }
-  res.sim_time = toSeconds(clock.now());
-  res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  return res;
+  world_->step(toSeconds(clock_.step()));
+  clock_.advance();
+  ++res_.steps;
+  const int bad = world_->firstBadBody(opts_.runaway_limit);
+  if (bad >= 0) {
+    const BodyDef& b = model_.bodies[static_cast<size_t>(bad)];
+    stop(RunStatus::Diverged, {ErrorKind::Diverged, b.loc,
+                               "body '" + b.key + "' diverged at t=" + formatNumber(toSeconds(clock_.now())) +
+                                   " s (non-finite or beyond " + formatNumber(opts_.runaway_limit) + " m or m/s) " +
+                                   stepAdvice(model_, clock_.step()) + "; softer joints (ERP/CFM) may help too"});
+    return false;
+  }
+  double apart = 0;
+  const int broken = world_->firstBrokenJoint(opts_.joint_apart_limit, &apart);
+  if (broken >= 0) {
+    const JointDef& j = model_.joints[static_cast<size_t>(broken)];
+    stop(RunStatus::Diverged, {ErrorKind::Diverged, j.loc,
+                               "joint '" + j.key + "' came apart at t=" + formatNumber(toSeconds(clock_.now())) +
+                                   " s: its anchor on the two bodies is " + formatNumber(apart) +
+                                   " m apart (more than " + formatNumber(opts_.joint_apart_limit) + " m) " +
+                                   stepAdvice(model_, clock_.step())});
+    return false;
+  }
+  if (opts_.progress && clock_.now() >= next_progress_) {
+    opts_.progress(toSeconds(clock_.now()));
+    next_progress_ += progress_every_;
+  }
+  return true;
+}
+
+bool Runner::runUntil(SimTime t) {
+  while (grantDue()) {
+    if (clock_.reached(t)) return true;  // the first grid instant at or after t
+    if (!advance()) return false;
+  }
+  return false;
+}
+
+bool Runner::step(uint64_t n) {
+  if (!grantDue()) return false;
+  for (uint64_t k = 0; k < n; ++k)
+    if (!advance() || !grantDue()) return false;
+  return true;
+}
+
+const RunResult& Runner::complete() {
+  if (!completed_) {
+    completed_ = true;
+    if (!stopped_ && world_) {
+      for (Party* p : parties_) p->finish(clock_.now(), *world_);
+      res_.status = RunStatus::Completed;
+    } else {
+      for (Party* p : parties_) p->abandon(res_.error);
+    }
+    stopped_ = true;
+  }
+  res_.sim_time = toSeconds(clock_.now());
+  res_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0_).count();
+  return res_;
+}
+
+RunResult runParties(const Model& model, const RunOptions& opts, const std::vector<Party*>& parties) {
+  Runner runner(model, opts, parties);
+  runner.runUntil(runner.end());
+  return runner.complete();
 }
 
 SimTime frameTime(uint64_t n, double fps) { return toSimTime(static_cast<double>(n) / fps).value_or(kNever); }

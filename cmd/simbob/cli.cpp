@@ -142,6 +142,8 @@ int exitCodeFor(ErrorKind k) {
       return kExitUnavailable;
     case ErrorKind::Protocol:
       return kExitProtocol;
+    case ErrorKind::Usage:
+      return kExitUsage;
   }
   return kExitSoftware;
 }

@@ -60,6 +60,7 @@ enum class ErrorKind {
   Internal,      ///< a bug in simbob (EX_SOFTWARE 70)
   Unavailable,  ///< a party held the simulation past MaxAccessTime, or a socket peer never connected, went away or fell silent (EX_UNAVAILABLE 69)
   Protocol,     ///< a socket peer sent a line the protocol does not allow (EX_PROTOCOL 76)
+  Usage,        ///< a caller passed an option or argument that cannot be used (EX_USAGE 64)
 };
 
 struct Error {

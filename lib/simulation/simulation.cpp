@@ -1,0 +1,200 @@
+// The Simulation API (include/simbob/simulation.h): loading, the parties of a run in their
+// order, and stepping through the Runner of lib/sim.
+#include "simbob/simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "simbob/compile.h"
+#include "simbob/robot.h"
+#include "simbob/values.h"
+
+namespace simbob {
+
+namespace {
+
+constexpr double kMinTime = 1e-9, kMaxTime = 1e9;  // s: what the nanosecond clock holds with room
+
+// Compiles a loaded scene and adds `simbob check`'s warnings for the step the run will take.
+std::unique_ptr<Simulation> compiled(bool loaded, const Scene& scene, const SimulationOptions& opts,
+                                     Diagnostics& diag) {
+  Model model;
+  if (!loaded || !applyOverrides(const_cast<Scene&>(scene), opts.overrides, diag) ||
+      !compileScene(scene, &model, diag))
+    return nullptr;
+  lintModel(model, diag, opts.dt);
+  return Simulation::fromModel(std::move(model), opts, diag);
+}
+
+}  // namespace
+
+Simulation::Simulation(Model model, SimulationOptions opts) : model_(std::move(model)), opts_(std::move(opts)) {}
+
+Simulation::~Simulation() {
+  runner_.reset();  // it points at the parties below
+}
+
+std::unique_ptr<Simulation> Simulation::fromFile(const std::string& path, const Registry& reg,
+                                                 const SimulationOptions& opts, Diagnostics& diag) {
+  Scene scene;
+  const bool loaded = loadScene(path, reg, &scene, diag);
+  return compiled(loaded, scene, opts, diag);
+}
+
+std::unique_ptr<Simulation> Simulation::fromText(const std::string& text, const std::string& name, Format format,
+                                                 const Registry& reg, const SimulationOptions& opts,
+                                                 Diagnostics& diag) {
+  Scene scene;
+  const bool loaded = loadSceneFromText(text, name, format, reg, &scene, diag);
+  return compiled(loaded, scene, opts, diag);
+}
+
+std::unique_ptr<Simulation> Simulation::fromModel(Model model, const SimulationOptions& opts, Diagnostics& diag) {
+  const double dt = opts.dt > 0 ? opts.dt : model.settings.max_time_step;
+  if (!(dt >= kMinTime && dt <= kMaxTime)) {
+    diag.error({}, "the step " + formatNumber(dt) + " s is outside 1e-9 to 1e9 s");
+    return nullptr;
+  }
+  if (!(opts.duration >= 0 && opts.duration <= kMaxTime)) {
+    diag.error({}, "the duration " + formatNumber(opts.duration) + " s is outside 0 to 1e9 s");
+    return nullptr;
+  }
+  for (SocketDef& d : model.sockets) {
+    d.timeout = opts.peer_timeout;
+    if (d.port + opts.port_offset < 1 || d.port + opts.port_offset > 65535) {
+      diag.error(d.loc, "RCLocalSocketCommunicator '" + d.key + "': Port " + std::to_string(d.port) +
+                            " + --port-offset " + std::to_string(opts.port_offset) + " is outside 1 to 65535",
+                 ErrorKind::Usage);
+      return nullptr;
+    }
+    d.port += opts.port_offset;
+  }
+  return std::unique_ptr<Simulation>(new Simulation(std::move(model), opts));
+}
+
+void Simulation::sampleTrajectory(TrajectoryWriter* writer, double interval,
+                                  std::function<void(double, const double*)> on_sample) {
+  sampling_ = true;
+  writer_ = writer;
+  sample_interval_ = interval;
+  on_sample_ = std::move(on_sample);
+}
+
+void Simulation::addParty(std::unique_ptr<Party> party) {
+  owned_.push_back(std::move(party));
+  addParty(*owned_.back());
+}
+
+void Simulation::addParty(Party& party) {
+  extra_.push_back(&party);
+  if (runner_) runner_->addParty(party);
+}
+
+bool Simulation::start() {
+  if (runner_) return runner_->running();
+  RunOptions ro;
+  ro.duration = opts_.duration;
+  ro.dt = opts_.dt;
+  ro.seed = opts_.seed;
+  ro.max_access_time = opts_.max_access_time;
+  ro.runaway_limit = opts_.runaway_limit;
+  ro.joint_apart_limit = opts_.joint_apart_limit;
+  ro.progress = opts_.progress;
+  ro.stop = opts_.stop;
+  std::vector<Party*> parties;
+  sampler_.reset();
+  if (sampling_) {
+    const SimTime interval = std::max<SimTime>(toSimTime(sample_interval_).value_or(1), 1);
+    const SimTime min_step = toSimTime(model_.settings.min_time_step).value_or(0);
+    sampler_ = std::make_unique<TrajectorySampler>(static_cast<int>(model_.bodies.size()), interval, min_step,
+                                                   writer_, on_sample_);
+    sampler_->name = "the trajectory sampler";
+    parties.push_back(sampler_.get());
+  }
+  robot_ = robotParties(model_);
+  for (auto& p : robot_) parties.push_back(p.get());
+  parties.insert(parties.end(), extra_.begin(), extra_.end());
+  runner_ = std::make_unique<Runner>(model_, ro, std::move(parties));
+  return runner_->running();
+}
+
+bool Simulation::step(uint64_t n) { return start() && runner_->step(n); }
+
+bool Simulation::runUntil(double t) {
+  if (!start()) return false;
+  const std::optional<SimTime> at = toSimTime(t);
+  return runner_->runUntil(at ? std::max<SimTime>(*at, 0) : kNever);
+}
+
+const RunResult& Simulation::runToEnd() {
+  if (start()) runner_->runUntil(runner_->end());
+  return finish();
+}
+
+const RunResult& Simulation::finish() {
+  start();
+  RunResult& r = const_cast<RunResult&>(runner_->complete());
+  if (sampler_) r.samples = sampler_->samples();
+  return r;
+}
+
+bool Simulation::reset(uint32_t seed) {
+  runner_.reset();  // the old world goes before the new one is built
+  robot_.clear();
+  opts_.seed = seed;
+  writer_ = nullptr;
+  on_sample_ = nullptr;
+  sampling_ = false;
+  return start();
+}
+
+const RunResult& Simulation::result() const {
+  const_cast<Simulation*>(this)->start();
+  return runner_->result();
+}
+
+bool Simulation::running() const { return const_cast<Simulation*>(this)->start(); }
+
+double Simulation::time() const { return toSeconds(now()); }
+SimTime Simulation::now() const { return runner_ ? runner_->clock().now() : 0; }
+uint64_t Simulation::steps() const { return runner_ ? runner_->clock().steps() : 0; }
+double Simulation::stepSize() const {
+  const double dt = opts_.dt > 0 ? opts_.dt : model_.settings.max_time_step;
+  return toSeconds(std::max<SimTime>(toSimTime(dt).value_or(1), 1));
+}
+
+World& Simulation::world() {
+  start();
+  return *runner_->world();
+}
+
+const World& Simulation::world() const { return const_cast<Simulation*>(this)->world(); }
+
+namespace {
+template <typename T>
+int indexOf(const std::vector<T>& defs, const std::string& key) {
+  for (size_t i = 0; i < defs.size(); ++i)
+    if (defs[i].key == key) return static_cast<int>(i);
+  return -1;
+}
+}  // namespace
+
+int Simulation::body(const std::string& key) const { return indexOf(model_.bodies, key); }
+int Simulation::joint(const std::string& key) const { return indexOf(model_.joints, key); }
+int Simulation::actuator(const std::string& key) const { return indexOf(model_.actuators, key); }
+int Simulation::sensor(const std::string& key) const { return indexOf(model_.sensors, key); }
+
+Error Simulation::setCommand(int actuator, double value) {
+  if (actuator < 0 || static_cast<size_t>(actuator) >= model_.actuators.size())
+    return {ErrorKind::Usage, {},
+            "no actuator " + std::to_string(actuator) + " (the scene has " +
+                std::to_string(model_.actuators.size()) + ")"};
+  if (!std::isfinite(value))
+    return {ErrorKind::Usage, model_.actuators[static_cast<size_t>(actuator)].loc,
+            "actuator '" + model_.actuators[static_cast<size_t>(actuator)].key + "': the command is not finite"};
+  world().setCommand(actuator, value);
+  return {};
+}
+
+}  // namespace simbob

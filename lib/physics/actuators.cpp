@@ -97,6 +97,7 @@ void commandActuator(WorldImpl& im, int i, double value) {
   ActuatorState& a = im.actuators[static_cast<size_t>(i)];
   const ActuatorDef& d = a.def;
   if (std::isnan(value)) value = 0.0;
+  const double asked = value;
   switch (d.kind) {
     case ActuatorDef::Drive:
       a.command = std::clamp(value, -1.0, 1.0);
@@ -108,7 +109,15 @@ void commandActuator(WorldImpl& im, int i, double value) {
       a.command = std::clamp(value, -d.max_velocity, d.max_velocity);
       break;
   }
+  // Recorded, not reported: the run says it once per actuator (World::clampedCommands).
+  if (a.command != asked && a.clamped++ == 0) a.first_clamped = asked;
   a.commanded = true;
+}
+
+uint64_t World::clampedCommands(int actuator, double* first) const {
+  const ActuatorState& a = impl_->actuators[static_cast<size_t>(actuator)];
+  if (first) *first = a.first_clamped;
+  return a.clamped;
 }
 
 double World::command(int actuator) const { return impl_->actuators[static_cast<size_t>(actuator)].command; }

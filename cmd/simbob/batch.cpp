@@ -452,7 +452,7 @@ int cmdBatch(const BatchArgs& a, const Common& common) {
     table += buf;
   }
   table += "\n" + std::to_string(jobs.size() - failed) + " of " + std::to_string(jobs.size()) + " scenes ok (" +
-           std::to_string(workers) + " workers, " + fixed(wall, 2) + " s)\n";
+           countOf(static_cast<size_t>(workers), "worker", "workers") + ", " + fixed(wall, 2) + " s)\n";
   if (a.json)
     std::fputs(jsonText(rep).c_str(), stdout);
   else

@@ -58,8 +58,9 @@ struct RunArgs {
   std::string record;             ///< --record DIR: frames as DIR/frame_000000.png ("" = no GL context at all)
   std::string video;              ///< --video FILE.avi|FILE.mp4: the same frames as one video
   ViewArgs view;
-  std::string log;      ///< --log: comma list of joints, sensors, commands ("" = no run log)
-  std::string log_out;  ///< --log-out: the run log (default: --out with .csv -> .log.csv)
+  std::string log;               ///< --log: comma list of joints, sensors, commands ("" = no run log)
+  std::string log_out;           ///< --log-out: the run log (default: --out with .csv -> .log.csv)
+  std::string columns = "pose";  ///< --columns: "pose", or "pose,velocity" for the velocity block
 };
 int cmdRun(RunArgs& a, const Common& common);
 
@@ -81,7 +82,9 @@ int cmdDump(const std::string& path, const std::string& format, const Common& co
 /// SceneSettings overrides, then the DocumentIni's cameras (when the global setting is on), then
 /// every --set in order. 64 after reporting a malformed one.
 int runOverrides(const RunArgs& a, const Common& common, std::vector<Override>* out);
-int cmdTypes(bool markdown, const Registry& reg);
+/// Every type with its parameters, or only the type `only` (its name or alias, any case): an
+/// unknown one is a usage error (64) naming the nearest types.
+int cmdTypes(bool markdown, const Registry& reg, const std::string& only = "");
 
 struct CompareArgs {
   std::string actual, golden, report;

@@ -11,7 +11,40 @@
 
 using namespace simbob::cli;
 
-namespace {}  // namespace
+namespace {
+
+// CLI11 says only "The following argument was not expected: --duraton": name the option of that
+// command that was meant. Returns false when no unknown long option is found.
+bool reportUnknownOption(CLI::App& app, int argc, char** argv) {
+  CLI::App* cmd = &app;
+  std::string path = "simbob";
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--") break;
+    if (arg.rfind("--", 0) != 0) {
+      for (CLI::App* sub : cmd->get_subcommands({}))
+        if (sub->get_name() == arg) {
+          cmd = sub;
+          path += " " + arg;
+          break;
+        }
+      continue;
+    }
+    const std::string name = arg.substr(0, arg.find('='));
+    if (cmd->get_option_no_throw(name) || app.get_option_no_throw(name)) continue;
+    std::vector<std::string> names;
+    for (const CLI::Option* o : cmd->get_options())
+      for (const std::string& l : o->get_lnames()) names.push_back("--" + l);
+    const std::string near = simbob::didYouMean(name, names);
+    std::fprintf(stderr, "%s: error: unknown option '%s'%s; %s --help lists the options\n", path.c_str(),
+                 simbob::quoteInput(name).c_str(), near.empty() ? "" : (" (did you mean '" + near + "'?)").c_str(),
+                 path.c_str());
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
 
 namespace simbob::cli {
 
@@ -46,6 +79,10 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
                   "Added to the Port of every RCLocalSocketCommunicator, so parallel runs do not clash (default 0)");
   run->add_option("--peer-timeout", ra.peer_timeout,
                   "Wall-clock s a socket peer may take to connect or to answer, 0.001 to 86400 (default 10)");
+  run->add_option("--columns", ra.columns,
+                  "Trajectory columns: pose (default) or pose,velocity (adds vx,vy,vz m/s and wx,wy,wz rad/s, "
+                  "world frame)")
+      ->check(CLI::IsMember({"pose", "pose,velocity"}));
   run->add_option("--log", ra.log, "Also write a run log: comma list of joints, sensors, commands");
   run->add_option("--log-out", ra.log_out, "The run log CSV (default: --out with .csv replaced by .log.csv)");
   run->add_flag("--batch-child", ra.batch_child, "(internal) started by simbob batch")->group("");
@@ -92,6 +129,8 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
 
   bool markdown = false;
   CLI::App* types = app.add_subcommand("types", "List every component type with its parameters and defaults");
+  std::string types_only;
+  types->add_option("type", types_only, "Print only this type (its parameters, defaults and units)");
   types->add_flag("--markdown", markdown, "Markdown tables");
   types->add_option("--plugin", common.plugins, "Load component types from this shared library (repeatable)");
 
@@ -167,7 +206,8 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   } catch (const CLI::Success& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
+    // An unknown option explains the rest ("--duraton 1" also leaves --duration missing).
+    if (!reportUnknownOption(app, argc, argv)) app.exit(e);
     return kExitUsage;
   }
   // An output option given as "" is a mistake, not a request for the default name.
@@ -207,7 +247,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
     if (*run) code = cmdRun(ra, common);
     if (*check) code = cmdCheck(check_scene, common, check_sets, check_dt);
     if (*dump) code = cmdDump(dump_scene, dump_format, common, dump_sets);
-    if (*types) code = cmdTypes(markdown, registry);
+    if (*types) code = cmdTypes(markdown, registry, types_only);
     if (*compare) code = cmdCompare(ca, common);
     if (*batch) code = cmdBatch(ba, common);
     if (*plot) code = cmdPlot(pa, common);

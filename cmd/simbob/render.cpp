@@ -15,6 +15,7 @@
 #include "simbob/robot.h"
 #include "simbob/run.h"
 #include "simbob/values.h"
+#include "version.h"
 
 namespace simbob::cli {
 
@@ -235,7 +236,7 @@ int cmdRender(const RenderArgs& a, const Common& common) {
 }
 
 int cmdInfo(const std::string& gl, const Common& /*common*/) {
-  std::printf("simbob %s\n", SIMBOB_VERSION);
+  std::printf("%s\n", versionLine().c_str());  // the line of --version, git revision included
   std::vector<std::pair<const char*, GlBackend>> backends = {{"egl", GlBackend::Egl}, {"osmesa", GlBackend::OsMesa}};
   if (!gl.empty()) {
     GlBackend b;

@@ -308,6 +308,13 @@ int cmdRun(RunArgs& a, const Common& common) {
   for (const std::string& note :
        gridNotes(dt, a.sample_interval, a.record.empty() && a.video.empty() ? 0.0 : a.view.fps))
     g_log.info(note);
+  if (!a.batch_child) {
+    // What `simbob check` warns about (overlaps, tunnelling, step size), once before the run,
+    // judged at the step this run takes; -q keeps stderr clear of it.
+    Diagnostics lint;
+    lintModel(model, lint, dt);
+    for (const auto& w : lint.warnings()) g_log.warning(w);
+  }
   if (a.out.empty()) a.out = std::filesystem::path(a.scene).stem().string() + ".csv";
   for (SocketDef& d : model.sockets) {
     d.timeout = a.peer_timeout;
@@ -413,7 +420,7 @@ int cmdRun(RunArgs& a, const Common& common) {
   std::vector<std::string> keys;
   for (const auto& b : model.bodies) keys.push_back(b.key);
   Error err;
-  std::unique_ptr<TrajectoryWriter> writer = TrajectoryWriter::open(a.out, keys, &err);
+  std::unique_ptr<TrajectoryWriter> writer = TrajectoryWriter::open(a.out, keys, &err, a.columns == "pose,velocity");
   if (!writer) {
     g_log.error(err);
     return exitCodeFor(err.kind);
@@ -471,6 +478,8 @@ int cmdRun(RunArgs& a, const Common& common) {
       parties.push_back(std::make_unique<RunLogParty>(model, log_what, interval, min_step, log_file.get()));
     }
     if (recorder && first_pass) parties.push_back(std::make_unique<PartyRef>(*recorder));
+    // Commands beyond an actuator's limits, once per actuator when the run completes.
+    if (first_pass) parties.push_back(clampNotices(model, [](const Error& e) { g_log.warning(e); }));
     return parties;
   };
   opts.on_sample = [&](double t, const double* p) {
@@ -498,8 +507,8 @@ int cmdRun(RunArgs& a, const Common& common) {
   });
   Progress progress(a.duration, g_log.level != Level::Quiet);
   opts.progress = [&](double t) { progress.update(t); };
-  g_log.debug("running " + a.scene + ": " + std::to_string(model.bodies.size()) + " mobile bodies, " +
-              std::to_string(model.geoms.size()) + " geoms, " + std::to_string(model.joints.size()) + " joints");
+  g_log.debug("running " + a.scene + ": " + countOf(model.bodies.size(), "mobile body", "mobile bodies") + ", " +
+              countOf(model.geoms.size(), "geom", "geoms") + ", " + countOf(model.joints.size(), "joint", "joints"));
   RunResult r = runModel(model, opts, writer.get());
   progress.done();
 
@@ -594,8 +603,8 @@ int cmdRun(RunArgs& a, const Common& common) {
       return exitCodeFor(err.kind);
     }
     if (a.json) std::fputs(text.c_str(), stdout);
-    g_log.info("wrote " + a.out + " (" + std::to_string(r.samples) + " samples of " +
-               std::to_string(model.bodies.size()) + " bodies, " + std::to_string(r.steps) + " steps in " +
+    g_log.info("wrote " + a.out + " (" + countOf(r.samples, "sample", "samples") + " of " +
+               countOf(model.bodies.size(), "body", "bodies") + ", " + countOf(r.steps, "step", "steps") + " in " +
                formatNumber(std::round(r.wall_seconds * 1000) / 1000) + " s)");
     return kExitOk;
   }

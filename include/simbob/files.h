@@ -117,4 +117,8 @@ bool sameOutputPlace(const std::string& a, const std::string& b);
 /// character device, FIFO or socket (after symlinks).
 bool isStreamOutput(const std::string& path);
 
+/// Why output `path` could not be created from errno `e`, naming only `path`'s own folder, never
+/// the temporary name it is written under: "cannot create: folder 'out/run1' does not exist".
+std::string cannotCreateReason(const std::string& path, int e);
+
 }  // namespace simbob

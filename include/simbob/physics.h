@@ -78,6 +78,9 @@ class World {
   /// Actuator i's current command as recorded by setCommand (clamped), or its value before the
   /// first command (0; a servo's start position). For logs (`run --log commands`).
   double command(int actuator) const;
+  /// How many commands setCommand clamped for actuator i (beyond [-1, 1], [MinPos, MaxPos] or
+  /// +-MaxVelocity); *first gets the first of them as it was asked (if any).
+  uint64_t clampedCommands(int actuator, double* first) const;
 
   /// Proximity sensors, in Model::sensors order.
   int sensorCount() const;

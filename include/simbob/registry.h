@@ -167,6 +167,13 @@ class Registry {
 
   /// The closest registered type name within a small edit distance, or "".
   std::string suggestType(std::string_view name) const;
+  /// The component types nearest to an unknown `name` for a "did you mean" (at most 3, nearest
+  /// first): those within a small edit distance, else those whose name ends in the same word
+  /// ("RCBoxGeom" -> the ...Geom types, nearest first: RCCuboidGeom). Struct types are left out.
+  std::vector<std::string> suggestTypes(std::string_view name) const;
+  /// "unknown component type 'X' (did you mean 'Y'?)"; where `plugin_family` (a place that takes
+  /// controllers, the family plug-ins add), also how to load a plug-in that would define it.
+  std::string unknownTypeMessage(std::string_view name, bool plugin_family) const;
 
  private:
   std::deque<TypeSpec> types_;

@@ -168,15 +168,24 @@ std::string formatValue(ValueType t, const Value& v, const EnumTable* table = nu
 // --- building blocks, exposed for tests and for other readers (CSV, INI) ---
 
 /// Shortest round-trip decimal form of a double (std::to_chars), "Infinite"/"-Infinite" for
-/// infinities. Never locale-dependent.
+/// infinities. Never locale-dependent. Round-trips bit for bit, so negative zero is "-0": for
+/// numbers in messages use formatApprox or formatReadable.
 std::string formatNumber(double d);
 
-/// Append the shortest round-trip form of d to out (no allocation beyond out's growth).
+/// Append the shortest round-trip form of d to out (no allocation beyond out's growth). Writes
+/// negative zero as "-0": the trajectory and log CSVs use it, and their bytes are fixed.
 void appendNumber(std::string& out, double d);
 
 /// Three significant digits, as printf's "%.3g" writes them ("0.00123", "1.23e+06"), for
-/// numbers people read in messages. Never locale-dependent.
+/// numbers people read in messages; negative zero is "0". Never locale-dependent.
 std::string formatApprox(double d);
+
+/// formatNumber for a number in a message: negative zero (-1e-320 * 1e-10, a rotated zero) is
+/// written "0", a sign that means nothing to the reader.
+std::string formatReadable(double d);
+
+/// "1 body", "2 bodies": a count with the noun in singular or plural.
+std::string countOf(size_t n, std::string_view one, std::string_view many);
 
 /// Edit distance, ASCII case-insensitive; swapping two neighbours costs 1 (restricted
 /// Damerau-Levenshtein).

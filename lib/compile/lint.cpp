@@ -128,8 +128,11 @@ class Linter {
     anchors();
     tunneling();
     overlaps();
+    wheelAxles();
     for (const auto& [kind, n] : suppressed_)
-      if (n > 0) d_.warning({}, "... and " + std::to_string(n) + " more warnings like '" + kind + "'");
+      if (n > 0)
+        d_.warning(
+            {}, "... and " + countOf(static_cast<size_t>(n), "more warning", "more warnings") + " like '" + kind + "'");
   }
 
  private:
@@ -179,6 +182,42 @@ class Linter {
     for (const JointDef& j : m_.joints) {
       int a = std::min(j.body1, j.body2), b = std::max(j.body1, j.body2);
       if (a >= 0) joined_.insert({a, b});
+    }
+  }
+
+  // RCTwoWheelMotionControl turns a wheel forward with a positive command: the wheel must turn
+  // about the robot's left, the direction from the right wheel's hinge anchor to the left one's.
+  // An axle the other way turns its wheel backwards on a forward command.
+  void wheelAxles() {
+    for (const ControllerDef& c : m_.controllers) {
+      if (c.kind != ControllerDef::TwoWheel || c.actuators.size() < 2) continue;
+      const JointDef* j[2] = {};
+      for (size_t k = 0; k < 2; ++k) {
+        const int a = c.actuators[k];
+        if (a < 0 || static_cast<size_t>(a) >= m_.actuators.size()) break;
+        const int ji = m_.actuators[static_cast<size_t>(a)].joint;
+        if (ji >= 0 && m_.joints[static_cast<size_t>(ji)].kind == JointKind::Hinge)
+          j[k] = &m_.joints[static_cast<size_t>(ji)];
+      }
+      if (!j[0] || !j[1]) continue;
+      // The chassis is the body both hinges hold; each wheel is the other one.
+      int chassis = -1;
+      for (int b : {j[0]->body1, j[0]->body2})
+        if (b >= 0 && (b == j[1]->body1 || b == j[1]->body2)) chassis = b;
+      const Vec3 left = sub(j[0]->anchor, j[1]->anchor);
+      if (chassis < 0 || norm(left) < 1e-9) continue;
+      const char* side[2] = {"left", "right"};
+      for (size_t k = 0; k < 2; ++k) {
+        // A positive command turns the child relative to the parent about +axis.
+        const Vec3 wheel_axis = j[k]->body2 == chassis ? scale(j[k]->axis, -1) : j[k]->axis;
+        if (dot(wheel_axis, left) >= 0) continue;
+        warn("wheel axle", j[k]->loc,
+             "joint '" + j[k]->key + "' (the " + side[k] + " wheel of RCTwoWheelMotionControl '" + c.key +
+                 "') turns its wheel backwards on a forward command: the wheel turns about the robot's right; "
+                 "point the hinge axis from the right wheel to the left one (now " +
+                 formatApprox(j[k]->axis[0]) + " " + formatApprox(j[k]->axis[1]) + " " + formatApprox(j[k]->axis[2]) +
+                 ")");
+      }
     }
   }
 

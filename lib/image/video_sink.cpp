@@ -40,6 +40,14 @@ std::string avError(int code) {
   return buf;
 }
 
+// The output named by its own folder, not by the temporary name it is written under (as
+// simbob/files.h cannotCreateReason says it; this module links no simbob library).
+std::string missingFolder(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  const std::string folder = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+  return "cannot create: folder '" + folder + "' does not exist";
+}
+
 // FFmpeg's own log lines would break simbob's one-line errors; every failure is reported from
 // the return codes instead.
 void quietFfmpeg() {
@@ -120,7 +128,8 @@ class VideoSink : public FrameSink {
     const int rc = avio_open(&s->io_, s->temp_.c_str(), AVIO_FLAG_WRITE);
     if (rc < 0) {
       s->temp_.clear();  // nothing was created
-      return fail(ErrorKind::CannotCreate, "cannot create temporary file " + path + ".tmp.<pid>: " + avError(rc));
+      return fail(ErrorKind::CannotCreate,
+                  rc == AVERROR(ENOENT) ? missingFolder(path) : "cannot create: " + avError(rc));
     }
     return s;
   }

@@ -114,6 +114,14 @@ bool isStreamOutput(const std::string& path) {
   return !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode);
 }
 
+std::string cannotCreateReason(const std::string& path, int e) {
+  if (e == ENOENT) {
+    const std::string folder = fs::path(path).parent_path().string();
+    return "cannot create: folder '" + quoteInput(folder.empty() ? "." : folder, 400) + "' does not exist";
+  }
+  return std::string("cannot create: ") + std::strerror(e);
+}
+
 std::unique_ptr<OutputFile> OutputFile::open(const std::string& path, Error* err) {
   auto fail = [&](const std::string& what) {
     if (err) *err = makeError(ErrorKind::CannotCreate, path, what);
@@ -144,7 +152,7 @@ std::unique_ptr<OutputFile> OutputFile::open(const std::string& path, Error* err
   f->fd_ = ::open(f->temp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (f->fd_ < 0) {
     f->done_ = true;  // nothing to clean up
-    return fail("cannot create temporary file " + f->temp_ + ": " + std::strerror(errno));
+    return fail(cannotCreateReason(f->target_, errno));
   }
   return f;
 }

@@ -28,13 +28,15 @@ namespace {
 constexpr size_t kFlushBytes = size_t{1} << 20;
 
 constexpr size_t kFieldCount = 9;
+constexpr size_t kVelocityFieldCount = kFieldCount + kVelocitySize;
 
 /// Trajectories are stored densely (every body at every sample time), so a sparse file (each
 /// row a new body at a new time) needs memory quadratic in its size. Bound the dense storage
 /// to this many cells per row, beyond a fixed allowance of kSparseAllowance cells.
 constexpr size_t kMaxCellsPerRow = 16;
 constexpr size_t kSparseAllowance = size_t{1} << 20;
-constexpr const char* kColumnNames[kFieldCount] = {"time", "body", "x", "y", "z", "qw", "qx", "qy", "qz"};
+constexpr const char* kColumnNames[kVelocityFieldCount] = {"time", "body", "x",  "y",  "z",  "qw", "qx", "qy",
+                                                           "qz",   "vx",   "vy", "vz", "wx", "wy", "wz"};
 
 bool needsQuoting(std::string_view key) { return key.find_first_of(",\"\r\n") != std::string_view::npos; }
 
@@ -68,7 +70,8 @@ void setError(Error* err, Error e) {
 // TrajectoryWriter
 
 std::unique_ptr<TrajectoryWriter> TrajectoryWriter::open(const std::string& final_path,
-                                                         std::vector<std::string> body_keys, Error* err) {
+                                                         std::vector<std::string> body_keys, Error* err,
+                                                         bool velocity) {
   std::unordered_set<std::string> seen;
   for (const std::string& key : body_keys) {
     if (key.empty()) {
@@ -92,7 +95,8 @@ std::unique_ptr<TrajectoryWriter> TrajectoryWriter::open(const std::string& fina
   w->encoded_keys_.reserve(w->keys_.size());
   for (const std::string& key : w->keys_) w->encoded_keys_.push_back(encodeKey(key));
   w->buf_.reserve(kFlushBytes + 4096);
-  w->buf_ += kTrajectoryHeader;
+  w->velocity_ = velocity;
+  w->buf_ += velocity ? kTrajectoryVelocityHeader : kTrajectoryHeader;
   w->buf_ += '\n';
   return w;
 }
@@ -106,7 +110,7 @@ const std::string& TrajectoryWriter::tempPath() const {
   return out_ ? out_->tempPath() : none;
 }
 
-bool TrajectoryWriter::addSample(double time, const double* poses) {
+bool TrajectoryWriter::addSample(double time, const double* poses, const double* velocities) {
   std::lock_guard<std::timed_mutex> lock(mu_);
   if (done_ || failed_) return false;
   // The time text is the same for every body of the sample: format it once.
@@ -121,6 +125,13 @@ bool TrajectoryWriter::addSample(double time, const double* poses) {
     for (size_t k = 0; k < kPoseSize; ++k) {
       buf_ += ',';
       appendNumber(buf_, p[k]);
+    }
+    if (velocity_) {
+      const double* v = velocities + b * kVelocitySize;
+      for (size_t k = 0; k < kVelocitySize; ++k) {
+        buf_ += ',';
+        appendNumber(buf_, v[k]);
+      }
     }
     buf_ += '\n';
   }
@@ -207,10 +218,19 @@ void Trajectory::setPose(size_t s, size_t b, const double* pose7) {
   flags[s] = 1;
 }
 
+void Trajectory::setVelocity(size_t s, size_t b, const double* velocity6) {
+  if (velocities.size() < bodies.size()) velocities.resize(bodies.size());
+  std::vector<double>& column = velocities[b];
+  if (column.size() < (s + 1) * kVelocitySize) column.resize((times.size() > s ? times.size() : s + 1) * kVelocitySize);
+  std::copy(velocity6, velocity6 + kVelocitySize, column.begin() + static_cast<std::ptrdiff_t>(s * kVelocitySize));
+}
+
 void Trajectory::finalize() {
+  if (has_velocity) velocities.resize(bodies.size());
   for (size_t b = 0; b < bodies.size(); ++b) {
     present[b].resize(times.size(), 0);
     poses[b].resize(times.size() * kPoseSize, 0.0);
+    if (has_velocity) velocities[b].resize(times.size() * kVelocitySize, 0.0);
   }
 }
 
@@ -294,8 +314,8 @@ class CsvParser {
   const char* end_;
   int line_ = 1;         ///< line of p_
   int record_line_ = 1;  ///< line where the current record started
-  std::array<std::string_view, kFieldCount> fields_;
-  std::array<std::string, kFieldCount> unquoted_;  ///< storage for quoted fields
+  std::array<std::string_view, kVelocityFieldCount> fields_;
+  std::array<std::string, kVelocityFieldCount> unquoted_;  ///< storage for quoted fields
   size_t field_count_ = 0;
 };
 
@@ -306,7 +326,7 @@ bool CsvParser::parseRecord(Error* err) {
     std::string_view f;
     if (p_ < end_ && *p_ == '"') {
       ++p_;
-      std::string& s = unquoted_[field_count_ < kFieldCount ? field_count_ : kFieldCount - 1];
+      std::string& s = unquoted_[field_count_ < kVelocityFieldCount ? field_count_ : kVelocityFieldCount - 1];
       s.clear();
       for (;;) {
         if (p_ == end_) return fail(err, record_line_, "unterminated quoted field");
@@ -335,7 +355,7 @@ bool CsvParser::parseRecord(Error* err) {
       f = std::string_view(b, static_cast<size_t>(p_ - b));
       if (!f.empty() && f.back() == '\r' && (p_ == end_ || *p_ == '\n')) f.remove_suffix(1);
     }
-    if (field_count_ < kFieldCount) fields_[field_count_] = f;
+    if (field_count_ < kVelocityFieldCount) fields_[field_count_] = f;
     ++field_count_;
     if (p_ == end_) return true;
     if (*p_ == ',') {
@@ -358,13 +378,18 @@ bool CsvParser::run(Trajectory* out, Error* err) {
   const char* line_end = nl ? nl : end_;
   std::string_view header(p_, static_cast<size_t>(line_end - p_));
   if (!header.empty() && header.back() == '\r') header.remove_suffix(1);
-  if (header != kTrajectoryHeader)
-    return fail(err, 1, std::string("expected header '") + kTrajectoryHeader + "', found " + quoteForMessage(header));
+  const bool velocity = header == kTrajectoryVelocityHeader;
+  if (header != kTrajectoryHeader && !velocity)
+    return fail(err, 1,
+                std::string("expected header '") + kTrajectoryHeader + "' (or with ',vx,vy,vz,wx,wy,wz'), found " +
+                    quoteForMessage(header));
+  const size_t fields = velocity ? kVelocityFieldCount : kFieldCount;
   p_ = nl ? nl + 1 : end_;
   line_ = 2;
 
   Trajectory& t = *out;
   t = Trajectory();
+  t.has_velocity = velocity;
   std::unordered_map<std::string, size_t> index;
   std::string key;
   size_t last_body = 0;
@@ -380,12 +405,11 @@ bool CsvParser::run(Trajectory* out, Error* err) {
     }
     if (!parseRecord(err)) return false;
     const int line = record_line_;
-    if (field_count_ != kFieldCount)
-      return fail(err, line,
-                  "expected " + std::to_string(kFieldCount) + " fields, found " + std::to_string(field_count_));
+    if (field_count_ != fields)
+      return fail(err, line, "expected " + std::to_string(fields) + " fields, found " + std::to_string(field_count_));
 
-    double values[kFieldCount] = {};
-    for (size_t i = 0; i < kFieldCount; ++i) {
+    double values[kVelocityFieldCount] = {};
+    for (size_t i = 0; i < fields; ++i) {
       if (i == 1) continue;
       std::string_view f = fields_[i];
       if (looksLikeNan(f)) return fail(err, line, std::string("NaN in column ") + kColumnNames[i]);
@@ -447,6 +471,7 @@ bool CsvParser::run(Trajectory* out, Error* err) {
                       std::to_string(t.times.size()) + " sample times but only " + std::to_string(rows) +
                       " rows (every body needs a row at most sample times)");
     t.setPose(s, b, pose);
+    if (velocity) t.setVelocity(s, b, values + kFieldCount);
   }
   t.finalize();
   return true;

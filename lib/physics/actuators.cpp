@@ -97,6 +97,7 @@ void commandActuator(WorldImpl& im, int i, double value) {
   ActuatorState& a = im.actuators[static_cast<size_t>(i)];
   const ActuatorDef& d = a.def;
   if (std::isnan(value)) value = 0.0;
+  const double asked = value;
   switch (d.kind) {
     case ActuatorDef::Drive:
       a.command = std::clamp(value, -1.0, 1.0);
@@ -108,7 +109,16 @@ void commandActuator(WorldImpl& im, int i, double value) {
       a.command = std::clamp(value, -d.max_velocity, d.max_velocity);
       break;
   }
+  // Recorded, not reported: the run says it once per actuator (World::clampedCommands).
+  if (a.command != asked && a.clamped++ == 0) a.first_clamped = asked;
   a.commanded = true;
+}
+
+uint64_t World::clampedCommands(int actuator, double* first) const {
+  if (actuator < 0 || static_cast<size_t>(actuator) >= impl_->actuators.size()) return 0;
+  const ActuatorState& a = impl_->actuators[static_cast<size_t>(actuator)];
+  if (first) *first = a.first_clamped;
+  return a.clamped;
 }
 
 }  // namespace simbob

@@ -55,6 +55,8 @@ struct ActuatorState {
   /// The sense of ODE's motor and stops against simbob's: -1, or +1 for a hinge whose parent is
   /// the world (ODE swaps its bodies and flips its readings but not its motor and stops).
   double motor_sign = -1.0;
+  uint64_t clamped = 0;      ///< commands beyond the actuator's limits (clamped), for a notice
+  double first_clamped = 0;  ///< the first of them, as asked
 };
 
 struct WorldImpl {

@@ -5,6 +5,7 @@
 #include "robot/controllers.h"
 #include "simbob/physics.h"
 #include "simbob/robot.h"
+#include "simbob/values.h"
 
 namespace simbob {
 
@@ -89,6 +90,55 @@ class PluginGuard : public Party {
 }  // namespace
 
 }  // namespace robot
+
+namespace {
+
+class ClampNotices : public Party {
+ public:
+  ClampNotices(const Model& model, std::function<void(const Error&)> warn) : model_(model), warn_(std::move(warn)) {}
+  SimTime first() override { return kNever; }
+  SimTime onGrant(SimTime, World&) override { return kNever; }
+  void finish(SimTime, World& world) override {
+    for (int i = 0; i < world.actuatorCount(); ++i) {
+      double asked = 0;
+      const uint64_t n = world.clampedCommands(i, &asked);
+      if (n == 0) continue;
+      const ActuatorDef& d = model_.actuators[static_cast<size_t>(i)];
+      const bool hinge = model_.joints[static_cast<size_t>(d.joint)].kind == JointKind::Hinge;
+      std::string what;
+      switch (d.kind) {
+        case ActuatorDef::Drive:
+          what = "voltage " + formatReadable(asked) + " is beyond [-1, 1]";
+          break;
+        case ActuatorDef::Servo: {
+          const std::string unit = hinge ? " rad" : " m";
+          what = "target position " + formatReadable(asked) + unit + " is beyond " +
+                 (asked < d.min_pos ? "MinPos " + formatNumber(d.min_pos) : "MaxPos " + formatNumber(d.max_pos)) + unit;
+          break;
+        }
+        case ActuatorDef::VelDrive: {
+          const std::string unit = hinge ? " rad/s" : " m/s";
+          what = "velocity " + formatReadable(asked) + unit + " is beyond MaxVelocity " + formatNumber(d.max_velocity) +
+                 unit;
+          break;
+        }
+      }
+      warn_({ErrorKind::InvalidInput, d.loc,
+             "actuator '" + d.key + "': command " + what + ", clamped (" + countOf(n, "command", "commands") +
+                 " clamped in this run)"});
+    }
+  }
+
+ private:
+  const Model& model_;
+  std::function<void(const Error&)> warn_;
+};
+
+}  // namespace
+
+std::unique_ptr<Party> clampNotices(const Model& model, std::function<void(const Error&)> warn) {
+  return std::make_unique<ClampNotices>(model, std::move(warn));
+}
 
 std::vector<std::unique_ptr<Party>> robotParties(const Model& model) {
   std::vector<std::unique_ptr<Party>> out(model.controllers.size());

@@ -226,7 +226,8 @@ bool scanIni(const std::string& text, const IniEntryFn& entry, std::string* erro
       continue;
     }
     if (line.front() == '[') {
-      if (line.back() != ']' || line.size() < 3) return failAt("malformed section header '" + quoteInput(line) + "'");
+      if (line.back() != ']') return failAt("malformed section header '" + quoteInput(line) + "'");
+      // "[]" (or "[ ]") returns to the global section: the keys below have no prefix.
       section = std::string(trim(line.substr(1, line.size() - 2)));
       if (end == text.size()) break;
       continue;

@@ -166,11 +166,20 @@ class Builder {
         for (const auto& p : t->params) names.push_back(p.name);
         std::string near = didYouMean(name, names);
         bool duplicate = t->paramIndex(name) >= 0 || (src->ignoresCase() && t->paramIndexIgnoreCase(name) >= 0);
-        if (duplicate)
+        if (duplicate) {
           diag_.error({loc.file, line}, prefix(what) + "parameter '" + quoteInput(name) + "' given twice");
-        else
-          diag_.error({loc.file, line}, prefix(what) + "parameter '" + quoteInput(name) + "' unknown" +
-                                            (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+        } else if (!near.empty()) {
+          diag_.error({loc.file, line},
+                      prefix(what) + "parameter '" + quoteInput(name) + "' unknown (did you mean '" + near + "'?)");
+        } else {
+          // Nothing close: say what the type does take (an INI list by its Count key).
+          std::string list;
+          for (const auto& p : t->params)
+            list += (list.empty() ? "" : ", ") +
+                    (p.kind == ParamKind::List && src->ignoresCase() ? listItemName(p.name) + "Count" : p.name);
+          diag_.error({loc.file, line}, prefix(what) + "parameter '" + quoteInput(name) + "' unknown (" + t->name +
+                                            (names.empty() ? " takes no parameters)" : " takes " + list + ")"));
+        }
       }
     }
     if (!t->import_root.empty()) readImport(index, loc);
@@ -357,9 +366,9 @@ class Builder {
     const TypeSpec* t = reg_.find(l.type);
     if (!t && l.body && l.body->ignoresCase()) t = reg_.findIgnoreCase(l.type);
     if (!t || t->family == Family::Struct) {
-      std::string near = reg_.suggestType(l.type);
-      diag_.error(link.loc, prefix(what) + "unknown component type '" + l.type + "'" +
-                                (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+      const bool plugin_family =
+          std::find(p.families.begin(), p.families.end(), Family::Controller) != p.families.end();
+      diag_.error(link.loc, prefix(what) + reg_.unknownTypeMessage(l.type, plugin_family));
       return link;
     }
     if (!familyAccepted(p, t->family)) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 
+#include "simbob/error.h"
+
 namespace simbob {
 
 const char* familyName(Family f) {
@@ -110,6 +112,56 @@ std::string Registry::suggestType(std::string_view name) const {
   std::vector<std::string> names;
   for (const auto& [n, index] : by_name_) names.push_back(n);
   return didYouMean(name, names);
+}
+
+std::vector<std::string> Registry::suggestTypes(std::string_view name) const {
+  std::vector<std::pair<size_t, const std::string*>> near;
+  // Distance 0 is a name in another case (<RCsky/>): the first suggestion.
+  auto consider = [&](const std::string& n, size_t d) { near.emplace_back(d, &n); };
+  const size_t limit = std::max<size_t>(2, name.size() / 3);
+  for (const auto& [n, index] : by_name_) {
+    if (types_[index].family == Family::Struct) continue;
+    const size_t d = editDistance(name, n);
+    if (d <= limit && d < n.size()) consider(types_[index].name, d);  // an alias suggests its type
+  }
+  if (near.empty()) {
+    // No close spelling: the last capitalised word ("Geom" of "RCBoxGeom") names the family the
+    // writer had in mind; offer its nearest members.
+    size_t start = name.size();
+    while (start > 0 && !std::isupper(static_cast<unsigned char>(name[start - 1]))) --start;
+    if (start > 0) --start;
+    const std::string_view word = name.substr(start);
+    if (word.size() >= 3 && word.size() < name.size())
+      for (const TypeSpec& t : types_) {
+        if (t.family == Family::Struct || t.name.size() <= word.size() ||
+            !equalsIgnoreCase(std::string_view(t.name).substr(t.name.size() - word.size()), word))
+          continue;
+        consider(t.name, editDistance(name, t.name));
+      }
+  }
+  std::stable_sort(near.begin(), near.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first < b.first : *a.second < *b.second;
+  });
+  std::vector<std::string> out;
+  for (const auto& [d, n] : near) {
+    // Only the nearest: a list of equally near names, never a far one after a near one.
+    if (out.size() == 3 || d > near.front().first) break;
+    if (std::find(out.begin(), out.end(), *n) == out.end()) out.push_back(*n);
+  }
+  return out;
+}
+
+std::string Registry::unknownTypeMessage(std::string_view name, bool plugin_family) const {
+  std::string msg = "unknown component type '" + quoteInput(name) + "'";
+  const std::vector<std::string> near = suggestTypes(name);
+  if (!near.empty()) {
+    msg += " (did you mean ";
+    for (size_t i = 0; i < near.size(); ++i)
+      msg += (i == 0 ? "" : i + 1 == near.size() ? " or " : ", ") + ("'" + near[i] + "'");
+    msg += "?)";
+  }
+  if (plugin_family) msg += "; if a plug-in defines it, load the plug-in with --plugin FILE";
+  return msg;
 }
 
 ParamSpec detail::valueParam(const char* name, ValueType type, Value def, std::string unit, std::string doc,

@@ -1,5 +1,6 @@
 // XML format (guide 4.2) as a Source: <Name Value=".."/>, type elements with Key, Ref, Macro.
 #include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <set>
 #include <unordered_set>
@@ -27,6 +28,15 @@ namespace {
 
 bool isElement(const pugi::xml_node& n) { return n.type() == pugi::node_element; }
 
+// An attribute that is one of `known` in another case ("value" for "Value") gets a message
+// that says so; others are unknown.
+std::string attributeError(const std::string& where, const std::string& an, std::initializer_list<const char*> known) {
+  for (const char* k : known)
+    if (equalsIgnoreCase(an, k))
+      return where + ": attribute '" + an + "' must be written '" + k + "' (XML names are case-sensitive)";
+  return where + ": unknown attribute '" + an + "'";
+}
+
 class XmlSource : public Source {
  public:
   XmlSource(std::shared_ptr<XmlDoc> doc, pugi::xml_node node) : doc_(std::move(doc)), node_(node) {}
@@ -41,14 +51,17 @@ class XmlSource : public Source {
     v.present = true;
     v.line = doc_->lineOf(c);
     pugi::xml_attribute a = c.attribute("Value");
+    for (pugi::xml_attribute other : c.attributes()) {
+      const std::string an = other.name();
+      if (an == "Value") continue;
+      v.error = attributeError("parameter '" + name + "'", an, {"Value"});
+      if (!a && equalsIgnoreCase(an, "Value")) return v;  // <Height value="3"/>: the case is wrong
+    }
     if (!a) {
       v.error = "parameter '" + name + "' needs a Value attribute";
       return v;
     }
     v.text = a.value();
-    for (pugi::xml_attribute other : c.attributes())
-      if (std::string(other.name()) != "Value")
-        v.error = "parameter '" + name + "': unknown attribute '" + other.name() + "'";
     if (v.error.empty() && firstElement(c)) v.error = "parameter '" + name + "' is a value and takes no child elements";
     return v;
   }
@@ -72,12 +85,11 @@ class XmlSource : public Source {
       } else if (!isWrapper(item)) {
         // Not a wrapper: a misspelled type element such as
         // <RCMobileRigidBodyy Key=".."><Geom>..</Geom></RCMobileRigidBodyy>.
+        // The loader names it as an unknown type, with the nearest type names.
         SourceLink l;
         l.present = true;
         l.line = doc_->lineOf(item);
-        std::string s = doc_->reg->suggestType(item.name());
-        l.error = std::string("unknown component type '") + item.name() + "'" +
-                  (s.empty() ? "" : " (did you mean '" + s + "'?)");
+        l.type = item.name();
         items.push_back(std::move(l));
       } else {
         items.push_back(linkFrom(item, false));
@@ -111,7 +123,8 @@ class XmlSource : public Source {
         l.key = a.value();
         l.has_key = true;
       } else {
-        l.error = std::string(t.name()) + ": unknown attribute '" + an + "' (a type element takes only Key)";
+        l.error = attributeError(t.name(), an, {"Key"});
+        if (!equalsIgnoreCase(an, "Key")) l.error += " (a type element takes only Key)";
       }
     }
     l.body = std::make_unique<XmlSource>(doc_, t);
@@ -168,7 +181,7 @@ class XmlSource : public Source {
       else if (an == "Macro")
         l.macro = a.value();
       else
-        l.error = std::string("<") + c.name() + ">: unknown attribute '" + an + "'";
+        l.error = attributeError(std::string("<") + c.name() + ">", an, {"Ref", "Macro"});
     }
     std::vector<pugi::xml_node> kids;
     for (pugi::xml_node k : c.children())
@@ -188,28 +201,85 @@ class XmlSource : public Source {
       return l;
     }
     if (kids.size() != 1) {
-      if (kids.empty() && !is_param && !doc_->reg->suggestType(c.name()).empty())
-        l.error = std::string("unknown component type '") + c.name() + "' (did you mean '" +
-                  doc_->reg->suggestType(c.name()) + "'?)";
-      else if (kids.empty() && !is_param)
-        l.error = std::string("unknown component type '") + c.name() + "'";
+      if (kids.empty() && !is_param)
+        l.type = c.name();  // a misspelt type element; the loader names it
       else
         l.error = std::string("<") + c.name() + "> must hold exactly one component element, a Ref or a Macro";
       return l;
     }
-    SourceLink inner = typeElement(kids[0]);
-    if (!doc_->reg->find(kids[0].name())) {
-      std::string s = doc_->reg->suggestType(kids[0].name());
-      inner.error = std::string("unknown component type '") + kids[0].name() + "'" +
-                    (s.empty() ? "" : " (did you mean '" + s + "'?)");
-    }
-    return inner;
+    // An unknown type is named by the loader, with the nearest type names.
+    return typeElement(kids[0]);
   }
 
   std::shared_ptr<XmlDoc> doc_;
   pugi::xml_node node_;
   std::unordered_set<size_t> read_;  // hash_value() of the children read; membership only, never iterated
 };
+
+// The element left open where a closing tag does not match (or the text ends): the stack of
+// open tags up to byte `stop`, skipping comments, processing instructions, CDATA, DOCTYPE and
+// quoted attribute values. Returns the open element's name and the offset of its '<', and in
+// *closing the name of the closing tag found at `stop` ("" at the end of the text).
+constexpr size_t kKeepForDiagnosis = size_t{4} << 20;
+
+bool unclosedElement(std::string_view text, size_t stop, std::string* name, size_t* open_at, std::string* closing) {
+  std::vector<std::pair<std::string_view, size_t>> open;
+  auto skipTo = [&](size_t from, std::string_view end) {
+    const size_t at = text.find(end, from);
+    return at == std::string_view::npos ? text.size() : at + end.size();
+  };
+  auto nameAt = [&](size_t from) {
+    size_t e = from;
+    while (e < text.size() && !std::isspace(static_cast<unsigned char>(text[e])) && text[e] != '>' && text[e] != '/')
+      ++e;
+    return text.substr(from, e - from);
+  };
+  size_t i = 0;
+  while ((i = text.find('<', i)) != std::string_view::npos && i < text.size()) {
+    const std::string_view rest = text.substr(i);
+    if (rest.compare(0, 4, "<!--") == 0) {
+      i = skipTo(i + 4, "-->");
+    } else if (rest.compare(0, 9, "<![CDATA[") == 0) {
+      i = skipTo(i + 9, "]]>");
+    } else if (rest.compare(0, 2, "<?") == 0) {
+      i = skipTo(i + 2, "?>");
+    } else if (rest.compare(0, 2, "<!") == 0) {
+      i = skipTo(i + 2, ">");
+    } else if (rest.compare(0, 2, "</") == 0) {
+      const std::string_view n = nameAt(i + 2);
+      if (open.empty()) return false;
+      if (n != open.back().first || i >= stop) {
+        *name = std::string(open.back().first);
+        *open_at = open.back().second;
+        *closing = std::string(n);
+        return true;
+      }
+      open.pop_back();
+      i = skipTo(i + 2, ">");
+    } else {
+      const std::string_view n = nameAt(i + 1);
+      size_t j = i + 1 + n.size();
+      char quote = 0;
+      for (; j < text.size(); ++j) {
+        if (quote) {
+          if (text[j] == quote) quote = 0;
+        } else if (text[j] == '"' || text[j] == '\'') {
+          quote = text[j];
+        } else if (text[j] == '>') {
+          break;
+        }
+      }
+      if (j >= text.size()) break;
+      if (text[j - 1] != '/') open.emplace_back(n, i);
+      i = j + 1;
+    }
+  }
+  if (open.empty()) return false;
+  *name = std::string(open.back().first);
+  *open_at = open.back().second;
+  closing->clear();
+  return true;
+}
 
 }  // namespace
 
@@ -221,6 +291,9 @@ std::shared_ptr<XmlDoc> parseXml(std::string text, const Registry& reg, std::str
   const char* const end = begin + d->text.size();
   for (const char* p = begin; (p = static_cast<const char*>(std::memchr(p, '\n', static_cast<size_t>(end - p)))); ++p)
     d->newlines.push_back(static_cast<size_t>(p - begin));
+  // Parsing in place overwrites delimiters, so the element a mismatched end tag leaves open is
+  // found in a copy; kept only for texts of a size people write by hand.
+  const std::string original = d->text.size() <= kKeepForDiagnosis ? d->text : std::string();
   pugi::xml_parse_result res =
       d->doc.load_buffer_inplace(d->text.data(), d->text.size(), pugi::parse_default, pugi::encoding_utf8);
   if (!res) {
@@ -228,6 +301,21 @@ std::shared_ptr<XmlDoc> parseXml(std::string text, const Registry& reg, std::str
     *error_line =
         static_cast<int>(std::upper_bound(d->newlines.begin(), d->newlines.end(), off) - d->newlines.begin()) + 1;
     *error = std::string("malformed XML: ") + res.description();
+    // pugixml says "Start-end tags mismatch" at the closing tag: name the element left open,
+    // where it opens.
+    std::string open, closing;
+    size_t open_at = 0;
+    if (res.status == pugi::status_end_element_mismatch && !original.empty() &&
+        unclosedElement(original, off, &open, &open_at, &closing)) {
+      const int close_line = *error_line;
+      *error_line =
+          static_cast<int>(std::upper_bound(d->newlines.begin(), d->newlines.end(), open_at) - d->newlines.begin()) + 1;
+      *error =
+          "malformed XML: <" + quoteInput(open) + "> is not closed (" +
+          (closing.empty() ? std::string("the file ends first")
+                           : "</" + quoteInput(closing) + "> on line " + std::to_string(close_line) + " comes first") +
+          ")";
+    }
     return nullptr;
   }
   if (!d->doc.document_element()) {

@@ -406,10 +406,17 @@ std::string formatNumber(double d) {
   return out;
 }
 
+std::string formatReadable(double d) { return formatNumber(d == 0 ? 0.0 : d); }
+
 std::string formatApprox(double d) {
+  if (d == 0) d = 0.0;
   char buf[32];
   const auto res = std::to_chars(buf, buf + sizeof buf, d, std::chars_format::general, 3);
   return std::string(buf, res.ptr);
+}
+
+std::string countOf(size_t n, std::string_view one, std::string_view many) {
+  return std::to_string(n) + " " + std::string(n == 1 ? one : many);
 }
 
 size_t editDistance(std::string_view a, std::string_view b) {

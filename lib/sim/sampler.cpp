@@ -1,4 +1,6 @@
 // The trajectory sampler: the first party of every run.
+#include <vector>
+
 #include "simbob/physics.h"
 #include "simbob/run.h"
 #include "simbob/values.h"
@@ -37,8 +39,17 @@ const Error* TrajectorySampler::failure() const { return error_.message.empty() 
 
 void TrajectorySampler::sample(SimTime now, const World& world) {
   const int n = static_cast<int>(poses_.size() / kPoseSize);
+  // The velocity block (run --columns pose,velocity): linear then angular, world frame.
+  std::vector<double> velocities(writer_ && writer_->withVelocity() ? poses_.size() / kPoseSize * kVelocitySize : 0);
   for (int i = 0; i < n; ++i) {
     const BodyState s = world.body(i);
+    if (!velocities.empty()) {
+      double* v = &velocities[static_cast<size_t>(i) * kVelocitySize];
+      for (size_t k = 0; k < 3; ++k) {
+        v[k] = s.lin_vel[k];
+        v[3 + k] = s.ang_vel[k];
+      }
+    }
     double* p = &poses_[static_cast<size_t>(i) * kPoseSize];
     p[0] = s.pose.p[0];
     p[1] = s.pose.p[1];
@@ -49,7 +60,7 @@ void TrajectorySampler::sample(SimTime now, const World& world) {
     p[6] = s.pose.q[3];
   }
   const double t = toSeconds(now);
-  if (writer_) writer_->addSample(t, poses_.data());
+  if (writer_) writer_->addSample(t, poses_.data(), velocities.empty() ? nullptr : velocities.data());
   if (on_sample_) on_sample_(t, poses_.data());
   ++samples_;
   last_ = now;

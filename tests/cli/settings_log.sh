@@ -21,7 +21,7 @@ grep -q "simbob: wrote a.csv" err.txt || fail "info line missing on stderr"
 grep -q "simbob: wrote b.csv" quiet.log || fail "--log-file misses what --quiet kept off stderr"
 
 "$simbob" run "$repo/scenes/pendulum.xml" --duration 0.1 --out c.csv -v 2> err.txt
-grep -q "simbob: running .*1 mobile bodies" err.txt || fail "-v did not print debug lines: $(cat err.txt)"
+grep -q "simbob: running .*: 1 mobile body, " err.txt || fail "-v did not print debug lines: $(cat err.txt)"
 
 printf 'LogFil = x.log\n' > bad.ini
 set +e

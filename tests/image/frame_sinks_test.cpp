@@ -210,7 +210,7 @@ TEST_CASE("video: bad names, bad frames and unwritable places give clear errors"
   const std::string nowhere = (tmp.path / "no" / "v.avi").string();
   CHECK_FALSE(simbob::makeVideoSink(nowhere, 30, &err));
   CHECK(err.kind == ErrorKind::CannotCreate);
-  CHECK(err.str() == nowhere + ": cannot create temporary file " + nowhere + ".tmp.<pid>: No such file or directory");
+  CHECK(err.str() == nowhere + ": cannot create: folder '" + (tmp.path / "no").string() + "' does not exist");
   fs::create_directory(tmp.path / "d.avi");
   CHECK_FALSE(simbob::makeVideoSink((tmp.path / "d.avi").string(), 30, &err));
   CHECK(err.message == "cannot create: is a directory");

@@ -64,10 +64,13 @@ std::string inList(const std::string& components) {
 // ---------------------------------------------------------------------------------- syntax
 
 TEST_CASE("errors: malformed XML names the line", "[scene][errors]") {
+  // An element left open is named where it opens, with the end tag that came first.
   Result r = run("<Simulation>\n  <ComponentList>\n    <RCGround>\n  </ComponentList>\n</Simulation>\n");
   CHECK_FALSE(r.loaded);
   REQUIRE(r.diag.errors().size() == 1);
-  expectError(r, "bad.xml:4: ", {"malformed XML"});
+  expectExact(r, "bad.xml:3: malformed XML: <RCGround> is not closed (</ComponentList> on line 4 comes first)");
+  Result eof = run("<Simulation>\n<!-- <Skip> -->\n<ComponentList>\n<RCGround Key=\"a>b\"/>\n");
+  expectExact(eof, "bad.xml:3: malformed XML: <ComponentList> is not closed (the file ends first)");
 
   Result attr = run("<Simulation>\n<ComponentList>\n<RCGround Key=\"x/>\n</ComponentList></Simulation>");
   CHECK_FALSE(attr.loaded);
@@ -113,6 +116,45 @@ TEST_CASE("errors: unknown component types with did-you-mean", "[scene][errors]"
   expectError(ini, "bad.ini:2: ", {"unknown component type 'RCGrund' (did you mean 'RCGround'?)"});
 }
 
+TEST_CASE("errors: an unknown type far from every name suggests the nearest of its family", "[scene][errors]") {
+  // "Box" is three edits from no type name; the family word "Geom" still says what was meant.
+  Result r =
+      run(inList("<RCStaticRigidBody Key=\"S\"><Geom><RCBoxGeom/></Geom></RCStaticRigidBody>\n"  // 3
+                 "<RCCubeGeom Key=\"M\"/>\n"));                                                  // 4
+  expectExact(r, "bad.xml:3: RCStaticRigidBody 'S': unknown component type 'RCBoxGeom' (did you mean 'RCCuboidGeom'?)");
+  expectExact(r, "bad.xml:4: unknown component type 'RCCubeGeom' (did you mean 'RCCuboidGeom'?)");
+  Result ini = run("ComponentCount = 1\nComponent0.Type = RCBoxGeom\n", Format::Ini, "bad.ini");
+  expectError(ini, "bad.ini:2: ", {"unknown component type 'RCBoxGeom' (did you mean 'RCCuboidGeom'?)"});
+}
+
+TEST_CASE("errors: an unknown controller type says a plug-in may define it", "[scene][errors]") {
+  Result r =
+      run(inList("<RCRobot Key=\"R\"><ControllerList>\n"
+                 "<SquareDriver Key=\"Square\"><Side Value=\"2\"/></SquareDriver>\n"
+                 "</ControllerList></RCRobot>\n"));
+  expectExact(r,
+              "bad.xml:4: RCRobot 'R': unknown component type 'SquareDriver'; if a plug-in defines it, load the "
+              "plug-in with --plugin FILE");
+  // Where no plug-in type can go, no word of plug-ins.
+  Result geom = run(inList("<RCStaticRigidBody Key=\"S\"><Geom><SquareDriver/></Geom></RCStaticRigidBody>\n"));
+  expectExact(geom, "bad.xml:3: RCStaticRigidBody 'S': unknown component type 'SquareDriver'");
+}
+
+TEST_CASE("errors: attribute names in the wrong case are named as such", "[scene][errors]") {
+  Result r =
+      run(inList("<RCSky Key=\"Sky\"><Height value=\"3\"/></RCSky>\n"                // 3
+                 "<RCSky key=\"Low\"/>\n"                                            // 4
+                 "<RCSky Key=\"Top\"><Material ref=\"Sky.Material\"/></RCSky>\n"));  // 5
+  CHECK_FALSE(r.loaded);
+  expectExact(r,
+              "bad.xml:3: RCSky 'Sky': parameter 'Height': attribute 'value' must be written 'Value' (XML names are "
+              "case-sensitive)");
+  expectExact(r, "bad.xml:4: RCSky: attribute 'key' must be written 'Key' (XML names are case-sensitive)");
+  expectExact(r,
+              "bad.xml:5: RCSky 'Top': <Material>: attribute 'ref' must be written 'Ref' (XML names are "
+              "case-sensitive)");
+}
+
 TEST_CASE("errors: a component of the wrong family for its parameter", "[scene][errors]") {
   Result r =
       run(inList("<RCStaticRigidBody Key=\"S\"><Geom><RCHingeJoint/></Geom></RCStaticRigidBody>\n"
@@ -135,7 +177,8 @@ TEST_CASE("errors: unknown parameter names with did-you-mean", "[scene][errors]"
   CHECK_FALSE(r.loaded);
   expectExact(r, "bad.xml:4: RCHingeJoint 'C.J': parameter 'Hing' unknown (did you mean 'Hinge'?)");
   expectExact(r, "bad.xml:5: RCSliderJoint 'C.S': parameter 'Axiss' unknown (did you mean 'Axis'?)");
-  expectExact(r, "bad.xml:5: RCSliderJoint 'C.S': parameter 'Color' unknown");
+  // Nothing near: the message lists what the type takes.
+  expectExact(r, "bad.xml:5: RCSliderJoint 'C.S': parameter 'Color' unknown (RCSliderJoint takes Pose, Body, Axis)");
   CHECK(r.diag.errors().size() == 3);
 
   // Exact case in XML; INI names are case-insensitive but still checked.
@@ -572,7 +615,7 @@ TEST_CASE("errors: imported files with the wrong root or bad content", "[scene][
   r.diag = d;
   expectExact(r, p + "joint.xml:1: root element is <Joint>, expected <Body> (imported by " + main + ":3)");
   expectExact(r, p + "bad.xml:3: RCSphereGeom 'B.B.Geom': parameter 'Radius': expected a number, got 'x'");
-  expectError(r, p + "broken.xml:3: ", {"malformed XML"});
+  expectExact(r, p + "broken.xml:2: malformed XML: <RCStaticRigidBody> is not closed (</Body> on line 3 comes first)");
   expectError(r, p + "ref.xml:1: ", {"must hold a component, not a Ref"});
   expectError(r, p + "list.xml:2: ", {"<RefList> items must be components, not Refs"});
   expectError(r, p + "list.xml:4: ", {"RCHingeJoint", "JointComponent"});
@@ -705,6 +748,16 @@ TEST_CASE("errors: SceneSettings checks", "[scene][errors]") {
 
 // ---------------------------------------------------------------------------------- INI syntax
 
+TEST_CASE("errors: INI [] returns to the global section", "[scene][errors][ini]") {
+  Result r = run("[Component0]\nType = RCSky\nKey = Sky\n[]\nComponentCount = 1\n[ ]\nComponent0.Height = 7\n",
+                 Format::Ini, "b.ini");
+  INFO(errorText(r.diag));
+  CHECK(r.loaded);
+  CHECK(r.diag.errors().empty());
+  // "[" alone is still no header.
+  expectExact(run("ComponentCount = 0\n[\n", Format::Ini, "b.ini"), "b.ini:2: malformed section header '['");
+}
+
 TEST_CASE("errors: INI syntax", "[scene][errors][ini]") {
   expectExact(run("ComponentCount = 1\n[Component0\nType = RCSky\n", Format::Ini, "b.ini"),
               "b.ini:2: malformed section header '[Component0'");
@@ -748,7 +801,8 @@ TEST_CASE("errors: INI list items without their Count", "[scene][errors][ini][au
   expectExact(child, "b.ini:4: RCCuboidModel 'M': ChildCount is missing: Child0 needs 'ChildCount = 1'");
   // Items that do not start at 0 are still unknown names.
   Result gap = run("Component1.Type = RCSky\n", Format::Ini, "b.ini");
-  expectExact(gap, "b.ini:1: parameter 'Component1' unknown");
+  expectExact(gap,
+              "b.ini:1: parameter 'Component1' unknown (Simulation takes CameraCount, SceneSettings, ComponentCount)");
 }
 
 // ---------------------------------------------------------------------------------- many errors
@@ -1085,8 +1139,11 @@ TEST_CASE("invisible and control characters in messages are escaped", "[scene][e
           "Count = 1\n\xEF\xBB\xBF"
           "Foo = 1\n",
           Format::Ini, "bad.ini");
-  expectExact(r, "bad.ini:2: parameter 'Camera\\u{200B}Count' unknown");
-  expectExact(r, "bad.ini:3: parameter '\\u{FEFF}Foo' unknown");
+  expectExact(r,
+              "bad.ini:2: parameter 'Camera\\u{200B}Count' unknown (Simulation takes CameraCount, SceneSettings, "
+              "ComponentCount)");
+  expectExact(
+      r, "bad.ini:3: parameter '\\u{FEFF}Foo' unknown (Simulation takes CameraCount, SceneSettings, ComponentCount)");
   Result c = run("ComponentCount = 0\nx\x01y\n", Format::Ini, "ctl.ini");
   expectExact(c, "ctl.ini:2: expected 'key = value', got 'x\\x01y'");
 }

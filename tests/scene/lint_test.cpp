@@ -1,7 +1,12 @@
 // lintModel: each warning fires on the scene it describes and stays silent on a sound one.
 #include <catch2/catch.hpp>
 
+#include <fstream>
+#include <sstream>
+
+#include "test_registry.h"
 #include "simbob/compile.h"
+#include "simbob/graph.h"
 #include "simbob/transform.h"
 
 using namespace simbob;
@@ -172,4 +177,48 @@ TEST_CASE("thousands of coincident bodies stop the overlap search instead of tak
   std::vector<std::string> w = warnings(m);
   CHECK(anyContains(w, "stopped looking for overlaps after 10000 overlapping pairs of bodies"));
   CHECK(anyContains(w, "more warnings like 'overlap'"));
+}
+
+namespace {
+
+// scenes/two_wheel_robot.xml with its wheel hinges' frames turned as given ("0 180 0" in the
+// scene: each axle points to the robot's left).
+Model twoWheel(const std::string& left_turn, const std::string& right_turn) {
+  std::ifstream in(std::string(SIMBOB_SOURCE_DIR) + "/scenes/two_wheel_robot.xml");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string text = ss.str();
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"0.1 -0.02 -0.19 0 180 0", "0.1 -0.02 -0.19 " + left_turn},
+        {"0.1 -0.02 0.19 0 180 0", "0.1 -0.02 0.19 " + right_turn}}) {
+    const size_t at = text.find(from);
+    REQUIRE(at != std::string::npos);
+    text.replace(at, from.size(), to);
+  }
+  Scene s;
+  Diagnostics d;
+  REQUIRE(loadSceneFromText(text, "two_wheel.xml", Format::Xml, testRegistry(), &s, d));
+  Model m;
+  REQUIRE(compileScene(s, &m, d));
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("a two-wheel robot whose axle turns its wheel backwards is named", "[scene][lint]") {
+  // As shipped: both axles point to the robot's left (-Z): no warning.
+  CHECK(warnings(twoWheel("0 180 0", "0 180 0")).empty());
+  // Both frames unturned: the axles point to +Z, the robot's right; a forward command drives the
+  // robot backwards. Each axle is named, where it is defined.
+  const std::vector<std::string> both = warnings(twoWheel("0 0 0", "0 0 0"));
+  REQUIRE(both.size() == 2);
+  CHECK(both[0] ==
+        "two_wheel.xml:42: joint 'Bot.Cart.LeftAxle' (the left wheel of RCTwoWheelMotionControl 'Bot.Motion') turns "
+        "its wheel backwards on a forward command: the wheel turns about the robot's right; point the hinge axis from "
+        "the right wheel to the left one (now 0 0 1)");
+  CHECK(both[1].rfind("two_wheel.xml:58: joint 'Bot.Cart.RightAxle' (the right wheel of", 0) == 0);
+  // One axle reversed: the robot would spin on a forward command; only that one is named.
+  const std::vector<std::string> one = warnings(twoWheel("0 180 0", "0 0 0"));
+  REQUIRE(one.size() == 1);
+  CHECK(anyContains(one, "joint 'Bot.Cart.RightAxle'"));
 }

@@ -550,3 +550,26 @@ TEST_CASE("registry: a type whose name or alias is taken (in any case) is refuse
   CHECK_FALSE(r.addMacro({"NOGEOM", Family::Geom, "RCEmptyGeom", {}, ""}));
   CHECK(r.problems().back() == "macro 'NOGEOM': the name is already registered");
 }
+
+TEST_CASE("registry: the nearest type names of an unknown one", "[scene][registry]") {
+  Registry reg;
+  for (const char* name : {"RCOneGeom", "RCOnaGeom", "RCLongNameGeom", "RCOneModel"})
+    REQUIRE(reg.add({name,
+                     std::string(name).find("Geom") != std::string::npos ? Family::Geom : Family::Model,
+                     0,
+                     {},
+                     {},
+                     "test type"}));
+  // Equally near names are all offered, in name order; a farther one is not.
+  CHECK(reg.suggestTypes("RCOnxGeom") == std::vector<std::string>{"RCOnaGeom", "RCOneGeom"});
+  CHECK(reg.unknownTypeMessage("RCOnxGeom", false) ==
+        "unknown component type 'RCOnxGeom' (did you mean 'RCOnaGeom' or 'RCOneGeom'?)");
+  // Another case is the nearest of all.
+  CHECK(reg.suggestTypes("rconegeom") == std::vector<std::string>{"RCOneGeom"});
+  // Far from every name: the types of the family its last word names, nearest first.
+  CHECK(reg.suggestTypes("RCLongNamGeomXyzGeom") == std::vector<std::string>{"RCLongNameGeom"});
+  CHECK(reg.suggestTypes("RCSomethingElseModel") == std::vector<std::string>{"RCOneModel"});
+  CHECK(reg.suggestTypes("Zzzzzzzzzzzz").empty());
+  CHECK(reg.unknownTypeMessage("Zzzzzzzzzzzz", true) ==
+        "unknown component type 'Zzzzzzzzzzzz'; if a plug-in defines it, load the plug-in with --plugin FILE");
+}

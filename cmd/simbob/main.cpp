@@ -90,7 +90,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   bool markdown = false;
   CLI::App* types = app.add_subcommand("types", "List every component type with its parameters and defaults");
   types->add_flag("--markdown", markdown, "Markdown tables");
-  types->add_option("--plugin", common.plugins, "Load component types from this shared library (repeatable)");
+  addCommon(types, common);
 
   CompareArgs ca;
   CLI::App* compare = app.add_subcommand("compare", "Compare a trajectory with a golden one");

@@ -410,3 +410,34 @@ expect_status 65 "$SIMBOB" plot far.csv --out far.png
 expect_eq "message" "$(cat "$LAST_ERR")" "simbob: error: cannot plot x values from -1e+308 to 1e+308: a plot axis spans at most -1e300 to 1e300"
 expect_no_file far.png
 say "ok"
+
+check "sweep run passes --plugin and --settings to its cases (-j and one --case), and sbatch to its script"
+PLUGINS="$(dirname "$SIMBOB")/plugins"
+[[ -f "$PLUGINS/square_driver.so" ]] || fail "no $PLUGINS/square_driver.so: the example plug-in is built with simbob"
+SQ="$REPO/examples/plugins/square_robot.xml"
+cat >sq.json <<JSON
+{"scene": "$SQ", "duration": 0.2, "vary": [{"param": "seed", "values": [1, 2]}]}
+JSON
+expect_status 0 "$SIMBOB" sweep plan sq.json -o sq.jsonl --plugin "$PLUGINS/square_driver.so"
+expect_status 0 "$SIMBOB" sweep run sq.jsonl -j 2 -o sqp --plugin "$PLUGINS/square_driver.so"
+expect_status 0 "$SIMBOB" sweep gather sqp
+# The same through the global settings' ExtensionFolder, one case at a time.
+mkdir -p ext && cp "$PLUGINS/square_driver.so" ext/
+printf 'ExtensionFolder = ext\n' >sq-settings.ini
+expect_status 0 "$SIMBOB" sweep run sq.jsonl --case 0 -o sqs --settings sq-settings.ini
+expect_status 0 "$SIMBOB" sweep run sq.jsonl --case 1 -o sqs --settings sq-settings.ini
+expect_status 0 "$SIMBOB" sweep gather sqs
+expect_same_file sqp/case-0001/trajectory.csv sqs/case-0001/trajectory.csv
+# Without them, a case cannot load the scene: failed, not silently something else.
+expect_status 65 "$SIMBOB" sweep run sq.jsonl --case 0 -o sqn
+expect_status 0 "$SIMBOB" sweep sbatch sq.jsonl -o sqb --plugin "$PLUGINS/square_driver.so"
+expect_match "the case line carries --plugin" sqb/sweep.sbatch \
+  "^exec '$SIMBOB' sweep run '$WORK/sq.jsonl' -o '$WORK/sqb' --plugin '$PLUGINS/square_driver.so'$"
+expect_status 0 env SLURM_ARRAY_TASK_ID=1 sh sqb/sweep.sbatch
+expect_same_file sqp/case-0001/trajectory.csv sqb/case-0001/trajectory.csv
+expect_status 0 "$SIMBOB" sweep sbatch sq.jsonl -o sqc --settings sq-settings.ini
+expect_match "the case line carries --settings" sqc/sweep.sbatch \
+  "^exec '$SIMBOB' sweep run '$WORK/sq.jsonl' -o '$WORK/sqc' --settings '$WORK/sq-settings.ini'$"
+expect_status 0 env SLURM_ARRAY_TASK_ID=1 sh sqc/sweep.sbatch
+expect_same_file sqp/case-0001/trajectory.csv sqc/case-0001/trajectory.csv
+say "ok"

@@ -584,11 +584,13 @@ int sweepSbatch(const SweepArgs& a, const Common& common) {
     if (!scriptValue(o.rfind("--", 0) == 0 ? "an option" : "--plugin or --settings", o)) return kExitUsage;
     forwarded += " " + (o.rfind("--", 0) == 0 ? o : shellQuote(o));
   }
-  if (out.find('%') != std::string::npos) {
+  // sbatch's --output reads '%' as a pattern and drops every '\\' (which also turns the
+  // patterns off): no folder holding either can be named there.
+  if (out.find_first_of("%\\") != std::string::npos) {
     g_log.error({ErrorKind::InvalidInput,
                  {},
-                 "-o '" + quoteInput(out) +
-                     "' holds '%', which Slurm reads as a file-name pattern in --output (choose another folder)"});
+                 "-o '" + quoteInput(out) + "' holds '" + out[out.find_first_of("%\\")] +
+                     "', which Slurm's --output reads as a file-name pattern (choose another folder)"});
     return kExitUsage;
   }
   std::string text;

@@ -231,8 +231,11 @@ for v in $'batch\ntouch X' $'a\rb' $'tab\there' $'del\x7f'; do
   expect_lines "one-line error for -o $(printf %q "$v")" "$LAST_ERR" 1
   expect_no_file ctl
 done
+# Slurm's --output reads '%' as a pattern and drops '\' (checked on the test cluster).
 expect_status 64 "$SIMBOB" sweep sbatch box.jsonl -o "ctl/100%a"
-expect_match "a % in -o" "$LAST_ERR" "holds '%', which Slurm reads as a file-name pattern"
+expect_match "a % in -o" "$LAST_ERR" "holds '%', which Slurm's --output reads as a file-name pattern"
+expect_status 64 "$SIMBOB" sweep sbatch box.jsonl -o 'ctl/back\slash'
+expect_match "a \\ in -o" "$LAST_ERR" "holds '\\\\', which Slurm's --output reads as a file-name pattern"
 expect_no_file ctl
 [[ ! -e X ]] || fail "an injected command ran"
 
@@ -268,7 +271,8 @@ for line in open(sys.argv[1], encoding="utf-8", errors="surrogateescape").read()
     print(arg)
 PY
 }
-hostile=('$(touch X)' '`touch X`' "it's" 'say "hi"' 'a;touch X' 'with space' 'hash#x' 'back\slash' '$HOME' '&&touch X' '|touch X' '*')
+hostile=('$(touch X)' '`touch X`' "it's" 'say "hi"' 'a;touch X' 'with space' 'hash#x' '$HOME' '&&touch X' '|touch X' '*' \
+  $'caf\xc3\xa9 \xe2\x80\xae')
 n=0
 for h in "${hostile[@]}"; do
   n=$((n + 1))
@@ -301,6 +305,10 @@ $WORK/$d/gather.sbatch"
   expect_lines "gathered table for $h" "$d/results.csv" 21
   [[ ! -e X ]] || fail "an injected command ran (from $h)"
 done
+# A backslash is refused in -o (above) but is a value in --partition.
+expect_status 0 "$SIMBOB" sweep sbatch box.jsonl -o sbb --partition 'back\slash "q"'
+sbatch_options sbb/sweep.sbatch >opts
+expect_match "partition with a backslash" opts '^--partition=back\\slash "q"$'
 say "ok"
 
 # ---------------------------------------------------------------- issue 19: gather, manifests, limits

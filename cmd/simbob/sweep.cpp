@@ -497,7 +497,10 @@ int sweepGather(const SweepArgs& a) {
         }
       } catch (const std::exception& e) {
         status = "failed";
-        error = std::string("unreadable case.json: ") + e.what();
+        std::string what = e.what();  // "[json.exception.type_error.302] type must be ...": the part after "] "
+        if (size_t b = what.find("] "); what.rfind("[json.exception", 0) == 0 && b != std::string::npos)
+          what = what.substr(b + 2);
+        error = "unreadable case.json: " + what;
         values.assign(c.metrics.size(), "");
       }
     }

@@ -334,7 +334,7 @@ j = json.load(open(sys.argv[1])); j["status"] = 7
 json.dump(j, open(sys.argv[1], "w"))
 PY
 expect_status 1 "$SIMBOB" sweep gather w
-expect_match "status of the wrong type" "$LAST_ERR" "^w/case-0002: error: failed: unreadable case.json: "
+expect_match "status of the wrong type" "$LAST_ERR" "^w/case-0002: error: failed: unreadable case.json: type must be string, but is number$"
 
 check "gather: a status with a comma, a quote and a line break stays one field (RFC 4180)"
 rm -rf w && cp -r box w

@@ -226,6 +226,11 @@ Waittime=0
 NodeName=localhost NodeAddr=127.0.0.1 NodeHostname=127.0.0.1 CPUs=2 RealMemory=1000 State=UNKNOWN
 PartitionName=sim Nodes=localhost Default=YES MaxTime=60 State=UP
 EOF
+  # No cgroups are used (proctrack/linuxproc, task/none), but slurmd 22.05 initialises a cgroup
+  # plugin anyway, and its autodetection fails where /sys/fs/cgroup is not mounted (a chroot):
+  # name the plugin, with a mount point of our own that nothing reads.
+  mkdir -p "$d/cgroup"
+  printf 'CgroupPlugin=cgroup/v1\nCgroupMountpoint=%s/cgroup\n' "$d" >"$d/cgroup.conf"
   # An empty plugstack: the host's /etc/slurm/plugstack.conf is none of this cluster's business.
   : >"$d/plugstack.conf"
   printf 'PlugStackConfig=%s/plugstack.conf\n' "$d" >>"$d/slurm.conf"

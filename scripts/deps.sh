@@ -24,6 +24,9 @@ TEST_PACKAGES=(
   clang-format clang-tidy   # scripts/check-style.sh
   ffmpeg                # ffprobe checks the recorded videos (tests/image/ffprobe.sh)
   slurmctld slurmd slurm-client munge  # a real one-node Slurm cluster (tests/cluster/slurm_*.sh)
+  procps iproute2 util-linux  # its daemons' job steps (pgrep), listening ports (ss), a UTS namespace (unshare)
+  file dpkg-dev         # cpack -G DEB: CPackDeb finds the ELF files with file, Depends with dpkg-shlibdeps
+  git                   # cluster.version builds throwaway repositories (tests/cluster/version.sh)
 )
 
 case "${1:-}" in

@@ -132,7 +132,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   std::string types_only;
   types->add_option("type", types_only, "Print only this type (its parameters, defaults and units)");
   types->add_flag("--markdown", markdown, "Markdown tables");
-  types->add_option("--plugin", common.plugins, "Load component types from this shared library (repeatable)");
+  addCommon(types, common);
 
   CompareArgs ca;
   CLI::App* compare = app.add_subcommand("compare", "Compare a trajectory with a golden one");

@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -86,6 +87,21 @@ pid_t spawnSelf(std::vector<std::string> args, const std::string& log) {
   execv("/proc/self/exe", argv.data());
   std::fprintf(stderr, "simbob: error: cannot start worker: %s\n", std::strerror(errno));
   _exit(kExitSoftware);
+}
+
+// The options every case of a sweep runs with: the plug-ins and the global settings the sweep
+// command was given, as absolute paths (a Slurm task may start elsewhere).
+std::vector<std::string> caseOptions(const Common& common) {
+  std::vector<std::string> args;
+  for (const std::string& p : common.plugins) {
+    args.emplace_back("--plugin");
+    args.push_back(absolutePath(p));
+  }
+  if (!common.settings.empty()) {
+    args.emplace_back("--settings");
+    args.push_back(absolutePath(common.settings));
+  }
+  return args;
 }
 
 // ---- plan ----
@@ -220,7 +236,7 @@ int caseIndex(const SweepArgs& a, int* index) {
   return kExitUsage;
 }
 
-int runOneCase(const SweepArgs& a, const SweepCase& c, const std::string& manifest) {
+int runOneCase(const SweepArgs& a, const SweepCase& c, const std::string& manifest, const Common& common) {
   const fs::path final_dir = fs::path(a.out) / caseDirName(c.index);
   std::error_code ec;
   if (!a.force && fs::exists(final_dir, ec)) {
@@ -261,6 +277,7 @@ int runOneCase(const SweepArgs& a, const SweepCase& c, const std::string& manife
     args.emplace_back("--set");
     args.push_back(s);
   }
+  for (std::string& o : caseOptions(common)) args.push_back(std::move(o));
   catchStopSignals();
   const auto t0 = std::chrono::steady_clock::now();
   const pid_t pid = spawnSelf(args, (tmp / "log").string());
@@ -346,7 +363,7 @@ int runOneCase(const SweepArgs& a, const SweepCase& c, const std::string& manife
   return exit_code;
 }
 
-int runAllCases(const SweepArgs& a, const std::vector<SweepCase>& cases) {
+int runAllCases(const SweepArgs& a, const std::vector<SweepCase>& cases, const Common& common) {
   catchStopSignals();
   std::vector<int> todo;
   std::error_code ec;
@@ -368,6 +385,7 @@ int runAllCases(const SweepArgs& a, const std::vector<SweepCase>& cases) {
       std::vector<std::string> args = {"simbob",          "sweep", "run", a.input,  "--case",
                                        std::to_string(i), "-o",    a.out, "--quiet"};
       if (a.force) args.emplace_back("--force");
+      for (std::string& o : caseOptions(common)) args.push_back(std::move(o));
       const pid_t pid = spawnSelf(args, "/dev/null");
       if (pid < 0) {
         ++done;
@@ -411,13 +429,13 @@ int runAllCases(const SweepArgs& a, const std::vector<SweepCase>& cases) {
   return failed == 0 ? kExitOk : kExitResultWrong;
 }
 
-int sweepRun(const SweepArgs& a) {
+int sweepRun(const SweepArgs& a, const Common& common) {
   std::string text;
   std::vector<SweepCase> cases;
   int code = 0;
   if (!readManifest(a.input, &text, &cases, &code)) return code;
   if (int c = claimOutDir(a.out, text)) return c;
-  if (a.jobs > 0) return runAllCases(a, cases);
+  if (a.jobs > 0) return runAllCases(a, cases, common);
   int index = -1;
   if (int c = caseIndex(a, &index)) return c;
   if (index >= static_cast<int>(cases.size())) {
@@ -427,11 +445,12 @@ int sweepRun(const SweepArgs& a) {
                      std::to_string(cases.size() - 1) + ")"});
     return kExitUsage;
   }
-  return runOneCase(a, cases[static_cast<size_t>(index)], a.input);
+  return runOneCase(a, cases[static_cast<size_t>(index)], a.input, common);
 }
 
 // ---- gather ----
 
+// RFC 4180: a field with a comma, a quote or a line break is quoted, its quotes doubled.
 std::string csvField(const std::string& s) {
   if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
   std::string q = "\"";
@@ -464,33 +483,48 @@ int sweepGather(const SweepArgs& a) {
   for (const SweepCase& c : cases) {
     const fs::path dir = fs::path(a.input) / caseDirName(c.index);
     std::string status = "missing", wall, error;
-    nlohmann::json j;
+    std::vector<std::string> values(c.metrics.size());
     std::string jt;
     if (readFile((dir / "case.json").string(), 1 << 20, &jt, nullptr, true)) {
+      // A field of the wrong type makes the case failed, never the gather.
       try {
-        j = nlohmann::json::parse(jt);
+        const nlohmann::json j = nlohmann::json::parse(jt);
+        if (!j.is_object()) throw std::runtime_error("not a JSON object");
         status = j.value("status", "failed");
         wall = formatNumber(j.value("wall_seconds", 0.0));
         error = j.value("error", "");
-      } catch (const std::exception&) {
+        if (status == "ok") {
+          for (size_t i = 0; i < c.metrics.size(); ++i) {
+            const std::string& name = c.metrics[i].name;
+            if (!j.contains("metrics") || !j["metrics"].is_object() || !j["metrics"].contains(name)) continue;
+            const nlohmann::json& v = j["metrics"][name];
+            if (!v.is_number() || !std::isfinite(v.get<double>()))
+              throw std::runtime_error("metric '" + name + "' is " + v.dump() + ", not a number");
+            values[i] = formatNumber(v.get<double>());
+          }
+        }
+      } catch (const std::exception& e) {
         status = "failed";
-        error = "unreadable case.json";
+        std::string what = e.what();  // "[json.exception.type_error.302] type must be ...": the part after "] "
+        if (size_t b = what.find("] "); what.rfind("[json.exception", 0) == 0 && b != std::string::npos)
+          what = what.substr(b + 2);
+        error = "unreadable case.json: " + what;
+        values.assign(c.metrics.size(), "");
       }
     }
     csv += std::to_string(c.index);
     for (const auto& [k, v] : c.vary) csv += "," + csvField(v);
-    csv += "," + std::to_string(c.seed) + "," + status + "," + wall;
-    for (const SweepMetric& m : c.metrics) {
-      csv += ",";
-      if (status == "ok" && j.contains("metrics") && j["metrics"].contains(m.name))
-        csv += formatNumber(j["metrics"][m.name].get<double>());
-    }
+    csv += "," + std::to_string(c.seed) + "," + csvField(status) + "," + csvField(wall);
+    for (const std::string& v : values) csv += "," + v;
     csv += "\n";
     if (status == "ok") {
       ++ok;
     } else {
       retry.push_back(c.index);
-      if (!a.retry) g_log.error({ErrorKind::Diverged, {dir.string(), 0}, status + (error.empty() ? "" : ": " + error)});
+      if (!a.retry)
+        g_log.error({ErrorKind::Diverged,
+                     {dir.string(), 0},
+                     quoteInput(status) + (error.empty() ? "" : ": " + quoteInput(error))});
     }
   }
   Error err;
@@ -515,7 +549,60 @@ std::string shellQuote(const std::string& s) {
   return q + "'";
 }
 
-int sweepSbatch(const SweepArgs& a) {
+// The value of an `#SBATCH --opt=VALUE` line as sbatch reads it: it splits the line at blanks
+// and ends it at an unquoted '#'; inside "..." blanks and '#' are kept and '\' escapes the next
+// character. Plain values stay as they are.
+std::string sbatchQuote(const std::string& s) {
+  if (!s.empty() && s.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-.,/:%@+=") ==
+                        std::string::npos)
+    return s;
+  std::string q = "\"";
+  for (char ch : s) {
+    if (ch == '"' || ch == '\\') q += '\\';
+    q += ch;
+  }
+  return q + "\"";
+}
+
+// A value that goes into a generated script is one line of text: a newline would end the
+// #SBATCH line (sbatch stops reading options there) and start a shell command.
+bool scriptValue(const std::string& what, const std::string& value) {
+  for (unsigned char ch : value)
+    if (ch < 0x20 || ch == 0x7F) {
+      g_log.error({ErrorKind::InvalidInput,
+                   {},
+                   what + " '" + quoteInput(value) +
+                       "' holds a control character; it cannot go into a job script (choose another)"});
+      return false;
+    }
+  return true;
+}
+
+int sweepSbatch(const SweepArgs& a, const Common& common) {
+  char exe[4096] = {};
+  ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+  const std::string binary = n > 0 ? std::string(exe, static_cast<size_t>(n)) : "simbob";
+  const std::string out = absolutePath(a.out);
+  const std::string manifest = absolutePath(a.input);
+  // Checked before anything is written: every value the scripts will hold.
+  const std::vector<std::string> options = caseOptions(common);
+  if (!scriptValue("--partition", a.partition) || !scriptValue("-o", out) || !scriptValue("the manifest", manifest) ||
+      !scriptValue("the simbob binary", binary))
+    return kExitUsage;
+  std::string forwarded;  // --plugin and --settings, for every case
+  for (const std::string& o : options) {
+    if (!scriptValue(o.rfind("--", 0) == 0 ? "an option" : "--plugin or --settings", o)) return kExitUsage;
+    forwarded += " " + (o.rfind("--", 0) == 0 ? o : shellQuote(o));
+  }
+  // sbatch's --output reads '%' as a pattern and drops every '\\' (which also turns the
+  // patterns off): no folder holding either can be named there.
+  if (out.find_first_of("%\\") != std::string::npos) {
+    g_log.error({ErrorKind::InvalidInput,
+                 {},
+                 "-o '" + quoteInput(out) + "' holds '" + out[out.find_first_of("%\\")] +
+                     "', which Slurm's --output reads as a file-name pattern (choose another folder)"});
+    return kExitUsage;
+  }
   std::string text;
   std::vector<SweepCase> cases;
   int code = 0;
@@ -529,25 +616,20 @@ int sweepSbatch(const SweepArgs& a) {
     if (int c = checkOutputs(outputs, {{"the manifest", a.input}})) return c;
   }
   if (int c = claimOutDir(a.out, text)) return c;
-  char exe[4096] = {};
-  ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-  const std::string binary = n > 0 ? std::string(exe, static_cast<size_t>(n)) : "simbob";
-  const std::string out = absolutePath(a.out);
-  const std::string manifest = absolutePath(a.input);
   std::string header = "#!/bin/sh\n";
-  auto common = [&](const std::string& name, const std::string& log) {
-    std::string s = "#SBATCH --job-name=" + name + "\n#SBATCH --output=" + out + "/" + log + "\n";
-    if (!a.partition.empty()) s += "#SBATCH --partition=" + a.partition + "\n";
+  auto sbatchLines = [&](const std::string& name, const std::string& log) {
+    std::string s = "#SBATCH --job-name=" + name + "\n#SBATCH --output=" + sbatchQuote(out + "/" + log) + "\n";
+    if (!a.partition.empty()) s += "#SBATCH --partition=" + sbatchQuote(a.partition) + "\n";
     return s;
   };
   std::string array = "0-" + std::to_string(cases.size() - 1);
   if (a.max_parallel > 0) array += "%" + std::to_string(a.max_parallel);
   const std::string run = header + "# simbob sweep: one case per array task (written by simbob sweep sbatch).\n" +
-                          common("simbob-sweep", "slurm-%A_%a.out") + "#SBATCH --array=" + array +
+                          sbatchLines("simbob-sweep", "slurm-%A_%a.out") + "#SBATCH --array=" + array +
                           "\n#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\n" + "exec " + shellQuote(binary) +
-                          " sweep run " + shellQuote(manifest) + " -o " + shellQuote(out) + "\n";
+                          " sweep run " + shellQuote(manifest) + " -o " + shellQuote(out) + forwarded + "\n";
   const std::string gather = header + "# simbob sweep: gather the cases into results.csv (after the array).\n" +
-                             common("simbob-gather", "slurm-gather-%j.out") + "#SBATCH --ntasks=1\n" + "exec " +
+                             sbatchLines("simbob-gather", "slurm-gather-%j.out") + "#SBATCH --ntasks=1\n" + "exec " +
                              shellQuote(binary) + " sweep gather " + shellQuote(out) + "\n";
   const std::string submit =
       header + "# Submits the case array, then gather once every task has ended (afterany).\nset -e\n" +
@@ -612,9 +694,9 @@ CLI::App* addSweepCommands(CLI::App& app, SweepArgs& s, Common& common) {
 
 int cmdSweep(const SweepArgs& a, const Common& common) {
   if (*a.plan) return sweepPlan(a, common);
-  if (*a.run) return sweepRun(a);
+  if (*a.run) return sweepRun(a, common);
   if (*a.gather) return sweepGather(a);
-  return sweepSbatch(a);
+  return sweepSbatch(a, common);
 }
 
 }  // namespace simbob::cli

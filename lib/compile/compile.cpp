@@ -62,7 +62,7 @@ void checkUniqueKeys(CompileContext& ctx) {
 }
 
 /// A scene with a socket communicator sends every key to its peer as one word of a line of
-/// printable ASCII (README "Socket protocol"): a key with a space, a control character or a
+/// printable ASCII (docs/socket-protocol.md): a key with a space, a control character or a
 /// byte outside ASCII would split or break that line, so it is refused here, at `check`.
 void checkProtocolKeys(CompileContext& ctx) {
   const Model& m = ctx.model;

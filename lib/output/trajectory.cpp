@@ -481,8 +481,11 @@ bool CsvParser::run(Trajectory* out, Error* err) {
 
 bool readTrajectory(const std::string& path, Trajectory* out, Error* err) {
   std::string text, reason;
-  if (!readFile(path, kMaxTrajectoryFileBytes, &text, &reason)) {
-    setError(err, makeError(ErrorKind::MissingInput, path, 0, "cannot read: " + reason));
+  bool too_large = false;
+  if (!readFile(path, kMaxTrajectoryFileBytes, &text, &reason, false, &too_large)) {
+    // Too large is what the file holds (65, README's limits), not a file that is missing (66).
+    setError(err, makeError(too_large ? ErrorKind::InvalidInput : ErrorKind::MissingInput, path, 0,
+                            "cannot read: " + reason));
     return false;
   }
   Trajectory t;

@@ -708,6 +708,25 @@ bool plotTrajectory(const Trajectory& actual, const Trajectory* golden, const Pl
     }
     sc.series.push_back(std::move(s));
   }
+  // Beyond this an axis cannot span the data (hi - lo, the padding and the ticks overflow): say
+  // so rather than draw an empty panel.
+  constexpr double kMaxPlotMagnitude = 1e300;
+  const char* const names[kPanels] = {"x", "y", "z"};
+  for (int c = 0; c < sc.panels; ++c)
+    if (std::fabs(lo[c]) > kMaxPlotMagnitude || std::fabs(hi[c]) > kMaxPlotMagnitude) {
+      setError(err, ErrorKind::InvalidInput, "",
+               std::string("cannot plot ") + names[c] + " values from " + formatNumber(lo[c]) + " to " +
+                   formatNumber(hi[c]) + ": a plot axis spans at most -1e300 to 1e300");
+      return false;
+    }
+  const double t_first = std::min(actual.times.front(), sc.golden ? sc.golden->times.front() : HUGE_VAL);
+  const double t_last = std::max(actual.times.back(), sc.golden ? sc.golden->times.back() : -HUGE_VAL);
+  if (std::fabs(t_first) > kMaxPlotMagnitude || std::fabs(t_last) > kMaxPlotMagnitude) {
+    setError(err, ErrorKind::InvalidInput, "",
+             "cannot plot times from " + formatNumber(t_first) + " to " + formatNumber(t_last) +
+                 ": a plot axis spans at most -1e300 to 1e300");
+    return false;
+  }
   for (int c = 0; c < kPanels; ++c) {
     padRange(&lo[c], &hi[c], 0.05);
     sc.v_lo[c] = lo[c];

@@ -88,8 +88,7 @@ class GlRenderer : public Renderer {
   }
 
   ~GlRenderer() override {
-    for (const Texture& t : textures_)
-      if (t.id) gl_.DeleteTextures(1, &t.id);
+    for (GLuint id : texture_ids_) gl_.DeleteTextures(1, &id);
   }
 
   bool init(Error* err) {
@@ -535,6 +534,8 @@ class GlRenderer : public Renderer {
   bool loadTextures(Error* err) {
     textures_.assign(skins_.size(), Texture{});
     if (opts_.quality < Quality::Textures) return true;
+    // Each file is read and uploaded once, however many skins name it (one GL texture each).
+    render::TextureFiles files;
     for (size_t i = 0; i < skins_.size(); ++i) {
       const SkinDef& s = skins_[i];
       if (s.texture.empty()) continue;
@@ -557,7 +558,13 @@ class GlRenderer : public Renderer {
         return false;
       }
       Image img;
-      if (!render::readTextureFile(found, &img, err)) return false;
+      size_t slot = 0;
+      bool fresh = false;
+      if (!files.load(found, &slot, &img, &fresh, err)) return false;
+      if (!fresh) {
+        textures_[i].id = texture_ids_[slot];
+        continue;
+      }
       GLuint id = 0;
       gl_.GenTextures(1, &id);
       gl_.BindTexture(GL_TEXTURE_2D, id);
@@ -574,6 +581,7 @@ class GlRenderer : public Renderer {
         std::copy_n(img.pixel(0, img.height - 1 - y), stride, rows.data() + stride * static_cast<size_t>(y));
       gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB, img.width, img.height, 0, GL_RGB, GL_UNSIGNED_BYTE, rows.data());
       textures_[i].id = id;
+      texture_ids_.push_back(id);  // slot `slot`: slots count distinct files from 0
     }
     return true;
   }
@@ -592,7 +600,8 @@ class GlRenderer : public Renderer {
   double spot_dist0_ = -1;
   bool track_init_ = false;
   Vec3 track_pos_{0, 0, 0};
-  std::vector<Texture> textures_;  ///< per skin
+  std::vector<Texture> textures_;    ///< per skin
+  std::vector<GLuint> texture_ids_;  ///< per texture file (TextureFiles' slot): what the destructor deletes
   Error error_;
 };
 

@@ -3,7 +3,9 @@
 
 #include "simbob/png.h"
 
+#include <algorithm>
 #include <array>
+#include <filesystem>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -30,19 +32,32 @@ uint32_t le32(const std::vector<uint8_t>& b, size_t at) {
 }
 uint16_t le16(const std::vector<uint8_t>& b, size_t at) { return static_cast<uint16_t>(b[at] | b[at + 1] << 8); }
 
-bool readAll(const std::string& path, std::vector<uint8_t>* out, Error* err) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    err->kind = ErrorKind::MissingInput;
-    err->loc = SourceLoc{path, 0};
-    err->message = "cannot open the texture file";
-    return false;
-  }
-  out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  return true;
+bool cannotOpen(Error* err, const std::string& path) {
+  err->kind = ErrorKind::MissingInput;
+  err->loc = SourceLoc{path, 0};
+  err->message = "cannot open the texture file";
+  return false;
+}
+
+bool tooLarge(Error* err, const std::string& path, uint64_t size) {
+  return bad(err, path,
+             "texture file of " + std::to_string(size) + " bytes is larger than " +
+                 std::to_string(kMaxTextureFileBytes) + " (a 16384 x 16384 BMP at 32 bits)");
+}
+
+// Up to `n` bytes from the start of `in` (fewer if the file is shorter).
+void readUpTo(std::ifstream& in, uint64_t n, std::vector<uint8_t>* out) {
+  in.clear();
+  in.seekg(0);
+  out->resize(static_cast<size_t>(n));
+  in.read(reinterpret_cast<char*>(out->data()), static_cast<std::streamsize>(n));
+  out->resize(static_cast<size_t>(in.gcount()));
 }
 
 bool readPngFile(const std::string& path, Image* out, Error* err) {
+  std::error_code ec;
+  const uint64_t size = std::filesystem::file_size(path, ec);
+  if (!ec && size > kMaxTextureFileBytes) return tooLarge(err, path, size);
   Error e = readPng(path, *out);
   if (!e.message.empty()) {
     *err = e;
@@ -56,8 +71,15 @@ bool readPngFile(const std::string& path, Image* out, Error* err) {
 }  // namespace
 
 bool readBmp(const std::string& path, Image* out, Error* err) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) return cannotOpen(err, path);
+  const auto end = in.tellg();
+  if (end < 0) return cannotOpen(err, path);
+  const auto size = static_cast<uint64_t>(end);
+  if (size > kMaxTextureFileBytes) return tooLarge(err, path, size);
+  // The headers first; then the pixel rows they describe, and nothing after them.
   std::vector<uint8_t> b;
-  if (!readAll(path, &b, err)) return false;
+  readUpTo(in, 54, &b);
   if (b.size() < 54 || b[0] != 'B' || b[1] != 'M') return bad(err, path, "not a BMP file");
   const uint32_t offset = le32(b, 10);
   const uint32_t header = le32(b, 14);
@@ -75,8 +97,10 @@ bool readBmp(const std::string& path, Image* out, Error* err) {
     return bad(err, path, "BMP: compressed bitmaps are not read (save it uncompressed)");
   if (bpp != 24 && bpp != 32 && bpp != 8) return bad(err, path, "BMP: only 8, 24 and 32 bits per pixel are read");
   const size_t row = ((static_cast<size_t>(w) * bpp + 31) / 32) * 4;
-  if (offset > b.size() || b.size() - offset < row * static_cast<size_t>(h))
+  if (offset < 54 || offset > size || size - offset < row * static_cast<size_t>(h))
     return bad(err, path, "BMP: file is shorter than its pixels");
+  readUpTo(in, offset + row * static_cast<uint64_t>(h), &b);
+  if (b.size() - offset < row * static_cast<size_t>(h)) return bad(err, path, "BMP: file is shorter than its pixels");
   std::vector<std::array<uint8_t, 3>> palette;
   if (bpp == 8) {
     uint32_t colors = le32(b, 46);
@@ -119,6 +143,34 @@ bool readTextureFile(const std::string& path, Image* out, Error* err) {
   if (magic[0] == 'B' && magic[1] == 'M') return readBmp(path, out, err);
   if (std::memcmp(magic, "\x89PNG", 4) == 0) return readPngFile(path, out, err);
   return bad(err, path, "texture is neither a BMP nor a PNG file");
+}
+
+bool TextureFiles::load(const std::string& path, size_t* slot, Image* image, bool* fresh, Error* err) {
+  std::error_code ec;
+  std::string key = std::filesystem::weakly_canonical(path, ec).string();
+  if (ec || key.empty()) key = path;
+  if (auto it = slots_.find(key); it != slots_.end()) {
+    *slot = it->second;
+    *fresh = false;
+    return true;
+  }
+  if (!readTextureFile(path, image, err)) return false;
+  const size_t bytes = image->rgb.size();
+  if (bytes > max_bytes_ - std::min(bytes_, max_bytes_)) {
+    auto amount = [](size_t n) {
+      return n >= (1u << 20) ? std::to_string(n >> 20) + " MiB" : std::to_string(n) + " bytes";
+    };
+    const std::string why = "texture memory: this " + std::to_string(image->width) + " x " +
+                            std::to_string(image->height) + " texture (" + amount(bytes) +
+                            " decoded) takes the scene's textures past " + amount(max_bytes_);
+    *image = Image{};
+    return bad(err, path, why);
+  }
+  bytes_ += bytes;
+  *slot = slots_.size();
+  slots_.emplace(key, *slot);
+  *fresh = true;
+  return true;
 }
 
 }  // namespace simbob::render

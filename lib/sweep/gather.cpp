@@ -50,37 +50,49 @@ namespace simbob {
 
 namespace {
 
-std::vector<std::string> csvRow(const std::string& line) {
-  std::vector<std::string> out(1);
-  bool quoted = false;
-  for (size_t i = 0; i < line.size(); ++i) {
-    const char ch = line[i];
-    if (quoted && ch == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-      out.back() += '"';
+// The records of an RFC 4180 table: a quoted field may hold commas, doubled quotes and line
+// breaks. `lines[i]` is the line record i starts on (for messages).
+std::vector<std::vector<std::string>> csvRecords(const std::string& text, std::vector<int>* lines) {
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> row(1);
+  bool quoted = false, any = false;
+  int line = 1, start = 1;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    if (quoted && ch == '"' && i + 1 < text.size() && text[i + 1] == '"') {
+      row.back() += '"';
       ++i;
     } else if (ch == '"') {
       quoted = !quoted;
+      any = true;
+    } else if (ch == '\n' && !quoted) {
+      if (any || row.size() > 1 || !row.back().empty()) {
+        rows.push_back(std::move(row));
+        lines->push_back(start);
+      }
+      row.assign(1, "");
+      any = false;
+      start = ++line;
     } else if (ch == ',' && !quoted) {
-      out.emplace_back();
-    } else if (ch != '\r') {
-      out.back() += ch;
+      row.emplace_back();
+    } else if (ch != '\r' || quoted) {
+      if (ch == '\n') ++line;
+      row.back() += ch;
     }
   }
-  return out;
+  if (any || row.size() > 1 || !row.back().empty()) {
+    rows.push_back(std::move(row));
+    lines->push_back(start);
+  }
+  return rows;
 }
 
 }  // namespace
 
 bool sweepTableSeries(const std::string& text, const std::string& path, const std::string& x_col,
                       const std::string& y_col, Trajectory* out, Error* err) {
-  std::vector<std::vector<std::string>> rows;
-  size_t pos = 0;
-  while (pos < text.size()) {
-    size_t nl = text.find('\n', pos);
-    if (nl == std::string::npos) nl = text.size();
-    if (nl > pos) rows.push_back(csvRow(text.substr(pos, nl - pos)));
-    pos = nl + 1;
-  }
+  std::vector<int> lines;
+  const std::vector<std::vector<std::string>> rows = csvRecords(text, &lines);
   if (rows.empty()) {
     *err = {ErrorKind::InvalidInput, {path, 0}, "empty table"};
     return false;
@@ -105,7 +117,7 @@ bool sweepTableSeries(const std::string& text, const std::string& path, const st
     const std::vector<std::string>& row = rows[r];
     if (row.size() != head.size()) {
       *err = {ErrorKind::InvalidInput,
-              {path, static_cast<int>(r + 1)},
+              {path, lines[r]},
               std::to_string(row.size()) + " fields, the header has " + std::to_string(head.size())};
       return false;
     }
@@ -113,9 +125,7 @@ bool sweepTableSeries(const std::string& text, const std::string& path, const st
     auto x = parseNumber(row[xi]);
     auto y = parseNumber(row[yi]);
     if (!x || !y) {
-      *err = {ErrorKind::InvalidInput,
-              {path, static_cast<int>(r + 1)},
-              "'" + quoteInput(row[x ? yi : xi]) + "' is not a number"};
+      *err = {ErrorKind::InvalidInput, {path, lines[r]}, "'" + quoteInput(row[x ? yi : xi]) + "' is not a number"};
       return false;
     }
     points.emplace_back(*x, *y);

@@ -1,4 +1,5 @@
 // Sweep manifests: one case per line as compact JSON (docs/sweeps.md).
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -15,6 +16,26 @@ using ojson = nlohmann::ordered_json;
 const nlohmann::json& field(const nlohmann::json& j, const char* key) {
   if (!j.contains(key)) throw std::runtime_error(std::string("'") + key + "' is missing");
   return j[key];
+}
+
+// A whole number from lo to hi (a JSON integer, or a number with no fraction such as 1e3).
+double wholeNumber(const nlohmann::json& j, const char* key, double lo, double hi) {
+  const nlohmann::json& v = field(j, key);
+  const double d = v.is_number() ? v.get<double>() : NAN;
+  if (!v.is_number() || !(d >= lo && d <= hi) || std::floor(d) != d ||
+      (v.is_number_integer() && !v.is_number_unsigned() && v.get<int64_t>() < 0 && lo >= 0))
+    throw std::runtime_error(std::string("'") + key + "' must be a whole number from " + formatNumber(lo) + " to " +
+                             formatNumber(hi) + ", got " + v.dump());
+  return d;
+}
+
+// A time in s from 1e-9 to 1e9, as `simbob sweep plan` writes it.
+double seconds(const nlohmann::json& j, const char* key) {
+  const nlohmann::json& v = field(j, key);
+  if (!v.is_number() || !(v.get<double>() >= 1e-9 && v.get<double>() <= 1e9))
+    throw std::runtime_error(std::string("'") + key + "' must be a number of seconds from 1e-9 to 1e9, got " +
+                             v.dump());
+  return v.get<double>();
 }
 
 }  // namespace
@@ -52,15 +73,16 @@ bool parseManifest(const std::string& text, const std::string& path, std::vector
     try {
       const nlohmann::json j = nlohmann::json::parse(line);
       SweepCase c;
-      c.index = field(j, "case").get<int>();
+      if (!j.is_object()) throw std::runtime_error("a case is a JSON object");
+      c.index = static_cast<int>(wholeNumber(j, "case", 0, 999999999));
       if (c.index != static_cast<int>(cases->size()))
         throw std::runtime_error("case " + std::to_string(c.index) + " where case " + std::to_string(cases->size()) +
                                  " was expected (cases are numbered from 0, one per line)");
       c.scene = field(j, "scene").get<std::string>();
-      c.duration = field(j, "duration").get<double>();
-      if (j.contains("dt")) c.dt = j["dt"].get<double>();
-      c.sample_interval = field(j, "sample_interval").get<double>();
-      c.seed = field(j, "seed").get<uint32_t>();
+      c.duration = seconds(j, "duration");
+      if (j.contains("dt")) c.dt = seconds(j, "dt");
+      c.sample_interval = seconds(j, "sample_interval");
+      c.seed = static_cast<uint32_t>(wholeNumber(j, "seed", 0, 4294967295.0));
       for (const auto& [k, v] : field(j, "vary").items()) c.vary.emplace_back(k, v.get<std::string>());
       c.set = field(j, "set").get<std::vector<std::string>>();
       for (const auto& m : field(j, "metrics"))

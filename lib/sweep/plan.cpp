@@ -74,12 +74,18 @@ std::string valueText(const json& v, const std::string& where) {
 
 constexpr size_t kMaxCases = 1000000;
 
-// The values of one varied parameter: "values" or "range".
-std::vector<std::string> values(const json& e, const std::string& where) {
+// The values of one varied parameter: "values" or "range". With `count`, only checks the entry
+// and sets *count to the number of values, making none (the grid's size is known before any
+// dimension is spent).
+std::vector<std::string> values(const json& e, const std::string& where, size_t* count = nullptr) {
   if (e.contains("values") == e.contains("range")) fail(where, "give either 'values' (a list) or 'range'");
   std::vector<std::string> out;
   if (e.contains("values")) {
     if (!e["values"].is_array() || e["values"].empty()) fail(where, "'values' must be a non-empty list");
+    if (count) {
+      *count = e["values"].size();
+      return out;
+    }
     for (size_t i = 0; i < e["values"].size(); ++i)
       out.push_back(valueText(e["values"][i], where + ".values[" + std::to_string(i) + "]"));
     return out;
@@ -95,6 +101,10 @@ std::vector<std::string> values(const json& e, const std::string& where) {
         r["count"].get<int64_t>() > static_cast<int64_t>(kMaxCases))
       fail(rw, "'count' must be an integer from 1 to 1000000");
     const int64_t n = r["count"].get<int64_t>();
+    if (count) {
+      *count = static_cast<size_t>(n);
+      return out;
+    }
     // Both ends included: start, start + (stop - start) / (n - 1), ..., stop.
     for (int64_t i = 0; i < n; ++i)
       out.push_back(rangeValue(n == 1 ? start : start + (stop - start) * static_cast<double>(i) / (n - 1)));
@@ -106,6 +116,10 @@ std::vector<std::string> values(const json& e, const std::string& where) {
   // Stop included when it lies on the grid (within a billionth of a step).
   const double n = std::floor((stop - start) / step + 1e-9) + 1;
   if (n > static_cast<double>(kMaxCases)) fail(rw, "more than 1000000 values");
+  if (count) {
+    *count = static_cast<size_t>(n);
+    return out;
+  }
   for (int64_t i = 0; i < static_cast<int64_t>(n); ++i)
     out.push_back(rangeValue(start + static_cast<double>(i) * step));
   return out;
@@ -246,6 +260,28 @@ bool planSweep(const std::string& text, const std::string& path, const std::stri
     std::vector<Dimension> dims;
     if (j.contains("vary")) {
       if (!j["vary"].is_array()) fail("vary", "must be a list");
+      // The number of cases first, from the counts alone: each count is at most 1000000 and the
+      // product so far too, so no product overflows.
+      size_t total = 1;
+      for (size_t i = 0; i < j["vary"].size(); ++i) {
+        const json& e = j["vary"][i];
+        std::string w = "vary[" + std::to_string(i) + "]";
+        const json* first = &e;
+        if (!e.is_object()) continue;  // dimension() says what is wrong
+        // Checked in the order dimension() checks them, so the first problem is the one named.
+        if (e.contains("zip")) {
+          onlyKeys(e, w, {"zip"});
+          if (!e["zip"].is_array() || e["zip"].size() < 2 || !e["zip"][0].is_object()) continue;
+          first = &e["zip"][0];
+          w += ".zip[0]";
+        }
+        onlyKeys(*first, w, {"param", "values", "range"});
+        paramName(*first, w);
+        size_t n = 0;
+        values(*first, w, &n);
+        total *= n;
+        if (total > kMaxCases) fail("vary", "more than 1000000 cases");
+      }
       for (size_t i = 0; i < j["vary"].size(); ++i)
         dims.push_back(dimension(j["vary"][i], "vary[" + std::to_string(i) + "]"));
     }

@@ -221,3 +221,231 @@ expect_match "gather" box/gather.sbatch "^exec '$SIMBOB' sweep gather '$WORK/box
 expect_match "dependency" box/submit.sh "--dependency=afterany:\\\$job"
 bash -n box/submit.sh || fail "submit.sh is not valid sh"
 say "ok"
+
+check "sbatch: a value with a control character (partition, -o folder) is refused with 64, nothing written"
+for v in $'batch\ntouch X' $'a\rb' $'tab\there' $'del\x7f'; do
+  expect_status 64 "$SIMBOB" sweep sbatch box.jsonl -o ctl --partition "$v"
+  expect_lines "one-line error for --partition $(printf %q "$v")" "$LAST_ERR" 1
+  expect_match "names --partition" "$LAST_ERR" "^simbob: error: --partition '.*' holds a control character"
+  expect_status 64 "$SIMBOB" sweep sbatch box.jsonl -o "ctl/$v"
+  expect_lines "one-line error for -o $(printf %q "$v")" "$LAST_ERR" 1
+  expect_no_file ctl
+done
+# Slurm's --output reads '%' as a pattern and drops '\' (checked on the test cluster).
+expect_status 64 "$SIMBOB" sweep sbatch box.jsonl -o "ctl/100%a"
+expect_match "a % in -o" "$LAST_ERR" "holds '%', which Slurm's --output reads as a file-name pattern"
+expect_status 64 "$SIMBOB" sweep sbatch box.jsonl -o 'ctl/back\slash'
+expect_match "a \\ in -o" "$LAST_ERR" "holds '\\\\', which Slurm's --output reads as a file-name pattern"
+expect_no_file ctl
+[[ ! -e X ]] || fail "an injected command ran"
+
+check "sbatch: hostile partitions and -o folders stay values: sbatch reads them whole, sh runs no part of them"
+# A stand-in for sbatch: records its arguments, prints a job id.
+mkdir -p fakebin
+cat >fakebin/sbatch <<'SH'
+#!/bin/sh
+for a in "$@"; do printf '%s\n' "$a"; done >>"$SBATCH_LOG"
+echo 4242
+SH
+chmod +x fakebin/sbatch
+# The #SBATCH lines as sbatch reads them (Slurm 22.05 sbatch/opt.c): options end at the first
+# line that is neither a comment nor blank; each line's first argument after the option ends at
+# an unquoted blank or '#'; "..." groups; '\' escapes the next character.
+sbatch_options() {
+  /usr/bin/python3 - "$1" <<'PY'
+import sys
+for line in open(sys.argv[1], encoding="utf-8", errors="surrogateescape").read().split("\n")[1:]:
+    if line.strip() and not line.startswith("#"):
+        break
+    if not line.startswith("#SBATCH "):
+        continue
+    p, arg, quoted, esc = line[len("#SBATCH "):], "", False, False
+    i = 0
+    while i < len(p) and (quoted or not p[i].isspace()):
+        c = p[i]; i += 1
+        if esc: esc = False
+        elif c == "\\": esc = True; continue
+        elif c == '"': quoted = not quoted; continue
+        elif not quoted and c == "#": break
+        arg += c
+    print(arg)
+PY
+}
+hostile=('$(touch X)' '`touch X`' "it's" 'say "hi"' 'a;touch X' 'with space' 'hash#x' '$HOME' '&&touch X' '|touch X' '*' \
+  $'caf\xc3\xa9 \xe2\x80\xae')
+n=0
+for h in "${hostile[@]}"; do
+  n=$((n + 1))
+  d="sb$n/$h"
+  expect_status 0 "$SIMBOB" sweep sbatch box.jsonl -o "$d" --partition "$h"
+  for s in sweep.sbatch gather.sbatch submit.sh; do bash -n "$d/$s" || fail "$d/$s is not valid sh"; done
+  sbatch_options "$d/sweep.sbatch" >opts
+  expect_eq "sweep.sbatch options for $h" "$(cat opts)" "--job-name=simbob-sweep
+--output=$WORK/$d/slurm-%A_%a.out
+--partition=$h
+--array=0-19
+--ntasks=1
+--cpus-per-task=1"
+  sbatch_options "$d/gather.sbatch" >opts
+  expect_eq "gather.sbatch options for $h" "$(cat opts)" "--job-name=simbob-gather
+--output=$WORK/$d/slurm-gather-%j.out
+--partition=$h
+--ntasks=1"
+  rm -f sbatch.log
+  expect_status 0 env PATH="$WORK/fakebin:$PATH" SBATCH_LOG="$WORK/sbatch.log" sh "$d/submit.sh"
+  expect_eq "sbatch's arguments for $h" "$(cat sbatch.log)" "--parsable
+$WORK/$d/sweep.sbatch
+--parsable
+--dependency=afterany:4242
+$WORK/$d/gather.sbatch"
+  # The scripts themselves, run by sh as a Slurm task would: case 0, then gather.
+  expect_status 0 env SLURM_ARRAY_TASK_ID=0 sh "$d/sweep.sbatch"
+  expect_file "$d/case-0000/case.json"
+  expect_status 1 sh "$d/gather.sbatch"
+  expect_lines "gathered table for $h" "$d/results.csv" 21
+  [[ ! -e X ]] || fail "an injected command ran (from $h)"
+done
+# A backslash is refused in -o (above) but is a value in --partition.
+expect_status 0 "$SIMBOB" sweep sbatch box.jsonl -o sbb --partition 'back\slash "q"'
+sbatch_options sbb/sweep.sbatch >opts
+expect_match "partition with a backslash" opts '^--partition=back\\slash "q"$'
+say "ok"
+
+# ---------------------------------------------------------------- issue 19: gather, manifests, limits
+check "gather: a metric of the wrong type makes its case failed (exit 1), never the gather (70)"
+for bad in '"1.5"' null '[1]' '{"a": 1}' true; do
+  rm -rf w && cp -r box w
+  /usr/bin/python3 - w/case-0002/case.json "$bad" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1])); j["metrics"]["stop_x"] = json.loads(sys.argv[2])
+json.dump(j, open(sys.argv[1], "w"))
+PY
+  expect_status 1 "$SIMBOB" sweep gather w
+  expect_eq "one error line for metric $bad" "$(grep -c ': error: ' "$LAST_ERR")" 1
+  expect_match "case 2 failed, the value named" "$LAST_ERR" \
+    "^w/case-0002: error: failed: unreadable case.json: metric 'stop_x' is .*, not a number$"
+  expect_lines "the table: header + 20 cases" w/results.csv 21
+  expect_match "row of case 2: failed, no metrics" w/results.csv '^2,0.3,0,failed,[0-9.e-]+,,$'
+done
+rm -rf w && cp -r box w
+/usr/bin/python3 - w/case-0002/case.json <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1])); j["status"] = 7
+json.dump(j, open(sys.argv[1], "w"))
+PY
+expect_status 1 "$SIMBOB" sweep gather w
+expect_match "status of the wrong type" "$LAST_ERR" "^w/case-0002: error: failed: unreadable case.json: type must be string, but is number$"
+
+check "gather: a status with a comma, a quote and a line break stays one field (RFC 4180)"
+rm -rf w && cp -r box w
+/usr/bin/python3 - w/case-0004/case.json <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1])); j["status"] = 'ok,"x"\n99,injected,row'
+json.dump(j, open(sys.argv[1], "w"))
+PY
+expect_status 1 "$SIMBOB" sweep gather w
+expect_eq "one error line" "$(grep -c ': error: ' "$LAST_ERR")" 1
+expect_eq "one line per message" "$(wc -l <"$LAST_ERR")" 2
+/usr/bin/python3 - w/results.csv <<'PY' || fail "results.csv is not the table it should be"
+import csv, sys
+rows = list(csv.reader(open(sys.argv[1], newline="")))
+assert len(rows) == 21, f"{len(rows)} records"
+assert all(len(r) == len(rows[0]) for r in rows), "ragged rows"
+assert [r[0] for r in rows[1:]] == [str(i) for i in range(20)], [r[0] for r in rows[1:]]
+assert rows[5][3] == 'ok,"x"\n99,injected,row', rows[5]
+assert rows[5][5] == "" and rows[5][6] == "", "a case that is not ok has no metrics"
+PY
+# plot reads the quoted table back (the quoted row is not ok, so it is left out).
+expect_status 0 "$SIMBOB" plot w/results.csv --x Crate.Material.Friction --y stop_x --out w.png
+
+check "manifest: a seed, case or time out of range is 65 naming the line, never a wrapped value"
+head -n 1 box.jsonl >one.jsonl
+mbad() {  # mbad JSON-EDIT EXPECTED-MESSAGE-TAIL
+  /usr/bin/python3 - one.jsonl m.jsonl "$1" <<'PY'
+import json, sys
+j = json.loads(open(sys.argv[1]).readline())
+k, v = sys.argv[3].split("=", 1)
+j[k] = json.loads(v)
+open(sys.argv[2], "w").write(json.dumps(j) + "\n")
+PY
+  rm -rf mo
+  expect_status 65 "$SIMBOB" sweep run m.jsonl --case 0 -o mo
+  expect_eq "manifest $1" "$(cat "$LAST_ERR")" "m.jsonl:1: error: not a sweep case: $2"
+  expect_no_file mo
+}
+mbad 'seed=-1' "'seed' must be a whole number from 0 to 4294967295, got -1"
+mbad 'seed=4294967296' "'seed' must be a whole number from 0 to 4294967295, got 4294967296"
+mbad 'seed=1.5' "'seed' must be a whole number from 0 to 4294967295, got 1.5"
+mbad 'case=1e20' "'case' must be a whole number from 0 to 999999999, got 1e+20"
+mbad 'case=-1' "'case' must be a whole number from 0 to 999999999, got -1"
+mbad 'dt=-5' "'dt' must be a number of seconds from 1e-9 to 1e9, got -5"
+mbad 'dt=0' "'dt' must be a number of seconds from 1e-9 to 1e9, got 0"
+mbad 'duration="1"' "'duration' must be a number of seconds from 1e-9 to 1e9, got \"1\""
+mbad 'sample_interval=1e300' "'sample_interval' must be a number of seconds from 1e-9 to 1e9, got 1e+300"
+
+check "plan: the number of cases is checked before any range is expanded (41 ranges of 10^6 values)"
+/usr/bin/python3 - "$BOX" >many.json <<'PY'
+import json, sys
+vary = [{"param": f"Crate.Material.P{i}", "range": {"start": 0, "stop": 1, "count": 1000000}} for i in range(41)]
+print(json.dumps({"scene": sys.argv[1], "duration": 1, "vary": vary}))
+PY
+/usr/bin/python3 - "$SIMBOB" <<'PY' || fail "plan of 41 x 10^6 values"
+import resource, subprocess, sys, time
+t0 = time.monotonic()
+p = subprocess.run([sys.argv[1], "sweep", "plan", "many.json", "-o", "many.jsonl"], capture_output=True, text=True)
+wall = time.monotonic() - t0
+peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
+print(f"exit {p.returncode}, {wall:.2f} s, peak {peak:.0f} MiB: {p.stderr.strip()}")
+assert p.returncode == 65, p.returncode
+assert p.stderr == "many.json: error: vary: more than 1000000 cases\n", p.stderr
+assert peak < 200, f"peak {peak:.0f} MiB"
+PY
+expect_no_file many.jsonl
+
+check "a trajectory CSV over 4 GiB is 65 (what the file holds), not 66 (a sparse file: no disk spent)"
+head -c 200 box/case-0000/trajectory.csv | head -n 1 >huge.csv
+truncate -s 4294967297 huge.csv
+expect_status 65 "$SIMBOB" plot huge.csv --out huge.png
+expect_match "says why" "$LAST_ERR" "^huge.csv: error: cannot read: larger than 4096 MiB$"
+expect_no_file huge.png
+
+check "plot: data near +-1e308 is 65 naming the range, never an empty panel with 0"
+{
+  head -n 1 box/case-0000/trajectory.csv
+  printf '0,Crate,1e308,0,0,1,0,0,0\n1,Crate,-1e308,0,0,1,0,0,0\n'
+} >far.csv
+expect_status 65 "$SIMBOB" plot far.csv --out far.png
+expect_eq "message" "$(cat "$LAST_ERR")" "simbob: error: cannot plot x values from -1e+308 to 1e+308: a plot axis spans at most -1e300 to 1e300"
+expect_no_file far.png
+say "ok"
+
+check "sweep run passes --plugin and --settings to its cases (-j and one --case), and sbatch to its script"
+PLUGINS="$(dirname "$SIMBOB")/plugins"
+[[ -f "$PLUGINS/square_driver.so" ]] || fail "no $PLUGINS/square_driver.so: the example plug-in is built with simbob"
+SQ="$REPO/examples/plugins/square_robot.xml"
+cat >sq.json <<JSON
+{"scene": "$SQ", "duration": 0.2, "vary": [{"param": "seed", "values": [1, 2]}]}
+JSON
+expect_status 0 "$SIMBOB" sweep plan sq.json -o sq.jsonl --plugin "$PLUGINS/square_driver.so"
+expect_status 0 "$SIMBOB" sweep run sq.jsonl -j 2 -o sqp --plugin "$PLUGINS/square_driver.so"
+expect_status 0 "$SIMBOB" sweep gather sqp
+# The same through the global settings' ExtensionFolder, one case at a time.
+mkdir -p ext && cp "$PLUGINS/square_driver.so" ext/
+printf 'ExtensionFolder = ext\n' >sq-settings.ini
+expect_status 0 "$SIMBOB" sweep run sq.jsonl --case 0 -o sqs --settings sq-settings.ini
+expect_status 0 "$SIMBOB" sweep run sq.jsonl --case 1 -o sqs --settings sq-settings.ini
+expect_status 0 "$SIMBOB" sweep gather sqs
+expect_same_file sqp/case-0001/trajectory.csv sqs/case-0001/trajectory.csv
+# Without them, a case cannot load the scene: failed, not silently something else.
+expect_status 65 "$SIMBOB" sweep run sq.jsonl --case 0 -o sqn
+expect_status 0 "$SIMBOB" sweep sbatch sq.jsonl -o sqb --plugin "$PLUGINS/square_driver.so"
+expect_match "the case line carries --plugin" sqb/sweep.sbatch \
+  "^exec '$SIMBOB' sweep run '$WORK/sq.jsonl' -o '$WORK/sqb' --plugin '$PLUGINS/square_driver.so'$"
+expect_status 0 env SLURM_ARRAY_TASK_ID=1 sh sqb/sweep.sbatch
+expect_same_file sqp/case-0001/trajectory.csv sqb/case-0001/trajectory.csv
+expect_status 0 "$SIMBOB" sweep sbatch sq.jsonl -o sqc --settings sq-settings.ini
+expect_match "the case line carries --settings" sqc/sweep.sbatch \
+  "^exec '$SIMBOB' sweep run '$WORK/sq.jsonl' -o '$WORK/sqc' --settings '$WORK/sq-settings.ini'$"
+expect_status 0 env SLURM_ARRAY_TASK_ID=1 sh sqc/sweep.sbatch
+expect_same_file sqp/case-0001/trajectory.csv sqc/case-0001/trajectory.csv
+say "ok"

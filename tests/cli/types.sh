@@ -59,3 +59,13 @@ if bad:
     sys.exit("\n".join(bad[:5]))
 PY
 say "ok"
+
+check "types takes the options every command takes: --settings, -q, -v, --log-file (README)"
+printf 'LogFile = from-settings.log\n' >settings.ini
+expect_status 0 "$SIMBOB" types --settings settings.ini -q
+expect_same_file "$LAST_OUT" types.txt
+expect_file from-settings.log
+expect_status 0 "$SIMBOB" types -v --log-file types.log
+expect_same_file "$LAST_OUT" types.txt
+expect_file types.log
+say "ok"

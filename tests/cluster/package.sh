@@ -17,11 +17,17 @@ BUILD=$(realpath "${3:?usage: package.sh SIMBOB REPO BUILD}")
 cli_setup "$1" "$2"
 [[ -f "$BUILD/CPackConfig.cmake" ]] || fail "$BUILD has no CPackConfig.cmake: configure it with CMake first"
 
-for c in cpack dpkg-deb dpkg-shlibdeps objdump; do
-  if ! command -v "$c" >/dev/null; then
-    printf 'SKIP: %s is not installed (dpkg-dev and binutils come with build-essential)\n' "$c"
-    exit 77
-  fi
+# scripts/deps.sh test installs every one (file and dpkg-dev by name: CPackDeb needs both).
+for c in cpack dpkg-deb dpkg-shlibdeps objdump file; do
+  command -v "$c" >/dev/null || fail "$c is not installed: run scripts/deps.sh test"
+done
+check "scripts/deps.sh test names the packages of what cpack -G DEB runs (a fresh machine has neither)"
+for c in file dpkg-shlibdeps; do
+  owner=$(dpkg -S "$(realpath "$(command -v "$c")")" 2>/dev/null | head -n 1 | cut -d: -f1)
+  [[ -n "$owner" ]] || owner=$(dpkg -S "$(command -v "$c")" 2>/dev/null | head -n 1 | cut -d: -f1)
+  [[ -n "$owner" ]] || fail "no package owns $(command -v "$c")"
+  grep -Eq "^ +[^#]*(^|[ (])$owner( |\$)" "$REPO/scripts/deps.sh" ||
+    fail "$c comes from $owner, which scripts/deps.sh does not install"
 done
 
 version=$(sed -n 's/^CMAKE_PROJECT_VERSION:[A-Z]*=//p' "$BUILD/CMakeCache.txt")

@@ -12,11 +12,19 @@
 # background jobs of the test shell and are stopped by pid (TERM, then KILL after a bounded
 # wait), so a test never leaves a daemon behind, even when it fails half-way.
 #
-# The cluster: one node "localhost" (NodeAddr 127.0.0.1, CPUs=2, trusted over what the hardware
-# reports, so it comes up on a one-core machine too), one default partition "sim", no
-# accounting, no cgroups (proctrack/linuxproc, task/none), so it runs as root in a container
-# without systemd. Both daemons listen on 127.0.0.1 only (CommunicationParameters) on two
-# ports that were free a moment before.
+# The cluster: one node "localhost" (NodeAddr and NodeHostname 127.0.0.1, CPUs=2, trusted over
+# what the hardware reports, so it comes up on a one-core machine too), one default partition
+# "sim", no accounting, no cgroups (proctrack/linuxproc, task/none), so it runs as root in a
+# container without systemd. The daemons use two ports that were free a moment before.
+#
+# No host-name resolution is needed: every address in slurm.conf is 127.0.0.1 and slurmd is
+# told its node name (-N). Slurm resolves the machine's own host name only to bind its
+# listening sockets to one address (CommunicationParameters=NoCtldInAddrAny,NoInAddrAny), so
+# the daemons listen on 127.0.0.1 only when the host name resolves to loopback addresses only;
+# otherwise (a name that does not resolve, as on a fresh chroot, or one that resolves to another
+# interface, where slurmd would bind there and slurmctld could not reach it at 127.0.0.1) they
+# listen on every address, still answering only requests signed with this cluster's fresh MUNGE
+# key. SLURM_LOOPBACK_ONLY says which (1 or 0).
 #
 # slurm_start returns non-zero with SLURM_SKIP_REASON set when the machine cannot run Slurm
 # (the packages are missing, we are not root, a daemon dies at start-up or the node never
@@ -27,6 +35,7 @@ SLURM_WATCHDOG=""   # the process that stops them if this shell is killed (see s
 SLURM_DIR=""        # the cluster directory given to slurm_start
 SLURM_SKIP_REASON=""
 SLURM_PREV_TRAP=""  # the caller's EXIT trap, run after slurm_stop
+SLURM_LOOPBACK_ONLY=0  # 1: the daemons listen on 127.0.0.1 only (see above)
 
 # slurm_log_tail: the end of every daemon log, for a failure or skip message.
 slurm_log_tail() {
@@ -72,6 +81,14 @@ slurm_wait() {
     fi
     sleep 0.2
   done
+}
+
+# slurm_host_is_loopback: this machine's host name resolves, and only to 127.0.0.0/8 addresses
+# (then the daemons can bind to it and still be reached at 127.0.0.1).
+slurm_host_is_loopback() {
+  local addrs
+  addrs=$(getent ahostsv4 "$(hostname)" 2>/dev/null | awk '{print $1}' | sort -u) || return 1
+  [[ -n "$addrs" ]] && ! grep -qv '^127\.' <<<"$addrs"
 }
 
 # slurm_alive PID: the daemon is still running (a background job of this shell).
@@ -162,13 +179,19 @@ slurm_start() {
   ports=$(slurm_free_ports) || { slurm_skip "cannot find free ports on 127.0.0.1"; return 1; }
   read -r ctld_port slurmd_port <<<"$ports"
 
+  local comm="# CommunicationParameters: none (the host name does not resolve to loopback only)"
+  SLURM_LOOPBACK_ONLY=0
+  if slurm_host_is_loopback; then
+    comm="CommunicationParameters=NoCtldInAddrAny,NoInAddrAny"
+    SLURM_LOOPBACK_ONLY=1
+  fi
   cat >"$d/slurm.conf" <<EOF
 # Written by tests/cluster/slurm.sh for one test run.
 ClusterName=simbobtest
 SlurmctldHost=localhost(127.0.0.1)
 SlurmctldPort=$ctld_port
 SlurmdPort=$slurmd_port
-CommunicationParameters=NoCtldInAddrAny,NoInAddrAny
+$comm
 SlurmUser=root
 SlurmdUser=root
 AuthType=auth/munge
@@ -200,9 +223,14 @@ SlurmctldTimeout=30
 SlurmdTimeout=30
 InactiveLimit=0
 Waittime=0
-NodeName=localhost NodeAddr=127.0.0.1 NodeHostname=localhost CPUs=2 RealMemory=1000 State=UNKNOWN
+NodeName=localhost NodeAddr=127.0.0.1 NodeHostname=127.0.0.1 CPUs=2 RealMemory=1000 State=UNKNOWN
 PartitionName=sim Nodes=localhost Default=YES MaxTime=60 State=UP
 EOF
+  # No cgroups are used (proctrack/linuxproc, task/none), but slurmd 22.05 initialises a cgroup
+  # plugin anyway, and its autodetection fails where /sys/fs/cgroup is not mounted (a chroot):
+  # name the plugin, with a mount point of our own that nothing reads.
+  mkdir -p "$d/cgroup"
+  printf 'CgroupPlugin=cgroup/v1\nCgroupMountpoint=%s/cgroup\n' "$d" >"$d/cgroup.conf"
   # An empty plugstack: the host's /etc/slurm/plugstack.conf is none of this cluster's business.
   : >"$d/plugstack.conf"
   printf 'PlugStackConfig=%s/plugstack.conf\n' "$d" >>"$d/slurm.conf"

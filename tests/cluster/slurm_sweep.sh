@@ -116,6 +116,21 @@ expect_same_file "$WORK/out/case-0005/trajectory.csv" "$WORK/case5-before.csv"
 expect_eq "Slurm table after the resubmission" "$(drop_wall "$WORK/out/results.csv")" \
   "$(drop_wall "$WORK/local/results.csv")"
 
+check "an output folder named to inject commands and break #SBATCH lines: the real sbatch and sh take it whole"
+# Blanks, double and single quotes, '#' (ends an #SBATCH value unless quoted), $( ), backticks,
+# ';' and UTF-8: every one reaches sbatch's --output and the task's -o as the one folder it is.
+hostile="$WORK/"$'out dir "q" #x $(touch X) `touch X` it\'s; caf\xc3\xa9'
+head -n 2 "$WORK/cases.jsonl" >"$WORK/two.jsonl"
+expect_status 0 "$SIMBOB" sweep sbatch "$WORK/two.jsonl" -o "$hostile" --partition sim
+(cd "$WORK" && expect_status 0 timeout 60 sh "$hostile/submit.sh")
+slurm_wait_jobs 120
+expect_lines "the hostile folder's table" "$hostile/results.csv" 3
+for f in slurm-gather-*.out "slurm-*_0.out" "slurm-*_1.out"; do
+  compgen -G "$hostile/$f" >/dev/null || fail "no $f in the hostile folder: $(ls -A "$hostile")"
+done
+expect_no_file "$WORK/X"
+[[ ! -e X ]] || fail "an injected command ran"
+
 check "the cluster stops and leaves no daemon behind"
 pids=("${SLURM_PIDS[@]}")
 slurm_stop

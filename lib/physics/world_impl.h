@@ -16,6 +16,7 @@
 
 #include <ode/ode.h>
 
+#include <atomic>
 #include <functional>
 #include <vector>
 
@@ -75,6 +76,11 @@ struct WorldImpl {
   std::vector<dContact> contactBuffer;  ///< sized max_contacts once; reused by every collision
   int lastContacts = 0;
   bool quickstep = true;
+  /// This World's state of ODE's random generator, swapped in around every call into ODE
+  /// (world.cpp, OdeSection): starts at the seed, advanced by QuickStep's draws.
+  unsigned long rng = 0;
+  /// Set while a thread is in World::step; a second thread is refused meanwhile.
+  std::atomic<bool> stepping{false};
   /// The first call of World with an index out of range, in words (World::misuse).
   std::string misuse;
   /// Run in order at the start of every step (before collision) with the step size in s: where

@@ -23,12 +23,13 @@ namespace {
 // process-wide generator to the World's state on entry and takes it back on exit. A World then
 // sees exactly the draws it would see alone in its process, whatever other Worlds do between its
 // steps. Creation and destruction run in a section too: they draw nothing today, but the rule
-// "ODE only inside a section" needs no audit when that changes.
+// "ODE only inside a section" needs no audit when that changes. The accessors (body, joint,
+// firstBadBody, ...) only read this World's own ODE objects, no ODE global, so they take none.
 //
 // The generator is one variable for the whole process, so two sections must never overlap:
-// odeMutex serialises them. Worlds may live on different threads, but their physics does not run
+// odeMutex() serialises them (and every other use of ODE's globals, see version.cpp). Worlds may live on different threads, but their physics does not run
 // in parallel within one process (parallel worlds belong in separate processes).
-std::mutex odeMutex;
+std::mutex processOdeMutex;
 
 // dInitODE2 once per process and never dCloseODE: ODE's global state outlives every World, so
 // consecutive Worlds in one process (tests, batch runs) need no re-initialisation.
@@ -46,10 +47,10 @@ void allocateThreadData() {
   allocated = dAllocateODEDataForThread(dAllocateMaskAll) != 0;
 }
 
-// Holds odeMutex with the World's generator state swapped in (see above).
+// Holds odeMutex() with the World's generator state swapped in (see above).
 class OdeSection {
  public:
-  explicit OdeSection(unsigned long& rng) : lock_(odeMutex), rng_(rng) {
+  explicit OdeSection(unsigned long& rng) : lock_(odeMutex()), rng_(rng) {
     initOdeOnce();
     allocateThreadData();
     dRandSetSeed(rng_);
@@ -81,6 +82,8 @@ class InUse {
 };
 
 }  // namespace
+
+std::mutex& odeMutex() { return processOdeMutex; }
 
 WorldImpl::~WorldImpl() {
   // Contact joints first (they reference bodies), then the space with its geoms, then the

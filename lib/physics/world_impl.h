@@ -18,6 +18,7 @@
 
 #include <atomic>
 #include <functional>
+#include <mutex>
 #include <vector>
 
 #include "simbob/physics.h"
@@ -92,6 +93,11 @@ struct WorldImpl {
   WorldImpl& operator=(const WorldImpl&) = delete;
   ~WorldImpl();
 };
+
+// world.cpp
+/// The process-wide lock held by every call into ODE that touches its global state (its random
+/// generator, initialisation): World's create, step and destruction, physicsVersion.
+std::mutex& odeMutex();
 
 // bodies.cpp
 /// Creates one ODE body per Model body, in Model order, at its centre of mass.

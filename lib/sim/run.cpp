@@ -64,7 +64,7 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
   if (!res.error.message.empty()) return res;
   std::unique_ptr<World> world = World::create(model, opts.seed);
   if (!world) {
-    res.error = {ErrorKind::Internal, {}, "cannot create the physics world"};
+    res.error = {ErrorKind::Internal, {}, "cannot create the physics world (another one is alive in this process)"};
     return res;
   }
   Clock clock(std::max<SimTime>(step, 1), min_step);

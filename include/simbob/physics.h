@@ -35,19 +35,29 @@ struct JointState {
 
 struct WorldImpl;  // ODE handles; private to lib/physics (world_impl.h)
 
-/// An ODE world built from a Model. ODE keeps process-wide state (its random generator among
-/// it), so only one World may exist per process at a time; creating a second one while the
-/// first lives is an Internal error.
+/// An ODE world built from a Model. Any number of Worlds may live in one process, created,
+/// stepped and destroyed in any order and interleaving: each keeps its own state of ODE's
+/// process-wide random generator (which QuickStep uses to reorder constraints) and swaps it in
+/// around its calls into ODE, so a World gives the same bytes as it would alone in its process.
+/// Worlds may be used from different threads, but their calls into ODE are serialised by one
+/// process-wide lock (the generator is one variable): physics of different Worlds does not run
+/// in parallel within a process; for parallel worlds use processes. One World must be used from
+/// one thread at a time: a step that overlaps another step of the same World is refused (see
+/// step), and other calls must not overlap a step.
 class World {
  public:
-  /// Validates nothing: the Model must come from compile(). `seed` seeds ODE's global random
-  /// generator (dRandSetSeed), which QuickStep uses to reorder constraints.
+  /// Validates nothing: the Model must come from compile(). `seed` is the starting state of
+  /// this World's random generator (dRandSetSeed), which QuickStep uses to reorder constraints.
+  /// Never returns nullptr.
   static std::unique_ptr<World> create(const Model& model, uint32_t seed);
   ~World();
   World(const World&) = delete;
   World& operator=(const World&) = delete;
 
   /// Advance by h seconds: collide, add contacts per the material rules, step, clear contacts.
+  /// Throws std::logic_error, doing nothing, when another thread is stepping this World at the
+  /// same moment (a programming error: a World is used from one thread at a time); a step
+  /// cannot be skipped silently, so this is an exception rather than a value to ignore.
   void step(double h);
 
   /// Mobile bodies, in Model::bodies order.

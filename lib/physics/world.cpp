@@ -2,8 +2,11 @@
 // files (world_impl.h lists them); this file holds the world settings, the order in which the
 // concerns are built, the step, and the accessors.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <mutex>
+#include <stdexcept>
 
 #include "world_impl.h"
 
@@ -11,20 +14,76 @@ namespace simbob {
 
 namespace {
 
-// ODE keeps process-wide state (allocators, its random generator), so at most one World lives
-// at a time; World::create refuses (returns nullptr) while this flag is set.
-bool worldAlive = false;
+// Many Worlds in one process. ODE keeps one process-wide random generator (a 32-bit LCG in
+// misc.cpp: dRand, dRandGetSeed, dRandSetSeed). In ODE 0.16 the only draw during a simulation is
+// QuickStep's constraint reordering (quickstep.cpp, dRandInt every few SOR iterations); dWorldStep,
+// collision (colliders, spaces, OPCODE) and object creation and destruction draw nothing (the
+// other dRand callers are ODE's own self-tests). So a World owns its generator state
+// (WorldImpl::rng): every call into ODE that may step runs inside an OdeSection, which sets the
+// process-wide generator to the World's state on entry and takes it back on exit. A World then
+// sees exactly the draws it would see alone in its process, whatever other Worlds do between its
+// steps. Creation and destruction run in a section too: they draw nothing today, but the rule
+// "ODE only inside a section" needs no audit when that changes. The accessors (body, joint,
+// firstBadBody, ...) only read this World's own ODE objects, no ODE global, so they take none.
+//
+// The generator is one variable for the whole process, so two sections must never overlap:
+// odeMutex() serialises them (and every other use of ODE's globals, see version.cpp). Worlds may live on different threads, but their physics does not run
+// in parallel within one process (parallel worlds belong in separate processes).
+std::mutex processOdeMutex;
 
 // dInitODE2 once per process and never dCloseODE: ODE's global state outlives every World, so
 // consecutive Worlds in one process (tests, batch runs) need no re-initialisation.
 void initOdeOnce() {
   static const bool initialised = (dInitODE2(0) != 0);
   (void)initialised;
-  // Per-thread collision data; idempotent, so calling it for every World is cheap and safe.
-  dAllocateODEDataForThread(dAllocateMaskAll);
 }
 
+// ODE's per-thread data (collision caches, with ODE's thread-local storage) must exist on every
+// thread that creates, steps or destroys a World; ODE frees it when the thread ends (dInitODE2
+// without dInitFlagManualThreadCleanup).
+void allocateThreadData() {
+  thread_local bool allocated = false;
+  if (allocated) return;
+  allocated = dAllocateODEDataForThread(dAllocateMaskAll) != 0;
+}
+
+// Holds odeMutex() with the World's generator state swapped in (see above).
+class OdeSection {
+ public:
+  explicit OdeSection(unsigned long& rng) : lock_(odeMutex()), rng_(rng) {
+    initOdeOnce();
+    allocateThreadData();
+    dRandSetSeed(rng_);
+  }
+  ~OdeSection() { rng_ = dRandGetSeed(); }
+  OdeSection(const OdeSection&) = delete;
+  OdeSection& operator=(const OdeSection&) = delete;
+
+ private:
+  std::lock_guard<std::mutex> lock_;
+  unsigned long& rng_;
+};
+
+// Marks a World as being stepped; a second thread that calls step meanwhile is refused.
+class InUse {
+ public:
+  explicit InUse(std::atomic<bool>& flag) : flag_(flag) {
+    if (flag_.exchange(true, std::memory_order_acquire))
+      throw std::logic_error(
+          "World::step: this World is already being stepped on another thread; a World may be used "
+          "from one thread at a time (give each thread a World of its own)");
+  }
+  ~InUse() { flag_.store(false, std::memory_order_release); }
+  InUse(const InUse&) = delete;
+  InUse& operator=(const InUse&) = delete;
+
+ private:
+  std::atomic<bool>& flag_;
+};
+
 }  // namespace
+
+std::mutex& odeMutex() { return processOdeMutex; }
 
 WorldImpl::~WorldImpl() {
   // Contact joints first (they reference bodies), then the space with its geoms, then the
@@ -38,21 +97,20 @@ WorldImpl::~WorldImpl() {
 World::World() : impl_(new WorldImpl) {}
 
 World::~World() {
-  impl_.reset();  // ODE objects go before the flag allows a new World
-  worldAlive = false;
+  unsigned long rng = impl_->rng;  // the section writes it back after impl_ is gone
+  OdeSection ode(rng);
+  impl_.reset();
 }
 
 std::unique_ptr<World> World::create(const Model& model, uint32_t seed) {
-  // Only one World per process at a time (ODE global state); a second create fails softly.
-  if (worldAlive) return nullptr;
-  initOdeOnce();
   std::unique_ptr<World> w(new World());
-  worldAlive = true;  // set once w exists, so its destructor is what clears it
   WorldImpl& im = *w->impl_;
   const SolverSettings& s = model.settings;
 
-  // Seed before anything else so QuickStep's constraint reordering is reproducible.
-  dRandSetSeed(seed);
+  // The World's own generator starts at the seed, so QuickStep's constraint reordering is
+  // reproducible (and the same as when each World was alone in its process).
+  im.rng = seed;
+  OdeSection ode(im.rng);
   im.world = dWorldCreate();
   dWorldSetGravity(im.world, s.gravity[0], s.gravity[1], s.gravity[2]);
   dWorldSetERP(im.world, s.erp);
@@ -76,6 +134,8 @@ std::unique_ptr<World> World::create(const Model& model, uint32_t seed) {
 
 void World::step(double h) {
   WorldImpl& im = *impl_;
+  InUse busy(im.stepping);  // before the section: a refused call must not wait for the mutex
+  OdeSection ode(im.rng);
   for (const auto& hook : im.beforeStep) hook(im, h);
   collide(im);
   if (im.quickstep) {

@@ -16,7 +16,9 @@
 
 #include <ode/ode.h>
 
+#include <atomic>
 #include <functional>
+#include <mutex>
 #include <vector>
 
 #include "simbob/physics.h"
@@ -77,6 +79,11 @@ struct WorldImpl {
   std::vector<dContact> contactBuffer;  ///< sized max_contacts once; reused by every collision
   int lastContacts = 0;
   bool quickstep = true;
+  /// This World's state of ODE's random generator, swapped in around every call into ODE
+  /// (world.cpp, OdeSection): starts at the seed, advanced by QuickStep's draws.
+  unsigned long rng = 0;
+  /// Set while a thread is in World::step; a second thread is refused meanwhile.
+  std::atomic<bool> stepping{false};
   /// The first call of World with an index out of range, in words (World::misuse).
   std::string misuse;
   /// Run in order at the start of every step (before collision) with the step size in s: where
@@ -88,6 +95,11 @@ struct WorldImpl {
   WorldImpl& operator=(const WorldImpl&) = delete;
   ~WorldImpl();
 };
+
+// world.cpp
+/// The process-wide lock held by every call into ODE that touches its global state (its random
+/// generator, initialisation): World's create, step and destruction, physicsVersion.
+std::mutex& odeMutex();
 
 // bodies.cpp
 /// Creates one ODE body per Model body, in Model order, at its centre of mass.

@@ -66,7 +66,7 @@ Runner::Runner(const Model& model, const RunOptions& opts, std::vector<Party*> p
   }
   world_ = World::create(model, opts.seed);
   if (!world_) {
-    res_.error = {ErrorKind::Internal, {}, "cannot create the physics world (another one is alive in this process)"};
+    res_.error = {ErrorKind::Internal, {}, "cannot create the physics world"};
     stopped_ = true;
     return;
   }

@@ -22,6 +22,7 @@
 #include "simbob/robot.h"
 #include "simbob/run.h"
 #include "simbob/run_log.h"
+#include "simbob/simulation.h"
 #include "simbob/transform.h"
 #include "simbob/values.h"
 
@@ -93,15 +94,14 @@ const char* statusName(RunStatus s) {
 
 // Runs the model a second time and names the first sample where the two runs part. The
 // second run's result (interrupted, say) is in *second.
-bool checkDeterminism(const Model& model, const RunOptions& base, const std::vector<double>& first_times,
+bool checkDeterminism(const Model& model, SimulationOptions opts, double sample_interval,
+                      const std::function<void(double, const double*)>& track, const std::vector<double>& first_times,
                       const std::vector<double>& first_poses, std::string* where, RunResult* second) {
   const size_t n = model.bodies.size();
   size_t sample = 0;
   bool differ = false;
-  RunOptions opts = base;
   opts.progress = nullptr;
-  auto track = base.on_sample;
-  opts.on_sample = [&](double t, const double* p) {
+  auto compare = [&](double t, const double* p) {
     if (track) track(t, p);
     if (differ) return;
     if (sample >= first_times.size() || t != first_times[sample]) {
@@ -124,7 +124,10 @@ bool checkDeterminism(const Model& model, const RunOptions& base, const std::vec
         }
     ++sample;
   };
-  *second = runModel(model, opts, nullptr);
+  Diagnostics unused;  // the model and options were accepted for the first run
+  std::unique_ptr<Simulation> sim = Simulation::fromModel(model, opts, unused);
+  sim->sampleTrajectory(nullptr, sample_interval, compare);
+  *second = sim->runToEnd();
   if (second->status != RunStatus::Completed) return !differ;  // not a difference: the caller decides
   if (!differ && sample != first_times.size()) {
     differ = true;
@@ -183,20 +186,6 @@ class StopWatchdog {
   std::atomic<int> state_{kWatching};
   std::atomic<bool> quit_{false};
   std::thread thread_;
-};
-
-/// A party owned elsewhere (the recorder outlives the run: its frame count and error are read
-/// after it).
-class PartyRef : public Party {
- public:
-  explicit PartyRef(Party& p) : p_(p) {}
-  SimTime first() override { return p_.first(); }
-  SimTime onGrant(SimTime now, World& world) override { return p_.onGrant(now, world); }
-  void finish(SimTime end, World& world) override { p_.finish(end, world); }
-  const Error* failure() const override { return p_.failure(); }
-
- private:
-  Party& p_;
 };
 
 }  // namespace
@@ -305,26 +294,23 @@ int cmdRun(RunArgs& a, const Common& common) {
                  "SceneSettings MaxTimeStep " + formatNumber(dt) + " s is outside 1e-9 to 1e9 s (give --dt)"});
     return kExitDataErr;
   }
-  for (const std::string& note :
-       gridNotes(dt, a.sample_interval, a.record.empty() && a.video.empty() ? 0.0 : a.view.fps))
-    g_log.info(note);
-  if (!a.batch_child) {
-    // What `simbob check` warns about (overlaps, tunnelling, step size), once before the run,
-    // judged at the step this run takes; -q keeps stderr clear of it.
-    Diagnostics lint;
-    lintModel(model, lint, dt);
-    for (const auto& w : lint.warnings()) g_log.warning(w);
-  }
   if (a.out.empty()) a.out = std::filesystem::path(a.scene).stem().string() + ".csv";
-  for (SocketDef& d : model.sockets) {
-    d.timeout = a.peer_timeout;
-    if (d.port + a.port_offset < 1 || d.port + a.port_offset > 65535) {
-      g_log.error({ErrorKind::InvalidInput, d.loc,
-                   "RCLocalSocketCommunicator '" + d.key + "': Port " + std::to_string(d.port) + " + --port-offset " +
-                       std::to_string(a.port_offset) + " is outside 1 to 65535"});
-      return kExitUsage;
-    }
-    d.port += a.port_offset;
+  // The run itself: a Simulation of the compiled model (socket ports and timeouts are its
+  // options). Built now, so that options it refuses fail before any output exists.
+  Progress progress(a.duration, g_log.level != Level::Quiet);
+  SimulationOptions so;
+  so.seed = a.seed;
+  so.dt = a.dt;
+  so.duration = a.duration;
+  so.peer_timeout = a.peer_timeout;
+  so.port_offset = a.port_offset;
+  so.stop = &g_stop;
+  so.progress = [&](double t) { progress.update(t); };
+  std::unique_ptr<Simulation> sim;
+  {
+    Diagnostics sd;
+    sim = Simulation::fromModel(model, so, sd);
+    if (!sim) return report(sd, false);
   }
 
   Error err_early;
@@ -450,45 +436,44 @@ int cmdRun(RunArgs& a, const Common& common) {
       g_log.error({ErrorKind::CannotCreate, {kept, 0}, "cannot create: is a directory"});
       return kExitCantCreate;
     }
+  // Said once, when every input and output has been accepted and the run is about to start.
+  for (const std::string& note :
+       gridNotes(dt, a.sample_interval, a.record.empty() && a.video.empty() ? 0.0 : a.view.fps))
+    g_log.info(note);
+  if (!a.batch_child) {
+    // What `simbob check` warns about (overlaps, tunnelling, step size), once before the run,
+    // judged at the step this run takes; -q keeps stderr clear of it.
+    Diagnostics lint;
+    lintModel(model, lint, dt);
+    for (const auto& w : lint.warnings()) g_log.warning(w);
+  }
   catchStopSignals();
 
-  RunOptions opts;
-  opts.duration = a.duration;
-  opts.dt = a.dt;
-  opts.sample_interval = a.sample_interval;
-  opts.seed = a.seed;
-  opts.stop = &g_stop;
   std::vector<double> rec_times, rec_poses;
   std::atomic<double> last_sample{0.0};
-  bool first_pass = true;
   std::unique_ptr<FrameDrawer> drawer;
   std::unique_ptr<Recorder> recorder;
   if (renderer) drawer = drawOnRenderThread(*renderer, *sink);
   if (drawer)
     recorder = std::make_unique<Recorder>(*drawer, a.view.fps, toSimTime(model.settings.min_time_step).value_or(0),
                                           static_cast<int>(model.bodies.size()));
-  // Controllers after the sampler; the run log (first pass only) after the controllers, so that
-  // it records the commands they gave at each sample time; the recorder last (it sees what the
-  // controllers did at t), in the first run only.
-  opts.make_parties = [&] {
-    std::vector<std::unique_ptr<Party>> parties = robotParties(model);
-    if (log_file && first_pass) {
-      const SimTime interval = std::max<SimTime>(toSimTime(opts.sample_interval).value_or(1), 1);
-      const SimTime min_step = toSimTime(model.settings.min_time_step).value_or(0);
-      parties.push_back(std::make_unique<RunLogParty>(model, log_what, interval, min_step, log_file.get()));
-    }
-    if (recorder && first_pass) parties.push_back(std::make_unique<PartyRef>(*recorder));
-    // Commands beyond an actuator's limits, once per actuator when the run completes.
-    if (first_pass) parties.push_back(clampNotices(model, [](const Error& e) { g_log.warning(e); }));
-    return parties;
-  };
-  opts.on_sample = [&](double t, const double* p) {
-    if (a.check_determinism && first_pass) {
+  // The sampler first, the scene's controllers and peers next (the Simulation's order); then the
+  // run log, so that it records the commands they gave at each sample time; the recorder (it
+  // sees what the controllers did at t); the clamp notices (once per actuator at the end).
+  sim->sampleTrajectory(writer.get(), a.sample_interval, [&](double t, const double* p) {
+    if (a.check_determinism) {
       rec_times.push_back(t);
       rec_poses.insert(rec_poses.end(), p, p + model.bodies.size() * kPoseSize);
     }
     last_sample = t;
-  };
+  });
+  if (log_file) {
+    const SimTime interval = std::max<SimTime>(toSimTime(a.sample_interval).value_or(1), 1);
+    const SimTime min_step = toSimTime(model.settings.min_time_step).value_or(0);
+    sim->addParty(std::make_unique<RunLogParty>(model, log_what, interval, min_step, log_file.get()));
+  }
+  if (recorder) sim->addParty(*recorder);
+  sim->addParty(clampNotices(model, [](const Error& e) { g_log.warning(e); }));
   StopWatchdog watchdog([&]() {
     g_log.error({ErrorKind::Diverged,
                  {},
@@ -505,11 +490,10 @@ int cmdRun(RunArgs& a, const Common& common) {
     }
     _exit(stopExitCode());
   });
-  Progress progress(a.duration, g_log.level != Level::Quiet);
-  opts.progress = [&](double t) { progress.update(t); };
   g_log.debug("running " + a.scene + ": " + countOf(model.bodies.size(), "mobile body", "mobile bodies") + ", " +
               countOf(model.geoms.size(), "geom", "geoms") + ", " + countOf(model.joints.size(), "joint", "joints"));
-  RunResult r = runModel(model, opts, writer.get());
+  RunResult r = sim->runToEnd();
+  sim.reset();  // its parties flush what they hold (the run log) before the outputs are committed
   progress.done();
 
   nlohmann::ordered_json summary;
@@ -550,9 +534,10 @@ int cmdRun(RunArgs& a, const Common& common) {
   if (r.status == RunStatus::Completed && a.check_determinism) {
     std::string where;
     RunResult second;
-    first_pass = false;
     g_log.debug("determinism check: running the scene a second time");
-    bool same = checkDeterminism(model, opts, rec_times, rec_poses, &where, &second);
+    bool same = checkDeterminism(
+        model, so, a.sample_interval, [&](double t, const double*) { last_sample = t; }, rec_times, rec_poses, &where,
+        &second);
     if (second.status == RunStatus::Interrupted) {
       // An interrupt is an interrupt, whichever run it came in: not a difference.
       r.status = RunStatus::Interrupted;

@@ -124,9 +124,9 @@ class Simulation {
   double sample_interval_ = 0.01;
   std::function<void(double, const double*)> on_sample_;
   bool sampling_ = false;
-  std::vector<std::unique_ptr<Party>> robot_;   ///< the scene's controllers and peers
-  std::vector<std::unique_ptr<Party>> owned_;   ///< the caller's parties this owns
-  std::vector<Party*> extra_;                    ///< the caller's parties, in the order added
+  std::vector<std::unique_ptr<Party>> robot_;  ///< the scene's controllers and peers
+  std::vector<std::unique_ptr<Party>> owned_;  ///< the caller's parties this owns
+  std::vector<Party*> extra_;                  ///< the caller's parties, in the order added
   std::unique_ptr<Runner> runner_;
 };
 

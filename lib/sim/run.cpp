@@ -45,9 +45,9 @@ std::string stepAdvice(const Model& model, SimTime step) {
   std::string s = "with a step of " + formatNumber(toSeconds(step)) + " s";
   const double rec = recommendedStep(model);
   if (std::isfinite(rec))
-    s += toSeconds(step) > rec ? " (`simbob check` recommends at most " + formatApprox(rec) + " s: try --dt " +
-                                     formatApprox(rec) + ")"
-                               : " (within the " + formatApprox(rec) + " s that `simbob check` recommends)";
+    s += toSeconds(step) > rec
+             ? " (`simbob check` recommends at most " + formatApprox(rec) + " s: try --dt " + formatApprox(rec) + ")"
+             : " (within the " + formatApprox(rec) + " s that `simbob check` recommends)";
   return s;
 }
 
@@ -123,9 +123,9 @@ bool Runner::grantDue() {
       char held[32];
       std::snprintf(held, sizeof held, "%.3g", std::chrono::duration<double>(took).count());
       stop(RunStatus::Failed, {ErrorKind::Unavailable, p.loc,
-                               p.name + " held the simulation for " + held + " s of wall-clock time at t=" +
-                                   formatNumber(toSeconds(clock_.now())) + " s, longer than MaxAccessTime (" +
-                                   formatNumber(limit_) + " s)"});
+                               p.name + " held the simulation for " + held +
+                                   " s of wall-clock time at t=" + formatNumber(toSeconds(clock_.now())) +
+                                   " s, longer than MaxAccessTime (" + formatNumber(limit_) + " s)"});
       return false;
     }
   }
@@ -161,11 +161,11 @@ bool Runner::advance() {
   const int broken = world_->firstBrokenJoint(opts_.joint_apart_limit, &apart);
   if (broken >= 0) {
     const JointDef& j = model_.joints[static_cast<size_t>(broken)];
-    stop(RunStatus::Diverged, {ErrorKind::Diverged, j.loc,
-                               "joint '" + j.key + "' came apart at t=" + formatNumber(toSeconds(clock_.now())) +
-                                   " s: its anchor on the two bodies is " + formatNumber(apart) +
-                                   " m apart (more than " + formatNumber(opts_.joint_apart_limit) + " m) " +
-                                   stepAdvice(model_, clock_.step())});
+    stop(RunStatus::Diverged,
+         {ErrorKind::Diverged, j.loc,
+          "joint '" + j.key + "' came apart at t=" + formatNumber(toSeconds(clock_.now())) +
+              " s: its anchor on the two bodies is " + formatNumber(apart) + " m apart (more than " +
+              formatNumber(opts_.joint_apart_limit) + " m) " + stepAdvice(model_, clock_.step())});
     return false;
   }
   if (opts_.progress && clock_.now() >= next_progress_) {

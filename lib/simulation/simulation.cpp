@@ -20,8 +20,7 @@ constexpr double kMinTime = 1e-9, kMaxTime = 1e9;  // s: what the nanosecond clo
 std::unique_ptr<Simulation> compiled(bool loaded, const Scene& scene, const SimulationOptions& opts,
                                      Diagnostics& diag) {
   Model model;
-  if (!loaded || !applyOverrides(const_cast<Scene&>(scene), opts.overrides, diag) ||
-      !compileScene(scene, &model, diag))
+  if (!loaded || !applyOverrides(const_cast<Scene&>(scene), opts.overrides, diag) || !compileScene(scene, &model, diag))
     return nullptr;
   lintModel(model, diag, opts.dt);
   return Simulation::fromModel(std::move(model), opts, diag);
@@ -63,8 +62,9 @@ std::unique_ptr<Simulation> Simulation::fromModel(Model model, const SimulationO
   for (SocketDef& d : model.sockets) {
     d.timeout = opts.peer_timeout;
     if (d.port + opts.port_offset < 1 || d.port + opts.port_offset > 65535) {
-      diag.error(d.loc, "RCLocalSocketCommunicator '" + d.key + "': Port " + std::to_string(d.port) +
-                            " + --port-offset " + std::to_string(opts.port_offset) + " is outside 1 to 65535",
+      diag.error(d.loc,
+                 "RCLocalSocketCommunicator '" + d.key + "': Port " + std::to_string(d.port) + " + --port-offset " +
+                     std::to_string(opts.port_offset) + " is outside 1 to 65535",
                  ErrorKind::Usage);
       return nullptr;
     }
@@ -107,8 +107,8 @@ bool Simulation::start() {
   if (sampling_) {
     const SimTime interval = std::max<SimTime>(toSimTime(sample_interval_).value_or(1), 1);
     const SimTime min_step = toSimTime(model_.settings.min_time_step).value_or(0);
-    sampler_ = std::make_unique<TrajectorySampler>(static_cast<int>(model_.bodies.size()), interval, min_step,
-                                                   writer_, on_sample_);
+    sampler_ = std::make_unique<TrajectorySampler>(static_cast<int>(model_.bodies.size()), interval, min_step, writer_,
+                                                   on_sample_);
     sampler_->name = "the trajectory sampler";
     parties.push_back(sampler_.get());
   }
@@ -187,9 +187,10 @@ int Simulation::sensor(const std::string& key) const { return indexOf(model_.sen
 
 Error Simulation::setCommand(int actuator, double value) {
   if (actuator < 0 || static_cast<size_t>(actuator) >= model_.actuators.size())
-    return {ErrorKind::Usage, {},
-            "no actuator " + std::to_string(actuator) + " (the scene has " +
-                std::to_string(model_.actuators.size()) + ")"};
+    return {
+        ErrorKind::Usage,
+        {},
+        "no actuator " + std::to_string(actuator) + " (the scene has " + std::to_string(model_.actuators.size()) + ")"};
   if (!std::isfinite(value))
     return {ErrorKind::Usage, model_.actuators[static_cast<size_t>(actuator)].loc,
             "actuator '" + model_.actuators[static_cast<size_t>(actuator)].key + "': the command is not finite"};

@@ -39,8 +39,9 @@ expect_refused "run --video onto a texture" "--video scenes/textures/checker.bmp
   "$SIMBOB" run $G --duration 0.1 --video scenes/textures/checker.bmp --out v.csv
 # A texture named without its extension is found with one: that file is the input.
 sed 's|textures/checker.bmp|textures/checker|' $G >scenes/noext.xml
-expect_refused "render --out a texture found by adding .bmp" "--out scenes/textures/checker.bmp is the texture" \
-  "$SIMBOB" render scenes/noext.xml --out scenes/textures/checker.bmp
+# (render --out takes only .png names, so run --record writes the file here.)
+expect_refused "run --out a texture found by adding .bmp" "--out scenes/textures/checker.bmp is the texture" \
+  "$SIMBOB" run scenes/noext.xml --duration 0.1 --record noext_frames --out scenes/textures/checker.bmp
 
 # ---------------------------------------------------------------- DocumentIni
 check "a DocumentIni without camera settings is still an input"

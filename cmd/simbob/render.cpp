@@ -14,6 +14,7 @@
 #include "simbob/png.h"
 #include "simbob/robot.h"
 #include "simbob/run.h"
+#include "simbob/simulation.h"
 #include "simbob/values.h"
 #include "version.h"
 
@@ -195,24 +196,24 @@ int cmdRender(const RenderArgs& a, const Common& common) {
   }
   std::vector<Transform> poses = initialPoses(model);
   if (a.at > 0) {
-    // Simulate up to T with the controllers acting, as `run` would.
-    RunOptions opts;
-    opts.duration = a.at;
-    opts.dt = a.dt;
-    opts.seed = a.seed;
+    // Simulate up to T with the controllers acting, as `run` would: a Simulation whose
+    // parties (after the scene's) are the frames a recording would follow, then the still.
     catchStopSignals();
-    opts.stop = &g_stop;
-    std::vector<std::unique_ptr<Party>> owned = robotParties(model);
+    SimulationOptions so;
+    so.duration = a.at;
+    so.dt = a.dt;
+    so.seed = a.seed;
+    so.stop = &g_stop;
+    Diagnostics sd;
+    std::unique_ptr<Simulation> sim = Simulation::fromModel(model, so, sd);
+    if (!sim) return report(sd, false);
     const std::optional<SimTime> at = toSimTime(a.at);
     Still still(at ? *at : kNever, model.bodies.size());
     Follower follower(*renderer, a.view.fps, at ? *at : kNever, toSimTime(model.settings.min_time_step).value_or(0),
                       model.bodies.size());
-    std::vector<Party*> parties;
-    parties.reserve(owned.size() + 2);
-    for (auto& p : owned) parties.push_back(p.get());
-    parties.push_back(&follower);
-    parties.push_back(&still);
-    RunResult r = runParties(model, opts, parties);
+    sim->addParty(follower);
+    sim->addParty(still);
+    const RunResult r = sim->runToEnd();
     if (r.status != RunStatus::Completed || !still.taken()) {
       g_log.error(r.error.message.empty() ? Error{ErrorKind::Internal, {}, "the run ended before --at"} : r.error);
       if (r.status == RunStatus::Interrupted) return stopExitCode();

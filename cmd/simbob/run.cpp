@@ -56,41 +56,12 @@ class Progress {
   std::chrono::steady_clock::time_point start_;
 };
 
-// CPU features that change floating-point code paths in libraries (libm, ODE built with them).
-std::vector<std::string> cpuFeatures() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  std::vector<std::string> found;
-  static const char* wanted[] = {"sse2", "avx", "avx2", "fma", "avx512f"};
-  while (std::getline(in, line)) {
-    if (line.rfind("flags", 0) != 0) continue;
-    line += " ";
-    for (const char* w : wanted)
-      if (line.find(std::string(" ") + w + " ") != std::string::npos) found.push_back(w);
-    break;
-  }
-  return found;
-}
-
 std::string replaceExtension(const std::string& path, const std::string& ext) {
   std::filesystem::path p(path);
   p.replace_extension(ext);
   return p.string();
 }
 
-const char* statusName(RunStatus s) {
-  switch (s) {
-    case RunStatus::Completed:
-      return "completed";
-    case RunStatus::Diverged:
-      return "diverged";
-    case RunStatus::Interrupted:
-      return "interrupted";
-    case RunStatus::Failed:
-      return "failed";
-  }
-  return "failed";
-}
 
 // Runs the model a second time and names the first sample where the two runs part. The
 // second run's result (interrupted, say) is in *second.
@@ -496,40 +467,14 @@ int cmdRun(RunArgs& a, const Common& common) {
   sim.reset();  // its parties flush what they hold (the run log) before the outputs are committed
   progress.done();
 
-  nlohmann::ordered_json summary;
-  summary["simbob_version"] = SIMBOB_VERSION;
-  summary["scene"] = a.scene;
-  summary["scene_hash"] = "fnv1a64:" + scene_hash;
-  summary["status"] = statusName(r.status);
-  summary["dt"] = r.dt;
-  summary["duration"] = a.duration;
-  summary["sim_time"] = r.sim_time;
-  summary["sample_interval"] = a.sample_interval;
-  summary["seed"] = a.seed;
-  static const char* kSpaceNames[] = {"hash", "sap", "quadtree", "simple"};
-  summary["space"] = kSpaceNames[static_cast<int>(model.settings.space)];
-  summary["auto_disable"] = model.settings.auto_disable;
-  summary["max_contacts"] = model.settings.max_contacts;
-  summary["overrides"] = nlohmann::ordered_json::array();
-  for (const Override& o : overrides) summary["overrides"].push_back(o.text);
-  summary["units"] = {{"time", "s"}, {"position", "m"}, {"orientation", "unit quaternion w x y z"}};
-  summary["bodies"] = model.bodies.size();
-  summary["steps"] = r.steps;
-  summary["samples"] = r.samples;
-  summary["wall_seconds"] = r.wall_seconds;
-  // Waiting for a socket peer to connect is not simulation speed.
-  const double busy = r.wall_seconds - r.wait_seconds;
-  summary["steps_per_second"] = busy > 0 ? static_cast<double>(r.steps) / busy : 0.0;
-  // What bit-identical reruns depend on.
-  summary["reproducibility"] = {{"physics", physicsVersion()},
-                                {"precision", "double"},
-#ifdef __clang__
-                                {"compiler", "clang " __clang_version__},
-#else
-                                {"compiler", "gcc " __VERSION__},
-#endif
-                                {"fp_contract", "off"},
-                                {"cpu_features", cpuFeatures()}};
+  RunSummaryInput si;
+  si.scene = a.scene;
+  si.scene_hash = scene_hash;
+  si.duration = a.duration;
+  si.sample_interval = a.sample_interval;
+  si.seed = a.seed;
+  for (const Override& o : overrides) si.overrides.push_back(o.text);
+  nlohmann::ordered_json summary = runSummary(model, r, si);
 
   if (r.status == RunStatus::Completed && a.check_determinism) {
     std::string where;
@@ -543,7 +488,7 @@ int cmdRun(RunArgs& a, const Common& common) {
       r.status = RunStatus::Interrupted;
       r.error = second.error;
       r.error.message += " (second run of --check-determinism)";
-      summary["status"] = statusName(r.status);
+      summary["status"] = runStatusName(r.status);
     } else {
       summary["determinism_check"] = same ? "identical" : where;
       if (!same) {

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,24 @@ struct SimulationOptions {
   /// Called about every 1% of `duration` with the simulated time reached.
   std::function<void(double)> progress;
 };
+
+/// What the run summary says of a run beyond its model and result.
+struct RunSummaryInput {
+  std::string scene;       ///< the scene path as given
+  std::string scene_hash;  ///< FNV-1a 64 of the scene and its imports (hex)
+  double duration = 0;     ///< s asked for
+  double sample_interval = 0;
+  uint32_t seed = 0;
+  std::vector<std::string> overrides;  ///< KEY.PARAM=VALUE, as applied
+};
+
+/// "completed", "diverged", "interrupted" or "failed".
+const char* runStatusName(RunStatus s);
+
+/// The run summary JSON (docs/formats.md): version, scene, status, step, times, settings,
+/// counts, speed (waiting for peers excluded) and what reproducibility depends on. Clients
+/// add what only they know (outputs written, frames, a determinism check).
+nlohmann::ordered_json runSummary(const Model& model, const RunResult& r, const RunSummaryInput& in);
 
 class Simulation {
  public:

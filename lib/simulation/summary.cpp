@@ -1,0 +1,84 @@
+// The run summary (docs/formats.md, "Run summary JSON"): what a run was, how it ended and what
+// its bytes depend on. Built here so that every client of the Simulation API writes the same.
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "simbob/physics.h"
+#include "simbob/simulation.h"
+
+namespace simbob {
+
+namespace {
+
+// CPU features that change floating-point code paths in libraries (libm, ODE built with them).
+std::vector<std::string> cpuFeatures() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  std::vector<std::string> found;
+  static const char* wanted[] = {"sse2", "avx", "avx2", "fma", "avx512f"};
+  while (std::getline(in, line)) {
+    if (line.rfind("flags", 0) != 0) continue;
+    line += " ";
+    for (const char* w : wanted)
+      if (line.find(std::string(" ") + w + " ") != std::string::npos) found.push_back(w);
+    break;
+  }
+  return found;
+}
+
+}  // namespace
+
+const char* runStatusName(RunStatus s) {
+  switch (s) {
+    case RunStatus::Completed:
+      return "completed";
+    case RunStatus::Diverged:
+      return "diverged";
+    case RunStatus::Interrupted:
+      return "interrupted";
+    case RunStatus::Failed:
+      return "failed";
+  }
+  return "failed";
+}
+
+nlohmann::ordered_json runSummary(const Model& model, const RunResult& r, const RunSummaryInput& in) {
+  nlohmann::ordered_json summary;
+  summary["simbob_version"] = SIMBOB_VERSION;
+  summary["scene"] = in.scene;
+  summary["scene_hash"] = "fnv1a64:" + in.scene_hash;
+  summary["status"] = runStatusName(r.status);
+  summary["dt"] = r.dt;
+  summary["duration"] = in.duration;
+  summary["sim_time"] = r.sim_time;
+  summary["sample_interval"] = in.sample_interval;
+  summary["seed"] = in.seed;
+  static const char* kSpaceNames[] = {"hash", "sap", "quadtree", "simple"};
+  summary["space"] = kSpaceNames[static_cast<int>(model.settings.space)];
+  summary["auto_disable"] = model.settings.auto_disable;
+  summary["max_contacts"] = model.settings.max_contacts;
+  summary["overrides"] = nlohmann::ordered_json::array();
+  for (const std::string& o : in.overrides) summary["overrides"].push_back(o);
+  summary["units"] = {{"time", "s"}, {"position", "m"}, {"orientation", "unit quaternion w x y z"}};
+  summary["bodies"] = model.bodies.size();
+  summary["steps"] = r.steps;
+  summary["samples"] = r.samples;
+  summary["wall_seconds"] = r.wall_seconds;
+  // Waiting for a socket peer to connect is not simulation speed.
+  const double busy = r.wall_seconds - r.wait_seconds;
+  summary["steps_per_second"] = busy > 0 ? static_cast<double>(r.steps) / busy : 0.0;
+  // What bit-identical reruns depend on.
+  summary["reproducibility"] = {{"physics", physicsVersion()},
+                                {"precision", "double"},
+#ifdef __clang__
+                                {"compiler", "clang " __clang_version__},
+#else
+                                {"compiler", "gcc " __VERSION__},
+#endif
+                                {"fp_contract", "off"},
+                                {"cpu_features", cpuFeatures()}};
+  return summary;
+}
+
+}  // namespace simbob

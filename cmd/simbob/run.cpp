@@ -62,7 +62,6 @@ std::string replaceExtension(const std::string& path, const std::string& ext) {
   return p.string();
 }
 
-
 // Runs the model a second time and names the first sample where the two runs part. The
 // second run's result (interrupted, say) is in *second.
 bool checkDeterminism(const Model& model, SimulationOptions opts, double sample_interval,

@@ -1,6 +1,8 @@
 // lintModel: each warning fires on the scene it describes and stays silent on a sound one.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 #include <fstream>
 #include <sstream>
 
@@ -129,6 +131,23 @@ TEST_CASE("a step too large for a pendulum is reported", "[scene][lint]") {
   CHECK_FALSE(anyContains(warnings(m), "pendulum"));
   m.settings.max_time_step = 0.02;  // 10 steps per period
   CHECK(anyContains(warnings(m), "joint 'Hinge' makes a pendulum of period 0.201 s but the step is 0.02 s"));
+  // The warning starts exactly where its own advice ends: 40 steps per swing. (It used to warn
+  // from 20 steps while advising 40, and was silent at 0.05 s where the chain comes apart.)
+  const double period = 2 * 3.141592653589793 * std::sqrt((1e-9 + 1.0 * 0.01 * 0.01) / (1.0 * 9.81 * 0.01));
+  const double advice = period / 40;
+  m.settings.max_time_step = advice * 1.001;
+  CHECK(anyContains(warnings(m), "use --dt " + formatApprox(advice) + " or smaller"));
+  m.settings.max_time_step = advice * 0.999;
+  CHECK_FALSE(anyContains(warnings(m), "pendulum"));
+  // What a diverged run recommends is the smallest advice of all checks: here the falling bob's
+  // tunnelling bound, 0.5 x 4 mm / sqrt(2 g 1.99 m), is below the pendulum's.
+  CHECK(recommendedStep(m) == Approx(0.5 * 0.004 / std::sqrt(2 * 9.81 * 1.99)).epsilon(1e-6));
+  // check --dt: the step of the run, not the scene's MaxTimeStep.
+  Diagnostics d;
+  lintModel(m, d, advice * 1.001);
+  bool pendulum = false;
+  for (const auto& w : d.warnings()) pendulum = pendulum || w.message.find("pendulum") != std::string::npos;
+  CHECK(pendulum);
 }
 
 TEST_CASE("a joint anchored far from its body is reported", "[scene][lint]") {

@@ -276,6 +276,9 @@ TEST_CASE("run: a joint that comes apart stops the run as diverged, naming the j
   REQUIRE(r.status == RunStatus::Diverged);
   CHECK(r.error.message.rfind("joint 'j0' came apart at t=", 0) == 0);
   CHECK(r.error.message.find("m apart (more than 0.1 m)") != std::string::npos);
+  // It names the step and what `simbob check` recommends for this scene (the hinge's pendulum).
+  CHECK(r.error.message.find("m apart (more than 0.1 m) with a step of 0.001 s (") != std::string::npos);
+  CHECK(r.error.message.find("that `simbob check` recommends)") != std::string::npos);
   CHECK(r.sim_time < 10.0);
 
   // The same pendulum with a realistic inertia (a 5 cm solid ball) swings for 10 s with the

@@ -1,6 +1,5 @@
-// simbob batch: many scenes on N worker processes, each a `simbob run` of its own. ODE keeps
-// process-wide state (its random generator among it), so scenes never share a process; a
-// crashing scene takes down only its worker.
+// simbob batch: many scenes on N worker processes (workers.h), each a `simbob run` of its own:
+// the runs go in parallel on the cores, and a crashing scene takes down only its worker.
 #include <fcntl.h>
 #include <glob.h>
 #include <sys/prctl.h>
@@ -22,6 +21,7 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "workers.h"
 #include "simbob/compare.h"
 #include "simbob/files.h"
 #include "simbob/run.h"
@@ -84,16 +84,6 @@ std::vector<std::string> expandGlob(const std::string& pattern) {
   return out;
 }
 
-std::string firstErrorLine(const std::string& log_path) {
-  std::ifstream in(log_path);
-  std::string line, last;
-  while (std::getline(in, line)) {
-    if (line.find(": error: ") != std::string::npos) return line;
-    if (!line.empty()) last = line;
-  }
-  return last;
-}
-
 std::string fixed(double v, int decimals) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
@@ -113,56 +103,16 @@ pid_t startWorker(const Job& j, const BatchArgs& a) {
   args.emplace_back("--batch-child");
   // Manifest options come last: CLI11 keeps the last value of a repeated option.
   args.insert(args.end(), j.args.begin(), j.args.end());
-  const pid_t parent = getpid();
-  pid_t pid = fork();
-  if (pid != 0) return pid;
-  // Child: a killed batch must not leave its workers running (SIGTERM keeps their partials).
-  prctl(PR_SET_PDEATHSIG, SIGTERM);
-  if (getppid() != parent) _exit(kExitSigTerm);
-  // Output to the scene's log, then become `simbob run`.
-  int fd = open(j.log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (fd >= 0) {
-    dup2(fd, 1);
-    dup2(fd, 2);
-    close(fd);
-  }
-  std::vector<char*> argv;
-  argv.reserve(args.size() + 1);
-  for (auto& s : args) argv.push_back(s.data());
-  argv.push_back(nullptr);
-  execv("/proc/self/exe", argv.data());
-  std::fprintf(stderr, "simbob: error: cannot start worker: %s\n", std::strerror(errno));
-  _exit(kExitSoftware);
+  return spawnSelf(args, j.log);
 }
 
 void finish(Job& j, int wstatus, const BatchArgs& a) {
   j.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - j.started).count();
-  if (WIFSIGNALED(wstatus) && g_stop && (WTERMSIG(wstatus) == SIGINT || WTERMSIG(wstatus) == SIGTERM)) {
-    j.status = "interrupted";  // the signal came before the worker could catch it
-    return;
-  }
-  if (WIFSIGNALED(wstatus)) {
-    j.status = "crashed";
-    j.error = std::string("worker killed by signal ") + std::to_string(WTERMSIG(wstatus)) + " (" +
-              strsignal(WTERMSIG(wstatus)) + ")";
-    return;
-  }
-  j.exit_code = WEXITSTATUS(wstatus);
-  switch (j.exit_code) {
-    case kExitOk:
-      j.status = "ok";
-      break;
-    case kExitResultWrong:
-      j.status = "diverged";
-      break;
-    case kExitSigInt:
-    case kExitSigTerm:
-      j.status = "interrupted";
-      break;
-    default:
-      j.status = "failed";
-      break;
-  }
+  const WorkerOutcome o = workerOutcome(wstatus);
+  j.status = o.status;
+  j.exit_code = o.exit_code;
+  j.error = o.error;
+  if (o.exit_code < 0) return;
   if (j.exit_code != kExitOk) j.error = firstErrorLine(j.log);
   if (a.golden.empty() || j.status != "ok") return;
   std::string golden = (fs::path(a.golden) / fs::path(j.out).filename()).string();
@@ -367,53 +317,31 @@ int cmdBatch(const BatchArgs& a, const Common& common) {
   int workers = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
   catchStopSignals();
   auto t0 = std::chrono::steady_clock::now();
-  size_t next = 0, done = 0, running = 0;
-  std::map<pid_t, size_t> by_pid;
-  bool forwarded = false;
-  while (done < jobs.size()) {
-    if (g_stop && !forwarded) {
-      // Workers stop as a run does on a signal: they keep their partial trajectories.
-      for (const auto& [pid, index] : by_pid) kill(pid, static_cast<int>(g_stop));
-      forwarded = true;
-    }
-    while (!g_stop && running < static_cast<size_t>(workers) && next < jobs.size()) {
-      Job& j = jobs[next];
-      j.started = std::chrono::steady_clock::now();
-      j.pid = startWorker(j, a);
-      if (j.pid < 0) {
-        j.status = "failed";
-        j.error = std::string("cannot fork: ") + std::strerror(errno);
+  size_t done = 0;
+  runWorkerPool(
+      jobs.size(), workers,
+      [&](size_t i) {
+        Job& j = jobs[i];
+        j.started = std::chrono::steady_clock::now();
+        j.pid = startWorker(j, a);
+        if (j.pid < 0) {
+          j.status = "failed";
+          j.error = std::string("cannot fork: ") + std::strerror(errno);
+          ++done;
+        }
+        return j.pid;
+      },
+      [&](size_t i, int wstatus) {
+        Job& j = jobs[i];
         ++done;
-      } else {
-        by_pid[j.pid] = next;
-        ++running;
-      }
-      ++next;
-    }
-    if (running == 0) {
-      if (g_stop) break;
-      continue;
-    }
-    int wstatus = 0;
-    pid_t pid = waitpid(-1, &wstatus, 0);
-    if (pid < 0) {
-      if (errno == EINTR) continue;  // a signal: stop starting new scenes, keep reaping
-      break;
-    }
-    auto it = by_pid.find(pid);
-    if (it == by_pid.end()) continue;
-    Job& j = jobs[it->second];
-    by_pid.erase(it);
-    --running;
-    ++done;
-    finish(j, wstatus, a);
-    std::string line = "[" + std::to_string(done) + "/" + std::to_string(jobs.size()) + "] " + j.status + "  " +
-                       j.scene + "  " + fixed(j.wall, 2) + " s";
-    if (!j.golden_status.empty()) line += "  golden: " + j.golden_status;
-    if (!j.error.empty()) line += "  -- " + j.error;
-    std::printf("%s\n", line.c_str());
-    std::fflush(stdout);
-  }
+        finish(j, wstatus, a);
+        std::string line = "[" + std::to_string(done) + "/" + std::to_string(jobs.size()) + "] " + j.status + "  " +
+                           j.scene + "  " + fixed(j.wall, 2) + " s";
+        if (!j.golden_status.empty()) line += "  golden: " + j.golden_status;
+        if (!j.error.empty()) line += "  -- " + j.error;
+        std::printf("%s\n", line.c_str());
+        std::fflush(stdout);
+      });
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   size_t failed = 0;

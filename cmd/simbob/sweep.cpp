@@ -17,6 +17,7 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "workers.h"
 #include "simbob/files.h"
 #include "simbob/sweep.h"
 #include "simbob/trajectory.h"
@@ -64,29 +65,6 @@ std::string fixed(double v, int decimals) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
   return buf;
-}
-
-// Starts this binary with `args` (argv[0] included), its stdout and stderr to `log`. The child
-// gets SIGTERM when its parent dies, so workers never outlive a killed sweep.
-pid_t spawnSelf(std::vector<std::string> args, const std::string& log) {
-  const pid_t parent = getpid();
-  pid_t pid = fork();
-  if (pid != 0) return pid;
-  prctl(PR_SET_PDEATHSIG, SIGTERM);
-  if (getppid() != parent) _exit(kExitSigTerm);
-  int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (fd >= 0) {
-    dup2(fd, 1);
-    dup2(fd, 2);
-    close(fd);
-  }
-  std::vector<char*> argv;
-  argv.reserve(args.size() + 1);
-  for (auto& s : args) argv.push_back(s.data());
-  argv.push_back(nullptr);
-  execv("/proc/self/exe", argv.data());
-  std::fprintf(stderr, "simbob: error: cannot start worker: %s\n", std::strerror(errno));
-  _exit(kExitSoftware);
 }
 
 // The options every case of a sweep runs with: the plug-ins and the global settings the sweep
@@ -280,16 +258,11 @@ int runOneCase(const SweepArgs& a, const SweepCase& c, const std::string& manife
   for (std::string& o : caseOptions(common)) args.push_back(std::move(o));
   catchStopSignals();
   const auto t0 = std::chrono::steady_clock::now();
-  const pid_t pid = spawnSelf(args, (tmp / "log").string());
+  pid_t pid = -1;
   int wstatus = 0;
-  bool forwarded = false;
-  while (pid > 0 && waitpid(pid, &wstatus, 0) < 0) {
-    if (errno != EINTR) break;
-    if (g_stop && !forwarded) {
-      kill(pid, static_cast<int>(g_stop));
-      forwarded = true;
-    }
-  }
+  runWorkerPool(
+      1, 1, [&](size_t) { return pid = spawnSelf(args, (tmp / "log").string()); },
+      [&](size_t, int status) { wstatus = status; });
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (g_stop) {
     // An interrupted case (pre-emption, scancel) leaves nothing: the task reruns it.
@@ -297,16 +270,12 @@ int runOneCase(const SweepArgs& a, const SweepCase& c, const std::string& manife
     g_log.error({ErrorKind::Diverged, {}, "case " + std::to_string(c.index) + ": interrupted"});
     return stopExitCode();
   }
-  int exit_code = pid < 0 ? kExitSoftware : WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 128 + WTERMSIG(wstatus);
+  const WorkerOutcome outcome = workerOutcome(wstatus);
+  int exit_code = pid < 0 ? kExitSoftware : outcome.exit_code >= 0 ? outcome.exit_code : 128 + WTERMSIG(wstatus);
   std::string status = exit_code == kExitOk ? "ok" : exit_code == kExitResultWrong ? "diverged" : "failed";
   std::string error;
   if (exit_code != kExitOk) {
-    std::string log;
-    readFile((tmp / "log").string(), 1 << 20, &log, nullptr, true);
-    size_t e = log.find(": error: ");
-    size_t start = e == std::string::npos ? 0 : log.rfind('\n', e);
-    start = start == std::string::npos || e == std::string::npos ? 0 : start + 1;
-    error = log.substr(start, log.find('\n', start) - start);
+    error = firstErrorLine((tmp / "log").string());
     if (error.empty()) error = "simbob run exited with status " + std::to_string(exit_code);
   }
   nlohmann::ordered_json j;
@@ -370,57 +339,42 @@ int runAllCases(const SweepArgs& a, const std::vector<SweepCase>& cases, const C
   for (const SweepCase& c : cases)
     if (a.force || caseStatus(fs::path(a.out) / caseDirName(c.index)) != "ok") todo.push_back(c.index);
   const size_t skipped = cases.size() - todo.size();
-  size_t next = 0, done = 0, running = 0, failed = 0;
-  std::map<pid_t, int> by_pid;
-  std::map<int, std::chrono::steady_clock::time_point> started;
-  bool forwarded = false;
+  size_t done = 0, running = 0, failed = 0;
+  std::vector<std::chrono::steady_clock::time_point> started(todo.size());
   const bool tty = isatty(2) != 0;
-  while (done < todo.size()) {
-    if (g_stop && !forwarded) {
-      for (const auto& [pid, index] : by_pid) kill(pid, static_cast<int>(g_stop));
-      forwarded = true;
-    }
-    while (!g_stop && running < static_cast<size_t>(a.jobs) && next < todo.size()) {
-      const int i = todo[next++];
-      std::vector<std::string> args = {"simbob",          "sweep", "run", a.input,  "--case",
-                                       std::to_string(i), "-o",    a.out, "--quiet"};
-      if (a.force) args.emplace_back("--force");
-      for (std::string& o : caseOptions(common)) args.push_back(std::move(o));
-      const pid_t pid = spawnSelf(args, "/dev/null");
-      if (pid < 0) {
+  runWorkerPool(
+      todo.size(), a.jobs,
+      [&](size_t k) {
+        std::vector<std::string> args = {"simbob", "sweep", "run",    a.input, "--case", std::to_string(todo[k]),
+                                         "-o",     a.out,   "--quiet"};
+        if (a.force) args.emplace_back("--force");
+        for (std::string& o : caseOptions(common)) args.push_back(std::move(o));
+        const pid_t pid = spawnSelf(args, "/dev/null");
+        if (pid < 0) {
+          ++done;
+          ++failed;
+        } else {
+          started[k] = std::chrono::steady_clock::now();
+          ++running;
+        }
+        return pid;
+      },
+      [&](size_t k, int wstatus) {
+        const int i = todo[k];
+        --running;
         ++done;
-        ++failed;
-        continue;
-      }
-      by_pid[pid] = i;
-      started[i] = std::chrono::steady_clock::now();
-      ++running;
-    }
-    if (running == 0) break;
-    int wstatus = 0;
-    pid_t pid = waitpid(-1, &wstatus, 0);
-    if (pid < 0) {
-      if (errno == EINTR) continue;
-      break;
-    }
-    auto it = by_pid.find(pid);
-    if (it == by_pid.end()) continue;
-    const int i = it->second;
-    by_pid.erase(it);
-    --running;
-    ++done;
-    const bool ok = WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 0;
-    if (!ok) ++failed;
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started[i]).count();
-    char line[256];
-    std::snprintf(line, sizeof line, "[%zu/%zu] case %d %s %.2f s  (%zu failed, %zu running)", done, todo.size(), i,
-                  ok ? "ok"
-                  : caseStatus(fs::path(a.out) / caseDirName(i)).empty()
-                      ? "failed"
-                      : caseStatus(fs::path(a.out) / caseDirName(i)).c_str(),
-                  wall, failed, running);
-    if (g_log.level != Level::Quiet) std::fprintf(stderr, tty ? "\r%s\033[K" : "%s\n", line);
-  }
+        const bool ok = workerOutcome(wstatus).status == "ok";
+        if (!ok) ++failed;
+        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started[k]).count();
+        const std::string status = caseStatus(fs::path(a.out) / caseDirName(i));
+        char line[256];
+        std::snprintf(line, sizeof line, "[%zu/%zu] case %d %s %.2f s  (%zu failed, %zu running)", done, todo.size(), i,
+                      ok               ? "ok"
+                      : status.empty() ? "failed"
+                                       : status.c_str(),
+                      wall, failed, running);
+        if (g_log.level != Level::Quiet) std::fprintf(stderr, tty ? "\r%s\033[K" : "%s\n", line);
+      });
   if (tty && g_log.level != Level::Quiet && !todo.empty()) std::fprintf(stderr, "\n");
   if (g_stop) return stopExitCode();
   g_log.info(std::to_string(todo.size() - failed) + " of " + std::to_string(todo.size()) + " cases ok" +

@@ -1,0 +1,117 @@
+// Worker processes of `batch` and `sweep run` (workers.h).
+#include "workers.h"
+
+#include <fcntl.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <map>
+
+#include "cli.h"
+
+namespace simbob::cli {
+
+pid_t spawnSelf(std::vector<std::string> args, const std::string& log) {
+  const pid_t parent = getpid();
+  pid_t pid = fork();
+  if (pid != 0) return pid;
+  prctl(PR_SET_PDEATHSIG, SIGTERM);
+  if (getppid() != parent) _exit(kExitSigTerm);
+  int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd >= 0) {
+    dup2(fd, 1);
+    dup2(fd, 2);
+    close(fd);
+  }
+  std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
+  for (auto& s : args) argv.push_back(s.data());
+  argv.push_back(nullptr);
+  execv("/proc/self/exe", argv.data());
+  std::fprintf(stderr, "simbob: error: cannot start worker: %s\n", std::strerror(errno));
+  _exit(kExitSoftware);
+}
+
+WorkerOutcome workerOutcome(int wstatus) {
+  WorkerOutcome o;
+  if (WIFSIGNALED(wstatus)) {
+    const int sig = WTERMSIG(wstatus);
+    if (g_stop && (sig == SIGINT || sig == SIGTERM)) {
+      o.status = "interrupted";  // the signal came before the worker could catch it
+      return o;
+    }
+    o.status = "crashed";
+    o.error = "worker killed by signal " + std::to_string(sig) + " (" + strsignal(sig) + ")";
+    return o;
+  }
+  o.exit_code = WEXITSTATUS(wstatus);
+  switch (o.exit_code) {
+    case kExitOk:
+      o.status = "ok";
+      break;
+    case kExitResultWrong:
+      o.status = "diverged";
+      break;
+    case kExitSigInt:
+    case kExitSigTerm:
+      o.status = "interrupted";
+      break;
+    default:
+      o.status = "failed";
+      break;
+  }
+  return o;
+}
+
+std::string firstErrorLine(const std::string& log_path) {
+  std::ifstream in(log_path);
+  std::string line, last;
+  while (std::getline(in, line)) {
+    if (line.find(": error: ") != std::string::npos) return line;
+    if (!line.empty()) last = line;
+  }
+  return last;
+}
+
+void runWorkerPool(size_t count, int jobs, const std::function<pid_t(size_t)>& start,
+                   const std::function<void(size_t, int)>& finished) {
+  size_t next = 0, running = 0;
+  std::map<pid_t, size_t> by_pid;
+  bool forwarded = false;
+  for (;;) {
+    if (g_stop && !forwarded) {
+      // Workers stop as a run does on a signal: they keep their partial trajectories.
+      for (const auto& [pid, index] : by_pid) kill(pid, static_cast<int>(g_stop));
+      forwarded = true;
+    }
+    while (!g_stop && running < static_cast<size_t>(jobs) && next < count) {
+      const size_t i = next++;
+      const pid_t pid = start(i);
+      if (pid > 0) {
+        by_pid[pid] = i;
+        ++running;
+      }
+    }
+    if (running == 0) return;
+    int wstatus = 0;
+    const pid_t pid = waitpid(-1, &wstatus, 0);
+    if (pid < 0) {
+      if (errno == EINTR) continue;  // a signal: stop starting new tasks, keep reaping
+      return;
+    }
+    auto it = by_pid.find(pid);
+    if (it == by_pid.end()) continue;
+    const size_t i = it->second;
+    by_pid.erase(it);
+    --running;
+    finished(i, wstatus);
+  }
+}
+
+}  // namespace simbob::cli

@@ -1,0 +1,37 @@
+// Worker processes shared by `batch` and `sweep run`: each scene or case runs as a `simbob run`
+// (or `sweep run --case`) of its own, so a crash takes down only its worker and parallel runs
+// never share ODE's process-wide state.
+#pragma once
+
+#include <sys/types.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace simbob::cli {
+
+/// Starts this binary with `args` (argv[0] included), its stdout and stderr to `log`. The child
+/// gets SIGTERM when its parent dies, so workers never outlive a killed batch or sweep. -1 if
+/// fork failed.
+pid_t spawnSelf(std::vector<std::string> args, const std::string& log);
+
+/// How a worker ended, from its wait status: "ok", "diverged" (1), "interrupted" (a stop signal,
+/// or 130/143), "crashed" (killed by a signal) or "failed" (any other exit status).
+struct WorkerOutcome {
+  std::string status;
+  int exit_code = -1;  ///< -1 when killed by a signal
+  std::string error;   ///< for "crashed": the signal, in words
+};
+WorkerOutcome workerOutcome(int wstatus);
+
+/// The first "file:line: error: ..." line of a worker's log (its last line when there is none).
+std::string firstErrorLine(const std::string& log_path);
+
+/// Runs tasks 0 .. count-1 on at most `jobs` workers: start(i) spawns one (a pid, or -1 when it
+/// could not), finished(i, wait status) hears of its end. A stop signal (g_stop) is forwarded to
+/// the running workers once and no new task starts; the pool returns when none is running.
+void runWorkerPool(size_t count, int jobs, const std::function<pid_t(size_t)>& start,
+                   const std::function<void(size_t, int)>& finished);
+
+}  // namespace simbob::cli

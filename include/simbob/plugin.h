@@ -17,7 +17,7 @@
 #include "simbob/registry.h"
 #include "simbob/run.h"
 
-#define SIMBOB_PLUGIN_ABI_VERSION 1u
+#define SIMBOB_PLUGIN_ABI_VERSION 2u
 
 namespace simbob {
 

@@ -83,7 +83,7 @@ expect_eq "built-in duplicate message" "$(cat "$LAST_ERR")" \
 check "a wrong ABI version (65)"
 expect_status 65 "$SIMBOB" run "$SCENE" --duration 1 --plugin "$PLUGINS/bad_bad_abi.so" --out x.csv
 expect_eq "ABI message" "$(cat "$LAST_ERR")" \
-  "$PLUGINS/bad_bad_abi.so: error: plug-in ABI version 999, but this simbob loads version 1 (rebuild it against this simbob's headers)"
+  "$PLUGINS/bad_bad_abi.so: error: plug-in ABI version 999, but this simbob loads version 2 (rebuild it against this simbob's headers)"
 expect_no_file x.csv
 
 check "a library without the entry point (65)"

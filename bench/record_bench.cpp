@@ -36,6 +36,7 @@
 #include "simbob/registry.h"
 #include "simbob/render.h"
 #include "simbob/run.h"
+#include "simbob/simulation.h"
 
 namespace {
 
@@ -154,11 +155,19 @@ double record(const Model& model, Renderer& renderer, const Settings& s, bool pi
       pipelined ? simbob::drawOnRenderThread(renderer, *sink, s.queue) : simbob::drawInline(renderer, *sink);
   simbob::Recorder recorder(*drawer, s.fps, simbob::toSimTime(model.settings.min_time_step).value_or(0),
                             static_cast<int>(model.bodies.size()));
-  simbob::RunOptions opts;
+  // The run as `simbob run --record` makes it: a Simulation with the recorder as its party.
+  simbob::SimulationOptions opts;
   opts.duration = (s.frames - 1) / s.fps;  // frames at 0, 1/fps, ..., duration
+  simbob::Diagnostics diag;
+  std::unique_ptr<simbob::Simulation> sim = simbob::Simulation::fromModel(model, opts, diag);
+  if (!sim) {
+    fail(diag.errors().front());
+    return -1;
+  }
+  sim->addParty(recorder);
   const Clock::time_point start = Clock::now();
   const double loop_cpu = threadCpuNowMs();
-  const simbob::RunResult r = simbob::runParties(model, opts, {&recorder});
+  const simbob::RunResult r = sim->runToEnd();
   *loop_cpu_ms = (threadCpuNowMs() - loop_cpu) / s.frames;
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   if (r.status != simbob::RunStatus::Completed) {

@@ -73,8 +73,7 @@ std::vector<NamedPath> runOutputs(const RunArgs& a);
 /// What is wrong with run options beyond their syntax ("" if nothing): time ranges, --out.
 std::string runArgsProblem(const RunArgs& a);
 
-int cmdCheck(const std::string& path, const Common& common, const std::vector<std::string>& sets = {},
-             double dt = 0);
+int cmdCheck(const std::string& path, const Common& common, const std::vector<std::string>& sets = {}, double dt = 0);
 int cmdDump(const std::string& path, const std::string& format, const Common& common,
             const std::vector<std::string>& sets = {});
 

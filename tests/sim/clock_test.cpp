@@ -67,8 +67,7 @@ TEST_CASE("clock: due requests are granted earliest first, ties to the first par
   CHECK(c.grantable() == -1);
 }
 
-TEST_CASE("clock: a request between grid instants is granted at the next one, never splitting a step",
-          "[sim][clock]") {
+TEST_CASE("clock: a request between grid instants is granted at the next one, never splitting a step", "[sim][clock]") {
   Clock c(1000, 10);
   const int a = c.addParty(1500);  // between the 1000 and 2000 ns instants
   const int b = c.addParty(2995);  // 5 ns before the 3000 ns instant: granted there

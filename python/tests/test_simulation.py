@@ -425,7 +425,7 @@ def test_step_releases_the_gil_without_python_controllers():
     t.start()
     time.sleep(0.01)
     t0 = time.monotonic()
-    sim.step(20000)
+    sim.step(60000)
     t1 = time.monotonic()
     done.set()
     t.join()

@@ -708,7 +708,8 @@ velocity (m/s or rad/s). Before the first command: 0 (a servo: its start positio
       R"(Commands an actuator from the current instant on, clamped by its limits as the scene's
 controllers' commands are (see commands()). The parties due at the current instant are served
 first (as step() would serve them), so the command applies after the scene's controllers
-there, also at t = 0 before the first step; from a Python controller it applies at once. `actuator` is a key from actuator_keys or an
+there, also at t = 0 before the first step; from a Python controller it applies at once. On a
+run that has stopped it raises the run's error, as step() does. `actuator` is a key from actuator_keys or an
 index into it. Raises UsageError for an unknown key, an index out of range or a value that is
 not finite.)");
   cls.def("__repr__", [](PySimulation& s) {

@@ -16,7 +16,7 @@ sources() {  # NUL-separated C++ files under the given folders (tracked ones in 
 }
 
 echo "check-style: clang-format" >&2
-sources bench cmd fuzz include lib tests | xargs -0 clang-format --dry-run --Werror
+sources bench cmd fuzz include lib python tests | xargs -0 clang-format --dry-run --Werror
 
 echo "check-style: clang-tidy" >&2
 if [ ! -f build/compile_commands.json ]; then

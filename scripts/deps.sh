@@ -27,6 +27,7 @@ TEST_PACKAGES=(
   procps iproute2 util-linux  # its daemons' job steps (pgrep), listening ports (ss), a UTS namespace (unshare)
   file dpkg-dev         # cpack -G DEB: CPackDeb finds the ELF files with file, Depends with dpkg-shlibdeps
   git                   # cluster.version builds throwaway repositories (tests/cluster/version.sh)
+  pybind11-dev python3-dev python3-numpy python3-pytest  # the optional Python module (python/) and its tests
 )
 
 case "${1:-}" in

@@ -113,6 +113,7 @@ class Simulation {
 
   /// The result so far (status Completed only after finish() of a run that did not stop).
   const RunResult& result() const;
+  /// True until the run has stopped (diverged, failed, interrupted) or finished.
   bool running() const;
 
   // ---- state (at the current grid instant) ----
@@ -146,6 +147,7 @@ class Simulation {
   std::vector<std::unique_ptr<Party>> robot_;  ///< the scene's controllers and peers
   std::vector<std::unique_ptr<Party>> owned_;  ///< the caller's parties this owns
   std::vector<Party*> extra_;                  ///< the caller's parties, in the order added
+  RunResult final_;                            ///< what finish() returned (samples counted)
   std::unique_ptr<Runner> runner_;
 };
 

@@ -134,9 +134,9 @@ const RunResult& Simulation::runToEnd() {
 
 const RunResult& Simulation::finish() {
   start();
-  RunResult& r = const_cast<RunResult&>(runner_->complete());
-  if (sampler_) r.samples = sampler_->samples();
-  return r;
+  final_ = runner_->complete();
+  if (sampler_) final_.samples = sampler_->samples();
+  return final_;
 }
 
 bool Simulation::reset(uint32_t seed) {
@@ -150,11 +150,11 @@ bool Simulation::reset(uint32_t seed) {
 }
 
 const RunResult& Simulation::result() const {
-  const_cast<Simulation*>(this)->start();
+  if (!runner_) return final_;  // not started: nothing has happened yet
   return runner_->result();
 }
 
-bool Simulation::running() const { return const_cast<Simulation*>(this)->start(); }
+bool Simulation::running() const { return !runner_ || runner_->running(); }
 
 double Simulation::time() const { return toSeconds(now()); }
 SimTime Simulation::now() const { return runner_ ? runner_->clock().now() : 0; }

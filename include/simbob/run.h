@@ -34,9 +34,6 @@ struct RunOptions {
   std::function<void(double)> progress;
   /// Called with every sample: time and kPoseSize doubles per body (x y z qw qx qy qz) (runModel).
   std::function<void(double, const double*)> on_sample;
-  /// Makes the parties that run after the sampler (controllers: robotParties), fresh for each
-  /// run (runModel; --check-determinism runs twice). Empty: the sampler alone.
-  std::function<std::vector<std::unique_ptr<Party>>()> make_parties;
   /// Set asynchronously (SIGINT/SIGTERM) to stop at the next step.
   const volatile std::sig_atomic_t* stop = nullptr;
 };
@@ -206,9 +203,9 @@ class TrajectorySampler : public Party {
   Error error_;
 };
 
-/// Runs the model with the trajectory sampler as its first party, then opts.make_parties'. Samples go to `writer` (may be
-/// null: no trajectory) and opts.on_sample. The caller commits or keeps the writer's output
-/// according to the result.
+/// Runs the model with the trajectory sampler as its only party (a world without controllers:
+/// the Simulation API adds the scene's). Samples go to `writer` (may be null: no trajectory)
+/// and opts.on_sample. The caller commits or keeps the writer's output according to the result.
 RunResult runModel(const Model& model, const RunOptions& opts, TrajectoryWriter* writer);
 
 /// Frame n of a recording at `fps` asks for t = n / fps (kNever beyond the clock's range); it

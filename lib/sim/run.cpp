@@ -252,12 +252,8 @@ RunResult runModel(const Model& model, const RunOptions& opts, TrajectoryWriter*
   }
   TrajectorySampler sampler(static_cast<int>(model.bodies.size()), std::max<SimTime>(interval, 1), min_step, writer,
                             opts.on_sample);
-  std::vector<std::unique_ptr<Party>> more;
-  if (opts.make_parties) more = opts.make_parties();
   sampler.name = "the trajectory sampler";
-  std::vector<Party*> parties{&sampler};
-  for (auto& p : more) parties.push_back(p.get());
-  RunResult res = runParties(model, opts, parties);
+  RunResult res = runParties(model, opts, {&sampler});
   res.samples = sampler.samples();
   return res;
 }

@@ -9,6 +9,7 @@
 #include "scene/scene_helpers.h"
 #include "simbob/robot.h"
 #include "simbob/run.h"
+#include "simbob/simulation.h"
 
 using namespace simbob;
 
@@ -39,20 +40,21 @@ std::string flywheel(const std::string& periphery, const std::string& controller
 /// The wheel's angle about +Y (right-hand rule) at every sample.
 std::vector<double> angles(const Model& m, double duration, double interval) {
   std::vector<double> out;
-  RunOptions o;
+  SimulationOptions o;
   o.duration = duration;
-  o.sample_interval = interval;
-  o.make_parties = [&m] { return robotParties(m); };
+  Diagnostics d;
+  std::unique_ptr<Simulation> sim = Simulation::fromModel(m, o, d);
+  REQUIRE(sim);
   double turns = 0, last = 0;
-  o.on_sample = [&](double, const double* p) {
+  sim->sampleTrajectory(nullptr, interval, [&](double, const double* p) {
     // Unwrapped: q = (cos a/2, 0, sin a/2, 0) for a turn a about Y.
     double a = 2 * std::atan2(p[5], p[3]);
     if (!out.empty() && a - last > kPi) turns -= 2 * kPi;
     if (!out.empty() && a - last < -kPi) turns += 2 * kPi;
     last = a;
     out.push_back(a + turns);
-  };
-  RunResult r = runModel(m, o, nullptr);
+  });
+  RunResult r = sim->runToEnd();
   REQUIRE(r.status == RunStatus::Completed);
   return out;
 }

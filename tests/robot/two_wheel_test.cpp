@@ -8,6 +8,7 @@
 #include "scene/scene_helpers.h"
 #include "simbob/robot.h"
 #include "simbob/run.h"
+#include "simbob/simulation.h"
 
 using namespace simbob;
 
@@ -20,11 +21,12 @@ struct Track {
 
 Track runRobot(const Model& m) {
   Track tr;
-  RunOptions o;
+  SimulationOptions o;
   o.duration = 5;
-  o.sample_interval = 0.5;
-  o.make_parties = [&m] { return robotParties(m); };
-  o.on_sample = [&](double t, const double* p) {
+  Diagnostics d;
+  std::unique_ptr<Simulation> sim = Simulation::fromModel(m, o, d);
+  REQUIRE(sim);
+  sim->sampleTrajectory(nullptr, 0.5, [&](double t, const double* p) {
     tr.t.push_back(t);
     tr.x.push_back(p[0]);
     tr.z.push_back(p[2]);
@@ -33,8 +35,8 @@ Track runRobot(const Model& m) {
     const double fx = 1 - 2 * (qy * qy + qz * qz), fz = 2 * (qx * qz - w * qy);
     tr.yaw.push_back(std::atan2(-fz, fx));
     tr.raw.insert(tr.raw.end(), p, p + kPoseSize * m.bodies.size());
-  };
-  RunResult r = runModel(m, o, nullptr);
+  });
+  RunResult r = sim->runToEnd();
   REQUIRE(r.status == RunStatus::Completed);
   return tr;
 }

@@ -14,6 +14,7 @@
 #include "simbob/physics.h"
 #include "simbob/robot.h"
 #include "simbob/run.h"
+#include "simbob/simulation.h"
 
 using namespace simbob;
 
@@ -52,20 +53,18 @@ TEST_CASE("robot: RCWallStop stops a robot at a wall before its body touches it"
   CHECK(m.sensors[0].body == 0);
 
   std::vector<double> x, z;
-  RunOptions o;
+  SimulationOptions o;
   o.duration = 10;
-  o.sample_interval = 0.01;
   double first_touch = -1;
-  o.make_parties = [&] {
-    auto ps = robotParties(m);
-    ps.push_back(std::make_unique<SensorLog>(&first_touch));
-    return ps;
-  };
-  o.on_sample = [&](double, const double* p) {
+  Diagnostics sd;
+  std::unique_ptr<Simulation> sim = Simulation::fromModel(m, o, sd);
+  REQUIRE(sim);
+  sim->addParty(std::make_unique<SensorLog>(&first_touch));
+  sim->sampleTrajectory(nullptr, 0.01, [&](double, const double* p) {
     x.push_back(p[0]);
     z.push_back(p[2]);
-  };
-  RunResult r = runModel(m, o, nullptr);
+  });
+  RunResult r = sim->runToEnd();
   REQUIRE(r.status == RunStatus::Completed);
   // The sensor first touches when the chassis centre has covered 1.4 - 0.3 = 1.1 m; at 0.2 m/s
   // that takes 5.5 s plus the spin-up of the wheels from rest.

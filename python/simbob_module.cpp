@@ -12,6 +12,8 @@
 #include <atomic>
 #include <thread>
 #include <cmath>
+#include <cstring>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -23,6 +25,7 @@
 #include "simbob/overrides.h"
 #include "simbob/physics.h"
 #include "simbob/registry.h"
+#include "simbob/render.h"
 #include "simbob/run.h"
 #include "simbob/simulation.h"
 
@@ -396,7 +399,46 @@ class PySimulation {
   void reset(uint32_t seed) {
     Busy b(*this, false);
     for (PyController* c : controllers_) c->takePending();
+    renderers_.clear();  // a moving camera starts again with the run
     check(sim_->reset(seed));
+  }
+
+  /// The scene at the current instant through the renderer of `simbob render` and Record: one
+  /// renderer (GL context) per camera, size and quality, kept so that a moving camera follows
+  /// the frames drawn before, as in a recording.
+  py::array_t<uint8_t> render(const std::string& camera, int width, int height, const std::string& quality) {
+    Busy b(*this, true);
+    simbob::RenderOptions ro;
+    ro.camera = camera;
+    ro.width = width;
+    ro.height = height;
+    if (!quality.empty() && !simbob::parseQuality(quality, &ro.quality))
+      raiseUsage("unknown quality '" + quality + "' (frame, wire, plane, flat, smooth, textures, shadows, " +
+                 "transparency, fog)");
+    if (width < 1 || height < 1 || width > simbob::kMaxImageSide || height > simbob::kMaxImageSide)
+      raiseUsage("size must be 1 to " + std::to_string(simbob::kMaxImageSide) + " pixels a side");
+    const simbob::Model& model = sim_->model();
+    if (simbob::modelsShowNoBody(model)) {  // as `simbob render` does: the collision shapes then
+      ro.draw_models = false;
+      ro.draw_geoms = true;
+    }
+    const std::string key =
+        camera + "\n" + std::to_string(width) + "x" + std::to_string(height) + "\n" + simbob::qualityName(ro.quality);
+    auto it = renderers_.find(key);
+    if (it == renderers_.end()) {
+      Error err;
+      std::unique_ptr<simbob::Renderer> r = simbob::Renderer::create(model, ro, &err);
+      if (!r) raiseError(err);
+      it = renderers_.emplace(key, std::move(r)).first;
+    }
+    const simbob::World& w = sim_->world();
+    std::vector<simbob::Transform> poses(static_cast<size_t>(w.bodyCount()));
+    for (int i = 0; i < w.bodyCount(); ++i) poses[static_cast<size_t>(i)] = w.body(i).pose;
+    simbob::Image img;
+    if (const Error* e = it->second->render(poses, sim_->time(), &img)) raiseError(*e);
+    py::array_t<uint8_t> a({img.height, img.width, 3});
+    std::memcpy(a.mutable_data(), img.rgb.data(), img.rgb.size());
+    return a;
   }
 
   void addController(py::handle self, double period, py::function fn) {
@@ -434,7 +476,8 @@ class PySimulation {
   std::vector<PyController*> controllers_;  // owned by sim_
   std::vector<std::string> warnings_;
   std::string scene_;
-  std::atomic<std::thread::id> owner_{};  // the thread using it now (none: free)
+  std::atomic<std::thread::id> owner_{};                                // the thread using it now (none: free)
+  std::map<std::string, std::unique_ptr<simbob::Renderer>> renderers_;  // after sim_: they read its model
 };
 
 SimTime PyController::first() {
@@ -712,6 +755,22 @@ there, also at t = 0 before the first step; from a Python controller it applies 
 run that has stopped it raises the run's error, as step() does. `actuator` is a key from actuator_keys or an
 index into it. Raises UsageError for an unknown key, an index out of range or a value that is
 not finite.)");
+  cls.def(
+      "render",
+      [](PySimulation& s, const py::object& camera, const std::pair<int, int>& size, const std::string& quality) {
+        return s.render(camera.is_none() ? std::string() : camera.cast<std::string>(), size.first, size.second,
+                        quality);
+      },
+      py::arg("camera") = py::none(), py::arg("size") = std::make_pair(640, 480), py::arg("quality") = "",
+      R"(The scene at the current instant as an image: numpy uint8 (h, w, 3), RGB, rows top first,
+drawn off-screen by the same renderer as `simbob render` and `simbob run --record` (EGL, else
+OSMesa: no display or GPU needed). `camera` is a camera key (default: the scene's first camera,
+else a view that frames the bodies); `size` is (width, height) in pixels; `quality` one of
+frame, wire, plane, flat, smooth, textures, shadows, transparency (the default), fog. A scene
+whose models show no body is drawn as its collision shapes. Each camera, size and quality keeps
+its renderer, so a tracking camera follows the frames drawn before (reset() starts it again).
+Raises MissingInputError without a GL back end or for a missing texture, SceneError for a
+camera key the scene does not have, UsageError for a bad size or quality.)");
   cls.def("__repr__", [](PySimulation& s) {
     return "<simbob.Simulation " + py::repr(py::str(s.scene())).cast<std::string>() +
            " t=" + py::repr(py::float_(s.sim().time())).cast<std::string>() +

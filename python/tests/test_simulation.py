@@ -521,3 +521,30 @@ def test_render_errors():
         sim.render(size=(0, 10))
     with pytest.raises(simbob.UsageError):
         sim.render(quality="shiny")
+
+
+def rss_bytes():
+    with open("/proc/self/statm") as f:
+        return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
+
+
+def test_ten_thousand_create_step_destroy_cycles_keep_memory_flat():
+    """Each cycle loads and compiles a scene, builds its ODE world, steps it and drops it. After a
+    warm-up of 1,000 cycles (allocator pools, Python's own caches), 10,000 more may grow the
+    resident set by less than 2 MiB: about 200 bytes a cycle, less than any one leaked world,
+    body or scene graph (each several KiB)."""
+    scene = ball_scene()
+
+    def cycle():
+        sim = simbob.Simulation.from_text(scene, "ball.xml")
+        sim.step(3)
+        sim.poses()
+        del sim
+
+    for _ in range(1000):
+        cycle()
+    before = rss_bytes()
+    for _ in range(10000):
+        cycle()
+    grown = rss_bytes() - before
+    assert grown < 2 * 1024 * 1024, f"resident memory grew {grown} bytes over 10,000 cycles"

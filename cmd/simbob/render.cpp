@@ -50,8 +50,10 @@ class Follower : public Party {
   SimTime first() override { return at_ > 0 ? 0 : kNever; }
   SimTime onGrant(SimTime now, World& world) override {
     for (int i = 0; i < world.bodyCount(); ++i) poses_[static_cast<size_t>(i)] = world.body(i).pose;
-    for (uint64_t k = framesDue(frames_, fps_, now, min_step_); k > 0; --k) renderer_.follow(poses_);
-    frames_ += framesDue(frames_, fps_, now, min_step_);
+    // Every frame due at this instant shows it, as Recorder draws them.
+    const uint64_t due = framesDue(frames_, fps_, now, min_step_);
+    for (uint64_t k = 0; k < due; ++k) renderer_.follow(poses_);
+    frames_ += due;
     const SimTime next = frameTime(frames_, fps_);
     return next < at_ ? next : kNever;
   }

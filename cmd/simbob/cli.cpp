@@ -7,7 +7,6 @@
 #include <cstring>
 #include <filesystem>
 
-#include "components/families.h"
 #include "simbob/document_ini.h"
 #include "simbob/frame_sinks.h"
 #include "simbob/registry.h"
@@ -210,18 +209,17 @@ int setupLogging(const Common& c) {
 
 int readSettings(Common& c) {
   if (c.settings.empty()) return 0;
-  Scene holder;
-  int comp = -1;
+  GlobalSettings g;
   Diagnostics d;
-  if (!loadStructIni(c.settings, *c.registry, "GlobalSettings", &holder, &comp, d)) return report(d, true);
-  const std::string& log = holder.at(comp).get(kLogFileParam);
+  if (!readGlobalSettings(c.settings, *c.registry, &g, d)) return report(d, true);
+  const std::string& log = g.log_file;
   if (c.log_file.empty() && !log.empty()) c.log_file = log;
   // ExtensionFolder is relative to the settings file's folder.
-  c.extension_folder = holder.at(comp).get(kExtensionFolderParam);
+  c.extension_folder = g.extension_folder;
   if (!c.extension_folder.empty() && std::filesystem::path(c.extension_folder).is_relative())
     c.extension_folder = (std::filesystem::path(c.settings).parent_path() / c.extension_folder).string();
-  c.document_ini = holder.at(comp).get(kDocumentIniParam);
-  const std::string& tex = holder.at(comp).get(kTextureFolderParam);
+  c.document_ini = g.document_ini;
+  const std::string& tex = g.texture_folder;
   if (!tex.empty()) {
     const size_t slash = c.settings.find_last_of('/');
     c.texture_folder = tex[0] == '/' || slash == std::string::npos ? tex : c.settings.substr(0, slash + 1) + tex;

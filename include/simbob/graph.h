@@ -146,6 +146,16 @@ bool loadSceneFromText(const std::string& text, const std::string& name, Format 
 /// defaults and default components; otherwise only what the file set.
 std::string writeScene(const Scene& scene, Format format, bool fill_defaults);
 
+/// The global settings INI (GlobalSettings): what its keys say, as written in the file.
+struct GlobalSettings {
+  std::string log_file;          ///< LogFile
+  std::string extension_folder;  ///< ExtensionFolder (plug-ins)
+  std::string texture_folder;    ///< TextureFolder
+  bool document_ini = false;     ///< DocumentIni: <scene>.ini beside a scene overrides its cameras
+};
+/// Reads a global settings INI file. False with the errors (file:line) in diag.
+bool readGlobalSettings(const std::string& path, const Registry& reg, GlobalSettings* out, Diagnostics& diag);
+
 /// Read an INI file of one Struct type (global settings): the global section's keys.
 bool loadStructIni(const std::string& path, const Registry& reg, const std::string& struct_type, Scene* holder,
                    int* comp, Diagnostics& diag);

@@ -147,4 +147,16 @@ void lowerSettings(CompileContext& ctx, int comp) {
   }
 }
 
+bool readGlobalSettings(const std::string& path, const Registry& reg, GlobalSettings* out, Diagnostics& diag) {
+  Scene holder;
+  int comp = -1;
+  if (!loadStructIni(path, reg, "GlobalSettings", &holder, &comp, diag)) return false;
+  const Component& c = holder.at(comp);
+  out->log_file = c.get(kLogFileParam);
+  out->extension_folder = c.get(kExtensionFolderParam);
+  out->texture_folder = c.get(kTextureFolderParam);
+  out->document_ini = c.get(kDocumentIniParam);
+  return true;
+}
+
 }  // namespace simbob

@@ -17,11 +17,9 @@ namespace {
 constexpr double kMinTime = 1e-9, kMaxTime = 1e9;  // s: what the nanosecond clock holds with room
 
 // Compiles a loaded scene and adds `simbob check`'s warnings for the step the run will take.
-std::unique_ptr<Simulation> compiled(bool loaded, const Scene& scene, const SimulationOptions& opts,
-                                     Diagnostics& diag) {
+std::unique_ptr<Simulation> compiled(bool loaded, Scene& scene, const SimulationOptions& opts, Diagnostics& diag) {
   Model model;
-  if (!loaded || !applyOverrides(const_cast<Scene&>(scene), opts.overrides, diag) || !compileScene(scene, &model, diag))
-    return nullptr;
+  if (!loaded || !applyOverrides(scene, opts.overrides, diag) || !compileScene(scene, &model, diag)) return nullptr;
   lintModel(model, diag, opts.dt);
   return Simulation::fromModel(std::move(model), opts, diag);
 }

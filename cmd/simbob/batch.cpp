@@ -19,6 +19,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "batch.h"
 #include "cli.h"
 #include "commands.h"
 #include "workers.h"
@@ -32,57 +33,8 @@ namespace simbob::cli {
 
 namespace {
 
+using batch::Job;
 namespace fs = std::filesystem;
-
-struct Job {
-  std::string scene;
-  std::vector<std::string> args;  // extra `simbob run` arguments from the manifest
-  std::string out;
-  std::string log;
-  SourceLoc loc;  // manifest line, if any
-  // Results.
-  pid_t pid = -1;
-  std::string status = "not started";  // ok, failed, diverged, crashed, interrupted
-  int exit_code = -1;
-  double wall = 0;
-  std::chrono::steady_clock::time_point started;
-  std::string error;          // first error line of the worker
-  std::string golden_status;  // pass, mismatch, no-golden, unreadable ("" without --golden)
-  double max_pos = 0, max_rot = 0;
-  std::string divergence;
-};
-
-std::vector<std::string> splitArgs(const std::string& line, std::string* err) {
-  std::vector<std::string> out;
-  std::string cur;
-  bool in_quotes = false, have = false;
-  for (char c : line) {
-    if (c == '"') {
-      in_quotes = !in_quotes;
-      have = true;
-    } else if (!in_quotes && (c == ' ' || c == '\t' || c == '\r')) {
-      if (have) out.push_back(cur);
-      cur.clear();
-      have = false;
-    } else {
-      cur += c;
-      have = true;
-    }
-  }
-  if (in_quotes) *err = "unterminated quote";
-  if (have) out.push_back(cur);
-  return out;
-}
-
-std::vector<std::string> expandGlob(const std::string& pattern) {
-  glob_t g{};
-  std::vector<std::string> out;
-  if (glob(pattern.c_str(), 0, nullptr, &g) == 0)
-    for (size_t i = 0; i < g.gl_pathc; ++i) out.emplace_back(g.gl_pathv[i]);  // glob sorts
-  globfree(&g);
-  if (out.empty()) out.push_back(pattern);  // a plain path: let the worker report it if missing
-  return out;
-}
 
 std::string fixed(double v, int decimals) {
   char buf[64];
@@ -106,6 +58,8 @@ pid_t startWorker(const Job& j, const BatchArgs& a) {
   return spawnSelf(args, j.log);
 }
 
+void compareWithGolden(Job& j, const BatchArgs& a);
+
 void finish(Job& j, int wstatus, const BatchArgs& a) {
   j.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - j.started).count();
   const WorkerOutcome o = workerOutcome(wstatus);
@@ -113,8 +67,13 @@ void finish(Job& j, int wstatus, const BatchArgs& a) {
   j.exit_code = o.exit_code;
   j.error = o.error;
   if (o.exit_code < 0) return;
-  if (j.exit_code != kExitOk) j.error = firstErrorLine(j.log);
+  if (j.exit_code != kExitOk) j.error = workerError(j.out, j.log, j.since);
   if (a.golden.empty() || j.status != "ok") return;
+  compareWithGolden(j, a);
+}
+
+// Compares a worker's trajectory with the golden file of the same name (--golden DIR).
+void compareWithGolden(Job& j, const BatchArgs& a) {
   std::string golden = (fs::path(a.golden) / fs::path(j.out).filename()).string();
   if (!fs::exists(golden)) {
     j.golden_status = "no-golden";
@@ -152,198 +111,10 @@ void finish(Job& j, int wstatus, const BatchArgs& a) {
 }
 
 // What `simbob run` would refuse in a manifest line (its options after the batch-wide ones).
-std::string manifestLineProblem(const std::vector<std::string>& words, const BatchArgs& a) {
-  std::vector<std::string> args = {words[0], "--duration", formatNumber(a.duration), "--sample-interval",
-                                   formatNumber(a.sample_interval)};
-  if (a.dt > 0) {
-    args.emplace_back("--dt");
-    args.push_back(formatNumber(a.dt));
-  }
-  args.insert(args.end(), words.begin() + 1, words.end());
-  CLI::App app{"run"};
-  RunArgs ra;
-  Common common;
-  addRunOptions(&app, ra, common);
-  try {
-    std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them last first
-    app.parse(reversed);
-  } catch (const CLI::ParseError& e) {
-    return std::string("run options: ") + e.what();
-  }
-  if (app.count("--out") > 0 && ra.out.empty()) return "--out needs a file name, got \"\"";
-  return runArgsProblem(ra);
-}
-
-// An output of the batch must not be any input (a scene, the manifest, a golden file), nor
-// another output. Inputs are compared by device and inode, outputs by their resolved place.
-int checkBatchFiles(const std::vector<Job>& jobs, const BatchArgs& a, const Common& common) {
-  std::map<std::pair<dev_t, ino_t>, std::string> inputs;
-  auto addInput = [&](const std::string& what, const std::string& path) {
-    struct stat st {};
-    if (!path.empty() && ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode))
-      inputs.emplace(std::make_pair(st.st_dev, st.st_ino), what + " " + path);
-  };
-  addInput("the manifest", a.manifest);
-  addInput("--settings", common.settings);
-  for (const Job& j : jobs) {
-    addInput("the scene", j.scene);
-    if (!a.golden.empty()) addInput("the golden file", (fs::path(a.golden) / fs::path(j.out).filename()).string());
-  }
-  std::vector<NamedPath> outputs = {{"--report", a.report}, {"--log-file", g_log.path}};
-  for (const Job& j : jobs) {
-    outputs.push_back({"the trajectory", j.out});
-    outputs.push_back({"the worker log", j.log});
-    outputs.push_back({"the summary", fs::path(j.out).replace_extension(".json").string()});
-    if (!a.golden.empty())
-      outputs.push_back({"the comparison report", fs::path(j.out).replace_extension(".compare.txt").string()});
-  }
-  std::map<std::string, std::string> places;
-  for (const NamedPath& o : outputs) {
-    if (o.path.empty() || isStreamOutput(o.path)) continue;
-    struct stat st {};
-    if (::stat(o.path.c_str(), &st) == 0) {
-      auto it = inputs.find({st.st_dev, st.st_ino});
-      if (it != inputs.end()) {
-        g_log.error({ErrorKind::InvalidInput,
-                     {},
-                     o.what + " " + o.path + " is " + it->second + ": an output must not overwrite an input"});
-        return kExitUsage;
-      }
-    }
-    std::error_code ec;
-    std::string place = fs::weakly_canonical(fs::absolute(o.path), ec).string();
-    if (ec) place = o.path;
-    auto [it, fresh] = places.emplace(place, o.what + " " + o.path);
-    if (!fresh) {
-      g_log.error({ErrorKind::InvalidInput,
-                   {},
-                   o.what + " " + o.path + " and " + it->second +
-                       " are the same file: outputs of one command must not collide"});
-      return kExitUsage;
-    }
-  }
-  return 0;
-}
-
 bool jobFailed(const Job& j) { return j.status != "ok" || (!j.golden_status.empty() && j.golden_status != "pass"); }
 
-}  // namespace
-
-int cmdBatch(const BatchArgs& a, const Common& common) {
-  if (!checkTimeOption("--duration", a.duration) || (a.dt != 0 && !checkTimeOption("--dt", a.dt)) ||
-      !checkTimeOption("--sample-interval", a.sample_interval))
-    return kExitUsage;
-  std::vector<Job> jobs;
-  for (const auto& pattern : a.scenes)
-    for (const auto& path : expandGlob(pattern)) {
-      Job j;
-      j.scene = path;
-      jobs.push_back(std::move(j));
-    }
-  if (!a.manifest.empty()) {
-    std::ifstream in(a.manifest);
-    std::error_code dir_ec;
-    if (fs::is_directory(a.manifest, dir_ec)) {
-      g_log.error({ErrorKind::MissingInput, {a.manifest, 0}, "cannot read manifest: is a directory"});
-      return kExitNoInput;
-    }
-    if (!in) {
-      g_log.error(
-          {ErrorKind::MissingInput, {a.manifest, 0}, std::string("cannot read manifest: ") + std::strerror(errno)});
-      return kExitNoInput;
-    }
-    fs::path base = fs::path(a.manifest).parent_path();
-    std::string line;
-    int line_no = 0;
-    while (std::getline(in, line)) {
-      ++line_no;
-      size_t hash = line.find('#');
-      if (hash != std::string::npos) line.resize(hash);
-      std::string err;
-      std::vector<std::string> words = splitArgs(line, &err);
-      if (!err.empty()) {
-        g_log.error({ErrorKind::InvalidInput, {a.manifest, line_no}, err});
-        return kExitDataErr;
-      }
-      if (words.empty()) continue;
-      // Scenes in a manifest are relative to the manifest's folder.
-      fs::path scene = words[0];
-      if (scene.is_relative()) scene = base / scene;
-      Job j;
-      j.scene = scene.string();
-      j.args.assign(words.begin() + 1, words.end());
-      j.loc = {a.manifest, line_no};
-      // The worker would say only "Run with --help": check the line here and name it.
-      if (std::string problem = manifestLineProblem(words, a); !problem.empty()) {
-        g_log.error({ErrorKind::InvalidInput, j.loc, problem});
-        return kExitDataErr;
-      }
-      for (size_t i = 0; i + 1 < j.args.size(); ++i)
-        if (j.args[i] == "--out") {
-          fs::path out = j.args[i + 1];
-          if (out.is_relative()) out = base / out;
-          j.out = out.string();
-          j.args.erase(j.args.begin() + static_cast<long>(i), j.args.begin() + static_cast<long>(i) + 2);
-          break;
-        }
-      jobs.push_back(std::move(j));
-    }
-  }
-  if (jobs.empty()) {
-    g_log.error({ErrorKind::InvalidInput, {}, "no scenes given (name scene files, globs, or --manifest FILE)"});
-    return kExitUsage;
-  }
-  std::error_code ec;
-  fs::create_directories(a.out_dir, ec);
-  if (ec) {
-    g_log.error({ErrorKind::CannotCreate, {a.out_dir, 0}, "cannot create output folder: " + ec.message()});
-    return kExitCantCreate;
-  }
-  std::map<std::string, size_t> outs;
-  for (size_t i = 0; i < jobs.size(); ++i) {
-    Job& j = jobs[i];
-    if (j.out.empty()) j.out = (fs::path(a.out_dir) / fs::path(j.scene).stem()).string() + ".csv";
-    j.log = fs::path(j.out).replace_extension(".log").string();
-    auto [it, fresh] = outs.emplace(j.out, i);
-    if (!fresh) {
-      g_log.error({ErrorKind::InvalidInput, j.loc,
-                   "scenes " + jobs[it->second].scene + " and " + j.scene + " would both write " + j.out +
-                       "; give one of them --out"});
-      return kExitUsage;
-    }
-  }
-  if (int c = checkBatchFiles(jobs, a, common)) return c;
-
-  int workers = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
-  catchStopSignals();
-  auto t0 = std::chrono::steady_clock::now();
-  size_t done = 0;
-  runWorkerPool(
-      jobs.size(), workers,
-      [&](size_t i) {
-        Job& j = jobs[i];
-        j.started = std::chrono::steady_clock::now();
-        j.pid = startWorker(j, a);
-        if (j.pid < 0) {
-          j.status = "failed";
-          j.error = std::string("cannot fork: ") + std::strerror(errno);
-          ++done;
-        }
-        return j.pid;
-      },
-      [&](size_t i, int wstatus) {
-        Job& j = jobs[i];
-        ++done;
-        finish(j, wstatus, a);
-        std::string line = "[" + std::to_string(done) + "/" + std::to_string(jobs.size()) + "] " + j.status + "  " +
-                           j.scene + "  " + fixed(j.wall, 2) + " s";
-        if (!j.golden_status.empty()) line += "  golden: " + j.golden_status;
-        if (!j.error.empty()) line += "  -- " + j.error;
-        std::printf("%s\n", line.c_str());
-        std::fflush(stdout);
-      });
-  double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
+// The batch's table (or --json) on stdout, and --report FILE. 0, or the exit status (reported).
+int writeReport(const std::vector<Job>& jobs, const BatchArgs& a, int workers, double wall) {
   size_t failed = 0;
   for (const auto& j : jobs) failed += jobFailed(j) ? 1 : 0;
   nlohmann::ordered_json rep;
@@ -393,6 +164,53 @@ int cmdBatch(const BatchArgs& a, const Common& common) {
       return exitCodeFor(err.kind);
     }
   }
+  return 0;
+}
+
+}  // namespace
+
+int cmdBatch(const BatchArgs& a, const Common& common) {
+  if (!checkTimeOption("--duration", a.duration) || (a.dt != 0 && !checkTimeOption("--dt", a.dt)) ||
+      !checkTimeOption("--sample-interval", a.sample_interval))
+    return kExitUsage;
+  std::vector<Job> jobs;
+  if (int c = batch::readJobs(a, &jobs)) return c;
+  if (int c = batch::assignOutputs(a, common, &jobs)) return c;
+
+  int workers = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
+  catchStopSignals();
+  auto t0 = std::chrono::steady_clock::now();
+  size_t done = 0;
+  runWorkerPool(
+      jobs.size(), workers,
+      [&](size_t i) {
+        Job& j = jobs[i];
+        j.started = std::chrono::steady_clock::now();
+        j.since = fs::file_time_type::clock::now();
+        j.pid = startWorker(j, a);
+        if (j.pid < 0) {
+          j.status = "failed";
+          j.error = std::string("cannot fork: ") + std::strerror(errno);
+          ++done;
+        }
+        return j.pid;
+      },
+      [&](size_t i, int wstatus) {
+        Job& j = jobs[i];
+        ++done;
+        finish(j, wstatus, a);
+        std::string line = "[" + std::to_string(done) + "/" + std::to_string(jobs.size()) + "] " + j.status + "  " +
+                           j.scene + "  " + fixed(j.wall, 2) + " s";
+        if (!j.golden_status.empty()) line += "  golden: " + j.golden_status;
+        if (!j.error.empty()) line += "  -- " + j.error;
+        std::printf("%s\n", line.c_str());
+        std::fflush(stdout);
+      });
+  double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  size_t failed = 0;
+  for (const auto& j : jobs) failed += jobFailed(j) ? 1 : 0;
+  if (int c = writeReport(jobs, a, workers, wall)) return c;
   if (g_stop) return stopExitCode();
   return failed == 0 ? kExitOk : kExitResultWrong;
 }

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "simbob/run_outputs.h"
+
 namespace CLI {
 class App;
 }
@@ -70,6 +72,8 @@ void addCommon(CLI::App* app, Common& c);
 /// The files `simbob run` writes: --out, then (unless --out is a stream) the summary and the
 /// partial trajectory.
 std::vector<NamedPath> runOutputs(const RunArgs& a);
+/// The same as the paths a run opens (RunOutputs): --out, its summary, the run log and the video.
+RunOutputPaths runPaths(const RunArgs& a);
 /// What is wrong with run options beyond their syntax ("" if nothing): time ranges, --out.
 std::string runArgsProblem(const RunArgs& a);
 

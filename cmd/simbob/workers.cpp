@@ -1,6 +1,8 @@
 // Worker processes of `batch` and `sweep run` (workers.h).
 #include "workers.h"
 
+#include "simbob/run_outputs.h"
+
 #include <fcntl.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -11,6 +13,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <map>
 
 #include "cli.h"
@@ -77,6 +80,23 @@ std::string firstErrorLine(const std::string& log_path) {
     if (!line.empty()) last = line;
   }
   return last;
+}
+
+std::string workerError(const std::string& trajectory, const std::string& log, std::filesystem::file_time_type since) {
+  const RunOutputPaths paths = defaultOutputPaths(trajectory, false);
+  if (!paths.summary.empty()) {
+    const std::string partial = partialSummaryPath(paths.summary);
+    std::error_code ec;
+    const auto written = std::filesystem::last_write_time(partial, ec);
+    if (!ec && written >= since) {
+      std::ifstream in(partial);
+      const nlohmann::json summary = nlohmann::json::parse(in, nullptr, false);
+      if (summary.is_object() && summary.contains("error") && summary["error"].contains("text") &&
+          summary["error"]["text"].is_string())
+        return summary["error"]["text"].get<std::string>();
+    }
+  }
+  return firstErrorLine(log);
 }
 
 void runWorkerPool(size_t count, int jobs, const std::function<pid_t(size_t)>& start,

@@ -5,6 +5,7 @@
 
 #include <sys/types.h>
 
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
@@ -27,6 +28,11 @@ WorkerOutcome workerOutcome(int wstatus);
 
 /// The first "file:line: error: ..." line of a worker's log (its last line when there is none).
 std::string firstErrorLine(const std::string& log_path);
+
+/// Why a worker's run failed, in one line: the error its run summary records (`error.text` of
+/// the failed run's partial summary beside `trajectory`, written since `since`); for a run refused
+/// before it started, which writes no summary, the first error line of its log.
+std::string workerError(const std::string& trajectory, const std::string& log, std::filesystem::file_time_type since);
 
 /// Runs tasks 0 .. count-1 on at most `jobs` workers: start(i) spawns one (a pid, or -1 when it
 /// could not), finished(i, wait status) hears of its end. A stop signal (g_stop) is forwarded to

@@ -21,4 +21,8 @@ void lintModel(const Model& model, Diagnostics& diag, double dt = 0);
 /// (infinity when nothing in the scene limits it): what a diverged run recommends.
 double recommendedStep(const Model& model);
 
+/// A diverged run's error names its body ('KEY'); the checks of lintModel usually know why it
+/// diverged: appends "; likely cause: " and the first of their warnings about that body, if any.
+void explainDivergence(const Model& model, Error* error);
+
 }  // namespace simbob

@@ -70,6 +70,9 @@ struct Error {
 
   /// One line: "file:line: message" (or "file: message" when the line is unknown).
   std::string str() const;
+  /// The line simbob prints for it: "file:line: error: message" ("simbob: error: message" when
+  /// it has no file), so that editors and CI logs can jump to the place.
+  std::string errorLine() const;
 };
 
 /// Input text as it may appear inside a message: control characters and invalid UTF-8 as \xNN,

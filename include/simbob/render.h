@@ -126,4 +126,37 @@ class Recorder : public Party {
   bool failed_ = false;
 };
 
+/// `run --record DIR` and `--video FILE`: a renderer, its render thread, the frame sinks (PNG
+/// sequence, video, both through one encoding thread) and the Recorder party that feeds them.
+struct RecordingRequest {
+  RenderOptions render;
+  double fps = 30;
+  std::string record_dir;  ///< "" for no PNG sequence
+  std::string video;       ///< "" for no video (a file, or a stream written through)
+  std::string video_temp;  ///< where the encoder writes a file video ("" : straight to `video`)
+};
+
+class Recording {
+ public:
+  /// Checks and creates everything before the run: the folder (which must not already hold a
+  /// recording), the video's encoder (ErrorKind::Usage for an unknown extension or an odd size
+  /// for H.264) and the GL context. nullptr and *err on failure.
+  static std::unique_ptr<Recording> open(const Model& model, const RecordingRequest& request, SimTime min_step,
+                                         Error* err);
+  ~Recording();
+  Recording(const Recording&) = delete;
+  Recording& operator=(const Recording&) = delete;
+  /// The party to add to the run (it draws on the render thread while the physics steps on).
+  Recorder& recorder() { return *recorder_; }
+  /// "recording through BACKEND (GL_RENDERER), camera NAME", for a debug line.
+  std::string description() const;
+
+ private:
+  Recording() = default;
+  std::unique_ptr<Renderer> renderer_;
+  std::unique_ptr<FrameSink> sink_;
+  std::unique_ptr<FrameDrawer> drawer_;
+  std::unique_ptr<Recorder> recorder_;
+};
+
 }  // namespace simbob

@@ -436,4 +436,17 @@ double recommendedStep(const Model& model) {
   return l.recommendedStep();
 }
 
+void explainDivergence(const Model& model, Error* error) {
+  const size_t q = error->message.find('\'');
+  if (q == std::string::npos) return;
+  const std::string key = error->message.substr(q + 1, error->message.find('\'', q + 1) - q - 1);
+  Diagnostics lint;
+  lintModel(model, lint);
+  for (const auto& w : lint.warnings())
+    if (w.message.find("'" + key + "'") != std::string::npos) {
+      error->message += "; likely cause: " + w.message;
+      return;
+    }
+}
+
 }  // namespace simbob

@@ -101,4 +101,10 @@ std::string Error::str() const {
   return out;
 }
 
+std::string Error::errorLine() const {
+  std::string where = "simbob";
+  if (!loc.file.empty()) where = loc.line > 0 ? loc.file.str() + ":" + std::to_string(loc.line) : loc.file.str();
+  return where + ": error: " + message;
+}
+
 }  // namespace simbob

@@ -78,6 +78,13 @@ nlohmann::ordered_json runSummary(const Model& model, const RunResult& r, const 
 #endif
                                 {"fp_contract", "off"},
                                 {"cpu_features", cpuFeatures()}};
+  if (r.status != RunStatus::Completed) {
+    // Why it ended: what `simbob batch` and `sweep run` read from a worker's partial summary.
+    summary["error"] = {{"file", r.error.loc.file},
+                        {"line", r.error.loc.line},
+                        {"message", r.error.message},
+                        {"text", r.error.errorLine()}};
+  }
   return summary;
 }
 

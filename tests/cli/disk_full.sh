@@ -19,5 +19,14 @@ grep -q "^full.csv: error: write failed: File too large" err.txt || fail "cause 
 # Stopped early: 16 KiB of CSV is far less than 1000 s of simulation.
 t=$(sed -n 's/.*failed at t=\([0-9.]*\) s.*/\1/p' err.txt)
 python3 -c "import sys; sys.exit(0 if float('$t') < 100 else 1)" || fail "the run went on after the failure (t=$t)"
-[ -z "$(ls)" ] || [ "$(ls)" = "err.txt" ] || fail "files left behind: $(ls)"
+# What is left is the failed run's summary, whole (it fits under the limit), and nothing else.
+[ "$(ls | tr '\n' ' ')" = "err.txt full.partial.json " ] || fail "files left behind: $(ls)"
+/usr/bin/python3 - full.partial.json <<'EOF' || fail "partial summary: $(cat full.partial.json)"
+import json, sys
+s = json.load(open(sys.argv[1]))
+assert s["status"] == "failed", s["status"]
+assert s["error"]["file"] == "full.csv", s["error"]
+assert s["error"]["text"].startswith("full.csv: error: writing the trajectory failed at t="), s["error"]["text"]
+assert "partial_trajectory" not in s, s
+EOF
 echo PASS

@@ -70,6 +70,22 @@ mapfile -t j <<<"$vals"
 expect_eq "summary status" "${j[0]}" diverged
 expect_eq "summary samples" "${j[1]}" 1001
 expect_eq "summary partial_trajectory" "${j[2]}" slow.partial.csv
+check "the failed run keeps its summary beside the partial trajectory: slow.partial.json, with the error line"
+expect_no_file slow.json
+expect_file slow.partial.json
+vals=$(json_fields slow.partial.json status samples partial_trajectory)
+mapfile -t j <<<"$vals"
+expect_eq "partial summary status" "${j[0]}" diverged
+expect_eq "partial summary samples" "${j[1]}" 1001
+expect_eq "partial summary partial_trajectory" "${j[2]}" slow.partial.csv
+error_text=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["error"]["text"])' slow.partial.json)
+expect_eq "partial summary error line = the line on stderr" "$error_text" "$(grep ': error: ' "$LAST_ERR" | head -n 1)"
+
+check "batch reports a failed worker by the error line of its run summary"
+expect_status 1 "$SIMBOB" batch slow.xml --duration 20 --out-dir b
+error_text=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["error"]["text"])' b/slow.partial.json)
+grep -qF -- "diverged  slow.xml" "$LAST_OUT" || fail "batch line: $(cat "$LAST_OUT")"
+grep -qF -- " -- $error_text" "$LAST_OUT" || fail "batch line lacks the summary's error line: $(cat "$LAST_OUT")"
 
 check "a diverging run leaves an existing NAME.csv untouched and replaces an old partial"
 printf 'old trajectory\n' >fast.csv

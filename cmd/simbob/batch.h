@@ -1,0 +1,42 @@
+// simbob batch, shared between its files: a job is one scene run by one worker.
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <sys/types.h>
+
+#include "cli.h"
+#include "commands.h"
+
+namespace simbob::cli::batch {
+
+struct Job {
+  std::string scene;
+  std::vector<std::string> args;  // extra `simbob run` arguments from the manifest
+  std::string out;
+  std::string log;
+  SourceLoc loc;  // manifest line, if any
+  // Results.
+  pid_t pid = -1;
+  std::string status = "not started";  // ok, failed, diverged, crashed, interrupted
+  int exit_code = -1;
+  double wall = 0;
+  std::chrono::steady_clock::time_point started;
+  std::filesystem::file_time_type since;  ///< when it started, as file times go (workerError)
+  std::string error;                      // first error line of the worker
+  std::string golden_status;              // pass, mismatch, no-golden, unreadable ("" without --golden)
+  double max_pos = 0, max_rot = 0;
+  std::string divergence;
+};
+
+/// The jobs of the scenes (globs expanded, sorted) and of --manifest FILE. 0, or the exit status
+/// (reported): a manifest line `simbob run` would refuse is named here.
+int readJobs(const BatchArgs& a, std::vector<Job>* jobs);
+/// Each job's trajectory (OUT_DIR/STEM.csv unless its manifest line gives --out) and worker log,
+/// checked: no two jobs write one file, and no output is an input. 0, or the exit status.
+int assignOutputs(const BatchArgs& a, const Common& common, std::vector<Job>* jobs);
+
+}  // namespace simbob::cli::batch

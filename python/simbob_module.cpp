@@ -715,7 +715,7 @@ angular wx wy wz (rad/s), both in the global frame; rows in body_keys order.)");
         return a;
       },
       R"(Joint positions, numpy float64 (J,), in joint_keys order: a hinge's angle (rad, right-hand
-rule about its axis, wrapped into [-pi, pi]), a slider's travel (m); 0 at the scene's start
+rule about its axis; the total angle, unwrapped across turns), a slider's travel (m); 0 at the scene's start
 pose; always 0 for ball-socket and fixed joints.)");
   cls.def(
       "joint_velocities",

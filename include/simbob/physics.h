@@ -25,8 +25,10 @@ struct BodyState {
 /// (JointDef::body1; -1 is the static world), measured about (hinge) or along (slider) the joint
 /// axis (JointDef::axis, global at the start; it moves with the parent). Zero at the pose the
 /// scene starts in.
-/// - Hinge: rad and rad/s, positive by the right-hand rule about the axis; the position is
-///   wrapped into [-pi, pi] (a wheel turning for ever does not grow without bound).
+/// - Hinge: rad and rad/s, positive by the right-hand rule about the axis; the position is the
+///   total angle, unwrapped (ten turns read 20 pi, so wheel odometry works across turns): each
+///   step adds the change since the step before, so a hinge must not turn half a turn (pi) or
+///   more in one step.
 /// - Slider: m and m/s, positive along the axis.
 /// - BallSocket, Fixed: always 0, 0 (no single axis).
 struct JointState {

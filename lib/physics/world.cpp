@@ -147,6 +147,7 @@ void World::step(double h) {
   }
   dJointGroupEmpty(im.contactGroup);
   im.time_ns += std::llround(h * 1e9);  // the run's steps are whole nanoseconds
+  updateJointTotals(im);
   if (!im.sensors.empty()) updateSensors(im, h);
 }
 

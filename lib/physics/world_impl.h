@@ -42,7 +42,9 @@ struct GeomInfo {
 /// What joint state needs beyond the ODE joint: its kind and ODE's reading at the start pose.
 struct JointInfo {
   JointKind kind;
-  double zero;  ///< ODE's position (rad or m) at creation, subtracted so that the start pose reads 0
+  double zero;         ///< ODE's position (rad or m) at creation, subtracted so that the start pose reads 0
+  double total = 0.0;  ///< Hinge: the angle unwrapped (rad): the sum of the per-step changes
+  double last = 0.0;   ///< Hinge: the wrapped angle (rad) when total was last updated
 };
 
 /// A sensor: its definition, its reading and what computing the next one needs (World::sensorReading).
@@ -131,8 +133,14 @@ void createGeoms(WorldImpl& im, const Model& model);
 // joints.cpp
 /// Creates one ODE joint per Model joint, in Model order, and records its zero position.
 void createJoints(WorldImpl& im, const Model& model);
-/// Joint i's state in simbob's convention (see World::joint).
+/// Joint i's state in simbob's convention (see World::joint): a hinge's total angle, unwrapped.
 JointState jointState(const WorldImpl& im, int i);
+/// The same with a hinge's angle wrapped into [-pi, pi], as ODE reads it (the actuators' input:
+/// servos and stops work on it, as they always have).
+JointState wrappedJointState(const WorldImpl& im, int i);
+/// Adds each hinge's change of angle over the last step to its total (after every step; a hinge
+/// must turn less than half a turn per step).
+void updateJointTotals(WorldImpl& im);
 /// Distance (m) between where joint i's anchor is on its first and on its second body; 0 for
 /// joints without a shared anchor (slider, fixed).
 double jointSeparation(const WorldImpl& im, int i);

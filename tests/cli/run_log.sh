@@ -34,7 +34,7 @@ assert len(times) == 61, len(times)
 worst = max(abs(cmd[t] - math.sin(2 * math.pi * V * float(t) / 60)) for t in times)
 assert worst < 1e-9, worst
 # The flywheel turns about +Y from its start pose: angle = 2 atan2(qrel_y, qrel_w) of
-# q(t) * conj(q(0)), wrapped into [-pi, pi] as the joint's position is. Both come from the
+# q(t) * conj(q(0)), compared modulo 2 pi (the joint's position is the total angle). Both come from the
 # same body orientation, so they agree to rounding (1e-9).
 def mul(a, b):
     aw, ax, ay, az = a; bw, bx, by, bz = b

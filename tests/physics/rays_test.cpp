@@ -280,3 +280,23 @@ TEST_CASE("rays: the trajectory is bit-identical with and without range sensors 
   REQUIRE(a.size() == b.size());
   CHECK(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
 }
+
+TEST_CASE("rays: a ray that starts inside another body's geom reads where it leaves it", "[physics][rays]") {
+  // docs/sensors.md: every shape is seen from both sides. The carrier has no geom here; a second
+  // body's geom encloses the sensor's origin and reaches to z = -0.3 (capsule: -0.4) along the ray.
+  for (GeomShape shape : {GeomShape::Box, GeomShape::Sphere, GeomShape::Cylinder, GeomShape::Capsule}) {
+    Model m = baseModel(kDt);
+    m.settings.gravity = {0, 0, 0};
+    addBody(m, {0, 0, 0}, 1.0, sphereInertia(1.0, 0.1));
+    const int b = addBody(m, {0, 0, 0}, 1.0, sphereInertia(1.0, 0.1));
+    GeomDef g;
+    g.shape = shape;
+    g.body = b;
+    g.size = shape == GeomShape::Box ? Vec3{0.6, 0.6, 0.6} : Vec3{0.3, 0.2, 0};
+    m.geoms.push_back(g);
+    addRay(m, SensorKind::Range, 0, yaw(0));
+    const double exit = shape == GeomShape::Capsule ? 0.4 : shape == GeomShape::Cylinder ? 0.1 : 0.3;
+    INFO("shape " << static_cast<int>(shape));
+    CHECK(std::fabs(reading(m) - exit) < 1e-9);
+  }
+}

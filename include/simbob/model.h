@@ -124,6 +124,18 @@ struct SensorDef {
   int joint = -1;                ///< Encoder: index into Model::joints (a hinge)
 };
 
+/// Scanner: the angle (rad) of ray k (0 <= k < rays) about the sensor's local +Y, from its -Z,
+/// positive towards -X (counterclockwise seen from above, to the left of an upright sensor):
+/// -FOV/2 + k FOV/(rays-1) (both edges; 0 for one ray), or -pi + k 2pi/rays for a full circle.
+/// The ray's direction in the sensor frame is (-sin a, 0, -cos a).
+inline double scannerRayAngle(const SensorDef& s, int k) {
+  const double pi = 3.14159265358979323846;
+  if (s.field_of_view >= 360) return -pi + k * (2 * pi / s.rays);
+  if (s.rays <= 1) return 0.0;
+  const double fov = s.field_of_view * pi / 180;
+  return -fov / 2 + k * (fov / (s.rays - 1));
+}
+
 /// The names of the quantities of a sensor's reading, in reading order (fixed per sensor).
 inline std::vector<std::string> sensorQuantities(const SensorDef& s) {
   switch (s.kind) {

@@ -73,14 +73,8 @@ void readRays(WorldImpl& im, SensorState& s) {
     s.reading[0] = rayReading(s, castRay(im, own, f.p, rotate(f.q, Vec3{0, 0, -1}), d.max_range));
     return;
   }
-  const double fov = d.field_of_view * kPi / 180;
-  const bool circle = d.field_of_view >= 360;
   for (int k = 0; k < d.rays; ++k) {
-    double a = 0;
-    if (circle)
-      a = -kPi + k * (2 * kPi / d.rays);
-    else if (d.rays > 1)
-      a = -fov / 2 + k * (fov / (d.rays - 1));
+    const double a = scannerRayAngle(d, k);
     const Vec3 local{-std::sin(a), 0, -std::cos(a)};
     s.reading[static_cast<size_t>(k)] = rayReading(s, castRay(im, own, f.p, rotate(f.q, local), d.max_range));
   }

@@ -118,6 +118,25 @@ TEST_CASE("rays: its own body and the bodies joined to it are ignored, other bod
   }
 }
 
+TEST_CASE("rays: proximity sensors' volumes are not seen", "[physics][rays]") {
+  Model m = carrier();
+  addWall(m, 2.0);
+  // A proximity sensor's box on a second body, across the ray at z = -1.
+  const int b = addBody(m, {0, 0, -1}, 1.0, sphereInertia(1.0, 0.1));
+  GeomDef g = box(b, {0, 0, 0}, {0.5, 0.5, 0.5});
+  g.sensor = true;
+  m.geoms.push_back(g);
+  SensorDef p;
+  p.key = "bump";
+  p.body = b;
+  p.geoms = {static_cast<int>(m.geoms.size()) - 1};
+  m.sensors.push_back(p);
+  addRay(m, SensorKind::Range, 0, yaw(0));
+  CHECK(std::fabs(reading(m, 1) - 2.0) < 1e-9);
+  m.geoms.back().sensor = false;  // the same box as a plain geom is seen: its face at z = -0.75
+  CHECK(std::fabs(reading(m, 1) - 0.75) < 1e-9);
+}
+
 TEST_CASE("rays: MinRange and Resolution", "[physics][rays]") {
   Model m = carrier();
   addWall(m, 1.23456);

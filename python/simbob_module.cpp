@@ -526,6 +526,15 @@ int actuatorIndex(PySimulation& s, const py::object& key) {
   raiseUsage("set_command: an actuator is a key (str) or an index (int), got " + py::repr(key).cast<std::string>());
 }
 
+int sensorIndex(PySimulation& s, const std::string& key) {
+  const int i = s.sim().sensor(key);
+  if (i >= 0) return i;
+  std::string list;
+  for (const auto& d : s.sim().model().sensors) list += (list.empty() ? "" : ", ") + d.key;
+  raiseUsage("no sensor '" + simbob::quoteInput(key) + "' in " + s.scene() +
+             (list.empty() ? " (it has none)" : " (its sensors: " + list + ")"));
+}
+
 }  // namespace
 
 PYBIND11_MODULE(simbob, m) {
@@ -657,7 +666,7 @@ keep the GIL. An exception from fn stops the run; step() re-raises it.)");
       "Fully qualified keys of the actuators (drives, servos, velocity drives), in the order of commands().");
   cls.def_property_readonly(
       "sensor_keys", [](PySimulation& s) { return keysOf(s.sim().model().sensors); },
-      "Fully qualified keys of the proximity sensors, in the order of touching().");
+      "Fully qualified keys of the sensors (every kind), in the order of touching().");
 
   cls.def(
       "poses",
@@ -706,7 +715,7 @@ angular wx wy wz (rad/s), both in the global frame; rows in body_keys order.)");
         return a;
       },
       R"(Joint positions, numpy float64 (J,), in joint_keys order: a hinge's angle (rad, right-hand
-rule about its axis, wrapped into [-pi, pi]), a slider's travel (m); 0 at the scene's start
+rule about its axis; the total angle, unwrapped across turns), a slider's travel (m); 0 at the scene's start
 pose; always 0 for ball-socket and fixed joints.)");
   cls.def(
       "joint_velocities",
@@ -729,8 +738,30 @@ pose; always 0 for ball-socket and fixed joints.)");
         for (int i = 0; i < w.sensorCount(); ++i) r(i) = w.touching(i);
         return a;
       },
-      R"(Proximity sensors, numpy bool (S,) in sensor_keys order: whether the sensor touches another
-body (static geoms included, its own body and the bodies jointed to it not) now.)");
+      R"(Sensors, numpy bool (S,) in sensor_keys order: whether the proximity sensor touches another
+body (static geoms included, its own body and the bodies jointed to it not) now; False for
+sensors of other kinds (read them with sensor()).)");
+  cls.def(
+      "sensor",
+      [](PySimulation& s, const std::string& key) {
+        ReadGuard g(s);
+        const std::vector<double>& v = s.sim().world().sensorReading(sensorIndex(s, key));
+        py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
+        auto r = a.mutable_unchecked<1>();
+        for (size_t i = 0; i < v.size(); ++i) r(static_cast<py::ssize_t>(i)) = v[i];
+        return a;
+      },
+      py::arg("key"),
+      R"(The reading of the sensor with this key now, numpy float64 (N,): its quantities in the
+order of sensor_quantities(key) (docs/sensors.md): touching (0 or 1); distance (m); range0..
+(m); ax ay az (m/s^2) gx gy gz (rad/s); ticks. Raises simbob.UsageError for an unknown key.)");
+  cls.def(
+      "sensor_quantities",
+      [](PySimulation& s, const std::string& key) {
+        ReadGuard g(s);
+        return s.sim().world().sensorQuantities(sensorIndex(s, key));
+      },
+      py::arg("key"), "Names of the quantities of sensor(key), in order (list of str).");
   cls.def(
       "commands",
       [](PySimulation& s) {

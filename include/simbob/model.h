@@ -3,6 +3,7 @@
 // layer (lib/physics) is the only consumer that talks to ODE. Nothing here includes ODE.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -86,14 +87,75 @@ struct ActuatorDef {
   double smooth = 1.0;                                        ///< Servo: s, time constant of the final approach
 };
 
-/// A proximity sensor (guide 6.11.4, RCContactSensor): its geoms (GeomDef::sensor) report whether
-/// they touch another body and never push (no contact joints). See World::touching.
+/// What a sensor measures; see SensorDef and docs/sensors.md for each kind's reading.
+enum class SensorKind : uint8_t {
+  Proximity,  ///< RCProximitySensor: `touching` (0 or 1)
+  Range,      ///< RCRangeSensor: `distance` (m) along one ray
+  Scanner,    ///< RCLaserScanner: `range0` .. `range<Rays-1>` (m)
+  Imu,        ///< RCImuSensor: `ax ay az` (m/s^2, specific force) `gx gy gz` (rad/s), sensor frame
+  Encoder,    ///< RCEncoder: `ticks` on a hinge
+};
+
+/// A sensor (guide 6.11.4 and simbob's own sensors). Every sensor has a reading: a fixed-length
+/// vector of doubles whose quantities sensorQuantities() names (World::sensorReading).
+/// - Proximity (RCContactSensor): its geoms (GeomDef::sensor) report whether they touch another
+///   body and never push (no contact joints). See World::touching.
+/// - Range: one ray from the sensor's origin along its local -Z (the way cameras look).
+/// - Scanner: `rays` rays in the sensor's local X-Z plane, see docs/sensors.md for the order.
+/// - Imu: specific force and angular velocity in the sensor frame (Y up when upright).
+/// - Encoder: integer ticks of the total (unwrapped) angle of a hinge.
 struct SensorDef {
   std::string key;  ///< fully qualified key of the periphery
   SourceLoc loc;
-  int body = -1;           ///< index into Model::bodies it is attached to; -1 = static (fixed in the world)
-  std::vector<int> geoms;  ///< indices into Model::geoms, each with sensor = true
+  SensorKind kind = SensorKind::Proximity;
+  int body = -1;            ///< index into Model::bodies it is attached to; -1 = static (fixed in the world)
+  std::vector<int> geoms;   ///< Proximity: indices into Model::geoms, each with sensor = true
+  Transform pose;           ///< Range, Scanner, Imu: sensor frame relative to the body's frame (global if body == -1)
+  double period = 0.0;      ///< s; > 0: the reading updates only at the grid instants at or after multiples of it
+  double min_range = 0.0;   ///< m (Range, Scanner): hits closer than this read min_range
+  double max_range = 5.0;   ///< m (Range, Scanner): the reading when nothing is hit
+  double noise = 0.0;       ///< standard deviation: m (Range, Scanner), m/s^2 (Imu accelerometer)
+  double resolution = 0.0;  ///< Range, Scanner: quantisation step (m, 0 = none); Encoder: ticks per turn
+  int rays = 1;             ///< Scanner: number of rays (>= 1)
+  double field_of_view = 180.0;  ///< Scanner: degrees, (0, 360]
+  double gyro_noise = 0.0;       ///< Imu: standard deviation of the gyro (rad/s)
+  Vec3 accel_bias{0, 0, 0};      ///< Imu: constant accelerometer bias (m/s^2, sensor frame)
+  Vec3 gyro_bias{0, 0, 0};       ///< Imu: constant gyro bias (rad/s, sensor frame)
+  int joint = -1;                ///< Encoder: index into Model::joints (a hinge)
 };
+
+/// Scanner: the angle (rad) of ray k (0 <= k < rays) about the sensor's local +Y, from its -Z,
+/// positive towards -X (counterclockwise seen from above, to the left of an upright sensor):
+/// -FOV/2 + k FOV/(rays-1) (both edges; 0 for one ray), or -pi + k 2pi/rays for a full circle.
+/// The ray's direction in the sensor frame is (-sin a, 0, -cos a).
+inline double scannerRayAngle(const SensorDef& s, int k) {
+  const double pi = 3.14159265358979323846;
+  if (s.field_of_view >= 360) return -pi + k * (2 * pi / s.rays);
+  if (s.rays <= 1) return 0.0;
+  const double fov = s.field_of_view * pi / 180;
+  return -fov / 2 + k * (fov / (s.rays - 1));
+}
+
+/// The names of the quantities of a sensor's reading, in reading order (fixed per sensor).
+inline std::vector<std::string> sensorQuantities(const SensorDef& s) {
+  switch (s.kind) {
+    case SensorKind::Proximity:
+      return {"touching"};
+    case SensorKind::Range:
+      return {"distance"};
+    case SensorKind::Scanner: {
+      std::vector<std::string> q;
+      q.reserve(static_cast<size_t>(std::max(0, s.rays)));
+      for (int k = 0; k < s.rays; ++k) q.push_back("range" + std::to_string(k));
+      return q;
+    }
+    case SensorKind::Imu:
+      return {"ax", "ay", "az", "gx", "gy", "gz"};
+    case SensorKind::Encoder:
+      return {"ticks"};
+  }
+  return {};
+}
 
 class Party;
 struct ControllerDef;

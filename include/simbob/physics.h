@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "simbob/model.h"
 
@@ -24,8 +25,10 @@ struct BodyState {
 /// (JointDef::body1; -1 is the static world), measured about (hinge) or along (slider) the joint
 /// axis (JointDef::axis, global at the start; it moves with the parent). Zero at the pose the
 /// scene starts in.
-/// - Hinge: rad and rad/s, positive by the right-hand rule about the axis; the position is
-///   wrapped into [-pi, pi] (a wheel turning for ever does not grow without bound).
+/// - Hinge: rad and rad/s, positive by the right-hand rule about the axis; the position is the
+///   total angle, unwrapped (ten turns read 20 pi, so wheel odometry works across turns): each
+///   step adds the change since the step before, so a hinge must not turn half a turn (pi) or
+///   more in one step.
 /// - Slider: m and m/s, positive along the axis.
 /// - BallSocket, Fixed: always 0, 0 (no single axis).
 struct JointState {
@@ -92,14 +95,25 @@ class World {
   /// +-MaxVelocity); *first gets the first of them as it was asked (if any).
   uint64_t clampedCommands(int actuator, double* first) const;
 
-  /// Proximity sensors, in Model::sensors order.
+  /// Sensors of every kind, in Model::sensors order.
   int sensorCount() const;
   /// Whether sensor i (0 <= i < sensorCount()) touches another body now: one of its geoms
   /// overlaps (or meets) a geom of a body other than the one it is attached to and the bodies
   /// joined to that one by a joint, static geoms (ground, walls) included; other sensors are
   /// not seen. Computed from the poses the world is in -- when it is created and after every
   /// step -- so a controller granted at t reads the state at t. A sensor never pushes anything.
+  /// False for sensors other than proximity sensors.
   bool touching(int sensor) const;
+  /// Sensor i's reading: a fixed number of values named by sensorQuantities(i) (docs/sensors.md):
+  /// touching (0 or 1); distance (m); range0..rangeN-1 (m); ax ay az (m/s^2) gx gy gz (rad/s);
+  /// ticks. Computed on the step grid -- at creation and after each step, for a sensor with a
+  /// Period only at the first step boundary at or after each multiple of it (held in between) --
+  /// so the value at an instant does not depend on who asks or how often. Noise is drawn when
+  /// the reading is computed, from the sensor's own generator (run seed and sensor key).
+  /// Out of range: an empty vector (and misuse()).
+  const std::vector<double>& sensorReading(int sensor) const;
+  /// Names of sensor i's quantities, in reading order (sensorQuantities of its SensorDef).
+  const std::vector<std::string>& sensorQuantities(int sensor) const;
 
   /// Index of the first body whose state is non-finite or beyond `limit` (m or m/s, rad/s),
   /// or -1 when all are fine.

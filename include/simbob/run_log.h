@@ -19,7 +19,7 @@ inline constexpr const char* kRunLogHeader = "time,component,quantity,value";
 /// What a run log records.
 struct RunLogWhat {
   bool joints = false;    ///< every hinge and slider joint: pos, vel (World::joint)
-  bool sensors = false;   ///< every proximity sensor: touching (0 or 1)
+  bool sensors = false;   ///< every sensor: each quantity of its reading (World::sensorReading)
   bool commands = false;  ///< every actuator: command (World::command)
 };
 
@@ -53,6 +53,7 @@ class RunLogParty : public Party {
 
   RunLogWhat what_;
   std::vector<std::string> joint_keys_, sensor_keys_, actuator_keys_;  // CSV-encoded
+  std::vector<std::vector<std::string>> sensor_quantities_;            // per sensor (sensorQuantities)
   std::vector<int> joints_;                                            // hinges and sliders
   TrajectorySampler timing_;
   OutputFile* out_;

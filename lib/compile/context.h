@@ -192,6 +192,16 @@ void lowerJoint(CompileContext& ctx, int ji, const Built& parent, const Link* po
 bool jointKindOf(const CompileContext& ctx, const Component& joint, JointKind* kind);
 /// peripheries.cpp: a periphery in a construction's ChildList (after its joints).
 void lowerPeriphery(CompileContext& ctx, const Component& c, const Built& parent);
+/// range_sensors.cpp, imu_sensors.cpp, encoders.cpp: sensors of a construction whose root is
+/// `parent` (lowerPeriphery dispatches to them).
+void lowerRangeSensor(CompileContext& ctx, const Component& c, const Built& parent);
+void lowerImuSensor(CompileContext& ctx, const Component& c, const Built& parent);
+void lowerEncoder(CompileContext& ctx, const Component& c, const Built& parent);
+/// peripheries.cpp: the pose of a sensor (its Pose link, as RCProximitySensor's) relative to the
+/// frame of the body it is attached to (global for a static body). False after an error.
+bool lowerSensorPose(CompileContext& ctx, const Component& c, const Link& pose, const Built& parent, Transform* out);
+/// peripheries.cpp: a sensor's Period (s; 0 = every step), checked; false after an error.
+bool checkSensorPeriod(CompileContext& ctx, const Component& c, const Slot& slot, double period);
 /// peripheries.cpp: the position limits (m or rad; infinite: none) of a drive or servo.
 bool peripheryLimits(const Component& c, double* lo, double* hi);
 /// controllers.cpp: a controller in an RCRobot's ControllerList.

@@ -18,6 +18,9 @@ bool registerBuiltins(Registry& r) {
   registerJoints(r);
   registerGlobals(r);
   registerPeripheries(r);
+  registerRangeSensors(r);
+  registerImuSensors(r);
+  registerEncoders(r);
   registerControllers(r);
   registerCameras(r);
   return r.problems().empty();

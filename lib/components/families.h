@@ -21,9 +21,27 @@ void registerPoses(Registry& r);
 void registerMotions(Registry& r);
 void registerInertias(Registry& r);
 void registerPeripheries(Registry& r);
+void registerRangeSensors(Registry& r);
+void registerImuSensors(Registry& r);
+void registerEncoders(Registry& r);
 void registerControllers(Registry& r);
 void registerCameras(Registry& r);
 void registerSettings(Registry& r);
+
+/// The kinds of the Periphery family, whose types live in several files: peripheries.cpp (drives,
+/// servos, the proximity sensor, the socket communicator), range_sensors.cpp, imu_sensors.cpp,
+/// encoders.cpp. peripheries.cpp dispatches on it (lowerPeriphery).
+enum class PeripheryKind {
+  GenericDrive,
+  GenericServo,
+  VelControlledDrive,
+  ProximitySensor,
+  LocalSocketCommunicator,
+  RangeSensor,
+  LaserScanner,
+  ImuSensor,
+  Encoder,
+};
 
 // Parameter names read outside their family file: the loader reads the scene root and the
 // File of imports, the CLI reads the global settings (all in settings.cpp but File).

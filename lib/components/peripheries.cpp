@@ -1,6 +1,7 @@
 // PeripheryComponents (guide 6.11): drives, servos and sensors on the joints of a construction,
 // and the socket communicator. Each type names the interfaces it offers to controllers
-// (guide 6.12): RCDriver, RCPosControl, RCVelControl, RCContactSensor.
+// (guide 6.12): RCDriver, RCPosControl, RCVelControl, RCContactSensor. simbob's own sensors
+// (range, scanner, IMU, encoder) are periphery types in files of their own (families.h).
 // Drives and servos lower to Model::actuators (lib/physics/actuators.cpp makes them act); the
 // proximity sensor to Model::sensors and sensor geoms (lib/physics/sensors.cpp); the socket
 // communicator to Model::sockets (lib/robot/socket_peer.cpp talks to its peer).
@@ -14,8 +15,6 @@
 namespace simbob {
 
 namespace {
-
-enum class PeripheryKind { GenericDrive, GenericServo, VelControlledDrive, ProximitySensor, LocalSocketCommunicator };
 
 constexpr LinkParam kJoint{"Joint"};
 constexpr ValueParam<double> kMaxPower{"MaxPower"};
@@ -120,6 +119,7 @@ void lowerSensor(CompileContext& ctx, const Component& c, const Built& parent) {
   SensorDef s;
   s.key = key;
   s.loc = c.loc;
+  s.kind = SensorKind::Proximity;
   s.body = parent.index;
   const size_t first = ctx.model.geoms.size();
   static const Link kNoModel;
@@ -146,6 +146,20 @@ void lowerSensor(CompileContext& ctx, const Component& c, const Built& parent) {
 }
 
 }  // namespace
+
+bool lowerSensorPose(CompileContext& ctx, const Component& c, const Link& pose, const Built& parent, Transform* out) {
+  Transform global;
+  if (!lowerPose(ctx, pose, c, &parent.frame, &global)) return false;
+  *out = parent.index >= 0 ? compose(inverse(parent.frame), global) : global;
+  return true;
+}
+
+bool checkSensorPeriod(CompileContext& ctx, const Component& c, const Slot& slot, double period) {
+  if (period == 0 || (period >= 1e-9 && period <= 1e9)) return true;
+  ctx.errorAt(slot, c,
+              "parameter 'Period' must be 0 (every step) or between 1e-9 and 1e9 s, got " + formatNumber(period));
+  return false;
+}
 
 void registerPeripheries(Registry& r) {
   const ParamSpec joint = componentParam(kJoint, {Family::Joint}, "", "hinge or slider joint (Ref)");
@@ -210,6 +224,10 @@ bool peripheryLimits(const Component& c, double* lo, double* hi) {
       return true;
     case PeripheryKind::ProximitySensor:
     case PeripheryKind::LocalSocketCommunicator:
+    case PeripheryKind::RangeSensor:
+    case PeripheryKind::LaserScanner:
+    case PeripheryKind::ImuSensor:
+    case PeripheryKind::Encoder:
       return false;
   }
   return false;
@@ -228,6 +246,16 @@ void lowerPeriphery(CompileContext& ctx, const Component& c, const Built& parent
       break;
     case PeripheryKind::ProximitySensor:
       lowerSensor(ctx, c, parent);
+      break;
+    case PeripheryKind::RangeSensor:
+    case PeripheryKind::LaserScanner:
+      lowerRangeSensor(ctx, c, parent);
+      break;
+    case PeripheryKind::ImuSensor:
+      lowerImuSensor(ctx, c, parent);
+      break;
+    case PeripheryKind::Encoder:
+      lowerEncoder(ctx, c, parent);
       break;
     case PeripheryKind::LocalSocketCommunicator: {
       if (c.get(kPort) > kMaxPort) {

@@ -36,7 +36,7 @@ void act(WorldImpl& im, size_t i) {
   const size_t ji = static_cast<size_t>(d.joint);
   dJointID j = im.joints[ji];
   const JointKind kind = im.jointInfo[ji].kind;
-  const JointState s = jointState(im, d.joint);
+  const JointState s = wrappedJointState(im, d.joint);  // as ODE's stops see it, in [-pi, pi]
   switch (d.kind) {
     case ActuatorDef::Drive: {
       // Pushing along the motion fades with speed; braking (against it) never does.

@@ -104,7 +104,7 @@ double jointSeparation(const WorldImpl& im, int i) {
   return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
 }
 
-JointState jointState(const WorldImpl& im, int i) {
+JointState wrappedJointState(const WorldImpl& im, int i) {
   dJointID j = im.joints[static_cast<size_t>(i)];
   const JointInfo& info = im.jointInfo[static_cast<size_t>(i)];
   // ODE measures body 1 (parent) relative to body 2 (child), and handles a null body by
@@ -118,6 +118,24 @@ JointState jointState(const WorldImpl& im, int i) {
     if (s.position < -kPi) s.position += 2 * kPi;
   }
   return s;
+}
+
+JointState jointState(const WorldImpl& im, int i) {
+  JointState s = wrappedJointState(im, i);
+  const JointInfo& info = im.jointInfo[static_cast<size_t>(i)];
+  if (info.kind == JointKind::Hinge) s.position = info.total;
+  return s;
+}
+
+void updateJointTotals(WorldImpl& im) {
+  for (size_t i = 0; i < im.joints.size(); ++i) {
+    JointInfo& info = im.jointInfo[i];
+    if (info.kind != JointKind::Hinge) continue;
+    const double now = wrappedJointState(im, static_cast<int>(i)).position;
+    // The change over one step, taken the short way round: exact while |change| < pi.
+    info.total += std::remainder(now - info.last, 2 * kPi);
+    info.last = now;
+  }
 }
 
 }  // namespace simbob

@@ -1,7 +1,15 @@
-// Proximity sensors (guide 6.11.4): geoms that only detect. Their geoms sit in a space of their
-// own, so they never reach the contact callback and the collision space reports its pairs in the
-// same order as without them; after every step each sensor geom is collided with the collision
-// space, and a sensor touches when one of its geoms meets a geom of another body.
+// Sensors: every sensor's reading on the fixed step grid (World::sensorReading), and the
+// proximity sensors (guide 6.11.4) and encoders themselves. Range sensors and scanners are in
+// rays.cpp, IMUs in imu.cpp.
+//
+// Proximity sensors are geoms that only detect. Their geoms sit in a space of their own, so they
+// never reach the contact callback and the collision space reports its pairs in the same order as
+// without them; after every step each sensor geom is collided with the collision space, and a
+// sensor touches when one of its geoms meets a geom of another body.
+#include <algorithm>
+#include <cmath>
+
+#include "simbob/transform.h"
 #include "world_impl.h"
 
 namespace simbob {
@@ -27,28 +35,63 @@ void probePair(void* data, dGeomID a, dGeomID b) {
   if (dCollide(p.sensor, other, 1, &c, sizeof(dContactGeom)) > 0) p.touching = true;
 }
 
+void readProximity(WorldImpl& im, SensorState& s) {
+  s.touching = false;
+  for (dGeomID g : s.geoms) {
+    Probe p{g};
+    dSpaceCollide2(g, reinterpret_cast<dGeomID>(im.space), &p, &probePair);
+    if (p.touching) {
+      s.touching = true;
+      break;
+    }
+  }
+  s.reading[0] = s.touching ? 1.0 : 0.0;
+}
+
+void readEncoder(const WorldImpl& im, SensorState& s) {
+  const double turns = jointState(im, s.def.joint).position / (2 * kPi);
+  s.reading[0] = std::floor(turns * s.def.resolution);
+}
+
 }  // namespace
 
-void createSensors(WorldImpl& im, const Model& model) {
+Transform sensorFrame(const WorldImpl& im, const SensorDef& d) {
+  if (d.body < 0) return d.pose;
+  return compose(bodyState(im, d.body).pose, d.pose);
+}
+
+void createSensors(WorldImpl& im, const Model& model, uint32_t seed) {
   im.sensors.reserve(model.sensors.size());
   for (const SensorDef& d : model.sensors) {
-    SensorState s;
+    SensorState s(d, seed);
+    s.reading.assign(s.quantities.size(), 0.0);
+    if (d.period > 0) s.period_ns = std::max<int64_t>(1, std::llround(d.period * 1e9));
     for (int gi : d.geoms) s.geoms.push_back(im.geoms[static_cast<size_t>(gi)]);
     im.sensors.push_back(std::move(s));
   }
-  if (!im.sensors.empty()) updateSensors(im);
+  if (!im.sensors.empty()) updateSensors(im, 0.0);
 }
 
-void updateSensors(WorldImpl& im) {
+void updateSensors(WorldImpl& im, double h) {
   for (SensorState& s : im.sensors) {
-    s.touching = false;
-    for (dGeomID g : s.geoms) {
-      Probe p{g};
-      dSpaceCollide2(g, reinterpret_cast<dGeomID>(im.space), &p, &probePair);
-      if (p.touching) {
-        s.touching = true;
+    // Due at the first step boundary at or after each multiple of the period (every step without one).
+    const int64_t slot = s.period_ns > 0 ? im.time_ns / s.period_ns : im.time_ns;
+    const bool due = slot > s.last_slot;
+    if (due) s.last_slot = slot;
+    switch (s.def.kind) {
+      case SensorKind::Proximity:
+        if (due) readProximity(im, s);
         break;
-      }
+      case SensorKind::Range:
+      case SensorKind::Scanner:
+        if (due) readRays(im, s);
+        break;
+      case SensorKind::Imu:
+        readImu(im, s, h, due);  // tracks the velocity every step, reads when due
+        break;
+      case SensorKind::Encoder:
+        if (due) readEncoder(im, s);
+        break;
     }
   }
 }

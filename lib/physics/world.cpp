@@ -91,6 +91,7 @@ WorldImpl::~WorldImpl() {
   if (contactGroup) dJointGroupDestroy(contactGroup);
   if (space) dSpaceDestroy(space);  // cleanup mode is on by default: destroys its geoms
   if (sensorSpace) dSpaceDestroy(sensorSpace);
+  if (ray) dGeomDestroy(ray);
   if (world) dWorldDestroy(world);
 }
 
@@ -113,6 +114,7 @@ std::unique_ptr<World> World::create(const Model& model, uint32_t seed) {
   OdeSection ode(im.rng);
   im.world = dWorldCreate();
   dWorldSetGravity(im.world, s.gravity[0], s.gravity[1], s.gravity[2]);
+  im.gravity = s.gravity;
   dWorldSetERP(im.world, s.erp);
   dWorldSetCFM(im.world, s.cfm);
   dWorldSetQuickStepNumIterations(im.world, s.iterations);
@@ -128,7 +130,7 @@ std::unique_ptr<World> World::create(const Model& model, uint32_t seed) {
   createGeoms(im, model);
   createJoints(im, model);
   createActuators(im, model);
-  createSensors(im, model);
+  createSensors(im, model, seed);
   return w;
 }
 
@@ -144,7 +146,9 @@ void World::step(double h) {
     dWorldStep(im.world, h);
   }
   dJointGroupEmpty(im.contactGroup);
-  if (!im.sensors.empty()) updateSensors(im);
+  im.time_ns += std::llround(h * 1e9);  // the run's steps are whole nanoseconds
+  updateJointTotals(im);
+  if (!im.sensors.empty()) updateSensors(im, h);
 }
 
 int World::bodyCount() const { return static_cast<int>(impl_->bodies.size()); }
@@ -208,6 +212,18 @@ int World::sensorCount() const { return static_cast<int>(impl_->sensors.size());
 bool World::touching(int sensor) const {
   if (!inRange(*impl_, "touching", sensor, impl_->sensors.size(), "sensor")) return false;
   return impl_->sensors[static_cast<size_t>(sensor)].touching;
+}
+
+const std::vector<double>& World::sensorReading(int sensor) const {
+  static const std::vector<double> kNone;
+  if (!inRange(*impl_, "sensorReading", sensor, impl_->sensors.size(), "sensor")) return kNone;
+  return impl_->sensors[static_cast<size_t>(sensor)].reading;
+}
+
+const std::vector<std::string>& World::sensorQuantities(int sensor) const {
+  static const std::vector<std::string> kNone;
+  if (!inRange(*impl_, "sensorQuantities", sensor, impl_->sensors.size(), "sensor")) return kNone;
+  return impl_->sensors[static_cast<size_t>(sensor)].quantities;
 }
 
 int World::firstBadBody(double limit) const {

@@ -7,7 +7,10 @@
 //   joints.cpp    joints and joint state (simbob's sign convention)
 //   contacts.cpp  the near callback: contact joints per the material rules of guide 7.1
 //   actuators.cpp drives, servos and velocity drives on hinge and slider joints
-//   sensors.cpp   proximity sensors: sensor geoms, in a space of their own, that only detect
+//   sensors.cpp   sensors: their readings on the step grid; proximity sensors (sensor geoms, in a
+//                 space of their own, that only detect) and encoders
+//   rays.cpp      range sensors and laser scanners: ODE rays cast against the collision space
+//   imu.cpp       inertial measurement units: specific force and angular velocity
 //   world.cpp     World: create, step, accessors
 //
 // Actuators and sensors join as files of their own: a create function called by World::create
@@ -22,6 +25,7 @@
 #include <vector>
 
 #include "simbob/physics.h"
+#include "sensor_noise.h"
 
 namespace simbob {
 
@@ -38,14 +42,24 @@ struct GeomInfo {
 /// What joint state needs beyond the ODE joint: its kind and ODE's reading at the start pose.
 struct JointInfo {
   JointKind kind;
-  double zero;  ///< ODE's position (rad or m) at creation, subtracted so that the start pose reads 0
+  double zero;         ///< ODE's position (rad or m) at creation, subtracted so that the start pose reads 0
+  double total = 0.0;  ///< Hinge: the angle unwrapped (rad): the sum of the per-step changes
+  double last = 0.0;   ///< Hinge: the wrapped angle (rad) when total was last updated
 };
 
-/// A proximity sensor: its geoms (in WorldImpl::sensorSpace, never in the collision space) and
-/// whether one of them touched another body at the last update (see World::touching).
+/// A sensor: its definition, its reading and what computing the next one needs (World::sensorReading).
 struct SensorState {
-  std::vector<dGeomID> geoms;
-  bool touching = false;
+  SensorState(const SensorDef& d, uint32_t seed) : def(d), quantities(sensorQuantities(d)), noise(seed, d.key) {}
+  SensorDef def;
+  std::vector<std::string> quantities;  ///< names of the reading's entries (sensorQuantities)
+  std::vector<double> reading;          ///< the held reading, quantities.size() entries
+  SensorNoise noise;                    ///< drawn only when the reading is computed
+  int64_t period_ns = 0;                ///< 0: every step
+  int64_t last_slot = -1;               ///< the period index (time / period) of the last update
+  std::vector<dGeomID> geoms;           ///< Proximity: in WorldImpl::sensorSpace, never in the collision space
+  bool touching = false;                ///< Proximity: one of its geoms touched another body at the last update
+  Vec3 prev_vel{0, 0, 0};               ///< Imu: global velocity of the sensor point after the previous step
+  bool has_prev = false;                ///< Imu: prev_vel is set (false at creation)
 };
 
 /// An actuator's definition and its current command (see World::setCommand).
@@ -76,6 +90,9 @@ struct WorldImpl {
   std::vector<JointInfo> jointInfo;
   std::vector<ActuatorState> actuators;
   std::vector<SensorState> sensors;
+  dGeomID ray = nullptr;                ///< rays.cpp: the one ray of range sensors and scanners, in no space
+  Vec3 gravity{0, 0, 0};                ///< m/s^2 (imu.cpp: specific force = acceleration - gravity)
+  int64_t time_ns = 0;                  ///< simulated time: the sum of the steps taken (ns)
   std::vector<dContact> contactBuffer;  ///< sized max_contacts once; reused by every collision
   int lastContacts = 0;
   bool quickstep = true;
@@ -116,8 +133,14 @@ void createGeoms(WorldImpl& im, const Model& model);
 // joints.cpp
 /// Creates one ODE joint per Model joint, in Model order, and records its zero position.
 void createJoints(WorldImpl& im, const Model& model);
-/// Joint i's state in simbob's convention (see World::joint).
+/// Joint i's state in simbob's convention (see World::joint): a hinge's total angle, unwrapped.
 JointState jointState(const WorldImpl& im, int i);
+/// The same with a hinge's angle wrapped into [-pi, pi], as ODE reads it (the actuators' input:
+/// servos and stops work on it, as they always have).
+JointState wrappedJointState(const WorldImpl& im, int i);
+/// Adds each hinge's change of angle over the last step to its total (after every step; a hinge
+/// must turn less than half a turn per step).
+void updateJointTotals(WorldImpl& im);
 /// Distance (m) between where joint i's anchor is on its first and on its second body; 0 for
 /// joints without a shared anchor (slider, fixed).
 double jointSeparation(const WorldImpl& im, int i);
@@ -129,10 +152,25 @@ void createActuators(WorldImpl& im, const Model& model);
 void commandActuator(WorldImpl& im, int i, double value);
 
 // sensors.cpp
-/// Collects each Model sensor's geoms (created by createGeoms) and computes its first reading.
-void createSensors(WorldImpl& im, const Model& model);
-/// Recomputes every sensor's reading from the current poses (after each step).
-void updateSensors(WorldImpl& im);
+/// Builds each Model sensor's state (noise seeded from `seed` and its key) and its first reading.
+void createSensors(WorldImpl& im, const Model& model, uint32_t seed);
+/// Recomputes the readings of the sensors due at im.time_ns from the current poses (after each
+/// step of `h` s; h = 0 at creation).
+void updateSensors(WorldImpl& im, double h);
+/// The sensor's frame, global (its body's origin frame composed with SensorDef::pose).
+Transform sensorFrame(const WorldImpl& im, const SensorDef& d);
+
+// rays.cpp
+/// Distance (m) along the ray from `origin` in unit direction `dir` to the first geom of the
+/// collision space that belongs to neither `own` nor a body joined to it (null `own`: static
+/// geoms are skipped), or +infinity when nothing is hit within `length`.
+double castRay(WorldImpl& im, dBodyID own, const Vec3& origin, const Vec3& dir, double length);
+/// Range sensor and laser scanner readings (SensorKind::Range, Scanner) into s.reading.
+void readRays(WorldImpl& im, SensorState& s);
+
+// imu.cpp
+/// Tracks the sensor point's velocity every step of `h` s and, when `due`, writes the reading.
+void readImu(WorldImpl& im, SensorState& s, double h, bool due);
 
 // contacts.cpp
 /// Collides the space and creates this step's contact joints (guide 7.1); counts them in lastContacts.

@@ -290,7 +290,9 @@ class SocketPeer : public Party {
     for (const ActuatorDef& a : model_.actuators) s += "actuator " + a.key + " " + actuatorKind(a.kind) + "\n";
     for (const auto& m : motions_) s += "motion " + m.first + "\n";
     for (const JointDef& j : model_.joints) s += "joint " + j.key + " " + jointKind(j.kind) + "\n";
-    for (const SensorDef& d : model_.sensors) s += "sensor " + d.key + "\n";
+    // Version 2 carries proximity sensors only (touching); other kinds are read through World.
+    for (const SensorDef& d : model_.sensors)
+      if (d.kind == SensorKind::Proximity) s += "sensor " + d.key + "\n";
     for (const BodyDef& b : model_.bodies) s += "body " + b.key + "\n";
     s += "end\n";
     return s;
@@ -307,7 +309,8 @@ class SocketPeer : public Party {
       s += '\n';
     }
     for (size_t i = 0; i < model_.sensors.size(); ++i)
-      s += "sensor " + model_.sensors[i].key + (world.touching(static_cast<int>(i)) ? " 1\n" : " 0\n");
+      if (model_.sensors[i].kind == SensorKind::Proximity)
+        s += "sensor " + model_.sensors[i].key + (world.touching(static_cast<int>(i)) ? " 1\n" : " 0\n");
     for (size_t i = 0; i < model_.bodies.size(); ++i) {
       const BodyState b = world.body(static_cast<int>(i));
       s += "body " + model_.bodies[i].key;

@@ -61,7 +61,10 @@ RunLogParty::RunLogParty(const Model& model, RunLogWhat what, SimTime interval, 
       joints_.push_back(static_cast<int>(j));
       joint_keys_.push_back(csvField(model.joints[j].key));
     }
-  for (const SensorDef& s : model.sensors) sensor_keys_.push_back(csvField(s.key));
+  for (const SensorDef& s : model.sensors) {
+    sensor_keys_.push_back(csvField(s.key));
+    sensor_quantities_.push_back(sensorQuantities(s));
+  }
   for (const ActuatorDef& a : model.actuators) actuator_keys_.push_back(csvField(a.key));
   buf_ = std::string(kRunLogHeader) + "\n";
   name = "the run log";
@@ -89,7 +92,7 @@ const Error* RunLogParty::failure() const { return error_.message.empty() ? null
 void RunLogParty::record(double t, const World& world) {
   std::string time;
   appendNumber(time, t);
-  auto row = [&](const std::string& key, const char* quantity, double value) {
+  auto row = [&](const std::string& key, std::string_view quantity, double value) {
     buf_ += time;
     buf_ += ',';
     buf_ += key;
@@ -106,8 +109,11 @@ void RunLogParty::record(double t, const World& world) {
       row(joint_keys_[k], "vel", s.velocity);
     }
   if (what_.sensors)
-    for (size_t k = 0; k < sensor_keys_.size(); ++k)
-      row(sensor_keys_[k], "touching", world.touching(static_cast<int>(k)) ? 1.0 : 0.0);
+    for (size_t k = 0; k < sensor_keys_.size(); ++k) {
+      const std::vector<double>& reading = world.sensorReading(static_cast<int>(k));
+      for (size_t q = 0; q < reading.size() && q < sensor_quantities_[k].size(); ++q)
+        row(sensor_keys_[k], sensor_quantities_[k][q], reading[q]);
+    }
   if (what_.commands)
     for (size_t k = 0; k < actuator_keys_.size(); ++k)
       row(actuator_keys_[k], "command", world.command(static_cast<int>(k)));

@@ -548,3 +548,45 @@ def test_ten_thousand_create_step_destroy_cycles_keep_memory_flat():
         cycle()
     grown = rss_bytes() - before
     assert grown < 2 * 1024 * 1024, f"resident memory grew {grown} bytes over 10,000 cycles"
+
+
+def sensed_scene():
+    """A body at rest without gravity carrying a range sensor that looks along +X at a wall whose
+    face is at x = 2, and an IMU."""
+    return """<?xml version="1.0" encoding="UTF-8"?>
+<Simulation>
+  <SceneSettings><MaxTimeStep Value="0.001"/><Gravity Value="0 0 0"/></SceneSettings>
+  <ComponentList>
+    <RCStaticRigidBody Key="Wall">
+      <Pose><RCGlobalCoordinates><Pose Value="2.5 0 0 0 0 0"/></RCGlobalCoordinates></Pose>
+      <Geom><RCCuboidGeom><Width Value="1"/><Height Value="1"/><Depth Value="10"/></RCCuboidGeom></Geom>
+    </RCStaticRigidBody>
+    <RCConstruction Key="Bot">
+      <Body><RCMobileRigidBody Key="Chassis">
+        <Geom><RCSphereGeom><Radius Value="0.1"/></RCSphereGeom></Geom>
+      </RCMobileRigidBody></Body>
+      <ChildList>
+        <RCRangeSensor Key="Front">
+          <Pose><RCLocalCoordinates><Pose Value="0 0 0 0 -90 0"/></RCLocalCoordinates></Pose>
+        </RCRangeSensor>
+        <RCImuSensor Key="Imu"/>
+      </ChildList>
+    </RCConstruction>
+  </ComponentList>
+</Simulation>
+"""
+
+
+def test_sensor_readings_by_key():
+    sim = simbob.Simulation.from_text(sensed_scene(), "sensed.xml")
+    assert sim.sensor_keys == ["Bot.Front", "Bot.Imu"]
+    assert sim.sensor_quantities("Bot.Front") == ["distance"]
+    assert sim.sensor_quantities("Bot.Imu") == ["ax", "ay", "az", "gx", "gy", "gz"]
+    d = sim.sensor("Bot.Front")
+    assert d.dtype == np.float64 and d.shape == (1,)
+    assert abs(d[0] - 2.0) < 1e-9
+    assert sim.sensor("Bot.Imu").shape == (6,)
+    assert list(sim.touching()) == [False, False]  # neither is a proximity sensor
+    with pytest.raises(simbob.UsageError) as info:
+        sim.sensor("Bot.Back")
+    assert "Bot.Front" in info.value.message  # names the sensors there are

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `simbob run --log joints,sensors,commands`: the run log beside the trajectory, sampled at the
 # trajectory's times, with analytic commands, joint angles that agree with the trajectory, a
-# proximity sensor that switches once, usage errors, and a partial log kept by a failed run.
+# proximity sensor that switches once, readings of every sensor kind by name, usage errors, and a partial log kept by a failed run.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 cli_setup "$@"
@@ -34,7 +34,7 @@ assert len(times) == 61, len(times)
 worst = max(abs(cmd[t] - math.sin(2 * math.pi * V * float(t) / 60)) for t in times)
 assert worst < 1e-9, worst
 # The flywheel turns about +Y from its start pose: angle = 2 atan2(qrel_y, qrel_w) of
-# q(t) * conj(q(0)), wrapped into [-pi, pi] as the joint's position is. Both come from the
+# q(t) * conj(q(0)), compared modulo 2 pi (the joint's position is the total angle). Both come from the
 # same body orientation, so they agree to rounding (1e-9).
 def mul(a, b):
     aw, ax, ay, az = a; bw, bx, by, bz = b
@@ -74,6 +74,55 @@ assert seq[0] == "0" and seq[-1] == "1", (seq[0], seq[-1])
 changes = sum(1 for a, b in zip(seq, seq[1:]) if a != b)
 assert changes == 1, changes
 print(f"wall stop: touching from t={rows[seq.index('1')][0]} s")
+PY
+
+check "sensors of every kind: each quantity of each reading, by name, with analytic values"
+cat >sensed.xml <<'XML'
+<Simulation>
+  <SceneSettings><MaxTimeStep Value="0.001"/><Solver Value="Step"/></SceneSettings>
+  <ComponentList>
+    <RCGround Key="Ground"/>
+    <RCStaticRigidBody Key="Wall">
+      <Pose><RCGlobalCoordinates><Pose Value="2.5 0.5 0 0 0 0"/></RCGlobalCoordinates></Pose>
+      <Geom><RCCuboidGeom><Width Value="1"/><Height Value="1"/><Depth Value="10"/></RCCuboidGeom></Geom>
+    </RCStaticRigidBody>
+    <RCConstruction Key="Bot">
+      <Body><RCMobileRigidBody Key="Chassis">
+        <Pose><RCGlobalCoordinates><Pose Value="0 0.05 0 0 0 0"/></RCGlobalCoordinates></Pose>
+        <Geom><RCCuboidGeom><Width Value="0.2"/><Height Value="0.1"/><Depth Value="0.2"/></RCCuboidGeom></Geom>
+      </RCMobileRigidBody></Body>
+      <ChildList>
+        <RCRangeSensor Key="Front">
+          <Pose><RCLocalCoordinates><Pose Value="0 0 0 0 -90 0"/></RCLocalCoordinates></Pose>
+          <MaxRange Value="3"/>
+        </RCRangeSensor>
+        <RCLaserScanner Key="Lidar"><Rays Value="3"/><FieldOfView Value="180"/><MaxRange Value="3"/></RCLaserScanner>
+        <RCImuSensor Key="Imu"/>
+      </ChildList>
+    </RCConstruction>
+  </ComponentList>
+</Simulation>
+XML
+expect_status 0 "$SIMBOB" run sensed.xml --duration 0.5 --sample-interval 0.1 --out sensed.csv --log sensors
+python3 - sensed.log.csv <<'PY'
+import csv, sys
+rows = list(csv.reader(open(sys.argv[1])))[1:]
+names = []
+for t, comp, q, v in rows:
+    if t == "0": names.append((comp, q))
+assert names == [("Bot.Front", "distance"), ("Bot.Lidar", "range0"), ("Bot.Lidar", "range1"),
+                 ("Bot.Lidar", "range2"), ("Bot.Imu", "ax"), ("Bot.Imu", "ay"), ("Bot.Imu", "az"),
+                 ("Bot.Imu", "gx"), ("Bot.Imu", "gy"), ("Bot.Imu", "gz")], names
+last = {(c, q): float(v) for t, c, q, v in rows if t == "0.5"}
+# The range sensor looks along +X (local -Z turned -90 degrees about Y) at the wall's face, x = 2.
+assert abs(last[("Bot.Front", "distance")] - 2) < 1e-6, last
+# The scanner looks along -Z: its rays point to +X (right, range0), -Z, -X (left): the wall, then
+# nothing within 3 m.
+assert abs(last[("Bot.Lidar", "range0")] - 2) < 1e-6, last
+assert last[("Bot.Lidar", "range1")] == 3 and last[("Bot.Lidar", "range2")] == 3, last
+# At rest on the ground: +g upwards.
+assert abs(last[("Bot.Imu", "ay")] - 9.81) < 1e-3 and abs(last[("Bot.Imu", "ax")]) < 1e-3, last
+print("sensors:", len(names), "quantities")
 PY
 
 check "usage errors: unknown word, --log-out without --log, --out - without --log-out"

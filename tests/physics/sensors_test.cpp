@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <vector>
 
@@ -154,4 +155,34 @@ TEST_CASE("sensors: a sensor carried towards a wall switches on when it reaches 
   // short of the wall.
   CHECK(w->body(0).lin_vel[0] == 1.0);
   CHECK(w->body(0).pose.p[0] + 0.1 < 0.9005);
+}
+
+TEST_CASE("sensors: an encoder on a wheel turned 10 full turns reads 20 pi and 10 Resolution ticks",
+          "[physics][sensors]") {
+  // A wheel on a hinge about Z turning freely: ODE turns it by 2 atan(om h / 2) per step, chosen
+  // here as exactly 1/1000 turn, so 10,000 steps are 10 turns.
+  const double om = (2 / kDt) * std::tan(3.14159265358979323846 / 1000);
+  const double res = 500;  // half a tick per step
+  for (double sense : {1.0, -1.0}) {
+    Model m = baseModel(kDt);
+    m.settings.gravity = {0, 0, 0};
+    addBody(m, {0, 0, 0}, 1.0, boxInertia(1.0, 0.2));
+    m.bodies[0].ang_vel = {0, 0, sense * om};
+    addJoint(m, JointKind::Hinge, -1, 0, {0, 0, 0}, {0, 0, 1});
+    SensorDef e;
+    e.key = "odo";
+    e.kind = SensorKind::Encoder;
+    e.body = 0;
+    e.joint = 0;
+    e.resolution = res;
+    m.sensors.push_back(e);
+    auto w = World::create(m, 0);
+    CHECK(w->sensorQuantities(0) == std::vector<std::string>{"ticks"});
+    CHECK(w->sensorReading(0).at(0) == 0);
+    for (int k = 0; k < 10000; ++k) w->step(kDt);
+    INFO("sense " << sense);
+    CHECK(std::fabs(w->joint(0).position - sense * 20 * 3.14159265358979323846) < 1e-9);
+    w->step(kDt);  // 10.001 turns: 5000.5 ticks, floored
+    CHECK(w->sensorReading(0).at(0) == (sense > 0 ? 10 * res : -10 * res - 1));
+  }
 }

@@ -1,0 +1,83 @@
+// Range sensors (RCRangeSensor) and laser scanners (RCLaserScanner): ODE rays cast against the
+// collision space. The ray is one geom per World in no space: it is collided with the collision
+// space through dSpaceCollide2 only, so the collision space, its pairs and the trajectory are
+// the same with and without these sensors.
+//
+// Conventions (docs/sensors.md): a range sensor's ray leaves the sensor's origin along its local
+// -Z (where cameras look). A scanner's rays lie in its local X-Z plane: ray k at angle a_k about
+// the local +Y axis from -Z (right-hand rule: positive angles turn towards -X, to the left of
+// an upright sensor), a_k = -FOV/2 + k FOV/(Rays-1) (both edges included; a_0 = 0 for one ray),
+// or a_k = -180 + k 360/Rays degrees for a full circle (no ray twice). The reading of a ray is
+// the distance to the first hit, MaxRange when nothing is hit within MaxRange; with noise and
+// resolution: distance + N(0, Noise), rounded to a multiple of Resolution, clamped to
+// [MinRange, MaxRange] -- a hit closer than MinRange reads MinRange.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "simbob/transform.h"
+#include "world_impl.h"
+
+namespace simbob {
+
+namespace {
+
+struct RayProbe {
+  dGeomID ray;
+  dBodyID own;
+  double nearest = std::numeric_limits<double>::infinity();
+};
+
+void rayPair(void* data, dGeomID a, dGeomID b) {
+  RayProbe& p = *static_cast<RayProbe*>(data);
+  dGeomID other = a == p.ray ? b : a;
+  dBodyID body = dGeomGetBody(other);
+  // As for contacts and proximity sensors: not its own body (for a static sensor: not the static
+  // geoms), not the bodies joined to it.
+  if (body == p.own) return;
+  if (p.own && body && dAreConnected(p.own, body)) return;
+  dContactGeom c;
+  if (dCollide(p.ray, other, 1, &c, sizeof(dContactGeom)) > 0 && c.depth < p.nearest) p.nearest = c.depth;
+}
+
+/// One ray's reading from its raw distance (+infinity: nothing hit).
+double rayReading(SensorState& s, double d) {
+  const SensorDef& def = s.def;
+  if (!std::isfinite(d)) return def.max_range;
+  d += s.noise.gaussian(def.noise);
+  if (def.resolution > 0) d = std::round(d / def.resolution) * def.resolution;
+  return std::min(def.max_range, std::max(def.min_range, d));
+}
+
+}  // namespace
+
+double castRay(WorldImpl& im, dBodyID own, const Vec3& origin, const Vec3& dir, double length) {
+  if (!im.ray) {
+    im.ray = dCreateRay(nullptr, length);
+    dGeomRaySetFirstContact(im.ray, 0);  // not the first contact found: the nearest
+    dGeomRaySetBackfaceCull(im.ray, 0);
+    dGeomRaySetClosestHit(im.ray, 1);
+  }
+  dGeomRaySetLength(im.ray, length);
+  dGeomRaySet(im.ray, origin[0], origin[1], origin[2], dir[0], dir[1], dir[2]);
+  RayProbe p{im.ray, own};
+  dSpaceCollide2(im.ray, reinterpret_cast<dGeomID>(im.space), &p, &rayPair);
+  return p.nearest <= length ? p.nearest : std::numeric_limits<double>::infinity();
+}
+
+void readRays(WorldImpl& im, SensorState& s) {
+  const SensorDef& d = s.def;
+  const Transform f = sensorFrame(im, d);
+  dBodyID own = d.body >= 0 ? im.bodies[static_cast<size_t>(d.body)] : nullptr;
+  if (d.kind == SensorKind::Range) {
+    s.reading[0] = rayReading(s, castRay(im, own, f.p, rotate(f.q, Vec3{0, 0, -1}), d.max_range));
+    return;
+  }
+  for (int k = 0; k < d.rays; ++k) {
+    const double a = scannerRayAngle(d, k);
+    const Vec3 local{-std::sin(a), 0, -std::cos(a)};
+    s.reading[static_cast<size_t>(k)] = rayReading(s, castRay(im, own, f.p, rotate(f.q, local), d.max_range));
+  }
+}
+
+}  // namespace simbob

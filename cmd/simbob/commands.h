@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "simbob/compare.h"
+
 namespace CLI {
 class App;
 }
@@ -12,6 +14,7 @@ namespace simbob {
 class Registry;
 struct Override;
 struct RenderOptions;
+struct Trajectory;
 }  // namespace simbob
 
 namespace simbob::cli {
@@ -93,6 +96,17 @@ struct CompareArgs {
   bool bless = false;
 };
 int cmdCompare(const CompareArgs& a, const Common& common);
+
+/// `simbob view` (issue #23): the replay page of a trajectory in its scene.
+struct ViewPageArgs {
+  std::string trajectory, scene, out, golden, title;
+  std::vector<std::string> sets;  ///< --set KEY.PARAM=VALUE: the overrides the run applied
+  CompareOptions compare;         ///< tolerances of the golden comparison
+};
+CLI::App* addViewCommand(CLI::App& app, ViewPageArgs& v, Common& common);
+int cmdView(const ViewPageArgs& a, const Common& common);
+/// Writes the page of `actual` (and `golden`, may be null) in a.scene to a.out; the exit status.
+int viewPage(const ViewPageArgs& a, const Common& common, const Trajectory* actual, const Trajectory* golden);
 
 struct PlotArgs {
   std::string trajectory, golden, out, bodies, title;

@@ -185,6 +185,9 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   addViewOptions(render, rna.view);
   addCommon(render, common);
 
+  ViewPageArgs va;
+  CLI::App* view = addViewCommand(app, va, common);
+
   std::string info_gl;
   CLI::App* info = app.add_subcommand("info", "Print the version and the GL back ends with their renderer");
   info->add_option("--gl", info_gl, "Only this back end: egl or osmesa");
@@ -197,7 +200,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
     std::string near = simbob::didYouMean(argv[1], names);
     std::fprintf(stderr,
                  "simbob: error: unknown command '%s'%s; commands: run, check, dump, types, compare, batch, plot, "
-                 "sweep, render, info\n",
+                 "sweep, render, view, info\n",
                  argv[1], near.empty() ? "" : (" (did you mean '" + near + "'?)").c_str());
     return kExitUsage;
   }
@@ -211,7 +214,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
     return kExitUsage;
   }
   // An output option given as "" is a mistake, not a request for the default name.
-  for (CLI::App* sub : {run, compare, plot, batch, check, dump, render, info})
+  for (CLI::App* sub : {run, compare, plot, batch, check, dump, render, view, info})
     for (const char* name : {"--out", "--report", "--log-file", "--out-dir", "--settings", "--record", "--video"}) {
       CLI::Option* o = sub->get_option_no_throw(name);
       if (!o || o->count() == 0) continue;
@@ -239,6 +242,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
       if (*compare) outputs = {{"--report", ca.report}};
       if (*plot) outputs = {{"--out", pa.out}};
       if (*render) outputs = {{"--out", rna.out}};
+      if (*view) outputs = {{"--out", va.out}};
       if (*batch) outputs = {{"--report", ba.report}};
       outputs.push_back({"--log-file", common.log_file});
       if (int c = checkOutputs(outputs, {})) return c;
@@ -253,6 +257,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
     if (*plot) code = cmdPlot(pa, common);
     if (*sweep) code = cmdSweep(sa, common);
     if (*render) code = cmdRender(rna, common);
+    if (*view) code = cmdView(va, common);
     if (*info) code = cmdInfo(info_gl, common);
   } catch (const std::exception& e) {
     g_log.error({simbob::ErrorKind::Internal, {}, std::string("internal error: ") + e.what()});

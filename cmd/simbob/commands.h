@@ -90,6 +90,7 @@ int cmdTypes(bool markdown, const Registry& reg, const std::string& only = "");
 
 struct CompareArgs {
   std::string actual, golden, report;
+  std::string html, scene;  ///< --html PAGE --scene SCENE: the replay page of the comparison (simbob view)
   double tol_pos = 1e-6;
   double tol_rot = 1e-6;
   bool json = false;

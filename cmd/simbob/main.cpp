@@ -143,6 +143,8 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   compare->add_option("--report", ca.report, "Also write the report to FILE (JSON if it ends in .json)");
   compare->add_flag("--json", ca.json, "Print the report as JSON");
   compare->add_flag("--bless", ca.bless, "Show what changes, then replace the golden file with the actual one");
+  compare->add_option("--html", ca.html, "Also write the replay page of the comparison (needs --scene; simbob view)");
+  compare->add_option("--scene", ca.scene, "With --html: the scene both trajectories were run in");
   addCommon(compare, common);
 
   BatchArgs ba;
@@ -239,7 +241,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
     if (!common.log_file.empty()) {
       std::vector<NamedPath> outputs;
       if (*run) outputs = runOutputs(ra);
-      if (*compare) outputs = {{"--report", ca.report}};
+      if (*compare) outputs = {{"--report", ca.report}, {"--html", ca.html}};
       if (*plot) outputs = {{"--out", pa.out}};
       if (*render) outputs = {{"--out", rna.out}};
       if (*view) outputs = {{"--out", va.out}};

@@ -50,4 +50,10 @@ expect_status 73 "$SIMBOB" view pend.csv --scene "$SCENE" -o nodir/page.html
 expect_status 64 "$SIMBOB" view pend.csv --scene "$SCENE" -o pend.csv
 expect_eq "the trajectory is untouched" "$(head -n 1 pend.csv)" "time,body,x,y,z,qw,qx,qy,qz"
 expect_status 64 "$SIMBOB" view pend.csv --scene "$SCENE"
+check "compare --html needs --scene (64, nothing written); with it, the page of the comparison"
+expect_status 64 "$SIMBOB" compare pend.csv pend.csv --html cmp.html
+expect_match "says why" "$LAST_ERR" "--html and --scene go together"
+expect_no_file cmp.html
+expect_status 0 "$SIMBOB" compare pend.csv pend.csv --html cmp.html --scene "$SCENE"
+grep -q '"compare":{' cmp.html || fail "the comparison is not in the page"
 say "ok"

@@ -210,6 +210,11 @@ def case_golden(d):
     report = json.loads(p.stdout)
     div = report['first_divergence']
     run('view', 'actual.csv', '--scene', scene, '--golden', 'golden.csv', '-o', 'chain.html')
+    # `compare --html` writes the same page (exit 1: the comparison failed, the page is written).
+    p = subprocess.run([SIMBOB, 'compare', 'actual.csv', 'golden.csv', '--html', 'compare.html', '--scene', scene],
+                       capture_output=True, text=True)
+    if p.returncode != 1 or open('compare.html', 'rb').read() != open('chain.html', 'rb').read():
+        fail(f'compare --html exited {p.returncode} and wrote another page than view --golden: {p.stderr}')
     open_page(d, 'chain.html')
     shown = d.execute_script('return simbobView.divergence()')
     if not shown or shown['time'] != div['time'] or shown['body'] != div['body']:

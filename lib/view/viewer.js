@@ -70,6 +70,7 @@
 
   // ---- Materials of the skins (lib/render/renderer.cpp's drawVisual) ----
   let pendingTextures = 0;
+  const imageUsers = new Map();  // image element -> the textures drawn from it
   const materials = model.skins.map(materialOf);
   function materialOf(s) {
     const alpha = s.color[3];
@@ -87,10 +88,18 @@
       }, common));
     }
     if (s.texture) {
+      // One image element per skin; the meshes' textures (clones with their own repeat) share it
+      // and are all updated once it has decoded.
+      const img = new Image();
+      const users = [];
       pendingTextures++;
-      m.map = new THREE.TextureLoader().load(s.texture, () => { pendingTextures--; m.needsUpdate = true; },
-        undefined, () => { pendingTextures--; console.error('simbob view: texture of skin ' + s.key + ' did not load'); });
+      img.onload = () => { pendingTextures--; for (const t of users) t.needsUpdate = true; };
+      img.onerror = () => { pendingTextures--; console.error('simbob view: texture of skin ' + s.key + ' did not load'); };
+      img.src = s.texture;
+      m.map = new THREE.Texture(img);
       m.map.wrapS = m.map.wrapT = THREE.RepeatWrapping;
+      imageUsers.set(img, users);
+      users.push(m.map);
       if (!s.colored) m.color = new THREE.Color(1, 1, 1);
     }
     return m;
@@ -145,7 +154,8 @@
         const ext = v.shape === 'plane' ? [s0(v.size[0]), s0(v.size[1])]
           : v.shape === 'cuboid' ? [s0(v.b[0] - v.a[0]), s0(v.b[1] - v.a[1])] : [1, 1];
         m.map = m.map.clone();
-        m.map.needsUpdate = true;
+        imageUsers.get(m.map.image).push(m.map);
+        if (m.map.image && m.map.image.complete && m.map.image.naturalWidth) m.map.needsUpdate = true;
         if (ts !== 0) m.map.repeat.set(ts > 0 ? ext[0] / ts : 1 / -ts, ts > 0 ? ext[1] / ts : 1 / -ts);
       }
     }
@@ -590,7 +600,9 @@
   }
   let frames = 0;
 
+  // The scene's first camera, as `simbob render` draws by default; else the orbit camera.
   setCamera('orbit');
+  if (model.cameras.length) setCamera(model.cameras[0].key);
   applyTime(t0);
   readFragment();
   draw();

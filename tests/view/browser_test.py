@@ -143,6 +143,9 @@ def case_scenes(d):
         times = sorted(rows)
         picks = [times[0], times[len(times) // 2], times[-1]]
         check_poses(d, rows, picks, name)
+        # A picture of each page at the last time, to look at (docs/images/view.png is one).
+        d.execute_script('simbobView.select(arguments[0])', sorted(rows[picks[-1]])[0])
+        d.save_screenshot(base + '.png')
         check_console(d, name)
         print(f'ok: {name}: {len(rows[times[0]])} bodies at t = {picks}')
 

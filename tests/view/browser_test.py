@@ -9,6 +9,7 @@ CASE is one of
               page equals the CSV row rounded to float32
   screenshot  tests/data/view/colors.xml: the page's canvas and `simbob render` of the same
               camera put each body's colour centre within a few pixels, at three times
+  ui          the controls: fragment, click to select, step, play, speed, loop, pause, trails
   golden      a chain against a run with a heavier link: ghosts at the golden poses, the slider's
               divergence marker at the time `simbob compare` reports
 Chromium must start: a browser that cannot is a failure, never a skip.
@@ -249,13 +250,79 @@ def case_golden(d):
     print(f'ok: divergence at {div["time"]} s ({div["body"]}) marked')
 
 
+def case_ui(d):
+    """The controls: the fragment selects time, camera and body; a click in the view selects the
+    body under it; step, play at a speed, loop or stop at the end; trails and shapes switch."""
+    scene = os.path.join(REPO, 'tests', 'data', 'view', 'colors.xml')
+    run('run', scene, '--duration', '1', '--out', 'colors.csv')
+    run('view', 'colors.csv', '--scene', scene, '-o', 'colors.html')
+    open_page(d, 'colors.html', 't=0.5&camera=Front&body=GreenBall')
+    js = d.execute_script
+    got = js('return [simbobView.time(), simbobView.camera(), simbobView.selected()]')
+    if got != [0.5, 'Front', 'GreenBall']:
+        fail(f'fragment t=0.5&camera=Front&body=GreenBall gave {got}')
+    pose_text = js("return document.getElementById('pose').textContent")
+    if not pose_text.startswith('GreenBall') or 'position' not in pose_text:
+        fail(f'the selected body\'s pose is not shown: {pose_text!r}')
+    # Click on the red box where the page draws it (its colour's centre in a screenshot).
+    canvas = d.find_element('css selector', '#view canvas')
+    canvas.screenshot('ui.png')
+    cx, cy, _ = centres('ui.png')['RedBox']
+    w, h = js('const r = arguments[0].getBoundingClientRect(); return [r.width, r.height]', canvas)
+    from selenium.webdriver.common.action_chains import ActionChains
+    ActionChains(d).move_to_element_with_offset(canvas, int(cx - w / 2), int(cy - h / 2)).click().perform()
+    if js('return simbobView.selected()') != 'RedBox':
+        fail(f'a click on the red box selected {js("return simbobView.selected()")}')
+    if 'body=RedBox' not in js('return location.hash'):
+        fail(f'the fragment does not follow the selection: {js("return location.hash")}')
+    # One sample on.
+    s0 = js('return simbobView.sample()')
+    d.find_element('id', 'fwd').click()
+    if js('return simbobView.sample()') != s0 + 1:
+        fail('the step button did not move one sample on')
+    # Play at 10x without loop from 0.8 s: reaches the end (1 s) and stops there.
+    js("document.getElementById('loop').checked = false;"
+       "const sp = document.getElementById('speed'); sp.value = '10'; sp.dispatchEvent(new Event('change'));")
+    js('simbobView.seek(0.8); simbobView.play()')
+    for _ in range(100):
+        if not js('return simbobView.playing()'):
+            break
+        time.sleep(0.05)
+    got = js('return [simbobView.playing(), simbobView.time(), simbobView.frames()]')
+    if got[0] or got[1] != 1.0 or got[2] < 1:
+        fail(f'play at 10x without loop: [playing, time, frames] = {got}, expected stopped at 1 after frames')
+    # With loop: still playing after passing the end, time back near the start at some point.
+    js("document.getElementById('loop').checked = true; simbobView.seek(0.9); simbobView.play()")
+    seen_wrap = False
+    for _ in range(60):
+        if js('return simbobView.time()') < 0.5:
+            seen_wrap = True
+            break
+        time.sleep(0.05)
+    if not seen_wrap or not js('return simbobView.playing()'):
+        fail('play with loop did not wrap around to the start')
+    d.find_element('id', 'play').click()
+    if js('return simbobView.playing()'):
+        fail('the play button did not pause')
+    # Trails, every collision shape, the orbit camera following the selection: no console error.
+    for box in ('trails', 'geoms', 'follow'):
+        d.find_element('id', box).click()
+    js("const c = document.getElementById('camera'); c.value = 'orbit'; c.dispatchEvent(new Event('change'));")
+    js('simbobView.seek(0.3); simbobView.draw()')
+    if js('return simbobView.camera()') != 'orbit':
+        fail('the camera list did not switch to the orbit camera')
+    d.save_screenshot('ui_orbit.png')
+    check_console(d, 'ui')
+    print('ok: fragment, click, step, play, loop, pause, trails, shapes, orbit')
+
+
 def main():
     try:
         d = browser()
     except Exception as e:  # noqa: BLE001 -- any failure to start is the test's failure
         sys.exit(f'FAIL: chromium did not start: {e}')
     try:
-        {'scenes': case_scenes, 'screenshot': case_screenshot, 'golden': case_golden}[CASE](d)
+        {'scenes': case_scenes, 'screenshot': case_screenshot, 'golden': case_golden, 'ui': case_ui}[CASE](d)
     finally:
         d.quit()
     if failures:

@@ -64,6 +64,7 @@ struct RunArgs {
   std::string log;               ///< --log: comma list of joints, sensors, commands ("" = no run log)
   std::string log_out;           ///< --log-out: the run log (default: --out with .csv -> .log.csv)
   std::string columns = "pose";  ///< --columns: "pose", or "pose,velocity" for the velocity block
+  std::string html;              ///< --html PAGE: the replay page of the run (simbob view), written after it
 };
 int cmdRun(RunArgs& a, const Common& common);
 
@@ -108,6 +109,8 @@ CLI::App* addViewCommand(CLI::App& app, ViewPageArgs& v, Common& common);
 int cmdView(const ViewPageArgs& a, const Common& common);
 /// Writes the page of `actual` (and `golden`, may be null) in a.scene to a.out; the exit status.
 int viewPage(const ViewPageArgs& a, const Common& common, const Trajectory* actual, const Trajectory* golden);
+/// `run --html PAGE`: the page of the trajectory the run has just written (--out), with its --set.
+int viewAfterRun(const RunArgs& a, const Common& common);
 
 struct PlotArgs {
   std::string trajectory, golden, out, bodies, title;

@@ -79,6 +79,7 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
                   "Added to the Port of every RCLocalSocketCommunicator, so parallel runs do not clash (default 0)");
   run->add_option("--peer-timeout", ra.peer_timeout,
                   "Wall-clock s a socket peer may take to connect or to answer, 0.001 to 86400 (default 10)");
+  run->add_option("--html", ra.html, "Also write the run's replay page (simbob view) after the run");
   run->add_option("--columns", ra.columns,
                   "Trajectory columns: pose (default) or pose,velocity (adds vx,vy,vz m/s and wx,wy,wz rad/s, "
                   "world frame)")

@@ -101,6 +101,7 @@ std::vector<NamedPath> runOutputs(const RunArgs& a) {
   else
     all = {
         {"--out", out}, {"the summary", replaceExtension(out, ".json")}, {"the partial trajectory", partialPath(out)}};
+  if (!a.html.empty()) all.push_back({"--html", a.html});
   // The run log and its partial come after those three (cmdRun counts on the order).
   const std::string log = runLogPath(a, out);
   if (!log.empty()) {
@@ -458,7 +459,7 @@ int cmdRun(RunArgs& a, const Common& common) {
     g_log.info("wrote " + a.out + " (" + countOf(r.samples, "sample", "samples") + " of " +
                countOf(model.bodies.size(), "body", "bodies") + ", " + countOf(r.steps, "step", "steps") + " in " +
                formatNumber(std::round(r.wall_seconds * 1000) / 1000) + " s)");
-    return kExitOk;
+    return a.html.empty() ? kExitOk : viewAfterRun(a, common);
   }
   if (summary_file) summary_file->abandon();
   if (video_file) video_file->abandon();

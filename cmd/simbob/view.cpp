@@ -5,6 +5,7 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "simbob/files.h"
 #include "simbob/overrides.h"
 #include "simbob/trajectory.h"
 #include "simbob/view.h"
@@ -69,6 +70,19 @@ int cmdView(const ViewPageArgs& a, const Common& common) {
     return exitCodeFor(err.kind);
   }
   return viewPage(a, common, &actual, a.golden.empty() ? nullptr : &golden);
+}
+
+int viewAfterRun(const RunArgs& a, const Common& common) {
+  if (isStreamOutput(a.out)) {
+    g_log.error({ErrorKind::InvalidInput, {}, "--html reads the trajectory back: --out must be a file, not a stream"});
+    return kExitUsage;
+  }
+  ViewPageArgs v;
+  v.trajectory = a.out;
+  v.scene = a.scene;
+  v.out = a.html;
+  v.sets = a.sets;
+  return cmdView(v, common);
 }
 
 }  // namespace simbob::cli

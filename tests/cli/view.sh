@@ -56,4 +56,13 @@ expect_match "says why" "$LAST_ERR" "--html and --scene go together"
 expect_no_file cmp.html
 expect_status 0 "$SIMBOB" compare pend.csv pend.csv --html cmp.html --scene "$SCENE"
 grep -q '"compare":{' cmp.html || fail "the comparison is not in the page"
+check "run --html writes the page after the trajectory, with the run's --set; --html may not be --out (64, before the run)"
+expect_status 0 "$SIMBOB" run "$SCENE" --duration 0.1 --out r.csv --html r.html --set "SceneSettings.Gravity=0 -1 0"
+expect_file r.csv
+expect_file r.html
+grep -q '"actual":{"bodies":\["' r.html || fail "no trajectory in the page"
+expect_status 64 "$SIMBOB" run "$SCENE" --duration 0.1 --out r2.csv --html r2.csv
+expect_no_file r2.csv
+expect_status 64 "$SIMBOB" run "$SCENE" --duration 0.1 --out - --html r3.html
+expect_no_file r3.html
 say "ok"

@@ -5,7 +5,9 @@
 (function () {
   'use strict';
 
+  const timings = { start: performance.now() };  // ms since navigation: bench/view_bench.py reads them
   const data = JSON.parse(document.getElementById('simbob-data').textContent);
+  timings.parsed = performance.now();
   const model = data.model;
   const $ = (id) => document.getElementById(id);
 
@@ -49,12 +51,14 @@
   const actual = decodeTrajectory(data.actual);
   const golden = data.golden ? decodeTrajectory(data.golden) : null;
   const compare = data.compare || null;
+  timings.decoded = performance.now();
 
   // ---- three.js scene: renderer, light, background, fog ----
   const view = model.view;
   const rgb = (c) => new THREE.Color(c[0], c[1], c[2]);
+  const ANTIALIAS = !/aa=0/.test(location.hash);
   const container = $('view');
-  const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  const renderer = new THREE.WebGLRenderer({ antialias: ANTIALIAS, preserveDrawingBuffer: true });
   renderer.setPixelRatio(1);
   container.appendChild(renderer.domElement);
   const scene = new THREE.Scene();
@@ -479,6 +483,7 @@
     f.set('t', String(state.time));
     if (state.camera !== 'orbit') f.set('camera', state.camera);
     if (state.selected >= 0) f.set('body', bodies[state.selected].key);
+    if (!ANTIALIAS) f.set('aa', '0');
     history.replaceState(null, '', '#' + f.toString());
   }
 
@@ -600,12 +605,14 @@
   }
   let frames = 0;
 
+  timings.built = performance.now();
   // The scene's first camera, as `simbob render` draws by default; else the orbit camera.
   setCamera('orbit');
   if (model.cameras.length) setCamera(model.cameras[0].key);
   applyTime(t0);
   readFragment();
   draw();
+  timings.drawn = performance.now();
   requestAnimationFrame(frame);
 
   // ---- The test hook (tests/view/): seek, read back the poses shown, render now ----
@@ -632,6 +639,7 @@
     playing: () => state.playing,
     frames: () => frames,
     divergence: () => (compare ? compare.divergence : null),
+    timings,
     draw,
   };
 })();

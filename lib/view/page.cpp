@@ -132,6 +132,7 @@ json encodeComparison(const Trajectory& actual, const Trajectory& golden, const 
     }
   }
   std::vector<double> times;
+  times.reserve(shared.size());
   for (const auto& s : shared) times.push_back(golden.times[s.first]);
   out["times"] = base64Le(times);
   json errors = json::object();
@@ -140,6 +141,8 @@ json encodeComparison(const Trajectory& actual, const Trajectory& golden, const 
     while (actual.bodies[ab] != d.body) ++ab;
     while (golden.bodies[gb] != d.body) ++gb;
     std::vector<float> pos, rot;
+    pos.reserve(shared.size());
+    rot.reserve(shared.size());
     for (const auto& s : shared) {
       const double* pa = actual.pose(s.second, ab);
       const double* pg = golden.pose(s.first, gb);

@@ -155,9 +155,13 @@ struct SweepArgs {
   bool retry = false;
   int max_parallel = 0;
   std::string partition;
+  std::string html;  ///< gather --html PAGE: the gallery of the cases, each with its replay page
   CLI::App *plan = nullptr, *run = nullptr, *gather = nullptr, *sbatch = nullptr;
 };
 CLI::App* addSweepCommands(CLI::App& app, SweepArgs& s, Common& common);
 int cmdSweep(const SweepArgs& a, const Common& common);
+/// `sweep gather --html PAGE` after the table is written (`gathered`: gather's exit status):
+/// each ok case's replay page (OUT/case-NNNN/view.html) and the gallery linking them.
+int galleryAfterGather(const SweepArgs& a, const Common& common, int gathered);
 
 }  // namespace simbob::cli

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "simbob/compare.h"
 #include "simbob/error.h"
@@ -36,5 +37,23 @@ bool buildViewPage(const ViewPageInput& in, std::string* html, Error* err);
 /// buildViewPage, written to `path` as an OutputFile: an existing file is replaced only when the
 /// whole page was written (CannotCreate / IoError otherwise, the old file left as it was).
 bool writeViewPage(const ViewPageInput& in, const std::string& path, Error* err);
+
+}  // namespace simbob
+
+namespace simbob {
+
+/// One row of a sweep's gallery (`sweep gather --html`).
+struct GalleryCase {
+  int index = 0;
+  std::string status;               ///< "ok", "failed", "missing", ...
+  std::vector<std::string> fields;  ///< the gathered table's cells of this case, in column order
+  std::string page;                 ///< link to the case's replay page, relative to the gallery ("" = none)
+};
+
+/// The gallery page of a sweep: the gathered table (click a heading to sort), a plot of a chosen
+/// metric against a chosen column, and a link to each case's page; failed and missing cases
+/// marked. Self-contained (no three.js: plain HTML, SVG and a little script).
+std::string sweepGalleryHtml(const std::string& title, const std::vector<std::string>& columns,
+                             const std::vector<GalleryCase>& cases);
 
 }  // namespace simbob

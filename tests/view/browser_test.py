@@ -10,6 +10,7 @@ CASE is one of
   screenshot  tests/data/view/colors.xml: the page's canvas and `simbob render` of the same
               camera put each body's colour centre within a few pixels, at three times
   ui          the controls: fragment, click to select, step, play, speed, loop, pause, trails
+  gallery     `sweep gather --html`: rows, links to the case pages, marks, sorting, the plot
   golden      a chain against a run with a heavier link: ghosts at the golden poses, the slider's
               divergence marker at the time `simbob compare` reports
 Chromium must start: a browser that cannot is a failure, never a skip.
@@ -316,13 +317,67 @@ def case_ui(d):
     print('ok: fragment, click, step, play, loop, pause, trails, shapes, orbit')
 
 
+def case_gallery(d):
+    """`sweep gather --html`: the table with a link to each ok case's page (which opens), failed
+    and missing cases marked without a link, sorting by a column, the plot's points."""
+    run('sweep', 'plan', os.path.join(REPO, 'scenes', 'sliding_box.sweep.json'), '-o', 'box.jsonl')
+    run('sweep', 'run', 'box.jsonl', '-j', '2', '-o', 'box', '-q')
+    import shutil
+    shutil.rmtree(os.path.join('box', 'case-0003'))  # missing
+    with open(os.path.join('box', 'case-0005', 'case.json'), 'w') as f:
+        f.write('{"status": "failed", "error": "made to fail by the test"}')
+    p = subprocess.run([SIMBOB, 'sweep', 'gather', 'box', '--html', 'box/index.html', '-q'], capture_output=True, text=True)
+    if p.returncode != 1:
+        fail(f'gather with a missing and a failed case exited {p.returncode}, expected 1: {p.stderr}')
+    open_gallery = 'return !!(window.simbobGallery && window.simbobGallery.ready)'
+    d.get('file://' + os.path.abspath('box/index.html'))
+    if not d.execute_script(open_gallery):
+        fail('the gallery did not load')
+    check_console(d, 'gallery')
+    rows = d.execute_script("""return [...document.querySelectorAll('#table tbody tr')].map(r =>
+        [Number(r.dataset.case), r.className, r.querySelector('a') ? r.querySelector('a').href : null])""")
+    if len(rows) != 20:
+        fail(f'{len(rows)} rows, expected 20')
+    for index, cls, href in rows:
+        want = 'missing' if index == 3 else 'failed' if index == 5 else 'ok'
+        if cls != want or (href is None) != (want != 'ok'):
+            fail(f'case {index}: class {cls}, link {href}; expected {want}')
+        if href and not os.path.isfile(href[len('file://'):]):
+            fail(f'case {index}: the link {href} names no file')
+    if d.execute_script('return simbobGallery.points()') != 18:
+        fail(f'the plot has {d.execute_script("return simbobGallery.points()")} points, expected the 18 ok cases')
+    d.execute_script("simbobGallery.sortBy('stop_x'); simbobGallery.sortBy('stop_x')")  # descending
+    order = d.execute_script('return simbobGallery.order()')
+    stop = {i: v for i, v in zip(*d.execute_script("""const cols = [...document.querySelectorAll('th')].map(t => t.textContent.replace(/ .$/, ''));
+        const k = cols.indexOf('stop_x');
+        const rs = [...document.querySelectorAll('#table tbody tr')];
+        return [rs.map(r => Number(r.dataset.case)), rs.map(r => r.children[k].textContent)]"""))}
+    values = [float(stop[i]) for i in order if stop[i] != '']
+    if values != sorted(values, reverse=True):
+        fail(f'sorting by stop_x twice did not order it downwards: {values}')
+    d.save_screenshot('gallery.png')
+    # Follow the first case's link: its replay page opens without an error.
+    d.find_element('css selector', '#table tbody tr[data-case="0"] a').click()
+    for _ in range(200):
+        if d.execute_script('return !!(window.simbobView && window.simbobView.ready)'):
+            break
+        time.sleep(0.05)
+    else:
+        fail('the case page behind the link did not open')
+    if not d.title.startswith('case 0 Crate.Material.Friction=0.2'):
+        fail(f'the case page is titled {d.title!r}')
+    check_console(d, 'case page')
+    print('ok: gallery rows, links, marks, sorting, plot, a case page')
+
+
 def main():
     try:
         d = browser()
     except Exception as e:  # noqa: BLE001 -- any failure to start is the test's failure
         sys.exit(f'FAIL: chromium did not start: {e}')
     try:
-        {'scenes': case_scenes, 'screenshot': case_screenshot, 'golden': case_golden, 'ui': case_ui}[CASE](d)
+        {'scenes': case_scenes, 'screenshot': case_screenshot, 'golden': case_golden, 'ui': case_ui,
+         'gallery': case_gallery}[CASE](d)
     finally:
         d.quit()
     if failures:

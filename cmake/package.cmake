@@ -29,4 +29,7 @@ set(CPACK_DEBIAN_PACKAGE_PRIORITY "optional")
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 # Opened with dlopen only when recording (lib/render), so not in the shlibs Depends.
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "libegl-mesa0, libgl1-mesa-dri, libosmesa6")
+# `simbob view` reads three.js from Debian's libjs-three at run time (lib/view): appended to the
+# shlibs Depends.
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "libjs-three")
 include(CPack)

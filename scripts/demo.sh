@@ -16,3 +16,8 @@ echo
 build/simbob run scenes/two_wheel_robot.xml --duration 5 --out out/two_wheel_robot.csv \
   --video out/two_wheel_robot.mp4 --size 640x480 --fps 30
 echo "Video of the robot: out/two_wheel_robot.mp4 (5 s, 640x480, 30 fps; trajectory: out/two_wheel_robot.csv)"
+# The same run as a page to replay in a browser: one file, opened from disk, no server.
+build/simbob view out/two_wheel_robot.csv --scene scenes/two_wheel_robot.xml -o out/two_wheel_robot.html \
+  --title "two_wheel_robot: 5 s"
+echo "Replay page: out/two_wheel_robot.html -- open it in Chromium or Firefox (file://$(pwd)/out/two_wheel_robot.html);"
+echo "  drag to turn the orbit camera, pick the scene's cameras, click a body for its pose, link a moment with #t=2.5"

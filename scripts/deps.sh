@@ -15,6 +15,7 @@ RUN_PACKAGES=(
   libpng-dev libavformat-dev libavcodec-dev libavutil-dev libswscale-dev  # frames and videos (lib/image)
   libgl-dev libegl-dev libosmesa6-dev  # GL, EGL and OSMesa headers (lib/render; opened with dlopen)
   libegl-mesa0 libgl1-mesa-dri libosmesa6  # the back ends themselves: Mesa's llvmpipe without a GPU
+  libjs-three           # three.js, inlined into `simbob view` pages at run time (lib/view)
 )
 TEST_PACKAGES=(
   catch2                # unit tests
@@ -28,6 +29,7 @@ TEST_PACKAGES=(
   file dpkg-dev         # cpack -G DEB: CPackDeb finds the ELF files with file, Depends with dpkg-shlibdeps
   git                   # cluster.version builds throwaway repositories (tests/cluster/version.sh)
   pybind11-dev python3-dev python3-numpy python3-pytest  # the optional Python module (python/) and its tests
+  chromium chromium-driver python3-selenium  # view pages driven in headless Chromium (tests/view/)
 )
 
 case "${1:-}" in

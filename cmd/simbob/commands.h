@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "simbob/compare.h"
 #include "simbob/run_outputs.h"
 
 namespace CLI {
@@ -14,6 +15,7 @@ namespace simbob {
 class Registry;
 struct Override;
 struct RenderOptions;
+struct Trajectory;
 }  // namespace simbob
 
 namespace simbob::cli {
@@ -63,6 +65,7 @@ struct RunArgs {
   std::string log;               ///< --log: comma list of joints, sensors, commands ("" = no run log)
   std::string log_out;           ///< --log-out: the run log (default: --out with .csv -> .log.csv)
   std::string columns = "pose";  ///< --columns: "pose", or "pose,velocity" for the velocity block
+  std::string html;              ///< --html PAGE: the replay page of the run (simbob view), written after it
 };
 int cmdRun(RunArgs& a, const Common& common);
 
@@ -91,12 +94,26 @@ int cmdTypes(bool markdown, const Registry& reg, const std::string& only = "");
 
 struct CompareArgs {
   std::string actual, golden, report;
+  std::string html, scene;  ///< --html PAGE --scene SCENE: the replay page of the comparison (simbob view)
   double tol_pos = 1e-6;
   double tol_rot = 1e-6;
   bool json = false;
   bool bless = false;
 };
 int cmdCompare(const CompareArgs& a, const Common& common);
+
+/// `simbob view` (issue #23): the replay page of a trajectory in its scene.
+struct ViewPageArgs {
+  std::string trajectory, scene, out, golden, title;
+  std::vector<std::string> sets;  ///< --set KEY.PARAM=VALUE: the overrides the run applied
+  CompareOptions compare;         ///< tolerances of the golden comparison
+};
+CLI::App* addViewCommand(CLI::App& app, ViewPageArgs& v, Common& common);
+int cmdView(const ViewPageArgs& a, const Common& common);
+/// Writes the page of `actual` (and `golden`, may be null) in a.scene to a.out; the exit status.
+int viewPage(const ViewPageArgs& a, const Common& common, const Trajectory* actual, const Trajectory* golden);
+/// `run --html PAGE`: the page of the trajectory the run has just written (--out), with its --set.
+int viewAfterRun(const RunArgs& a, const Common& common);
 
 struct PlotArgs {
   std::string trajectory, golden, out, bodies, title;
@@ -141,9 +158,13 @@ struct SweepArgs {
   bool retry = false;
   int max_parallel = 0;
   std::string partition;
+  std::string html;  ///< gather --html PAGE: the gallery of the cases, each with its replay page
   CLI::App *plan = nullptr, *run = nullptr, *gather = nullptr, *sbatch = nullptr;
 };
 CLI::App* addSweepCommands(CLI::App& app, SweepArgs& s, Common& common);
 int cmdSweep(const SweepArgs& a, const Common& common);
+/// `sweep gather --html PAGE` after the table is written (`gathered`: gather's exit status):
+/// each ok case's replay page (OUT/case-NNNN/view.html) and the gallery linking them.
+int galleryAfterGather(const SweepArgs& a, const Common& common, int gathered);
 
 }  // namespace simbob::cli

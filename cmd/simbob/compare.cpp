@@ -34,8 +34,12 @@ int cmdCompare(const CompareArgs& a, const Common& common) {
     g_log.error({ErrorKind::InvalidInput, {}, "--tol-pos and --tol-rot must be >= 0"});
     return kExitUsage;
   }
+  if (a.html.empty() != a.scene.empty()) {
+    g_log.error({ErrorKind::InvalidInput, {}, "--html and --scene go together: the page shows the scene"});
+    return kExitUsage;
+  }
   if (int c =
-          checkOutputs({{"--report", a.report}, {"--log-file", g_log.path}},
+          checkOutputs({{"--report", a.report}, {"--html", a.html}, {"--log-file", g_log.path}},
                        {{"the trajectory", a.actual}, {"the golden file", a.golden}, {"--settings", common.settings}}))
     return c;
   Trajectory actual, golden;
@@ -55,6 +59,15 @@ int cmdCompare(const CompareArgs& a, const Common& common) {
       g_log.error(err);
       return exitCodeFor(err.kind);
     }
+  }
+  if (!a.html.empty()) {
+    ViewPageArgs v;
+    v.trajectory = a.actual;
+    v.golden = a.golden;
+    v.scene = a.scene;
+    v.out = a.html;
+    v.compare = opts;
+    if (int c = viewPage(v, common, &actual, &golden)) return c;
   }
   if (a.bless) {
     if (r.pass) {

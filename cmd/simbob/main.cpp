@@ -79,6 +79,7 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
                   "Added to the Port of every RCLocalSocketCommunicator, so parallel runs do not clash (default 0)");
   run->add_option("--peer-timeout", ra.peer_timeout,
                   "Wall-clock s a socket peer may take to connect or to answer, 0.001 to 86400 (default 10)");
+  run->add_option("--html", ra.html, "Also write the run's replay page (simbob view) after the run");
   run->add_option("--columns", ra.columns,
                   "Trajectory columns: pose (default) or pose,velocity (adds vx,vy,vz m/s and wx,wy,wz rad/s, "
                   "world frame)")
@@ -143,6 +144,8 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   compare->add_option("--report", ca.report, "Also write the report to FILE (JSON if it ends in .json)");
   compare->add_flag("--json", ca.json, "Print the report as JSON");
   compare->add_flag("--bless", ca.bless, "Show what changes, then replace the golden file with the actual one");
+  compare->add_option("--html", ca.html, "Also write the replay page of the comparison (needs --scene; simbob view)");
+  compare->add_option("--scene", ca.scene, "With --html: the scene both trajectories were run in");
   addCommon(compare, common);
 
   BatchArgs ba;
@@ -185,6 +188,9 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   addViewOptions(render, rna.view);
   addCommon(render, common);
 
+  ViewPageArgs va;
+  CLI::App* view = addViewCommand(app, va, common);
+
   std::string info_gl;
   CLI::App* info = app.add_subcommand("info", "Print the version and the GL back ends with their renderer");
   info->add_option("--gl", info_gl, "Only this back end: egl or osmesa");
@@ -197,7 +203,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
     std::string near = simbob::didYouMean(argv[1], names);
     std::fprintf(stderr,
                  "simbob: error: unknown command '%s'%s; commands: run, check, dump, types, compare, batch, plot, "
-                 "sweep, render, info\n",
+                 "sweep, render, view, info\n",
                  argv[1], near.empty() ? "" : (" (did you mean '" + near + "'?)").c_str());
     return kExitUsage;
   }
@@ -211,7 +217,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
     return kExitUsage;
   }
   // An output option given as "" is a mistake, not a request for the default name.
-  for (CLI::App* sub : {run, compare, plot, batch, check, dump, render, info})
+  for (CLI::App* sub : {run, compare, plot, batch, check, dump, render, view, info})
     for (const char* name : {"--out", "--report", "--log-file", "--out-dir", "--settings", "--record", "--video"}) {
       CLI::Option* o = sub->get_option_no_throw(name);
       if (!o || o->count() == 0) continue;
@@ -236,9 +242,10 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
     if (!common.log_file.empty()) {
       std::vector<NamedPath> outputs;
       if (*run) outputs = runOutputs(ra);
-      if (*compare) outputs = {{"--report", ca.report}};
+      if (*compare) outputs = {{"--report", ca.report}, {"--html", ca.html}};
       if (*plot) outputs = {{"--out", pa.out}};
       if (*render) outputs = {{"--out", rna.out}};
+      if (*view) outputs = {{"--out", va.out}};
       if (*batch) outputs = {{"--report", ba.report}};
       outputs.push_back({"--log-file", common.log_file});
       if (int c = checkOutputs(outputs, {})) return c;
@@ -253,6 +260,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
     if (*plot) code = cmdPlot(pa, common);
     if (*sweep) code = cmdSweep(sa, common);
     if (*render) code = cmdRender(rna, common);
+    if (*view) code = cmdView(va, common);
     if (*info) code = cmdInfo(info_gl, common);
   } catch (const std::exception& e) {
     g_log.error({simbob::ErrorKind::Internal, {}, std::string("internal error: ") + e.what()});

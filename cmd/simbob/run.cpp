@@ -144,8 +144,8 @@ int rejectDifferent(const RunArgs& a, const nlohmann::ordered_json& summary, Run
                "two runs in one process differ: " + summary["determinism_check"].get<std::string>()});
 }
 
-int publish(const RunArgs& a, const Model& model, const RunResult& r, nlohmann::ordered_json summary,
-            RunOutputs& outputs) {
+int publish(const RunArgs& a, const Common& common, const Model& model, const RunResult& r,
+            nlohmann::ordered_json summary, RunOutputs& outputs) {
   summary["trajectory"] = outputs.paths().trajectory;
   summary["csv_bytes"] = outputs.trajectoryBytes();
   if (!outputs.paths().run_log.empty()) summary["run_log"] = outputs.paths().run_log;
@@ -156,7 +156,7 @@ int publish(const RunArgs& a, const Model& model, const RunResult& r, nlohmann::
   g_log.info("wrote " + outputs.paths().trajectory + " (" + countOf(r.samples, "sample", "samples") + " of " +
              countOf(model.bodies.size(), "body", "bodies") + ", " + countOf(r.steps, "step", "steps") + " in " +
              formatNumber(std::round(r.wall_seconds * 1000) / 1000) + " s)");
-  return kExitOk;
+  return a.html.empty() ? kExitOk : viewAfterRun(a, common);
 }
 
 // A failed run keeps what it computed, beside its outputs and never over them.
@@ -257,7 +257,7 @@ int cmdRun(RunArgs& a, const Common& common) {
     summary["frames"] = recording->recorder().frames();
   }
   if (!determinism.empty() && determinism != "identical") return rejectDifferent(a, summary, *outputs);
-  if (r.status == RunStatus::Completed) return publish(a, model, r, std::move(summary), *outputs);
+  if (r.status == RunStatus::Completed) return publish(a, common, model, r, std::move(summary), *outputs);
   return keepFailed(a, r, std::move(summary), *outputs);
 }
 

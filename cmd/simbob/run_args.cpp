@@ -37,6 +37,7 @@ std::vector<NamedPath> runOutputs(const RunArgs& a) {
     all.insert(all.end(), {{"the summary", p.summary},
                            {"the partial trajectory", partialPath(p.trajectory)},
                            {"the partial summary", partialSummaryPath(p.summary)}});
+  if (!a.html.empty()) all.push_back({"--html", a.html});
   if (!p.run_log.empty()) {
     all.push_back({a.log_out.empty() ? "the run log" : "--log-out", p.run_log});
     if (!isStreamOutput(p.run_log)) all.push_back({"the partial run log", partialPath(p.run_log)});

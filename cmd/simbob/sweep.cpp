@@ -631,6 +631,7 @@ CLI::App* addSweepCommands(CLI::App& app, SweepArgs& s, Common& common) {
   gather->add_option("out", s.input, "Output folder of the sweep")->required();
   gather->add_option("-o,--out", s.out, "Table to write (default OUT/results.csv)");
   gather->add_flag("--retry", s.retry, "Print the cases to resubmit as --array=3,17,42");
+  gather->add_option("--html", s.html, "Also write a gallery page: the table, a plot, each case's replay page");
   addCommon(gather, common);
   CLI::App* sbatch = sweep->add_subcommand("sbatch", "Write Slurm scripts: a case array and a dependent gather job");
   sbatch->add_option("manifest", s.input, "Case manifest")->required();
@@ -649,7 +650,7 @@ CLI::App* addSweepCommands(CLI::App& app, SweepArgs& s, Common& common) {
 int cmdSweep(const SweepArgs& a, const Common& common) {
   if (*a.plan) return sweepPlan(a, common);
   if (*a.run) return sweepRun(a, common);
-  if (*a.gather) return sweepGather(a);
+  if (*a.gather) return a.html.empty() ? sweepGather(a) : galleryAfterGather(a, common, sweepGather(a));
   return sweepSbatch(a, common);
 }
 

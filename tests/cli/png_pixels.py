@@ -65,4 +65,5 @@ def main():
         print(' '.join(str(v) for v in rows[y][x * channels:x * channels + 3]))
 
 
-main()
+if __name__ == '__main__':  # also imported by tests/view/browser_test.py
+    main()

@@ -110,6 +110,8 @@ while read -r lib; do
   [[ -n "$owner" ]] || fail "no package owns $lib ($(grep "^$lib " "$WORK/spellings" | head -n 1))"
   printf '%s\n' "$owner" >>"$WORK/owners"
 done <"$WORK/needed"
+# Plus what the binary reads at run time: three.js for `simbob view` pages (cmake/package.cmake).
+printf 'libjs-three\n' >>"$WORK/owners"
 sort -u -o "$WORK/owners" "$WORK/owners"
 expect_eq "Depends vs the owners of the NEEDED libraries" "$(tr '\n' ' ' <"$WORK/depends")" "$(tr '\n' ' ' <"$WORK/owners")"
 # Each comes from Debian's archive (when this machine has apt lists to tell). One apt-cache

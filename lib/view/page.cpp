@@ -1,0 +1,387 @@
+// The replay page (include/simbob/view.h): the Model's visuals, skins, cameras and collision
+// shapes as JSON, the poses as float32 base64, three.js and the viewer (lib/view/viewer.js,
+// lib/view/page.html, embedded at build time) in one HTML file.
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <utility>
+#include <vector>
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include "simbob/files.h"
+#include "simbob/view.h"
+#include "view/assets.h"
+
+namespace simbob {
+
+namespace {
+
+using nlohmann::json;
+
+/// Positions beyond this (m) lose more than 0.1 mm as float32 (half an ulp at 2048 m is 0.12 mm):
+/// a body that goes that far is stored relative to an origin of its own.
+constexpr double kFloat32Reach = 1000;
+
+std::string base64(const void* data, size_t size) {
+  static const char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  const auto* b = static_cast<const uint8_t*>(data);
+  std::string out;
+  out.reserve((size + 2) / 3 * 4);
+  size_t i = 0;
+  for (; i + 2 < size; i += 3) {
+    const uint32_t v = (uint32_t{b[i]} << 16) | (uint32_t{b[i + 1]} << 8) | b[i + 2];
+    for (int k = 18; k >= 0; k -= 6) out += kDigits[(v >> k) & 63];
+  }
+  if (i < size) {
+    const uint32_t v = (uint32_t{b[i]} << 16) | (i + 1 < size ? uint32_t{b[i + 1]} << 8 : 0);
+    out += kDigits[(v >> 18) & 63];
+    out += kDigits[(v >> 12) & 63];
+    out += i + 1 < size ? kDigits[(v >> 6) & 63] : '=';
+    out += '=';
+  }
+  return out;
+}
+
+/// Little-endian bytes of floats (x86 and ARM are little-endian; a big-endian host swaps).
+template <typename T>
+std::string base64Le(const std::vector<T>& v) {
+  std::vector<uint8_t> bytes(v.size() * sizeof(T));
+  for (size_t i = 0; i < v.size(); ++i) {
+    uint8_t raw[sizeof(T)];
+    std::memcpy(raw, &v[i], sizeof(T));
+    const uint16_t probe = 1;
+    const bool little = *reinterpret_cast<const uint8_t*>(&probe) == 1;
+    for (size_t k = 0; k < sizeof(T); ++k) bytes[i * sizeof(T) + k] = raw[little ? k : sizeof(T) - 1 - k];
+  }
+  return base64(bytes.data(), bytes.size());
+}
+
+json vec(const double* v, size_t n) {
+  json a = json::array();
+  for (size_t i = 0; i < n; ++i) a.push_back(v[i]);
+  return a;
+}
+json pose(const Transform& t) { return {{"p", vec(t.p.data(), 3)}, {"q", vec(t.q.data(), 4)}}; }
+
+/// A trajectory's poses: {bodies, times (float64 base64), origins, poses (float32 base64,
+/// [body][sample][x y z qw qx qy qz] with NaN where a row is missing)}.
+json encodeTrajectory(const Trajectory& t) {
+  json out;
+  out["bodies"] = t.bodies;
+  out["times"] = base64Le(t.times);
+  std::vector<float> poses(t.bodyCount() * t.sampleCount() * kPoseSize, std::nanf(""));
+  json origins = json::array();
+  for (size_t b = 0; b < t.bodyCount(); ++b) {
+    double reach[3] = {0, 0, 0}, lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    bool any = false;
+    for (size_t s = 0; s < t.sampleCount(); ++s) {
+      const double* p = t.pose(s, b);
+      if (!p) continue;
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = any ? std::min(lo[k], p[k]) : p[k];
+        hi[k] = any ? std::max(hi[k], p[k]) : p[k];
+        reach[k] = std::max(reach[k], std::fabs(p[k]));
+      }
+      any = true;
+    }
+    // Origin 0 keeps the stored values the CSV's rounded to float32; a far body is stored
+    // relative to the middle of its range, rounded to a metre.
+    double origin[3] = {0, 0, 0};
+    for (int k = 0; k < 3; ++k)
+      if (reach[k] > kFloat32Reach) origin[k] = std::round((lo[k] + hi[k]) / 2);
+    origins.push_back(vec(origin, 3));
+    for (size_t s = 0; s < t.sampleCount(); ++s) {
+      const double* p = t.pose(s, b);
+      if (!p) continue;
+      float* o = &poses[(b * t.sampleCount() + s) * kPoseSize];
+      for (size_t k = 0; k < kPoseSize; ++k) o[k] = static_cast<float>(k < 3 ? p[k] - origin[k] : p[k]);
+    }
+  }
+  out["origins"] = origins;
+  out["poses"] = base64Le(poses);
+  return out;
+}
+
+/// The golden comparison: compareTrajectories' verdict and first divergence, and per body in
+/// both the position and rotation error at each golden sample time shared with the run.
+json encodeComparison(const Trajectory& actual, const Trajectory& golden, const CompareOptions& opts) {
+  const CompareResult r = compareTrajectories(actual, golden, opts);
+  json out;
+  out["pass"] = r.pass;
+  out["tol_pos"] = opts.tol_pos;
+  out["tol_rot"] = opts.tol_rot;
+  if (r.first_divergence) {
+    const Divergence& d = *r.first_divergence;
+    out["divergence"] = {{"time", d.time}, {"body", d.body}, {"pos_err", d.pos_err}, {"rot_err", d.rot_err}};
+  } else {
+    out["divergence"] = nullptr;
+  }
+  // Sample pairs (golden s, actual s) with the same time, as compareTrajectories matches them.
+  std::vector<std::pair<size_t, size_t>> shared;
+  for (size_t g = 0, a = 0; g < golden.sampleCount() && a < actual.sampleCount();) {
+    const double tg = golden.times[g], ta = actual.times[a];
+    if (std::fabs(tg - ta) <= opts.time_eps) {
+      shared.push_back({g, a});
+      ++g, ++a;
+    } else if (tg < ta) {
+      ++g;
+    } else {
+      ++a;
+    }
+  }
+  std::vector<double> times;
+  times.reserve(shared.size());
+  for (const auto& s : shared) times.push_back(golden.times[s.first]);
+  out["times"] = base64Le(times);
+  json errors = json::object();
+  for (const BodyDiff& d : r.bodies) {
+    size_t ab = 0, gb = 0;
+    while (actual.bodies[ab] != d.body) ++ab;
+    while (golden.bodies[gb] != d.body) ++gb;
+    std::vector<float> pos, rot;
+    pos.reserve(shared.size());
+    rot.reserve(shared.size());
+    for (const auto& s : shared) {
+      const double* pa = actual.pose(s.second, ab);
+      const double* pg = golden.pose(s.first, gb);
+      pos.push_back(pa && pg ? static_cast<float>(positionError(pa, pg)) : std::nanf(""));
+      rot.push_back(pa && pg ? static_cast<float>(rotationError(pa + 3, pg + 3)) : std::nanf(""));
+    }
+    errors[d.body] = {{"pos", base64Le(pos)}, {"rot", base64Le(rot)}};
+  }
+  out["errors"] = errors;
+  return out;
+}
+
+const char* mimeOf(const std::string& bytes) {
+  if (bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0) return "image/png";
+  if (bytes.compare(0, 2, "BM") == 0) return "image/bmp";
+  if (bytes.compare(0, 3, "\xff\xd8\xff") == 0) return "image/jpeg";
+  if (bytes.compare(0, 4, "GIF8") == 0) return "image/gif";
+  return nullptr;
+}
+
+/// A skin's texture as a data URL, looked up as the renderer does: TextureFolder, then beside
+/// the scene; the name as written, then with .bmp, then .png.
+bool textureUrl(const SkinDef& s, const std::string& texture_folder, std::string* url, Error* err) {
+  std::string where;
+  for (const std::string& dir : {texture_folder, s.base_dir}) {
+    if (dir.empty()) continue;
+    where += (where.empty() ? "" : " or ") + dir;
+    for (const char* ext : {"", ".bmp", ".png"}) {
+      const std::string p = (s.texture[0] == '/' ? "" : dir + "/") + s.texture + ext;
+      std::string bytes, reason;
+      if (!readFile(p, size_t{1} << 30, &bytes, &reason, true)) continue;
+      const char* mime = mimeOf(bytes);
+      if (!mime) {
+        *err = {
+            ErrorKind::InvalidInput, {p, 0}, "texture of skin '" + s.key + "' is not a PNG, BMP, JPEG or GIF image"};
+        return false;
+      }
+      *url = std::string("data:") + mime + ";base64," + base64(bytes.data(), bytes.size());
+      return true;
+    }
+  }
+  *err = {ErrorKind::MissingInput, {}, "texture '" + s.texture + "' of skin '" + s.key + "' not found in " + where};
+  return false;
+}
+
+bool encodeModel(const Model& m, const std::string& texture_folder, json* out, Error* err) {
+  json skins = json::array();
+  for (const SkinDef& s : m.skins) {
+    static const char* const kModes[] = {"color", "shading", "transparent_color", "transparent_lighting"};
+    json j = {{"key", s.key},
+              {"color", vec(s.color.data(), 4)},
+              {"ambient", vec(s.ambient.data(), 4)},
+              {"diffuse", vec(s.diffuse.data(), 4)},
+              {"specular", vec(s.specular.data(), 4)},
+              {"emission", vec(s.emission.data(), 4)},
+              {"shininess", s.shininess},
+              {"mode", kModes[s.mode]},
+              {"colored", s.colored}};
+    if (!s.texture.empty()) {
+      std::string url;
+      if (!textureUrl(s, texture_folder, &url, err)) return false;
+      j["texture"] = url;
+    }
+    skins.push_back(j);
+  }
+  json visuals = json::array();
+  for (const VisualDef& v : m.visuals) {
+    static const char* const kShapes[] = {"cuboid", "plane", "ellipsoid", "cylinder", "cone"};
+    visuals.push_back({{"shape", kShapes[v.shape]},
+                       {"body", v.body},
+                       {"pose", pose(v.pose)},
+                       {"a", vec(v.a.data(), 3)},
+                       {"b", vec(v.b.data(), 3)},
+                       {"size", vec(v.size.data(), 3)},
+                       {"skin", v.skin},
+                       {"mask", v.mask},
+                       {"wire", v.wire},
+                       {"one_sided", v.one_sided},
+                       {"tex_scale", v.tex_scale},
+                       {"tex_scale2", v.tex_scale2},
+                       {"key", v.key}});
+  }
+  json geoms = json::array();
+  for (const GeomDef& g : m.geoms) {
+    if (g.sensor) continue;  // detects contacts only; the renderer leaves them out too
+    static const char* const kGeoms[] = {"box", "sphere", "cylinder", "capsule", "plane"};
+    geoms.push_back({{"shape", kGeoms[static_cast<int>(g.shape)]},
+                     {"body", g.body},
+                     {"pose", pose(g.offset)},
+                     {"size", vec(g.size.data(), 3)},
+                     {"plane", vec(g.plane.data(), 4)}});
+  }
+  json cameras = json::array();
+  for (const CameraDef& c : m.cameras) {
+    static const char* const kKinds[] = {"static", "mounted", "spotlight", "tracking"};
+    cameras.push_back({{"key", c.key},
+                       {"kind", kKinds[c.kind]},
+                       {"pose", pose(c.pose)},
+                       {"body", c.body},
+                       {"target", vec(c.target.data(), 3)},
+                       {"view_angle", c.view_angle},
+                       {"near", c.near_clip},
+                       {"far", c.far_clip},
+                       {"auto_view_angle", c.auto_view_angle},
+                       {"distance", c.distance}});
+  }
+  json bodies = json::array();
+  for (const BodyDef& b : m.bodies) bodies.push_back({{"key", b.key}, {"pose", pose(b.pose)}});
+  static const char* const kFog[] = {"off", "linear", "exponential", "exponential2"};
+  const ViewSettings& v = m.view;
+  *out = {{"bodies", bodies},
+          {"skins", skins},
+          {"visuals", visuals},
+          {"geoms", geoms},
+          {"cameras", cameras},
+          {"view",
+           {{"light_pos", vec(v.light_pos.data(), 4)},
+            {"light_color", vec(v.light_color.data(), 4)},
+            {"clear_color", vec(v.clear_color.data(), 4)},
+            {"fog", kFog[v.fog]},
+            {"fog_density", v.fog_density},
+            {"fog_start", v.fog_start},
+            {"fog_end", v.fog_end},
+            {"fog_color", vec(v.fog_color.data(), 4)}}}};
+  return true;
+}
+
+bool readThree(const std::string& rel, std::string* text, Error* err) {
+  const std::string path = threeJsDir() + "/" + rel;
+  std::string reason;
+  if (readFile(path, size_t{64} << 20, text, &reason, true)) return true;
+  *err = {ErrorKind::MissingInput, {path, 0}, "cannot read three.js: " + reason + " (install Debian's libjs-three)"};
+  return false;
+}
+
+/// The template with each `{{NAME}}` marker replaced by its value (markers are looked for in the
+/// template only, never in the values put in).
+std::string fill(const std::string& page, const std::vector<std::pair<std::string, std::string>>& values) {
+  std::string out;
+  size_t at = 0;
+  while (true) {
+    const size_t open = page.find("{{", at);
+    if (open == std::string::npos) break;
+    const size_t close = page.find("}}", open);
+    if (close == std::string::npos) break;
+    const std::string name = page.substr(open + 2, close - open - 2);
+    out.append(page, at, open - at);
+    bool known = false;
+    for (const auto& v : values)
+      if (v.first == name) {
+        out += v.second;
+        known = true;
+      }
+    if (!known) out.append(page, open, close + 2 - open);
+    at = close + 2;
+  }
+  out.append(page, at, std::string::npos);
+  return out;
+}
+
+std::string escapeHtml(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+/// Script text must not contain "</script" (nor "<!--"): JSON escapes '<' as \u003c.
+std::string scriptSafe(const std::string& s) {
+  std::string out;
+  out.reserve(s.size());
+  for (char c : s) {
+    if (c == '<')
+      out += "\\u003c";
+    else
+      out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string threeJsDir() {
+  const char* env = std::getenv("SIMBOB_THREE_DIR");
+  return env && *env ? env : "/usr/share/javascript/three";
+}
+
+bool buildViewPage(const ViewPageInput& in, std::string* html, Error* err) {
+  if (!in.model || !in.actual) {
+    *err = {ErrorKind::Internal, {}, "buildViewPage: no model or trajectory"};
+    return false;
+  }
+  std::string three, orbit;
+  if (!readThree("three.min.js", &three, err) || !readThree("examples/js/controls/OrbitControls.js", &orbit, err))
+    return false;
+  for (const std::string* js : {&three, &orbit})
+    if (js->find("</script") != std::string::npos) {
+      *err = {ErrorKind::InvalidInput, {threeJsDir(), 0}, "three.js holds '</script' and cannot be inlined"};
+      return false;
+    }
+  json data;
+  data["format"] = 1;
+  data["title"] = in.title.empty() ? "simbob view" : in.title;
+  data["scene"] = in.scene_name;
+  if (!encodeModel(*in.model, in.texture_folder, &data["model"], err)) return false;
+  data["actual"] = encodeTrajectory(*in.actual);
+  if (in.golden) {
+    data["golden"] = encodeTrajectory(*in.golden);
+    data["compare"] = encodeComparison(*in.actual, *in.golden, in.compare);
+  }
+  const std::string page =
+      fill(view::kPageHtml, {{"TITLE", escapeHtml(data["title"].get<std::string>())},
+                             {"THREE", three + "\n" + orbit},
+                             {"VIEWER", view::kViewerJs},
+                             {"DATA", scriptSafe(data.dump(-1, ' ', false, json::error_handler_t::replace))}});
+  *html = page;
+  return true;
+}
+
+bool writeViewPage(const ViewPageInput& in, const std::string& path, Error* err) {
+  std::string html;
+  if (!buildViewPage(in, &html, err)) return false;
+  return writeFileAtomically(path, html, err);
+}
+
+}  // namespace simbob

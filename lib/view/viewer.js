@@ -1,0 +1,645 @@
+// simbob view: the replay page's viewer (issue #23; docs/view.md). Reads the JSON of
+// <script id="simbob-data"> (the compiled scene and the trajectories, written by lib/view/page.cpp),
+// builds a three.js scene of the model the way lib/render draws it, and moves the bodies through
+// the samples. No network: three.js and OrbitControls are inlined before this script.
+(function () {
+  'use strict';
+
+  const timings = { start: performance.now() };  // ms since navigation: bench/view_bench.py reads them
+  const data = JSON.parse(document.getElementById('simbob-data').textContent);
+  timings.parsed = performance.now();
+  const model = data.model;
+  const $ = (id) => document.getElementById(id);
+
+  // ---- Embedded arrays: base64 of little-endian float32/float64 (typed arrays read the host's
+  // order; every browser platform in use is little-endian). ----
+  function bytesOf(b64) {
+    const text = atob(b64);
+    const bytes = new Uint8Array(text.length);
+    for (let i = 0; i < text.length; ++i) bytes[i] = text.charCodeAt(i);
+    return bytes.buffer;
+  }
+  const f32 = (b64) => new Float32Array(bytesOf(b64));
+  const f64 = (b64) => new Float64Array(bytesOf(b64));
+
+  // A trajectory: times, and per body 7 floats per sample (x y z qw qx qy qz, NaN = no row),
+  // positions relative to the body's origin.
+  function decodeTrajectory(t) {
+    const out = { bodies: t.bodies, times: f64(t.times), origins: t.origins, poses: f32(t.poses), index: {} };
+    t.bodies.forEach((key, i) => { out.index[key] = i; });
+    out.count = out.times.length;
+    // The pose of body b at sample s as [x, y z, qw, qx, qy, qz] in doubles, or null.
+    out.pose = function (b, s) {
+      const o = (b * out.count + s) * 7;
+      const p = out.poses;
+      if (s < 0 || s >= out.count || Number.isNaN(p[o])) return null;
+      const g = out.origins[b];
+      return [g[0] + p[o], g[1] + p[o + 1], g[2] + p[o + 2], p[o + 3], p[o + 4], p[o + 5], p[o + 6]];
+    };
+    // The last sample at or before time t (0 before the first).
+    out.sampleAt = function (t) {
+      let lo = 0, hi = out.count - 1;
+      if (hi < 0 || t <= out.times[0]) return 0;
+      while (lo < hi) {
+        const mid = (lo + hi + 1) >> 1;
+        if (out.times[mid] <= t + 1e-12) lo = mid; else hi = mid - 1;
+      }
+      return lo;
+    };
+    return out;
+  }
+  const actual = decodeTrajectory(data.actual);
+  const golden = data.golden ? decodeTrajectory(data.golden) : null;
+  const compare = data.compare || null;
+  timings.decoded = performance.now();
+
+  // ---- three.js scene: renderer, light, background, fog ----
+  const view = model.view;
+  const rgb = (c) => new THREE.Color(c[0], c[1], c[2]);
+  const ANTIALIAS = !/aa=0/.test(location.hash);
+  const container = $('view');
+  const renderer = new THREE.WebGLRenderer({ antialias: ANTIALIAS, preserveDrawingBuffer: true });
+  renderer.setPixelRatio(1);
+  container.appendChild(renderer.domElement);
+  const scene = new THREE.Scene();
+  scene.background = rgb(view.clear_color);
+  // One light at LightPos (w = 0: a direction), as the renderer's GL_LIGHT0. Its ambient part
+  // is the skins' emissive term (see materialOf), so there is no ambient light here.
+  const lp = view.light_pos;
+  const light = lp[3] === 0 ? new THREE.DirectionalLight(rgb(view.light_color), 1) : new THREE.PointLight(rgb(view.light_color), 1, 0, 0);
+  light.position.set(lp[0], lp[1], lp[2]);
+  scene.add(light);
+  const sceneFog = view.fog === 'linear' ? new THREE.Fog(rgb(view.fog_color), view.fog_start, view.fog_end)
+    : view.fog === 'off' ? null : new THREE.FogExp2(rgb(view.fog_color), view.fog_density);
+
+  // ---- Materials of the skins (lib/render/renderer.cpp's drawVisual) ----
+  let pendingTextures = 0;
+  const imageUsers = new Map();  // image element -> the textures drawn from it
+  const materials = model.skins.map(materialOf);
+  function materialOf(s) {
+    const alpha = s.color[3];
+    const common = { transparent: alpha < 1, opacity: alpha, depthWrite: alpha >= 1, side: THREE.DoubleSide };
+    let m;
+    if (s.mode === 'color' || s.mode === 'transparent_color') {
+      m = new THREE.MeshBasicMaterial(Object.assign({ color: rgb(s.color) }, common));
+    } else {
+      const lc = view.light_color;
+      const emissive = [0, 1, 2].map((k) => Math.min(1, s.ambient[k] * lc[k] + s.emission[k]));
+      m = new THREE.MeshPhongMaterial(Object.assign({
+        color: rgb(s.diffuse), emissive: rgb(emissive),
+        specular: s.shininess > 0 ? rgb(s.specular) : new THREE.Color(0, 0, 0),
+        shininess: Math.min(s.shininess, 128),
+      }, common));
+    }
+    if (s.texture) {
+      // One image element per skin; the meshes' textures (clones with their own repeat) share it
+      // and are all updated once it has decoded.
+      const img = new Image();
+      const users = [];
+      pendingTextures++;
+      img.onload = () => { pendingTextures--; for (const t of users) t.needsUpdate = true; };
+      img.onerror = () => { pendingTextures--; console.error('simbob view: texture of skin ' + s.key + ' did not load'); };
+      img.src = s.texture;
+      m.map = new THREE.Texture(img);
+      m.map.wrapS = m.map.wrapT = THREE.RepeatWrapping;
+      imageUsers.set(img, users);
+      users.push(m.map);
+      if (!s.colored) m.color = new THREE.Color(1, 1, 1);
+    }
+    return m;
+  }
+
+  // ---- Shapes: a model (VisualDef) or a collision shape (GeomDef) as a mesh in its owner's frame ----
+  function place(obj, pose) {
+    obj.position.set(pose.p[0], pose.p[1], pose.p[2]);
+    obj.quaternion.set(pose.q[1], pose.q[2], pose.q[3], pose.q[0]);
+    return obj;
+  }
+  function visualGeometry(v) {
+    const s = v.size;
+    switch (v.shape) {
+      case 'cuboid': {
+        const g = new THREE.BoxBufferGeometry(Math.abs(v.b[0] - v.a[0]), Math.abs(v.b[1] - v.a[1]), Math.abs(v.b[2] - v.a[2]));
+        g.translate((v.a[0] + v.b[0]) / 2, (v.a[1] + v.b[1]) / 2, (v.a[2] + v.b[2]) / 2);
+        return g;
+      }
+      case 'plane': return new THREE.PlaneBufferGeometry(s[0], s[1]);  // XY plane, normal +Z
+      case 'ellipsoid': {
+        const g = new THREE.SphereBufferGeometry(1, 32, 16);
+        g.scale(s[0], s[1], s[2]);
+        return g;
+      }
+      case 'cylinder': {  // along Z, centred; open unless a flat or capped end is asked for
+        const g = new THREE.CylinderBufferGeometry(s[0], s[0], s[1], 32, 1, (v.mask & 30) === 0);
+        g.rotateX(Math.PI / 2);
+        return g;
+      }
+      case 'cone': {  // base at z = 0, apex at z = Length
+        const g = new THREE.ConeBufferGeometry(s[0], s[1], 32, 1, (v.mask & 1) === 0);
+        g.rotateX(Math.PI / 2);
+        g.translate(0, 0, s[1] / 2);
+        return g;
+      }
+    }
+    return null;
+  }
+  function visualMesh(v) {
+    const g = visualGeometry(v);
+    let m = materials[v.skin] || materials[0];
+    if (v.wire || v.one_sided || m.map) {
+      m = m.clone();
+      if (v.wire) m.wireframe = true;
+      if (v.one_sided) m.side = THREE.FrontSide;
+      if (m.map) {
+        // Repeats per metre, or (negative) per extension, as the renderer maps its textures.
+        // TexScale is the size of one image in m, or (negative) a fraction of the extension
+        // (lib/render/shapes.cpp's texCoord); three.js's UVs run 0..1 over a face.
+        const ts = v.tex_scale;
+        const ext = v.shape === 'plane' ? [s0(v.size[0]), s0(v.size[1])]
+          : v.shape === 'cuboid' ? [s0(v.b[0] - v.a[0]), s0(v.b[1] - v.a[1])] : [1, 1];
+        m.map = m.map.clone();
+        imageUsers.get(m.map.image).push(m.map);
+        if (m.map.image && m.map.image.complete && m.map.image.naturalWidth) m.map.needsUpdate = true;
+        if (ts !== 0) m.map.repeat.set(ts > 0 ? ext[0] / ts : 1 / -ts, ts > 0 ? ext[1] / ts : 1 / -ts);
+      }
+    }
+    return place(new THREE.Mesh(g, m), v.pose);
+  }
+  const s0 = (x) => Math.abs(x) || 1;
+  const geomFilled = new THREE.MeshPhongMaterial({ color: new THREE.Color(0.9, 0.55, 0.2), side: THREE.DoubleSide });
+  const geomStatic = new THREE.MeshPhongMaterial({ color: new THREE.Color(0.6, 0.6, 0.6), side: THREE.DoubleSide });
+  const geomWire = new THREE.MeshBasicMaterial({ color: new THREE.Color(1, 0.9, 0), wireframe: true });
+  function geomMesh(g, material) {
+    const s = g.size;
+    let geo;
+    switch (g.shape) {
+      case 'box': geo = new THREE.BoxBufferGeometry(s[0], s[1], s[2]); break;
+      case 'sphere': geo = new THREE.SphereBufferGeometry(s[0], 24, 12); break;
+      case 'cylinder': geo = new THREE.CylinderBufferGeometry(s[0], s[0], s[1], 24); geo.rotateX(Math.PI / 2); break;
+      case 'capsule': {  // a cylinder with a half sphere at each end, along Z
+        const grp = new THREE.Group();
+        const c = new THREE.CylinderBufferGeometry(s[0], s[0], s[1], 24, 1, true);
+        c.rotateX(Math.PI / 2);
+        grp.add(new THREE.Mesh(c, material));
+        for (const z of [-s[1] / 2, s[1] / 2]) {
+          const e = new THREE.Mesh(new THREE.SphereBufferGeometry(s[0], 24, 12), material);
+          e.position.z = z;
+          grp.add(e);
+        }
+        return place(grp, g.pose);
+      }
+      case 'plane': {  // n.p = d, shown as a square around the point nearest the origin
+        const n = new THREE.Vector3(g.plane[0], g.plane[1], g.plane[2]);
+        const mesh = new THREE.Mesh(new THREE.PlaneBufferGeometry(sceneSpan * 2, sceneSpan * 2, 10, 10), material);
+        mesh.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), n);
+        mesh.position.copy(n.multiplyScalar(g.plane[3]));
+        return mesh;
+      }
+    }
+    return place(new THREE.Mesh(geo, material), g.pose);
+  }
+
+  // ---- Bodies: one group per trajectory body, holding its models; its collision shapes in a
+  // second group that moves with it. Model bodies are matched to trajectory bodies by key. ----
+  const modelBodyIndex = {};
+  model.bodies.forEach((b, i) => { modelBodyIndex[b.key] = i; });
+  const visualsOf = model.bodies.map(() => []);
+  const geomsOf = model.bodies.map(() => []);
+  const staticVisuals = [], staticGeoms = [];
+  model.visuals.forEach((v) => (v.body >= 0 ? visualsOf[v.body] : staticVisuals).push(v));
+  model.geoms.forEach((g) => (g.body >= 0 ? geomsOf[g.body] : staticGeoms).push(g));
+
+  // How far the scene reaches (for planes of collision, the default view and trails).
+  let sceneSpan = 10;
+  for (let b = 0; b < actual.bodies.length; ++b)
+    for (let s = 0; s < actual.count; s += Math.max(1, actual.count >> 6)) {
+      const p = actual.pose(b, s);
+      if (p) sceneSpan = Math.max(sceneSpan, Math.abs(p[0]) * 2, Math.abs(p[1]) * 2, Math.abs(p[2]) * 2);
+    }
+
+  const bodies = actual.bodies.map((key, i) => {
+    const mi = modelBodyIndex[key];
+    const group = new THREE.Group();
+    group.name = key;
+    group.userData.body = i;
+    const geoms = new THREE.Group();
+    const vis = mi === undefined ? [] : visualsOf[mi];
+    const shapes = mi === undefined ? [] : geomsOf[mi];
+    for (const v of vis) group.add(visualMesh(v));
+    // Alone (no model on the body): filled, shown by default. Over a model: a wire frame.
+    for (const g of shapes) geoms.add(geomMesh(g, vis.length ? geomWire : geomFilled));
+    if (vis.length === 0 && shapes.length === 0) group.add(new THREE.AxesHelper(0.2));  // a body we know nothing of
+    group.add(geoms);
+    geoms.visible = vis.length === 0;
+    geoms.userData.alone = vis.length === 0;
+    scene.add(group);
+    return { key, group, geoms, model: mi, trail: null };
+  });
+  for (const v of staticVisuals) scene.add(visualMesh(v));
+  const staticGeomGroup = new THREE.Group();
+  for (const g of staticGeoms) staticGeomGroup.add(geomMesh(g, staticVisuals.length ? geomWire : geomStatic));
+  staticGeomGroup.userData.alone = staticVisuals.length === 0;
+  staticGeomGroup.visible = staticGeomGroup.userData.alone;
+  scene.add(staticGeomGroup);
+
+  // Golden ghosts: the golden run's bodies, translucent, with the same models (or shapes).
+  const ghostMaterial = new THREE.MeshBasicMaterial({ color: 0x88aaff, transparent: true, opacity: 0.35, depthWrite: false });
+  const ghosts = golden ? golden.bodies.map((key, i) => {
+    const mi = modelBodyIndex[key];
+    const group = new THREE.Group();
+    group.name = 'golden:' + key;
+    const vis = mi === undefined ? [] : visualsOf[mi];
+    const shapes = mi === undefined ? [] : geomsOf[mi];
+    for (const v of vis) if (v.shape !== 'plane') group.add(visualMesh(v));
+    if (vis.length === 0) for (const g of shapes) group.add(geomMesh(g, ghostMaterial));
+    group.traverse((o) => { if (o.isMesh) o.material = ghostMaterial; });
+    scene.add(group);
+    return { key, group, index: i };
+  }) : [];
+
+  // ---- State: time, selection, camera ----
+  const state = { sample: 0, time: actual.count ? actual.times[0] : 0, playing: false, speed: 1, selected: -1, camera: 'orbit' };
+  const t0 = actual.count ? actual.times[0] : 0;
+  const tEnd = actual.count ? actual.times[actual.count - 1] : 0;
+
+  function setPose(obj, p) {
+    if (!p || p.some(Number.isNaN)) { obj.visible = false; return; }
+    obj.visible = true;
+    obj.position.set(p[0], p[1], p[2]);
+    obj.quaternion.set(p[4], p[5], p[6], p[3]);
+  }
+  // Puts every body (and ghost) at the sample of time t.
+  function applyTime(t) {
+    state.time = Math.min(Math.max(t, t0), tEnd);
+    state.sample = actual.sampleAt(state.time);
+    bodies.forEach((b, i) => {
+      setPose(b.group, actual.pose(i, state.sample));
+      if (b.trail) b.trail.geometry.setDrawRange(0, state.sample + 1);
+    });
+    if (golden) {
+      const gs = golden.sampleAt(state.time);
+      for (const g of ghosts) {
+        setPose(g.group, golden.pose(g.index, gs));
+        if (!$('ghosts').checked) g.group.visible = false;
+      }
+    }
+    $('slider').value = String(state.sample);
+    $('time').textContent = 't = ' + state.time.toFixed(3) + ' s  [' + state.sample + '/' + Math.max(0, actual.count - 1) + ']';
+    showSelected();
+  }
+
+  // ---- Cameras: the orbit camera, and the scene's (static, mounted, spotlight, tracking) ----
+  const camera = new THREE.PerspectiveCamera(60, 1, 0.05, 5000);
+  const controls = new THREE.OrbitControls(camera, renderer.domElement);
+  const cameraState = {};  // per scene camera: tracking position, spotlight's first distance
+  function frameAll() {
+    // The default view of the renderer: from +Z and a little above, far enough to see everything.
+    const box = new THREE.Box3();
+    for (const b of bodies) {
+      for (let s = 0; s < actual.count; s += Math.max(1, actual.count >> 5)) {
+        const p = actual.pose(b.group.userData.body, s);
+        if (p) box.expandByPoint(new THREE.Vector3(p[0], p[1], p[2]));
+      }
+    }
+    applyTime(state.time);
+    for (const b of bodies) if (b.group.visible) box.expandByObject(b.group);
+    if (box.isEmpty()) box.expandByPoint(new THREE.Vector3(0, 0, 0));
+    const center = box.getCenter(new THREE.Vector3());
+    const radius = Math.max(0.5, box.getSize(new THREE.Vector3()).length() / 2);
+    const dist = radius / Math.sin(22.5 * Math.PI / 180);  // the sphere fits a 45 degree view
+    const dir = new THREE.Vector3(0, 0.5, 1).normalize();
+    camera.position.copy(center).addScaledVector(dir, dist);
+    controls.target.copy(center);
+    camera.near = Math.max(0.01, (dist - radius) * 0.5);
+    camera.far = dist + radius * 4 + 100;
+    camera.fov = 45;
+    controls.update();
+  }
+  // ViewAngle is the horizontal field of view; three.js's fov is the vertical one.
+  function verticalFov(hfov, aspect) {
+    return 2 * Math.atan(Math.tan(hfov * Math.PI / 360) / aspect) * 180 / Math.PI;
+  }
+  function bodyPoseOf(modelIndex) {
+    const key = modelIndex >= 0 ? model.bodies[modelIndex].key : null;
+    const i = key === null ? undefined : actual.index[key];
+    return i === undefined ? null : actual.pose(i, state.sample);
+  }
+  function placeSceneCamera(c, aspect) {
+    const st = cameraState[c.key] || (cameraState[c.key] = {});
+    let va = c.view_angle;
+    const bp = bodyPoseOf(c.body);
+    const target = bp ? new THREE.Vector3(bp[0], bp[1], bp[2]) : new THREE.Vector3(c.target[0], c.target[1], c.target[2]);
+    camera.up.set(0, 1, 0);
+    if (c.kind === 'static' || (c.kind === 'mounted' && !bp)) {
+      place(camera, c.pose);
+    } else if (c.kind === 'mounted') {
+      const q = new THREE.Quaternion(bp[4], bp[5], bp[6], bp[3]);
+      const local = place(new THREE.Object3D(), c.pose);
+      camera.position.copy(local.position).applyQuaternion(q).add(new THREE.Vector3(bp[0], bp[1], bp[2]));
+      camera.quaternion.copy(q).multiply(local.quaternion);
+    } else if (c.kind === 'spotlight') {
+      camera.position.set(c.pose.p[0], c.pose.p[1], c.pose.p[2]);
+      const dist = camera.position.distanceTo(target);
+      if (c.auto_view_angle && dist > 0) {
+        if (st.dist0 === undefined) st.dist0 = dist;  // keep the body's apparent size
+        va = 2 * Math.atan(Math.tan(c.view_angle * Math.PI / 360) * st.dist0 / dist) * 180 / Math.PI;
+      }
+      camera.lookAt(target);
+    } else {  // tracking: pulled like a rod of length Distance behind the body
+      if (!st.pos) st.pos = target.clone().addScaledVector(new THREE.Vector3(0, 0.5, 1).normalize(), c.distance);
+      const away = st.pos.clone().sub(target);
+      if (away.length() > 1e-12) st.pos.copy(target).addScaledVector(away.normalize(), c.distance);
+      camera.position.copy(st.pos);
+      camera.lookAt(target);
+    }
+    camera.fov = verticalFov(va, aspect);
+    camera.near = c.near;
+    camera.far = c.far;
+  }
+  const sceneCamera = (name) => model.cameras.find((c) => c.key === name);
+  function setCamera(name) {
+    if (name !== 'orbit' && !sceneCamera(name)) {
+      console.warn('simbob view: no camera ' + name + ' in the scene');
+      name = 'orbit';
+    }
+    state.camera = name;
+    $('camera').value = name;
+    controls.enabled = name === 'orbit';
+    if (name === 'orbit') frameAll();
+  }
+
+  // ---- Selection: list, highlight, pose read-out, error chart ----
+  const highlight = new THREE.BoxHelper(undefined, 0xffff00);
+  highlight.visible = false;
+  scene.add(highlight);
+  function select(i) {
+    state.selected = i;
+    document.querySelectorAll('#bodies li').forEach((li, k) => li.classList.toggle('selected', k === i));
+    showSelected();
+    drawChart();
+  }
+  const fmt = (x) => (x === null || Number.isNaN(x) ? 'n/a' : x.toFixed(6));
+  function showSelected() {
+    const i = state.selected;
+    if (i < 0) { highlight.visible = false; return; }
+    const b = bodies[i];
+    highlight.setFromObject(b.group);
+    highlight.visible = b.group.visible;
+    const p = actual.pose(i, state.sample);
+    let text = b.key + '\n' + (p ? 'position  ' + p.slice(0, 3).map(fmt).join(' ') + ' m\nrotation  ' + p.slice(3).map(fmt).join(' ') + ' (w x y z)' : 'no row at this time');
+    if (compare && compare.errors[b.key]) {
+      const e = errorSeries(b.key);
+      const k = seriesIndexAt(state.time);
+      if (k >= 0) text += '\nvs golden  ' + fmt(e.pos[k]) + ' m, ' + fmt(e.rot[k]) + ' rad';
+    }
+    $('pose').textContent = text;
+    $('pose').classList.remove('muted');
+  }
+  const errorCache = {};
+  function errorSeries(key) {
+    if (!errorCache[key]) errorCache[key] = { pos: f32(compare.errors[key].pos), rot: f32(compare.errors[key].rot) };
+    return errorCache[key];
+  }
+  const compareTimes = compare ? f64(compare.times) : new Float64Array(0);
+  function seriesIndexAt(t) {
+    let k = -1;
+    for (let i = 0; i < compareTimes.length && compareTimes[i] <= t + 1e-12; ++i) k = i;
+    return k;
+  }
+  // Position (blue, m) and rotation (red, rad) error of the selected body against the golden run,
+  // each scaled to its own maximum; the dashed line is the tolerance, the grey one the time shown.
+  function drawChart() {
+    const cv = $('chart');
+    const g = cv.getContext('2d');
+    g.clearRect(0, 0, cv.width, cv.height);
+    if (!compare) return;
+    const i = state.selected;
+    const key = i >= 0 ? bodies[i].key : null;
+    g.fillStyle = '#555';
+    g.font = '11px sans-serif';
+    if (!key || !compare.errors[key]) { g.fillText(key ? 'not in the golden run' : 'select a body', 8, 16); return; }
+    const e = errorSeries(key);
+    const n = compareTimes.length;
+    if (n === 0) return;
+    const ta = compareTimes[0], tb = compareTimes[n - 1] > ta ? compareTimes[n - 1] : ta + 1;
+    const x = (t) => 4 + (cv.width - 8) * (t - ta) / (tb - ta);
+    const plot = (series, tol, colour, label, row) => {
+      let max = tol;
+      for (const v of series) if (v > max) max = v;
+      const y = (v) => cv.height - 4 - (cv.height - 24) * v / max;
+      g.strokeStyle = colour;
+      g.setLineDash([4, 3]);
+      g.beginPath(); g.moveTo(4, y(tol)); g.lineTo(cv.width - 4, y(tol)); g.stroke();
+      g.setLineDash([]);
+      g.beginPath();
+      for (let k = 0; k < n; ++k) if (!Number.isNaN(series[k])) (k ? g.lineTo : g.moveTo).call(g, x(compareTimes[k]), y(series[k]));
+      g.stroke();
+      g.fillStyle = colour;
+      g.fillText(label + ' max ' + max.toExponential(2), 8 + row * 135, 12);
+    };
+    plot(e.pos, compare.tol_pos, '#1f5fd6', 'pos m', 0);
+    plot(e.rot, compare.tol_rot, '#c62828', 'rot rad', 1);
+    g.strokeStyle = '#888';
+    g.beginPath(); g.moveTo(x(state.time), 16); g.lineTo(x(state.time), cv.height); g.stroke();
+  }
+
+  // ---- Trails: each body's path up to the time shown ----
+  function setTrails(on) {
+    bodies.forEach((b, i) => {
+      if (on && !b.trail) {
+        const pts = new Float32Array(actual.count * 3);
+        let last = [0, 0, 0];
+        for (let s = 0; s < actual.count; ++s) {
+          const p = actual.pose(i, s);
+          if (p) last = p;
+          pts.set([last[0], last[1], last[2]], s * 3);
+        }
+        const geo = new THREE.BufferGeometry();
+        geo.setAttribute('position', new THREE.BufferAttribute(pts, 3));
+        b.trail = new THREE.Line(geo, new THREE.LineBasicMaterial({ color: 0x333333 }));
+        scene.add(b.trail);
+      }
+      if (b.trail) b.trail.visible = on;
+    });
+    applyTime(state.time);
+  }
+
+  // ---- URL fragment: #t=2.5&camera=Chase&body=Bot.Cart.Chassis ----
+  function readFragment() {
+    const f = new URLSearchParams(location.hash.replace(/^#/, ''));
+    if (f.has('camera')) setCamera(f.get('camera'));
+    if (f.has('body')) {
+      const i = actual.index[f.get('body')];
+      if (i === undefined) console.warn('simbob view: no body ' + f.get('body') + ' in the trajectory'); else select(i);
+    }
+    if (f.has('t')) {
+      const t = Number(f.get('t'));
+      if (Number.isFinite(t)) { state.playing = false; applyTime(t); }
+    }
+    updatePlayButton();
+  }
+  function writeFragment() {
+    const f = new URLSearchParams();
+    f.set('t', String(state.time));
+    if (state.camera !== 'orbit') f.set('camera', state.camera);
+    if (state.selected >= 0) f.set('body', bodies[state.selected].key);
+    if (!ANTIALIAS) f.set('aa', '0');
+    history.replaceState(null, '', '#' + f.toString());
+  }
+
+  // ---- Controls of the page ----
+  $('title').textContent = data.title;
+  $('scene').textContent = (data.scene ? data.scene + ' \u2014 ' : '') + actual.bodies.length + ' bodies, ' + actual.count + ' samples';
+  const camSelect = $('camera');
+  camSelect.add(new Option('orbit (drag to turn)', 'orbit'));
+  for (const c of model.cameras) camSelect.add(new Option(c.key + ' (' + c.kind + ')', c.key));
+  camSelect.onchange = () => { setCamera(camSelect.value); writeFragment(); };
+  const list = $('bodies');
+  bodies.forEach((b, i) => {
+    const li = document.createElement('li');
+    li.textContent = b.key;
+    li.onclick = () => { select(i); writeFragment(); };
+    if (compare && compare.divergence && compare.divergence.body === b.key) li.classList.add('diverged');
+    list.appendChild(li);
+  });
+  const slider = $('slider');
+  slider.max = String(Math.max(0, actual.count - 1));
+  slider.oninput = () => { state.playing = false; updatePlayButton(); applyTime(actual.times[Number(slider.value)]); writeFragment(); };
+  const step = (d) => { state.playing = false; updatePlayButton(); const s = Math.min(Math.max(state.sample + d, 0), actual.count - 1); applyTime(actual.times[s]); writeFragment(); };
+  $('back').onclick = () => step(-1);
+  $('fwd').onclick = () => step(1);
+  function updatePlayButton() { $('play').innerHTML = state.playing ? '&#10074;&#10074;' : '&#9654;'; }
+  $('play').onclick = () => {
+    if (!state.playing && state.time >= tEnd) applyTime(t0);
+    state.playing = !state.playing;
+    updatePlayButton();
+    if (!state.playing) writeFragment();
+  };
+  $('speed').onchange = () => { state.speed = Number($('speed').value); };
+  $('geoms').onchange = () => {
+    const all = $('geoms').checked;
+    for (const b of bodies) b.geoms.visible = all || b.geoms.userData.alone;
+    staticGeomGroup.visible = all || staticGeomGroup.userData.alone;
+  };
+  $('trails').onchange = () => setTrails($('trails').checked);
+  $('ghosts').onchange = () => applyTime(state.time);
+  $('fog').onchange = () => { scene.fog = $('fog').checked ? sceneFog : null; };
+  scene.fog = sceneFog;
+  if (!golden) $('ghosts').parentNode.style.display = 'none';
+  if (!compare) {
+    $('comparison').style.display = 'none';
+  } else {
+    const d = compare.divergence;
+    $('verdict').textContent = compare.pass ? 'PASS: within tolerances (' + compare.tol_pos + ' m, ' + compare.tol_rot + ' rad)'
+      : d ? 'FAIL: first divergence at t = ' + d.time + ' s, ' + d.body + ' (' + d.pos_err.toExponential(3) + ' m, ' + d.rot_err.toExponential(3) + ' rad)'
+        : 'FAIL: the trajectories differ in bodies, times or rows';
+    if (d && actual.count > 1) {
+      // On the slider: where the thumb stands at the divergence's sample.
+      const frac = actual.sampleAt(d.time) / (actual.count - 1);
+      const marker = $('marker');
+      marker.style.display = 'block';
+      marker.style.left = 'calc(' + (frac * 100) + '% + ' + (8 - 16 * frac) + 'px - 1px)';
+      marker.dataset.time = String(d.time);
+    }
+  }
+  // Clicking a body in the view selects it (the nearest mesh hit that belongs to a body).
+  const ray = new THREE.Raycaster();
+  let down = null;
+  renderer.domElement.addEventListener('pointerdown', (ev) => { down = [ev.clientX, ev.clientY]; });
+  renderer.domElement.addEventListener('pointerup', (ev) => {
+    if (!down || Math.hypot(ev.clientX - down[0], ev.clientY - down[1]) > 4) return;  // a drag turns the camera
+    const r = renderer.domElement.getBoundingClientRect();
+    ray.setFromCamera(new THREE.Vector2((ev.clientX - r.left) / r.width * 2 - 1, -(ev.clientY - r.top) / r.height * 2 + 1), camera);
+    for (const hit of ray.intersectObjects(bodies.map((b) => b.group), true)) {
+      let o = hit.object;
+      while (o && o.userData.body === undefined) o = o.parent;
+      if (o && o.visible) { select(o.userData.body); writeFragment(); return; }
+    }
+  });
+  document.addEventListener('keydown', (ev) => {
+    if (ev.target.tagName === 'INPUT' || ev.target.tagName === 'SELECT') return;
+    if (ev.key === ' ') { $('play').onclick(); ev.preventDefault(); }
+    if (ev.key === 'ArrowLeft') step(-1);
+    if (ev.key === 'ArrowRight') step(1);
+  });
+  window.addEventListener('hashchange', readFragment);
+
+  // ---- The frame loop ----
+  let last = null;
+  function resize() {
+    const w = container.clientWidth, h = container.clientHeight;
+    if (renderer.domElement.width !== w || renderer.domElement.height !== h) renderer.setSize(w, h, false);
+    renderer.domElement.style.width = w + 'px';
+    renderer.domElement.style.height = h + 'px';
+    camera.aspect = w / Math.max(1, h);
+  }
+  function draw() {
+    resize();
+    const c = sceneCamera(state.camera);
+    if (c) {
+      placeSceneCamera(c, camera.aspect);
+    } else {
+      camera.fov = 45;
+      if ($('follow').checked && state.selected >= 0 && bodies[state.selected].group.visible) {
+        const p = bodies[state.selected].group.position;
+        camera.position.add(p.clone().sub(controls.target));
+        controls.target.copy(p);
+      }
+      controls.update();
+    }
+    camera.updateProjectionMatrix();
+    renderer.render(scene, camera);
+  }
+  function frame(now) {
+    if (state.playing && last !== null) {
+      let t = state.time + (now - last) / 1000 * state.speed;
+      if (t > tEnd) {
+        if ($('loop').checked) t = t0 + (t - tEnd) % Math.max(1e-9, tEnd - t0); else { t = tEnd; state.playing = false; updatePlayButton(); }
+      }
+      applyTime(t);
+      frames++;
+    }
+    last = now;
+    draw();
+    requestAnimationFrame(frame);
+  }
+  let frames = 0;
+
+  timings.built = performance.now();
+  // The scene's first camera, as `simbob render` draws by default; else the orbit camera.
+  setCamera('orbit');
+  if (model.cameras.length) setCamera(model.cameras[0].key);
+  applyTime(t0);
+  readFragment();
+  draw();
+  timings.drawn = performance.now();
+  requestAnimationFrame(frame);
+
+  // ---- The test hook (tests/view/): seek, read back the poses shown, render now ----
+  const posesOf = (list) => {
+    const out = {};
+    for (const b of list) {
+      const o = b.group;
+      out[b.key] = o.visible ? [o.position.x, o.position.y, o.position.z, o.quaternion.w, o.quaternion.x, o.quaternion.y, o.quaternion.z] : null;
+    }
+    return out;
+  };
+  window.simbobView = {
+    get ready() { return pendingTextures === 0; },
+    seek(t) { state.playing = false; updatePlayButton(); applyTime(t); draw(); return state.time; },
+    time: () => state.time,
+    sample: () => state.sample,
+    poses: () => posesOf(bodies),
+    goldenPoses: () => posesOf(ghosts),
+    camera: () => state.camera,
+    setCamera(name) { setCamera(name); draw(); },
+    select(key) { select(actual.index[key]); },
+    selected: () => (state.selected >= 0 ? bodies[state.selected].key : null),
+    play() { if (!state.playing) $('play').onclick(); },
+    playing: () => state.playing,
+    frames: () => frames,
+    divergence: () => (compare ? compare.divergence : null),
+    timings,
+    draw,
+  };
+})();

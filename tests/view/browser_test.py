@@ -1,0 +1,388 @@
+"""simbob view pages in a real browser (issue #23): Debian's chromium, headless, driven through
+chromium-driver by python3-selenium; pages opened from file:// with the network cut off.
+
+  /usr/bin/python3 browser_test.py SIMBOB REPO CASE WORKDIR
+
+CASE is one of
+  scenes      every scene in scenes/ runs briefly, its page opens without a console error, and
+              at three times set through the URL fragment every body's pose read back from the
+              page equals the CSV row rounded to float32
+  screenshot  tests/data/view/colors.xml: the page's canvas and `simbob render` of the same
+              camera put each body's colour centre within a few pixels, at three times
+  ui          the controls: fragment, click to select, step, play, speed, loop, pause, trails
+  gallery     `sweep gather --html`: rows, links to the case pages, marks, sorting, the plot
+  golden      a chain against a run with a heavier link: ghosts at the golden poses, the slider's
+              divergence marker at the time `simbob compare` reports
+Chromium must start: a browser that cannot is a failure, never a skip.
+"""
+import json
+import os
+import struct
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', 'cli'))
+from png_pixels import read_png  # noqa: E402
+
+from selenium import webdriver  # noqa: E402
+from selenium.webdriver.chrome.service import Service  # noqa: E402
+
+SIMBOB, REPO, CASE, WORK = sys.argv[1:5]
+os.makedirs(WORK, exist_ok=True)
+os.chdir(WORK)
+failures = []
+
+
+def fail(msg):
+    print('FAIL: ' + msg)
+    failures.append(msg)
+
+
+def run(*args):
+    p = subprocess.run([SIMBOB, *args], capture_output=True, text=True)
+    if p.returncode != 0:
+        sys.exit(f'simbob {" ".join(args)} exited {p.returncode}: {p.stderr}')
+    return p
+
+
+def browser():
+    """Headless Chromium. --no-sandbox: the test runs as root in a container, where Chromium's
+    sandbox cannot start; --disable-dev-shm-usage: /dev/shm is small there. WebGL runs on
+    SwiftShader (no GPU), which Chromium allows only when asked. Every host name resolves to
+    nothing and the proxy is a closed port: nothing leaves the machine."""
+    o = webdriver.ChromeOptions()
+    for a in ['--headless=new', '--no-sandbox', '--disable-dev-shm-usage', '--use-angle=swiftshader',
+              '--enable-unsafe-swiftshader', '--window-size=1000,700', '--host-resolver-rules=MAP * ~NOTFOUND',
+              '--proxy-server=127.0.0.1:9', '--disable-background-networking']:
+        o.add_argument(a)
+    o.set_capability('goog:loggingPrefs', {'browser': 'ALL'})
+    d = webdriver.Chrome(service=Service('/usr/bin/chromedriver'), options=o)
+    d.execute_cdp_cmd('Network.enable', {})
+    d.execute_cdp_cmd('Network.emulateNetworkConditions',
+                      {'offline': True, 'latency': 0, 'downloadThroughput': 0, 'uploadThroughput': 0})
+    return d
+
+
+def open_page(d, path, fragment=''):
+    d.get('file://' + os.path.abspath(path) + ('#' + fragment if fragment else ''))
+    for _ in range(200):
+        if d.execute_script('return !!(window.simbobView && window.simbobView.ready)'):
+            break
+        time.sleep(0.05)
+    else:
+        fail(f'{path}: the page never became ready')
+    check_console(d, path)
+    # Only the page itself and data: URLs were loaded.
+    for url in d.execute_script("return performance.getEntriesByType('resource').map(e => e.name)"):
+        if not (url.startswith('data:') or url.startswith('file:')):
+            fail(f'{path}: the page asked for {url}')
+
+
+def check_console(d, what):
+    for e in d.get_log('browser'):
+        if e['level'] == 'SEVERE':
+            fail(f'{what}: console error: {e["message"]}')
+
+
+def seek(d, t, camera=None):
+    """Seeks through the URL fragment, as a link would."""
+    frag = f't={t}' + (f'&camera={camera}' if camera else '')
+    d.execute_script('location.hash = arguments[0]', frag)
+    for _ in range(100):
+        if abs(d.execute_script('return simbobView.time()') - t) < 1e-9:
+            break
+        time.sleep(0.02)
+    d.execute_script('simbobView.draw()')
+
+
+def read_csv(path):
+    """{time: {body: [7 floats]}} of a trajectory CSV (keys without quotes here)."""
+    rows = {}
+    with open(path) as f:
+        next(f)
+        for line in f:
+            parts = line.rstrip('\n').split(',')
+            rows.setdefault(float(parts[0]), {})[parts[1]] = [float(v) for v in parts[2:9]]
+    return rows
+
+
+def f32(x):
+    return struct.unpack('<f', struct.pack('<f', x))[0]
+
+
+def check_poses(d, csv_rows, times, what, hook='poses'):
+    for t in times:
+        seek(d, t)
+        shown = d.execute_script(f'return simbobView.{hook}()')
+        want = csv_rows[t]
+        if sorted(shown) != sorted(want):
+            fail(f'{what} t={t}: bodies {sorted(shown)} on the page, {sorted(want)} in the CSV')
+            continue
+        for body, row in want.items():
+            got = shown[body]
+            exp = [f32(v) for v in row]
+            if got != exp:
+                fail(f'{what} t={t} {body}: page {got}, CSV as float32 {exp}')
+
+
+def case_scenes(d):
+    scenes = sorted(f for f in os.listdir(os.path.join(REPO, 'scenes')) if f.endswith('.xml'))
+    if len(scenes) < 10:
+        fail(f'only {len(scenes)} scenes found in scenes/')
+    for name in scenes:
+        scene = os.path.join(REPO, 'scenes', name)
+        base = name[:-4]
+        if '<RCLocalSocketCommunicator' in open(scene).read():
+            # Needs its peer to run (tests/cli/socket.sh): its golden is a run of it.
+            csv = os.path.join(REPO, 'golden', base + '.csv')
+        else:
+            csv = base + '.csv'
+            run('run', scene, '--duration', '0.5', '--sample-interval', '0.05', '--out', csv)
+        run('view', csv, '--scene', scene, '-o', base + '.html')
+        open_page(d, base + '.html')
+        rows = read_csv(csv)
+        times = sorted(rows)
+        picks = [times[0], times[len(times) // 2], times[-1]]
+        check_poses(d, rows, picks, name)
+        # A picture of each page at the last time, to look at (docs/images/view.png is one).
+        d.execute_script('simbobView.select(arguments[0])', sorted(rows[picks[-1]])[0])
+        d.save_screenshot(base + '.png')
+        check_console(d, name)
+        print(f'ok: {name}: {len(rows[times[0]])} bodies at t = {picks}')
+
+
+COLOURS = {'RedBox': (0, 'red'), 'GreenBall': (1, 'green'), 'BlueBox': (2, 'blue')}
+
+
+def centres(path):
+    """Centre of the pixels of each pure colour (one channel above 150, the others below 80)."""
+    w, h, ch, rows = read_png(path)
+    acc = {k: [0, 0, 0] for k in COLOURS}
+    for y in range(h):
+        line = rows[y]
+        for x in range(w):
+            px = line[x * ch:x * ch + 3]
+            for key, (c, _) in COLOURS.items():
+                if px[c] > 150 and all(px[k] < 80 for k in range(3) if k != c):
+                    a = acc[key]
+                    a[0] += x
+                    a[1] += y
+                    a[2] += 1
+    return {k: (a[0] / a[2], a[1] / a[2], a[2]) if a[2] else None for k, a in acc.items()}
+
+
+def case_screenshot(d):
+    scene = os.path.join(REPO, 'tests', 'data', 'view', 'colors.xml')
+    run('run', scene, '--duration', '1', '--out', 'colors.csv')
+    run('view', 'colors.csv', '--scene', scene, '-o', 'colors.html')
+    open_page(d, 'colors.html')
+    # The view at 320x240 CSS pixels (device pixel ratio 1), as `render --size 320x240`.
+    d.execute_script("document.body.style.gridTemplateColumns = '320px 300px';"
+                     "document.body.style.gridTemplateRows = '240px auto';")
+    canvas = d.find_element('css selector', '#view canvas')
+    # A tracking camera remembers where it was: only its first frame is compared (t = 0, the
+    # first time the page draws it, as the first frame of a recording).
+    views = [(c, t) for c in ('Front', 'Spot', 'Rider') for t in (0.0, 0.5, 1.0)] + [('Chase', 0.0)]
+    for cam, t in views:
+        seek(d, t, cam)
+        size = d.execute_script('const c = arguments[0]; return [c.width, c.height]', canvas)
+        if size != [320, 240]:
+            fail(f'canvas is {size}, not 320x240')
+        page_png, ref_png = f'page_{cam}_{t}.png', f'render_{cam}_{t}.png'
+        canvas.screenshot(page_png)
+        run('render', scene, '--at', str(t), '--camera', cam, '--size', '320x240', '--out', ref_png)
+        page, ref = centres(page_png), centres(ref_png)
+        seen = 0
+        for key in COLOURS:
+            seen += 1 if page[key] else 0
+            if not page[key] and not ref[key]:
+                print(f'{cam} t={t} {key}: out of view in both')
+                continue
+            if not page[key] or not ref[key]:
+                fail(f'{cam} t={t} {key}: not seen (page {page[key]}, render {ref[key]})')
+                continue
+            dx, dy = page[key][0] - ref[key][0], page[key][1] - ref[key][1]
+            print(f'{cam} t={t} {key}: page ({page[key][0]:.1f}, {page[key][1]:.1f}) {page[key][2]} px, '
+                  f'render ({ref[key][0]:.1f}, {ref[key][1]:.1f}) {ref[key][2]} px')
+            if abs(dx) > 3 or abs(dy) > 3:
+                fail(f'{cam} t={t} {key}: centre {dx:+.1f}, {dy:+.1f} px away from the render')
+        if seen < 2:
+            fail(f'{cam} t={t}: fewer than two bodies in view: the view proves little')
+    check_console(d, 'colors')
+
+
+def case_golden(d):
+    scene = os.path.join(REPO, 'scenes', 'chain.xml')
+    run('run', scene, '--duration', '2', '--out', 'golden.csv')
+    # Gravity 1e-6 m/s^2 stronger: the chaotic chain drifts apart and passes the tolerance
+    # (1e-6 rad) about half way through (t = 1.19 s on amd64).
+    run('run', scene, '--duration', '2', '--out', 'actual.csv', '--set', 'SceneSettings.Gravity=0 -9.810001 0')
+    p = subprocess.run([SIMBOB, 'compare', 'actual.csv', 'golden.csv', '--json'],
+                       capture_output=True, text=True)
+    if p.returncode != 1:
+        fail(f'compare exited {p.returncode}, expected 1 (a divergence): {p.stderr}')
+    report = json.loads(p.stdout)
+    div = report['first_divergence']
+    run('view', 'actual.csv', '--scene', scene, '--golden', 'golden.csv', '-o', 'chain.html')
+    # `compare --html` writes the same page (exit 1: the comparison failed, the page is written).
+    p = subprocess.run([SIMBOB, 'compare', 'actual.csv', 'golden.csv', '--html', 'compare.html', '--scene', scene],
+                       capture_output=True, text=True)
+    if p.returncode != 1 or open('compare.html', 'rb').read() != open('chain.html', 'rb').read():
+        fail(f'compare --html exited {p.returncode} and wrote another page than view --golden: {p.stderr}')
+    open_page(d, 'chain.html')
+    shown = d.execute_script('return simbobView.divergence()')
+    if not shown or shown['time'] != div['time'] or shown['body'] != div['body']:
+        fail(f'page divergence {shown}, compare says {div}')
+    marker = d.execute_script("const m = document.getElementById('marker');"
+                              "return [getComputedStyle(m).display, Number(m.dataset.time)]")
+    if marker != ['block', div['time']]:
+        fail(f'slider marker {marker}, expected shown at {div["time"]}')
+    rows, grows = read_csv('actual.csv'), read_csv('golden.csv')
+    times = sorted(rows)
+    picks = [times[0], div['time'], times[-1]]
+    check_poses(d, rows, picks, 'chain actual')
+    check_poses(d, grows, picks, 'chain golden ghosts', hook='goldenPoses')
+    # The marker sits on the slider where its thumb stands at the divergence.
+    seek(d, div['time'])
+    d.execute_script("simbobView.select(arguments[0])", div['body'])
+    d.save_screenshot('chain_divergence.png')
+    check_console(d, 'chain')
+    print(f'ok: divergence at {div["time"]} s ({div["body"]}) marked')
+
+
+def case_ui(d):
+    """The controls: the fragment selects time, camera and body; a click in the view selects the
+    body under it; step, play at a speed, loop or stop at the end; trails and shapes switch."""
+    scene = os.path.join(REPO, 'tests', 'data', 'view', 'colors.xml')
+    run('run', scene, '--duration', '1', '--out', 'colors.csv')
+    run('view', 'colors.csv', '--scene', scene, '-o', 'colors.html')
+    open_page(d, 'colors.html', 't=0.5&camera=Front&body=GreenBall')
+    js = d.execute_script
+    got = js('return [simbobView.time(), simbobView.camera(), simbobView.selected()]')
+    if got != [0.5, 'Front', 'GreenBall']:
+        fail(f'fragment t=0.5&camera=Front&body=GreenBall gave {got}')
+    pose_text = js("return document.getElementById('pose').textContent")
+    if not pose_text.startswith('GreenBall') or 'position' not in pose_text:
+        fail(f'the selected body\'s pose is not shown: {pose_text!r}')
+    # Click on the red box where the page draws it (its colour's centre in a screenshot).
+    canvas = d.find_element('css selector', '#view canvas')
+    canvas.screenshot('ui.png')
+    cx, cy, _ = centres('ui.png')['RedBox']
+    w, h = js('const r = arguments[0].getBoundingClientRect(); return [r.width, r.height]', canvas)
+    from selenium.webdriver.common.action_chains import ActionChains
+    ActionChains(d).move_to_element_with_offset(canvas, int(cx - w / 2), int(cy - h / 2)).click().perform()
+    if js('return simbobView.selected()') != 'RedBox':
+        fail(f'a click on the red box selected {js("return simbobView.selected()")}')
+    if 'body=RedBox' not in js('return location.hash'):
+        fail(f'the fragment does not follow the selection: {js("return location.hash")}')
+    # One sample on.
+    s0 = js('return simbobView.sample()')
+    d.find_element('id', 'fwd').click()
+    if js('return simbobView.sample()') != s0 + 1:
+        fail('the step button did not move one sample on')
+    # Play at 10x without loop from 0.8 s: reaches the end (1 s) and stops there.
+    js("document.getElementById('loop').checked = false;"
+       "const sp = document.getElementById('speed'); sp.value = '10'; sp.dispatchEvent(new Event('change'));")
+    js('simbobView.seek(0.8); simbobView.play()')
+    for _ in range(100):
+        if not js('return simbobView.playing()'):
+            break
+        time.sleep(0.05)
+    got = js('return [simbobView.playing(), simbobView.time(), simbobView.frames()]')
+    if got[0] or got[1] != 1.0 or got[2] < 1:
+        fail(f'play at 10x without loop: [playing, time, frames] = {got}, expected stopped at 1 after frames')
+    # With loop: still playing after passing the end, time back near the start at some point.
+    js("document.getElementById('loop').checked = true; simbobView.seek(0.9); simbobView.play()")
+    seen_wrap = False
+    for _ in range(60):
+        if js('return simbobView.time()') < 0.5:
+            seen_wrap = True
+            break
+        time.sleep(0.05)
+    if not seen_wrap or not js('return simbobView.playing()'):
+        fail('play with loop did not wrap around to the start')
+    d.find_element('id', 'play').click()
+    if js('return simbobView.playing()'):
+        fail('the play button did not pause')
+    # Trails, every collision shape, the orbit camera following the selection: no console error.
+    for box in ('trails', 'geoms', 'follow'):
+        d.find_element('id', box).click()
+    js("const c = document.getElementById('camera'); c.value = 'orbit'; c.dispatchEvent(new Event('change'));")
+    js('simbobView.seek(0.3); simbobView.draw()')
+    if js('return simbobView.camera()') != 'orbit':
+        fail('the camera list did not switch to the orbit camera')
+    d.save_screenshot('ui_orbit.png')
+    check_console(d, 'ui')
+    print('ok: fragment, click, step, play, loop, pause, trails, shapes, orbit')
+
+
+def case_gallery(d):
+    """`sweep gather --html`: the table with a link to each ok case's page (which opens), failed
+    and missing cases marked without a link, sorting by a column, the plot's points."""
+    run('sweep', 'plan', os.path.join(REPO, 'scenes', 'sliding_box.sweep.json'), '-o', 'box.jsonl')
+    run('sweep', 'run', 'box.jsonl', '-j', '2', '-o', 'box', '-q')
+    import shutil
+    shutil.rmtree(os.path.join('box', 'case-0003'))  # missing
+    with open(os.path.join('box', 'case-0005', 'case.json'), 'w') as f:
+        f.write('{"status": "failed", "error": "made to fail by the test"}')
+    p = subprocess.run([SIMBOB, 'sweep', 'gather', 'box', '--html', 'box/index.html', '-q'], capture_output=True, text=True)
+    if p.returncode != 1:
+        fail(f'gather with a missing and a failed case exited {p.returncode}, expected 1: {p.stderr}')
+    open_gallery = 'return !!(window.simbobGallery && window.simbobGallery.ready)'
+    d.get('file://' + os.path.abspath('box/index.html'))
+    if not d.execute_script(open_gallery):
+        fail('the gallery did not load')
+    check_console(d, 'gallery')
+    rows = d.execute_script("""return [...document.querySelectorAll('#table tbody tr')].map(r =>
+        [Number(r.dataset.case), r.className, r.querySelector('a') ? r.querySelector('a').href : null])""")
+    if len(rows) != 20:
+        fail(f'{len(rows)} rows, expected 20')
+    for index, cls, href in rows:
+        want = 'missing' if index == 3 else 'failed' if index == 5 else 'ok'
+        if cls != want or (href is None) != (want != 'ok'):
+            fail(f'case {index}: class {cls}, link {href}; expected {want}')
+        if href and not os.path.isfile(href[len('file://'):]):
+            fail(f'case {index}: the link {href} names no file')
+    if d.execute_script('return simbobGallery.points()') != 18:
+        fail(f'the plot has {d.execute_script("return simbobGallery.points()")} points, expected the 18 ok cases')
+    d.execute_script("simbobGallery.sortBy('stop_x'); simbobGallery.sortBy('stop_x')")  # descending
+    order = d.execute_script('return simbobGallery.order()')
+    stop = {i: v for i, v in zip(*d.execute_script("""const cols = [...document.querySelectorAll('th')].map(t => t.textContent.replace(/ .$/, ''));
+        const k = cols.indexOf('stop_x');
+        const rs = [...document.querySelectorAll('#table tbody tr')];
+        return [rs.map(r => Number(r.dataset.case)), rs.map(r => r.children[k].textContent)]"""))}
+    values = [float(stop[i]) for i in order if stop[i] != '']
+    if values != sorted(values, reverse=True):
+        fail(f'sorting by stop_x twice did not order it downwards: {values}')
+    d.save_screenshot('gallery.png')
+    # Follow the first case's link: its replay page opens without an error.
+    d.find_element('css selector', '#table tbody tr[data-case="0"] a').click()
+    for _ in range(200):
+        if d.execute_script('return !!(window.simbobView && window.simbobView.ready)'):
+            break
+        time.sleep(0.05)
+    else:
+        fail('the case page behind the link did not open')
+    if not d.title.startswith('case 0 Crate.Material.Friction=0.2'):
+        fail(f'the case page is titled {d.title!r}')
+    check_console(d, 'case page')
+    print('ok: gallery rows, links, marks, sorting, plot, a case page')
+
+
+def main():
+    try:
+        d = browser()
+    except Exception as e:  # noqa: BLE001 -- any failure to start is the test's failure
+        sys.exit(f'FAIL: chromium did not start: {e}')
+    try:
+        {'scenes': case_scenes, 'screenshot': case_screenshot, 'golden': case_golden, 'ui': case_ui,
+         'gallery': case_gallery}[CASE](d)
+    finally:
+        d.quit()
+    if failures:
+        sys.exit(f'{len(failures)} failure(s)')
+    print('all ok')
+
+
+main()

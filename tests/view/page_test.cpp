@@ -1,0 +1,124 @@
+#include "simbob/view.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstring>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace {
+
+using simbob::Trajectory;
+
+std::vector<uint8_t> unbase64(const std::string& s) {
+  std::vector<uint8_t> out;
+  uint32_t acc = 0;
+  int bits = 0;
+  for (char c : s) {
+    int v = c >= 'A' && c <= 'Z'   ? c - 'A'
+            : c >= 'a' && c <= 'z' ? c - 'a' + 26
+            : c >= '0' && c <= '9' ? c - '0' + 52
+            : c == '+'             ? 62
+            : c == '/'             ? 63
+                                   : -1;
+    if (v < 0) break;
+    acc = (acc << 6) | static_cast<uint32_t>(v);
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      out.push_back(static_cast<uint8_t>(acc >> bits));
+    }
+  }
+  return out;
+}
+
+std::vector<float> floats(const std::string& b64) {
+  const std::vector<uint8_t> bytes = unbase64(b64);
+  std::vector<float> v(bytes.size() / 4);
+  std::memcpy(v.data(), bytes.data(), v.size() * 4);
+  return v;
+}
+
+/// The page's data block, parsed.
+nlohmann::json pageData(const std::string& html) {
+  const std::string open = "<script type=\"application/json\" id=\"simbob-data\">";
+  const size_t a = html.find(open) + open.size();
+  const size_t b = html.find("</script>", a);
+  return nlohmann::json::parse(html.substr(a, b - a));
+}
+
+}  // namespace
+
+TEST_CASE("view page: poses as float32, far bodies relative to an origin of their own") {
+  Trajectory t;
+  t.addBody("Near");
+  t.addBody("Far</script><b>");  // a key that would end the data block if written as it is
+  const double near[7] = {1.2345678901, -0.5, 3.25, 1, 0, 0, 0};
+  for (int s = 0; s < 3; ++s) {
+    t.times.push_back(0.1 * s);
+    t.finalize();
+    const double far[7] = {50000.123456 + s * 0.0001, 2, -7000.5, 0.5, 0.5, 0.5, 0.5};
+    t.setPose(static_cast<size_t>(s), 0, near);
+    t.setPose(static_cast<size_t>(s), 1, far);
+  }
+  simbob::Model model;
+  simbob::ViewPageInput in;
+  in.model = &model;
+  in.actual = &t;
+  std::string html;
+  simbob::Error err;
+  REQUIRE(simbob::buildViewPage(in, &html, &err));
+  // Only the page's own script ends: the data, three.js with OrbitControls, the viewer.
+  size_t ends = 0;
+  for (size_t at = html.find("</script"); at != std::string::npos; at = html.find("</script", at + 1)) ++ends;
+  CHECK(ends == 3);
+  const nlohmann::json d = pageData(html);
+  const nlohmann::json& a = d["actual"];
+  REQUIRE(a["bodies"][1] == "Far</script><b>");
+  const std::vector<float> poses = floats(a["poses"]);
+  REQUIRE(poses.size() == 2 * 3 * 7);
+  // Near the world origin: the CSV's values as float32, origin 0.
+  CHECK(a["origins"][0] == nlohmann::json::array({0, 0, 0}));
+  for (int k = 0; k < 7; ++k) CHECK(poses[static_cast<size_t>(k)] == static_cast<float>(near[k]));
+  // 50 km out: float32 alone would be off by up to 2 mm; with the origin, within 0.1 mm.
+  const double ox = a["origins"][1][0], oz = a["origins"][1][2];
+  CHECK(ox != 0);
+  CHECK(oz != 0);
+  CHECK(a["origins"][1][1] == 0);
+  for (int s = 0; s < 3; ++s) {
+    const float* p = &poses[static_cast<size_t>((3 + s) * 7)];
+    CHECK(std::fabs(ox + p[0] - (50000.123456 + s * 0.0001)) < 1e-4);
+    CHECK(std::fabs(oz + p[2] - -7000.5) < 1e-4);
+    CHECK(p[3] == 0.5F);
+  }
+  CHECK(std::fabs(static_cast<double>(static_cast<float>(50000.123456)) - 50000.123456) > 1e-4);  // why it is needed
+}
+
+TEST_CASE("view page: a missing row is NaN, times are float64") {
+  Trajectory t;
+  t.addBody("A");
+  t.addBody("B");
+  const double p[7] = {0, 0, 0, 1, 0, 0, 0};
+  t.times = {0, 0.1 + 1e-12};
+  t.finalize();
+  t.setPose(0, 0, p);
+  t.setPose(1, 0, p);
+  t.setPose(1, 1, p);  // B has no row at t = 0
+  simbob::Model model;
+  simbob::ViewPageInput in;
+  in.model = &model;
+  in.actual = &t;
+  std::string html;
+  simbob::Error err;
+  REQUIRE(simbob::buildViewPage(in, &html, &err));
+  const nlohmann::json d = pageData(html);
+  const std::vector<float> poses = floats(d["actual"]["poses"]);
+  CHECK(std::isnan(poses[2 * 7]));  // B, sample 0
+  CHECK(poses[3 * 7 + 3] == 1.0F);  // B, sample 1
+  const std::vector<uint8_t> tb = unbase64(d["actual"]["times"]);
+  REQUIRE(tb.size() == 16);
+  double t1 = 0;
+  std::memcpy(&t1, tb.data() + 8, 8);
+  CHECK(t1 == 0.1 + 1e-12);
+}

@@ -197,6 +197,8 @@ int cmdRun(RunArgs& a, const Common& common) {
   so.duration = a.duration;
   so.peer_timeout = a.peer_timeout;
   so.port_offset = a.port_offset;
+  so.controllers = a.controllers;
+  if (!isStreamOutput(a.out)) so.controller_log = replaceExtension(a.out, ".controller.log");
   so.stop = &g_stop;
   so.progress = [&](double t) { progress.update(t); };
   std::unique_ptr<Simulation> sim;

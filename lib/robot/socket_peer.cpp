@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "robot/controllers.h"
+#include "robot/peer_process.h"
 #include "simbob/physics.h"
 #include "simbob/values.h"
 
@@ -90,6 +91,7 @@ class SocketPeer : public Party {
   ~SocketPeer() override {
     closeFd(&conn_);
     closeFd(&listen_);
+    process_.end(0, kStopGrace);
   }
   SocketPeer(const SocketPeer&) = delete;
   SocketPeer& operator=(const SocketPeer&) = delete;
@@ -99,8 +101,8 @@ class SocketPeer : public Party {
     // (runParties does not time first(), and counts it apart from the simulation's wall time).
     if (def_.is_server) {
       listen();
-      if (error_.message.empty()) accept();
-    } else {
+      if (error_.message.empty() && startController()) accept();
+    } else if (startController()) {
       connect();
     }
     return 0;
@@ -125,6 +127,7 @@ class SocketPeer : public Party {
     if (conn_ >= 0 && error_.message.empty()) send("bye " + formatNumber(toSeconds(end)) + "\n");
     closeFd(&conn_);
     closeFd(&listen_);
+    process_.end(kLinger);  // it heard 'bye' (or end of file): a moment to exit by itself
   }
 
   const Error* failure() const override { return error_.message.empty() ? nullptr : &error_; }
@@ -141,9 +144,40 @@ class SocketPeer : public Party {
     }
     closeFd(&conn_);
     closeFd(&listen_);
+    // Quick: after SIGINT/SIGTERM simbob's run has 1 s to return before it exits anyway.
+    process_.end(kStopLinger, kStopGrace);
   }
 
  private:
+  static constexpr double kLinger = 1.0;                        ///< s a started controller may take to exit after 'bye'
+  static constexpr double kStopLinger = 0.3, kStopGrace = 0.4;  ///< the same after 'error'; s to SIGKILL
+
+  /// Starts the Controller, if any, now that the port is known; false after an error.
+  bool startController() {
+    if (def_.controller.empty()) return true;
+    std::vector<std::string> words;
+    std::string problem;
+    if (!splitCommandLine(def_.controller, &words, &problem))
+      return fail(ErrorKind::InvalidInput, "controller '" + def_.controller + "': " + problem);
+    problem = process_.start(words, def_.controller_dir,
+                             {{"SIMBOB_PORT", std::to_string(def_.port)},
+                              {"SIMBOB_KEY", def_.key},
+                              {"SIMBOB_SEED", std::to_string(def_.seed)}},
+                             def_.controller_log);
+    if (!problem.empty())
+      return fail(ErrorKind::Unavailable, "cannot start controller '" + def_.controller + "': " + problem);
+    return true;
+  }
+
+  /// A started controller that has exited can no longer connect: the run fails naming it.
+  bool controllerGone() {
+    std::string how;
+    if (!process_.started() || !process_.exited(&how)) return false;
+    fail(ErrorKind::Unavailable, "controller '" + def_.controller + "' " + how + " before connecting" +
+                                     (def_.controller_log.empty() ? "" : " (its output: " + def_.controller_log + ")"));
+    return true;
+  }
+
   static void closeFd(int* fd) {
     if (*fd >= 0) ::close(*fd);
     *fd = -1;
@@ -162,6 +196,7 @@ class SocketPeer : public Party {
     }
     closeFd(&conn_);
     closeFd(&listen_);
+    process_.end(kStopLinger, kStopGrace);
     return false;
   }
 
@@ -201,12 +236,16 @@ class SocketPeer : public Party {
     }
     const int one = 1;
     ::setsockopt(listen_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
-    sockaddr_in a = loopback(def_.port);
+    // A controller simbob starts learns the port from SIMBOB_PORT: the system picks a free one,
+    // so that parallel runs (batch -j, sweeps, --check-determinism) never clash.
+    sockaddr_in a = loopback(def_.controller.empty() ? def_.port : 0);
     if (::bind(listen_, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 || ::listen(listen_, 1) != 0) {
       fail(ErrorKind::Unavailable, std::string("cannot listen: ") + std::strerror(errno) +
                                        " (another run on this port? --port-offset moves every port)");
       return;
     }
+    socklen_t len = sizeof a;
+    if (::getsockname(listen_, reinterpret_cast<sockaddr*>(&a), &len) == 0) def_.port = ntohs(a.sin_port);
   }
 
   bool accept() {
@@ -215,6 +254,7 @@ class SocketPeer : public Party {
     const Wall::time_point until = deadline();
     while (true) {
       if (stopRequested()) return stop();
+      if (controllerGone()) return false;
       const int r = ::poll(&p, 1, msLeft(until));
       if (r < 0 && errno == EINTR) continue;
       if (r == 0 && Wall::now() < until) continue;
@@ -230,28 +270,57 @@ class SocketPeer : public Party {
     return true;
   }
 
-  bool connect() {
+  /// One connection attempt: 0 when connected, else the errno; -1 when it failed or stopped
+  /// already (error_ or stopped_ says which).
+  int connectOnce(Wall::time_point until) {
     conn_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
-    if (conn_ < 0) return fail(ErrorKind::Unavailable, std::string("cannot create a socket: ") + std::strerror(errno));
+    if (conn_ < 0) {
+      fail(ErrorKind::Unavailable, std::string("cannot create a socket: ") + std::strerror(errno));
+      return -1;
+    }
     sockaddr_in a = loopback(def_.port);
     int err = 0;
     if (::connect(conn_, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
       err = errno;
       if (err == EINPROGRESS) {
         pollfd p{conn_, POLLOUT, 0};
-        const Wall::time_point until = deadline();
         int r;
         while (((r = ::poll(&p, 1, msLeft(until))) < 0 && errno == EINTR) || (r == 0 && Wall::now() < until))
-          if (stopRequested()) return stop();
-        if (r <= 0) return fail(ErrorKind::Unavailable, "no answer from a server within " + timeoutText());
+          if (stopRequested()) {
+            stop();
+            return -1;
+          }
+        if (r <= 0) {
+          fail(ErrorKind::Unavailable, "no answer from a server within " + timeoutText());
+          return -1;
+        }
         socklen_t len = sizeof err;
         ::getsockopt(conn_, SOL_SOCKET, SO_ERROR, &err, &len);
       }
     }
-    if (err != 0)
-      return fail(ErrorKind::Unavailable, std::string("cannot connect to a server: ") + std::strerror(err) +
-                                              " (IsServer is false: start the peer's server first; simbob does "
-                                              "not retry)");
+    return err;
+  }
+
+  bool connect() {
+    const Wall::time_point until = deadline();
+    while (true) {
+      const int err = connectOnce(until);
+      if (err < 0) return error_.message.empty();
+      if (err == 0) break;
+      closeFd(&conn_);
+      // A controller simbob started needs a moment to listen: retry until --peer-timeout.
+      if (err == ECONNREFUSED && process_.started() && Wall::now() < until) {
+        if (stopRequested()) return stop();
+        if (controllerGone()) return false;
+        ::poll(nullptr, 0, 20);
+        continue;
+      }
+      return fail(ErrorKind::Unavailable,
+                  std::string("cannot connect to a server: ") + std::strerror(err) +
+                      (process_.started() ? std::string(" (the controller did not listen within ") + timeoutText() + ")"
+                                          : " (IsServer is false: start the peer's server first; simbob does "
+                                            "not retry)"));
+    }
     configure();
     return true;
   }
@@ -420,6 +489,7 @@ class SocketPeer : public Party {
   std::string in_;
   std::string problem_;
   Error error_;
+  PeerProcess process_;  ///< the Controller simbob started, if any
 };
 
 }  // namespace

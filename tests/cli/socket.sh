@@ -11,7 +11,9 @@ cli_setup "$@"
 # Background peers and listeners never outlive the test.
 trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$WORK"' EXIT
 
-SCENE="$SCENES/socket_robot.xml"
+# The scene names its peer program (Controller); these tests start their peers by hand instead.
+sed '/<Controller Value=/d' "$SCENES/socket_robot.xml" >by_hand.xml
+SCENE="$WORK/by_hand.xml"
 CLIENT="$REPO/scripts/simbob_client.py"
 FAULT="$CLI_DIR/socket_fault_peer.py"
 BASE_PORT=47311 # the scene's Port
@@ -85,7 +87,7 @@ start_fault_peer --port "$port" --mode disconnect --at 1
 expect_status 69 "$SIMBOB" run "$SCENE" --duration 10 --port-offset $((port - BASE_PORT)) --out gone.csv
 expect_peer_status 0
 expect_match "disconnect message" "$LAST_ERR" \
-  "^.*socket_robot.xml:$LINE: error: RCLocalSocketCommunicator 'Bot.Cart.Link' \(127.0.0.1:$port\): the peer disconnected at t=1 s without 'done'$"
+  "^.*by_hand.xml:$LINE: error: RCLocalSocketCommunicator 'Bot.Cart.Link' \(127.0.0.1:$port\): the peer disconnected at t=1 s without 'done'$"
 expect_no_file gone.csv
 expect_file gone.partial.csv
 last=$(tail -n 1 gone.partial.csv | cut -d, -f1)

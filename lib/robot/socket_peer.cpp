@@ -32,8 +32,11 @@ namespace simbob::robot {
 
 namespace {
 
-constexpr int kProtocolVersion = 2;  ///< 2: sensor lines (version 1 did not promise to skip unknown lines)
-constexpr size_t kMaxLine = 4096;    ///< bytes of one line from the peer, newline excluded
+// 2: sensor lines (version 1 did not promise to skip unknown lines). 3: negotiated by the peer
+// (`version`), subscriptions, body velocities, sensor readings as vectors.
+constexpr int kFirstVersion = 2;  ///< every peer gets this hello first
+constexpr int kNewestVersion = 3;
+constexpr size_t kMaxLine = 4096;  ///< bytes of one line from the peer, newline excluded
 
 using Wall = std::chrono::steady_clock;
 
@@ -84,10 +87,67 @@ std::vector<std::string_view> words(std::string_view line) {
   return w;
 }
 
+/// A key as one word (every version): bytes that could split or break a line -- blanks, control
+/// characters, bytes outside ASCII (UTF-8) -- and '%' and ',' become %XX (upper-case hex).
+std::string escapeKey(const std::string& key) {
+  static const char* kHex = "0123456789ABCDEF";
+  std::string s;
+  for (unsigned char ch : key) {
+    if (ch <= 0x20 || ch >= 0x7f || ch == '%' || ch == ',') {
+      s += '%';
+      s += kHex[ch >> 4];
+      s += kHex[ch & 15];
+    } else {
+      s += static_cast<char>(ch);
+    }
+  }
+  return s;
+}
+
+int hexDigit(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  return -1;
+}
+
+/// The key a word stands for; false if a '%' is not followed by two hex digits.
+bool unescapeKey(std::string_view word, std::string* key) {
+  key->clear();
+  for (size_t i = 0; i < word.size(); ++i) {
+    if (word[i] != '%') {
+      *key += word[i];
+      continue;
+    }
+    const int hi = i + 2 < word.size() ? hexDigit(word[i + 1]) : -1;
+    const int lo = hi >= 0 ? hexDigit(word[i + 2]) : -1;
+    if (lo < 0) return false;
+    *key += static_cast<char>(hi * 16 + lo);
+    i += 2;
+  }
+  return true;
+}
+
+/// What a sensor reads now, as the vector its `sensor` line carries (proximity: 1 touching, 0 not).
+std::vector<double> sensorReading(const World& world, int sensor) { return {world.touching(sensor) ? 1.0 : 0.0}; }
+
+const char* sensorKind(const SensorDef& /*d*/) { return "proximity"; }
+
+void appendNumbers(std::string& s, const double* v, size_t n) {
+  for (size_t i = 0; i < n; ++i) {
+    s += ' ';
+    appendNumber(s, v[i]);
+  }
+}
+
 class SocketPeer : public Party {
  public:
   SocketPeer(const SocketDef& d, const Model& model, std::vector<std::pair<std::string, MotionControl2D*>> motions)
-      : def_(d), model_(model), motions_(std::move(motions)), periodic_(d.period) {}
+      : def_(d), model_(model), motions_(std::move(motions)), periodic_(d.period) {
+    subscribed_[kBodies].assign(model.bodies.size(), 1);
+    subscribed_[kJoints].assign(model.joints.size(), 1);
+    subscribed_[kSensors].assign(model.sensors.size(), 1);
+  }
   ~SocketPeer() override {
     closeFd(&conn_);
     closeFd(&listen_);
@@ -355,12 +415,18 @@ class SocketPeer : public Party {
 
   std::string hello() const {
     std::string s =
-        "simbob " + std::to_string(kProtocolVersion) + " " + def_.key + " " + formatNumber(def_.period) + "\n";
-    for (const ActuatorDef& a : model_.actuators) s += "actuator " + a.key + " " + actuatorKind(a.kind) + "\n";
-    for (const auto& m : motions_) s += "motion " + m.first + "\n";
-    for (const JointDef& j : model_.joints) s += "joint " + j.key + " " + jointKind(j.kind) + "\n";
-    for (const SensorDef& d : model_.sensors) s += "sensor " + d.key + "\n";
-    for (const BodyDef& b : model_.bodies) s += "body " + b.key + "\n";
+        "simbob " + std::to_string(version_) + " " + escapeKey(def_.key) + " " + formatNumber(def_.period) + "\n";
+    if (version_ == kFirstVersion) s += "versions 2 3\n";  // what a peer may choose with `version`
+    for (const ActuatorDef& a : model_.actuators)
+      s += "actuator " + escapeKey(a.key) + " " + actuatorKind(a.kind) + "\n";
+    for (const auto& m : motions_) s += "motion " + escapeKey(m.first) + "\n";
+    for (const JointDef& j : model_.joints) s += "joint " + escapeKey(j.key) + " " + jointKind(j.kind) + "\n";
+    for (size_t i = 0; i < model_.sensors.size(); ++i) {
+      s += "sensor " + escapeKey(model_.sensors[i].key);
+      if (version_ >= 3) s += std::string(" ") + sensorKind(model_.sensors[i]) + " 1";
+      s += "\n";
+    }
+    for (const BodyDef& b : model_.bodies) s += "body " + escapeKey(b.key) + "\n";
     s += "end\n";
     return s;
   }
@@ -368,30 +434,100 @@ class SocketPeer : public Party {
   std::string state(SimTime now, const World& world) const {
     std::string s = "t " + formatNumber(toSeconds(now)) + "\n";
     for (size_t i = 0; i < model_.joints.size(); ++i) {
+      if (!subscribed_[kJoints][i]) continue;
       const JointState js = world.joint(static_cast<int>(i));
-      s += "joint " + model_.joints[i].key + " ";
-      appendNumber(s, js.position);
-      s += ' ';
-      appendNumber(s, js.velocity);
+      s += "joint " + escapeKey(model_.joints[i].key);
+      const double v[2] = {js.position, js.velocity};
+      appendNumbers(s, v, 2);
       s += '\n';
     }
-    for (size_t i = 0; i < model_.sensors.size(); ++i)
-      s += "sensor " + model_.sensors[i].key + (world.touching(static_cast<int>(i)) ? " 1\n" : " 0\n");
+    for (size_t i = 0; i < model_.sensors.size(); ++i) {
+      if (!subscribed_[kSensors][i]) continue;
+      const std::vector<double> r = sensorReading(world, static_cast<int>(i));
+      s += "sensor " + escapeKey(model_.sensors[i].key);
+      appendNumbers(s, r.data(), r.size());
+      s += '\n';
+    }
     for (size_t i = 0; i < model_.bodies.size(); ++i) {
+      if (!subscribed_[kBodies][i]) continue;
       const BodyState b = world.body(static_cast<int>(i));
-      s += "body " + model_.bodies[i].key;
-      for (double v : b.pose.p) {
-        s += ' ';
-        appendNumber(s, v);
-      }
-      for (double v : b.pose.q) {
-        s += ' ';
-        appendNumber(s, v);
+      s += "body " + escapeKey(model_.bodies[i].key);
+      appendNumbers(s, b.pose.p.data(), 3);
+      appendNumbers(s, b.pose.q.data(), 4);
+      if (version_ >= 3) {
+        appendNumbers(s, b.lin_vel.data(), 3);
+        appendNumbers(s, b.ang_vel.data(), 3);
       }
       s += '\n';
     }
     s += "end\n";
     return s;
+  }
+
+  /// `version V...` (the first line of the peer's first reply): simbob chooses the newest version
+  /// both speak, answers `version N`, and starts over with that version's hello and state.
+  bool negotiate(const std::vector<std::string_view>& w, SimTime now, const World& world) {
+    int chosen = 0;
+    for (size_t i = 1; i < w.size(); ++i) {
+      int v = 0;
+      auto [p, ec] = std::from_chars(w[i].data(), w[i].data() + w[i].size(), v);
+      if (ec != std::errc() || p != w[i].data() + w[i].size()) {
+        problem_ = "'version': '" + quoteInput(w[i]) + "' is not a version number";
+        return false;
+      }
+      if (v >= kFirstVersion && v <= kNewestVersion && v > chosen) chosen = v;
+    }
+    if (chosen == 0) {
+      problem_ = "no protocol version in common: simbob speaks 2 and 3";
+      return false;
+    }
+    version_ = chosen;
+    return send("version " + std::to_string(chosen) + "\n" + hello() + state(now, world));
+  }
+
+  /// `subscribe bodies|joints|sensors [KEY...]` (version 3): the state blocks from the next one on
+  /// carry only these of that kind; `*` for all of them, no key for none.
+  bool subscribe(const std::vector<std::string_view>& w) {
+    int kind = -1;
+    if (w.size() >= 2) {
+      if (w[1] == "bodies") kind = kBodies;
+      if (w[1] == "joints") kind = kJoints;
+      if (w[1] == "sensors") kind = kSensors;
+    }
+    if (kind < 0) {
+      problem_ = "'subscribe' takes bodies, joints or sensors, then keys";
+      return false;
+    }
+    std::vector<char> on(subscribed_[kind].size(), 0);
+    for (size_t i = 2; i < w.size(); ++i) {
+      if (w[i] == "*") {
+        on.assign(on.size(), 1);
+        continue;
+      }
+      std::string key;
+      int found = -1;
+      if (unescapeKey(w[i], &key)) found = indexOfKey(kind, key);
+      if (found < 0) {
+        static const char* kSingular[] = {"body", "joint", "sensor"};
+        problem_ =
+            "'subscribe " + std::string(w[1]) + "': no " + kSingular[kind] + " has the key '" + quoteInput(w[i]) + "'";
+        return false;
+      }
+      on[static_cast<size_t>(found)] = 1;
+    }
+    subscribed_[kind] = std::move(on);
+    return true;
+  }
+
+  int indexOfKey(int kind, const std::string& key) const {
+    auto find = [&](const auto& defs) {
+      for (size_t i = 0; i < defs.size(); ++i)
+        if (defs[i].key == key) return static_cast<int>(i);
+      return -1;
+    };
+    if (kind == kBodies) return find(model_.bodies);
+    if (kind == kJoints) return find(model_.joints);
+    return find(model_.sensors);
   }
 
   /// Reads and applies the peer's lines up to "step" or "done".
@@ -433,6 +569,16 @@ class SocketPeer : public Party {
         return fail(ErrorKind::Protocol, "a line longer than " + std::to_string(kMaxLine) + " bytes" + at);
       const std::vector<std::string_view> w = words(line);
       if (w.empty()) continue;
+      const bool first_line = !replied_;
+      replied_ = true;
+      if (w[0] == "version" && first_line) {
+        if (!negotiate(w, now, world)) return fail(ErrorKind::Protocol, problem_ + at);
+        continue;
+      }
+      if (w[0] == "subscribe" && version_ >= 3) {
+        if (!subscribe(w)) return fail(ErrorKind::Protocol, problem_ + at);
+        continue;
+      }
       if (w[0] == "step" && w.size() == 1) return true;
       if (w[0] == "done" && w.size() == 1) {
         done_ = true;
@@ -443,11 +589,18 @@ class SocketPeer : public Party {
         continue;
       }
       return fail(ErrorKind::Protocol,
-                  "the peer sent '" + quoteInput(line) + "'" + at + ": expected 'set KEY VALUE...', 'step' or 'done'");
+                  "the peer sent '" + quoteInput(line) + "'" + at +
+                      (version_ >= 3 ? ": expected 'set KEY VALUE...', 'subscribe', 'step' or 'done'"
+                                     : ": expected 'set KEY VALUE...', 'step' or 'done'"));
     }
   }
 
   bool set(const std::vector<std::string_view>& w, World& world) {
+    std::string key;
+    if (!unescapeKey(w[1], &key)) {
+      problem_ = "'set " + quoteInput(w[1]) + "': a '%' not followed by two hex digits";
+      return false;
+    }
     std::vector<double> v(w.size() - 2);
     for (size_t i = 2; i < w.size(); ++i)
       if (!parseDouble(w[i], &v[i - 2])) {
@@ -455,7 +608,7 @@ class SocketPeer : public Party {
         return false;
       }
     for (size_t i = 0; i < model_.actuators.size(); ++i)
-      if (model_.actuators[i].key == w[1]) {
+      if (model_.actuators[i].key == key) {
         if (v.size() != 1) {
           problem_ = "'set " + std::string(w[1]) + "' takes one value, got " + std::to_string(v.size());
           return false;
@@ -464,7 +617,7 @@ class SocketPeer : public Party {
         return true;
       }
     for (const auto& m : motions_)
-      if (m.first == w[1]) {
+      if (m.first == key) {
         if (v.size() != 2) {
           problem_ =
               "'set " + std::string(w[1]) + "' takes two values (linear angular), got " + std::to_string(v.size());
@@ -484,6 +637,10 @@ class SocketPeer : public Party {
   int listen_ = -1;
   int conn_ = -1;
   bool hello_sent_ = false;
+  bool replied_ = false;  ///< the peer has sent a line (`version` must be its first)
+  int version_ = kFirstVersion;
+  enum { kBodies, kJoints, kSensors };
+  std::vector<char> subscribed_[3];  ///< per kind, per Model index: in the state blocks
   bool done_ = false;
   bool stopped_ = false;  ///< a stop was requested while waiting for the peer
   std::string in_;

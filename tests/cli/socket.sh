@@ -235,19 +235,7 @@ expect_status 1 "$SIMBOB" run rocket_robot.xml --duration 1 --port-offset $((por
 expect_peer_status 0
 expect_match "divergence error line" peer.out "^error body 'Rocket' diverged at t="
 
-check "keys the protocol cannot carry (a space, non-ASCII) are refused by check (65, file:line)"
-sed 's|<RCTwoWheelMotionControl Key="Motion">|<RCTwoWheelMotionControl Key="Mo tion">|' "$SCENE" >space_key.xml
-grep -q 'Key="Mo tion"' space_key.xml || fail "the key was not changed"
-expect_status 65 "$SIMBOB" check space_key.xml
-mline=$(grep -n 'Key="Mo tion"' space_key.xml | cut -d: -f1)
-expect_match "space key message" "$LAST_ERR" \
-  "^space_key.xml:$mline: error: key 'Bot.Mo tion' cannot travel over the socket protocol of RCLocalSocketCommunicator 'Bot.Cart.Link': keys there are printable ASCII without spaces$"
-sed 's|<RCMobileRigidBody Key="Chassis">|<RCMobileRigidBody Key="Châssis">|' "$SCENE" >utf8_key.xml
-expect_status 65 "$SIMBOB" check utf8_key.xml
-expect_match "non-ASCII key message" "$LAST_ERR" "error: key 'Bot.Cart.Châssis' cannot travel over the socket protocol"
-# Without a communicator the same keys are fine (the trajectory CSV quotes them).
-sed '/<RCLocalSocketCommunicator/,/<\/RCLocalSocketCommunicator>/d' space_key.xml >space_nopeer.xml
-expect_status 0 "$SIMBOB" check space_nopeer.xml
+# Keys with a space or UTF-8 travel %-escaped (protocol version 3 and 2): tests/cli/socket_v3.sh.
 
 check "simbob_client.py takes a later protocol version and ignores lines it does not know (README)"
 port=$(free_port)

@@ -319,7 +319,10 @@ class SocketPeer : public Party {
       if (r < 0 && errno == EINTR) continue;
       if (r == 0 && Wall::now() < until) continue;
       if (r <= 0)
-        return fail(ErrorKind::Unavailable, "no peer connected within " + timeoutText() + " (--peer-timeout)");
+        return fail(ErrorKind::Unavailable,
+                    "no peer connected within " + timeoutText() + " (--peer-timeout)" +
+                        (process_.started() ? "; controller '" + def_.controller + "' is running but did not connect"
+                                            : std::string()));
       conn_ = ::accept4(listen_, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
       if (conn_ >= 0) break;
       if (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR && errno != ECONNABORTED)

@@ -58,6 +58,13 @@ expect_status 0 "$SIMBOB" run "$SCENE" --duration 0.2 --out quoted.csv -q \
   --controller "$KEY=\"dir with space/it's here.sh\" --wait '3'"
 no_group pgid
 
+check "IsServer false: simbob connects to the controller's server on Port + --port-offset, retrying while it starts"
+sed 's|<IsServer Value="true"/>|<IsServer Value="false"/>|' "$SCENE" >client_mode.xml
+port=$(/usr/bin/python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1]); s.close()')
+expect_status 0 "$SIMBOB" run client_mode.xml --duration 10 --out client.csv -q --port-offset $((port - 47311)) \
+  --controller "$KEY=/bin/sh -c 'sleep 0.5; exec /usr/bin/python3 $REPO/scripts/simbob_client.py --listen'"
+expect_same_file client.csv "$GOLDEN"
+
 check "batch 'scenes/*.xml' --golden golden -j 2: every scene, the socket scene's client started unattended"
 (cd "$REPO" && "$SIMBOB" batch scenes/*.xml --duration 10 --out-dir "$WORK/batch" --golden golden -j 2 -q) \
   >batch.out 2>batch.err || fail "batch failed: $(cat batch.out batch.err)"
@@ -96,7 +103,8 @@ sleep 300
 SH
 chmod +x silent.sh
 expect_status 69 "$SIMBOB" run "$SCENE" --duration 1 --out silent.csv -q --peer-timeout 0.5 --controller "$KEY=./silent.sh"
-expect_match "timeout message" "$LAST_ERR" "no peer connected within 0.5 s"
+expect_match "timeout message" "$LAST_ERR" \
+  "no peer connected within 0.5 s \(--peer-timeout\); controller './silent.sh' is running but did not connect\$"
 no_group pgid
 
 for sig in INT TERM; do

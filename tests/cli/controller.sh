@@ -69,6 +69,8 @@ check "batch 'scenes/*.xml' --golden golden -j 2: every scene, the socket scene'
 (cd "$REPO" && "$SIMBOB" batch scenes/*.xml --duration 10 --out-dir "$WORK/batch" --golden golden -j 2 -q) \
   >batch.out 2>batch.err || fail "batch failed: $(cat batch.out batch.err)"
 expect_same_file batch/socket_robot.csv "$GOLDEN"
+expect_match "the batch run's controller log is beside its CSV" batch/socket_robot.controller.log \
+  "the run ended at t=10 s after 201 exchanges"
 
 check "--check-determinism runs the socket scene twice, each with its own client"
 expect_status 0 "$SIMBOB" run "$SCENE" --duration 3 --out det.csv -q --check-determinism

@@ -1,6 +1,8 @@
 # `cmake --install build --prefix P` and `cpack -G DEB` (docs/install.md, "Installing on cluster nodes").
 #   P/bin/simbob
 #   P/share/simbob/scenes/     the example scenes with the parts they import
+#   P/share/simbob/scripts/simbob_client.py   the peer socket_robot.xml starts (../scripts/)
+#   P/share/simbob/python/simbob_client.py and P/share/simbob/examples/clients/: the client libraries
 #   P/share/doc/simbob/README.md and P/share/doc/simbob/docs/ (the reference README links to)
 # The .deb installs under /usr; its Depends comes from dpkg-shlibdeps over the binary, so it
 # names Debian's runtime library packages (libode8, libcairo2, ...) and never a -dev package:
@@ -10,6 +12,9 @@ install(TARGETS simbob RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 # Opened by the binary as ../lib/simbob/libsimbob_video.so when it writes a video.
 install(TARGETS simbob_video LIBRARY DESTINATION lib/simbob)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes/ DESTINATION ${CMAKE_INSTALL_DATADIR}/simbob/scenes)
+install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/simbob_client.py DESTINATION ${CMAKE_INSTALL_DATADIR}/simbob/scripts)
+install(FILES ${PROJECT_SOURCE_DIR}/python/simbob_client.py DESTINATION ${CMAKE_INSTALL_DATADIR}/simbob/python)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/clients/ DESTINATION ${CMAKE_INSTALL_DATADIR}/simbob/examples/clients)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs)
 

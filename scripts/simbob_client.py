@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Example peer of simbob's RCLocalSocketCommunicator (docs/socket-protocol.md, version 2).
 
 Drives a two-wheeled robot through its RC2DMotionControl (scenes/socket_robot.xml): forward at
@@ -14,6 +14,7 @@ it): start it first, then simbob. Python 3 standard library only.
 """
 import argparse
 import math
+import os
 import socket
 import sys
 import time
@@ -84,7 +85,8 @@ def command(t, pose):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--port", type=int, default=47311, help="TCP port on 127.0.0.1 (default 47311)")
+    ap.add_argument("--port", type=int, default=int(os.environ.get("SIMBOB_PORT", "47311")),
+                    help="TCP port on 127.0.0.1 (default: $SIMBOB_PORT, set when simbob starts this client, else 47311)")
     ap.add_argument("--listen", action="store_true", help="be the server (the scene's IsServer is false)")
     ap.add_argument("--wait", type=float, default=30.0, help="s to wait for simbob (default 30)")
     ap.add_argument("--motion", help="key of the RC2DMotionControl to drive (default: the first one)")

@@ -8,20 +8,8 @@ scenes=("$@")
 [ ${#scenes[@]} -gt 0 ] || scenes=(scenes/*.xml)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-# A scene with an RCLocalSocketCommunicator runs with its peer, scripts/simbob_client.py.
-alone=()
-for s in "${scenes[@]}"; do
-  if grep -q '<RCLocalSocketCommunicator' "$s"; then
-    python3 scripts/simbob_client.py --port 47311 &
-    build/simbob run "$s" --duration 10 --out "$tmp/$(basename "${s%.xml}").csv" --quiet || {
-      echo "update-golden: $s failed with its peer" >&2
-      exit 1
-    }
-    wait $!
-  else
-    alone+=("$s")
-  fi
-done
+# A scene with an RCLocalSocketCommunicator starts its peer program itself (its Controller).
+alone=("${scenes[@]}")
 if [ ${#alone[@]} -gt 0 ]; then
   build/simbob batch "${alone[@]}" --duration 10 --out-dir "$tmp" --quiet >/dev/null || {
     echo "update-golden: some scenes failed; see the logs:" >&2

@@ -59,8 +59,10 @@ struct RunArgs {
   std::vector<std::string> sets;  ///< --set KEY.PARAM=VALUE, in order
   int port_offset = 0;            ///< added to every socket communicator's Port
   double peer_timeout = 10;       ///< wall-clock s for a socket peer to connect or answer
-  std::string record;             ///< --record DIR: frames as DIR/frame_000000.png ("" = no GL context at all)
-  std::string video;              ///< --video FILE.avi|FILE.mp4: the same frames as one video
+  /// --controller KEY=COMMAND, in order (SimulationOptions::controllers)
+  std::vector<std::string> controllers;
+  std::string record;  ///< --record DIR: frames as DIR/frame_000000.png ("" = no GL context at all)
+  std::string video;   ///< --video FILE.avi|FILE.mp4: the same frames as one video
   ViewArgs view;
   std::string log;               ///< --log: comma list of joints, sensors, commands ("" = no run log)
   std::string log_out;           ///< --log-out: the run log (default: --out with .csv -> .log.csv)
@@ -77,6 +79,8 @@ void addCommon(CLI::App* app, Common& c);
 std::vector<NamedPath> runOutputs(const RunArgs& a);
 /// The same as the paths a run opens (RunOutputs): --out, its summary, the run log and the video.
 RunOutputPaths runPaths(const RunArgs& a);
+/// "out.csv" -> "out.controller.log": what the controllers simbob starts print.
+std::string controllerLogPath(const std::string& out);
 /// What is wrong with run options beyond their syntax ("" if nothing): time ranges, --out.
 std::string runArgsProblem(const RunArgs& a);
 

@@ -77,6 +77,10 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   run->add_option("--port-offset", ra.port_offset,
                   "Added to the Port of every RCLocalSocketCommunicator, so parallel runs do not clash (default 0)");
+  run->add_option("--controller", ra.controllers,
+                  "KEY=COMMAND: the program simbob starts as the peer of communicator KEY (repeatable; KEY= "
+                  "starts none; docs/socket-protocol.md)")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   run->add_option("--peer-timeout", ra.peer_timeout,
                   "Wall-clock s a socket peer may take to connect or to answer, 0.001 to 86400 (default 10)");
   run->add_option("--html", ra.html, "Also write the run's replay page (simbob view) after the run");
@@ -94,7 +98,7 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
   // A batch manifest appends per-scene options after the batch-wide ones: the last one wins
   // (every --set and --plugin counts).
   for (CLI::Option* o : run->get_options())
-    if (o->get_name() != "--set" && o->get_name() != "--plugin")
+    if (o->get_name() != "--set" && o->get_name() != "--plugin" && o->get_name() != "--controller")
       o->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
 }
 

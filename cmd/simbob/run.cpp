@@ -68,6 +68,8 @@ SimulationOptions simulationOptions(const RunArgs& a) {
   so.duration = a.duration;
   so.peer_timeout = a.peer_timeout;
   so.port_offset = a.port_offset;
+  so.controllers = a.controllers;
+  if (!isStreamOutput(a.out)) so.controller_log = controllerLogPath(a.out);
   so.stop = &g_stop;
   return so;
 }

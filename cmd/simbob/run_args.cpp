@@ -30,6 +30,10 @@ RunOutputPaths runPaths(const RunArgs& a) {
   return p;
 }
 
+std::string controllerLogPath(const std::string& out) {
+  return std::filesystem::path(out).replace_extension(".controller.log").string();
+}
+
 std::vector<NamedPath> runOutputs(const RunArgs& a) {
   const RunOutputPaths p = runPaths(a);
   std::vector<NamedPath> all = {{"--out", p.trajectory}};
@@ -37,6 +41,7 @@ std::vector<NamedPath> runOutputs(const RunArgs& a) {
     all.insert(all.end(), {{"the summary", p.summary},
                            {"the partial trajectory", partialPath(p.trajectory)},
                            {"the partial summary", partialSummaryPath(p.summary)}});
+  if (!p.summary.empty()) all.push_back({"the controllers' log", controllerLogPath(p.trajectory)});
   if (!a.html.empty()) all.push_back({"--html", a.html});
   if (!p.run_log.empty()) {
     all.push_back({a.log_out.empty() ? "the run log" : "--log-out", p.run_log});

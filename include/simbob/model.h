@@ -205,7 +205,19 @@ struct SocketDef {
   int port = 5000;         ///< TCP port on 127.0.0.1 (the CLI adds --port-offset)
   double period = 0.01;    ///< s of simulated time between exchanges
   double timeout = 10.0;   ///< wall-clock s to wait for a connection or a reply (--peer-timeout)
+  /// The peer program simbob starts itself (Controller, or run --controller KEY=COMMAND): a
+  /// command line split by splitCommandLine; empty: the peer is started by someone else.
+  std::string controller;
+  std::string controller_dir;  ///< its working directory (the scene file's; "" = simbob's own)
+  std::string controller_log;  ///< file for its stdout and stderr ("" = simbob's stderr)
+  uint32_t seed = 0;           ///< the run's seed, passed to it as SIMBOB_SEED
 };
+
+/// Splits a Controller command line into words without a shell (docs/socket-protocol.md):
+/// blanks separate words; '...' keeps everything literally; "..." keeps everything but \" and
+/// \\; outside quotes a backslash keeps the next character. False with `problem` set for an
+/// unclosed quote or a trailing backslash.
+bool splitCommandLine(const std::string& line, std::vector<std::string>* words, std::string* problem);
 
 /// ODE collision space: how candidate pairs are found. Results differ between spaces (pairs
 /// arrive in another order), so the choice is part of a scene's reproducibility.

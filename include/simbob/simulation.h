@@ -37,8 +37,14 @@ struct SimulationOptions {
   double max_access_time = 0.0;     ///< s; 0 = the scene's MaxAccessTime
   double peer_timeout = 10.0;       ///< s a socket peer may take to connect or answer
   int port_offset = 0;              ///< added to every RCLocalSocketCommunicator's Port
-  double runaway_limit = 1e6;       ///< m or m/s beyond which a run diverged
-  double joint_apart_limit = 0.1;   ///< m between a joint's anchors beyond which it came apart
+  /// "KEY=COMMAND": the Controller of communicator KEY, in place of the scene's (run --controller;
+  /// paths relative to the current folder; "KEY=" = none, its peer is started by hand).
+  std::vector<std::string> controllers;
+  /// The file that takes the stdout and stderr of the controllers simbob starts ("" = simbob's
+  /// stderr); with several, ".KEY" is added to the name of each.
+  std::string controller_log;
+  double runaway_limit = 1e6;      ///< m or m/s beyond which a run diverged
+  double joint_apart_limit = 0.1;  ///< m between a joint's anchors beyond which it came apart
   /// Set asynchronously (SIGINT/SIGTERM) to stop at the next step.
   const volatile std::sig_atomic_t* stop = nullptr;
   /// Called about every 1% of `duration` with the simulated time reached.

@@ -61,30 +61,6 @@ void checkUniqueKeys(CompileContext& ctx) {
   }
 }
 
-/// A scene with a socket communicator sends every key to its peer as one word of a line of
-/// printable ASCII (docs/socket-protocol.md): a key with a space, a control character or a
-/// byte outside ASCII would split or break that line, so it is refused here, at `check`.
-void checkProtocolKeys(CompileContext& ctx) {
-  const Model& m = ctx.model;
-  if (m.sockets.empty()) return;
-  const SocketDef& s = m.sockets.front();
-  auto check = [&](const std::string& key, const SourceLoc& loc) {
-    for (unsigned char ch : key)
-      if (ch <= 0x20 || ch >= 0x7f) {
-        ctx.diag.error(loc, "key '" + key + "' cannot travel over the socket protocol of RCLocalSocketCommunicator '" +
-                                s.key + "': keys there are printable ASCII without spaces");
-        return;
-      }
-  };
-  for (const SocketDef& d : m.sockets) check(d.key, d.loc);
-  for (const ActuatorDef& a : m.actuators) check(a.key, a.loc);
-  for (const ControllerDef& c : m.controllers)
-    if (c.kind == ControllerDef::TwoWheel) check(c.key, c.loc);
-  for (const JointDef& j : m.joints) check(j.key, j.loc);
-  for (const SensorDef& d : m.sensors) check(d.key, d.loc);
-  for (const BodyDef& b : m.bodies) check(b.key, b.loc);
-}
-
 }  // namespace
 
 bool compileScene(const Scene& scene, Model* model, Diagnostics& diag) {
@@ -99,7 +75,6 @@ bool compileScene(const Scene& scene, Model* model, Diagnostics& diag) {
   for (const Link& l : scene.cameras)
     if (l.comp >= 0) lowerCamera(ctx, l.comp);
   checkUniqueKeys(ctx);
-  checkProtocolKeys(ctx);
   return diag.ok() && !ctx.failedQuietly();
 }
 

@@ -6,6 +6,7 @@
 // proximity sensor to Model::sensors and sensor geoms (lib/physics/sensors.cpp); the socket
 // communicator to Model::sockets (lib/robot/socket_peer.cpp talks to its peer).
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include "compile/context.h"
@@ -28,6 +29,7 @@ constexpr LinkParam kGeom{"Geom"};
 constexpr ValueParam<bool> kIsServer{"IsServer"};
 constexpr ValueParam<int64_t> kPort{"Port"};
 constexpr ValueParam<double> kPeriod{"Period"};
+constexpr ValueParam<std::string> kController{"Controller"};
 
 constexpr int64_t kMaxPort = 65535;
 constexpr double kPi = 3.14159265358979323846;
@@ -208,7 +210,10 @@ void registerPeripheries(Registry& r) {
          int(PeripheryKind::LocalSocketCommunicator),
          {flag(kIsServer, false, "wait for a client instead of connecting"),
           integer(kPort, 5000, "TCP port on 127.0.0.1 (1 to 65535; run --port-offset adds to it)", Range::Positive),
-          number(kPeriod, 0.01, "s", "simulated time between exchanges with the peer (simbob's own)", Range::Positive)},
+          number(kPeriod, 0.01, "s", "simulated time between exchanges with the peer (simbob's own)", Range::Positive),
+          text(kController, "",
+               "command line of the peer program simbob starts itself, run in this file's folder "
+               "(docs/socket-protocol.md#controllers-started-by-simbob; run --controller overrides)")},
          {},
          "Lets another program on this computer read the robot and command it, in lockstep "
          "(docs/socket-protocol.md)."});
@@ -274,10 +279,68 @@ void lowerPeriphery(CompileContext& ctx, const Component& c, const Built& parent
       d.is_server = c.get(kIsServer);
       d.port = static_cast<int>(c.get(kPort));
       d.period = period;
+      d.controller = c.get(kController);
+      if (!d.controller.empty()) {
+        std::vector<std::string> words;
+        std::string problem;
+        if (!splitCommandLine(d.controller, &words, &problem)) {
+          ctx.errorAt(c.slotOf(kController), c, "parameter 'Controller': " + problem);
+          break;
+        }
+        d.controller_dir = std::filesystem::path(c.loc.file.str()).parent_path().string();
+        if (d.controller_dir.empty()) d.controller_dir = ".";
+      }
       ctx.model.sockets.push_back(d);
       break;
     }
   }
+}
+
+bool splitCommandLine(const std::string& line, std::vector<std::string>* words, std::string* problem) {
+  words->clear();
+  std::string word;
+  bool in_word = false;
+  for (size_t i = 0; i < line.size(); ++i) {
+    const char ch = line[i];
+    if (ch == ' ' || ch == '\t' || ch == '\n' || ch == '\r') {
+      if (in_word) words->push_back(word);
+      word.clear();
+      in_word = false;
+      continue;
+    }
+    in_word = true;
+    if (ch == '\'') {
+      const size_t end = line.find('\'', i + 1);
+      if (end == std::string::npos) {
+        *problem = "a quote (') is not closed";
+        return false;
+      }
+      word += line.substr(i + 1, end - i - 1);
+      i = end;
+    } else if (ch == '"') {
+      size_t j = i + 1;
+      for (; j < line.size() && line[j] != '"'; ++j) {
+        if (line[j] == '\\' && j + 1 < line.size() && (line[j + 1] == '"' || line[j + 1] == '\\')) ++j;
+        word += line[j];
+      }
+      if (j >= line.size()) {
+        *problem = "a quote (\") is not closed";
+        return false;
+      }
+      i = j;
+    } else if (ch == '\\') {
+      if (i + 1 >= line.size()) {
+        *problem = "a backslash ends the command line";
+        return false;
+      }
+      word += line[++i];
+    } else {
+      word += ch;
+    }
+  }
+  if (in_word) words->push_back(word);
+  if (words->empty()) *problem = "the command line holds no program";
+  return !words->empty();
 }
 
 }  // namespace simbob

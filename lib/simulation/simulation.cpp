@@ -68,6 +68,34 @@ std::unique_ptr<Simulation> Simulation::fromModel(Model model, const SimulationO
     }
     d.port += opts.port_offset;
   }
+  for (const std::string& option : opts.controllers) {
+    const size_t eq = option.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      diag.error({}, "--controller takes KEY=COMMAND, got '" + option + "'", ErrorKind::Usage);
+      return nullptr;
+    }
+    const std::string key = option.substr(0, eq), command = option.substr(eq + 1);
+    auto it =
+        std::find_if(model.sockets.begin(), model.sockets.end(), [&](const SocketDef& d) { return d.key == key; });
+    std::vector<std::string> words;
+    std::string problem;
+    if (it == model.sockets.end())
+      problem = "no RCLocalSocketCommunicator has the key '" + key + "'" +
+                (model.sockets.empty() ? " (the scene has none)" : " (the scene has '" + model.sockets[0].key + "')");
+    else if (!command.empty() && !splitCommandLine(command, &words, &problem))
+      problem = "RCLocalSocketCommunicator '" + key + "': --controller: " + problem;
+    if (!problem.empty()) {
+      diag.error({}, problem, ErrorKind::Usage);
+      return nullptr;
+    }
+    it->controller = command;
+    it->controller_dir.clear();  // relative to where simbob runs, as any path on its command line
+  }
+  const long started = std::count_if(model.sockets.begin(), model.sockets.end(),
+                                     [](const SocketDef& d) { return !d.controller.empty(); });
+  for (SocketDef& d : model.sockets)
+    if (!d.controller.empty() && !opts.controller_log.empty())
+      d.controller_log = started > 1 ? opts.controller_log + "." + d.key : opts.controller_log;
   return std::unique_ptr<Simulation>(new Simulation(std::move(model), opts));
 }
 
@@ -110,6 +138,7 @@ bool Simulation::start() {
     sampler_->name = "the trajectory sampler";
     parties.push_back(sampler_.get());
   }
+  for (SocketDef& d : model_.sockets) d.seed = opts_.seed;  // SIMBOB_SEED of a started controller
   robot_ = robotParties(model_);
   for (auto& p : robot_) parties.push_back(p.get());
   parties.insert(parties.end(), extra_.begin(), extra_.end());

@@ -43,8 +43,9 @@ cli_setup() {
 }
 
 # Every shipped scene (scenes/*.xml; scenes/parts/ holds pieces, not scenes) that runs on its
-# own: a scene with an RCLocalSocketCommunicator waits for a peer program, so the generic scene
-# tests leave it to tests/cli/socket.sh, which runs it with scripts/simbob_client.py.
+# own: a scene with an RCLocalSocketCommunicator talks to a peer program (which it starts itself,
+# its Controller), so the generic scene tests leave it to tests/cli/controller.sh, socket.sh and
+# golden_regression.sh.
 shipped_scenes() {
   local f
   for f in "$SCENES"/*.xml; do

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# The client libraries' conformance test (docs/socket-protocol.md#client-libraries): every client
+# -- python/simbob_client.py and examples/clients/simbob_client.c, each through its
+# drive_two_wheel example, started by simbob as the Controller -- (1) drives socket_robot.xml
+# to golden/socket_robot.csv byte for byte with the same commands, and (2) negotiates version 3,
+# reads keys with a space, a comma and UTF-8, subscribes to one body and no joints, and reads
+# that body's pose and velocities: the same printout, line for line, for every client.
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+cli_setup "$@"
+trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$WORK"' EXIT
+
+KEY=Bot.Cart.Link
+EX="$REPO/examples/clients"
+check "the C client builds as C99 without warnings"
+${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror -O2 -ffp-contract=off -o drive_two_wheel \
+  "$EX/drive_two_wheel.c" -lm || fail "examples/clients/drive_two_wheel.c does not build"
+
+CLIENTS=(python c)
+declare -A COMMAND=(
+  [python]="/usr/bin/python3 $EX/drive_two_wheel.py"
+  [c]="$WORK/drive_two_wheel"
+)
+sed -e 's|<RCTwoWheelMotionControl Key="Motion">|<RCTwoWheelMotionControl Key="Mo tion">|' \
+  -e 's|<RCMobileRigidBody Key="Chassis">|<RCMobileRigidBody Key="Châssis, 1">|' \
+  "$SCENES/socket_robot.xml" >keys.xml
+cat >probe.expected <<'TXT'
+version 3
+key Bot.Cart.Link
+motion Bot.Mo tion
+body Bot.Cart.Châssis, 1
+body Bot.Cart.LeftAxle.LeftWheel
+body Bot.Cart.RightAxle.RightWheel
+body Bot.Cart.CasterSocket.CasterBall
+t 0.050
+state body Bot.Cart.Châssis, 1 13 moving 1
+end
+TXT
+
+for client in "${CLIENTS[@]}"; do
+  check "$client client: socket_robot.xml to its golden byte for byte"
+  expect_status 0 "$SIMBOB" run "$SCENES/socket_robot.xml" --duration 10 --out "drive_$client.csv" -q \
+    --controller "$KEY=${COMMAND[$client]}"
+  expect_same_file "drive_$client.csv" "$REPO/golden/socket_robot.csv"
+  expect_match "$client: the run ended" "drive_$client.controller.log" "the run ended at t=10 s after 201 exchanges"
+
+  check "$client client: version 3, escaped keys, a subscription, velocities"
+  expect_status 0 "$SIMBOB" run keys.xml --duration 1 --out "probe_$client.csv" -q \
+    --controller "$KEY=${COMMAND[$client]} probe"
+  diff probe.expected "probe_$client.controller.log" >probe.diff ||
+    fail "$client: the probe's printout differs: $(cat probe.diff)"
+done
+say "ok"

@@ -528,7 +528,7 @@ int actuatorIndex(PySimulation& s, const py::object& key) {
 
 }  // namespace
 
-PYBIND11_MODULE(simbob, m) {
+PYBIND11_MODULE(_simbob, m) {
   thisModule() = m.ptr();
   m.doc() = R"(simbob: headless robot simulation (Simulator Bob scenes on ODE) from Python.
 

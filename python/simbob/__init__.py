@@ -1,0 +1,40 @@
+"""simbob: headless robot simulation (Simulator Bob scenes on ODE) from Python.
+
+The package: the compiled module (simbob._simbob: Simulation and the error classes), Batch
+(simbob/batch.py: worlds stepped in parallel by worker processes) and SimbobEnv
+(simbob/env.py: a Gymnasium-style environment). Everything is imported from `simbob`.
+"""
+
+from . import _simbob
+from ._simbob import (  # noqa: F401
+    DivergedError,
+    Error,
+    InternalError,
+    MissingInputError,
+    OutputError,
+    ProtocolError,
+    SceneError,
+    Simulation,
+    UnavailableError,
+    UsageError,
+    __version__,
+)
+from .batch import Batch  # noqa: E402,F401
+
+__doc__ = _simbob.__doc__
+for _cls in (Simulation, Batch):
+    _cls.__module__ = "simbob"
+
+__all__ = [
+    "Batch",
+    "DivergedError",
+    "Error",
+    "InternalError",
+    "MissingInputError",
+    "OutputError",
+    "ProtocolError",
+    "SceneError",
+    "Simulation",
+    "UnavailableError",
+    "UsageError",
+]

@@ -20,13 +20,15 @@ from ._simbob import (  # noqa: F401
     __version__,
 )
 from .batch import Batch  # noqa: E402,F401
+from .env import Box, SimbobEnv  # noqa: E402,F401
 
 __doc__ = _simbob.__doc__
-for _cls in (Simulation, Batch):
+for _cls in (Simulation, Batch, Box, SimbobEnv):
     _cls.__module__ = "simbob"
 
 __all__ = [
     "Batch",
+    "Box",
     "DivergedError",
     "Error",
     "InternalError",
@@ -34,6 +36,7 @@ __all__ = [
     "OutputError",
     "ProtocolError",
     "SceneError",
+    "SimbobEnv",
     "Simulation",
     "UnavailableError",
     "UsageError",

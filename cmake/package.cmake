@@ -2,6 +2,7 @@
 #   P/bin/simbob
 #   P/share/simbob/scenes/     the example scenes with the parts they import
 #   P/share/doc/simbob/README.md and P/share/doc/simbob/docs/ (the reference README links to)
+#   P/lib/python3/dist-packages/simbob/   the Python package, when it is built (docs/python.md)
 # The .deb installs under /usr; its Depends comes from dpkg-shlibdeps over the binary, so it
 # names Debian's runtime library packages (libode8, libcairo2, ...) and never a -dev package:
 # `apt install ./simbob_*.deb` on a Debian 12 node pulls exactly those.
@@ -12,6 +13,13 @@ install(TARGETS simbob_video LIBRARY DESTINATION lib/simbob)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes/ DESTINATION ${CMAKE_INSTALL_DATADIR}/simbob/scenes)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs)
+# The Python package (`import simbob`) where Debian's /usr/bin/python3 finds it:
+# P/lib/python3/dist-packages/simbob/ (the compiled _simbob*.so and python/simbob/*.py).
+if(SIMBOB_PYTHON_BUILT)
+  set(SIMBOB_PYTHON_INSTALL_DIR lib/python3/dist-packages/simbob)
+  install(TARGETS simbob_python LIBRARY DESTINATION ${SIMBOB_PYTHON_INSTALL_DIR})
+  install(FILES ${SIMBOB_PYTHON_SOURCES} DESTINATION ${SIMBOB_PYTHON_INSTALL_DIR})
+endif()
 
 set(CPACK_GENERATOR "DEB")
 set(CPACK_PACKAGE_NAME "simbob")
@@ -29,4 +37,11 @@ set(CPACK_DEBIAN_PACKAGE_PRIORITY "optional")
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 # Opened with dlopen only when recording (lib/render), so not in the shlibs Depends.
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "libegl-mesa0, libgl1-mesa-dri, libosmesa6")
+# The Python module is built for one interpreter version (its file name carries the ABI tag) and
+# needs numpy. Recommended, not required: a cluster node that runs the CLI needs no Python.
+if(SIMBOB_PYTHON_BUILT)
+  math(EXPR simbob_python_next "${Python3_VERSION_MINOR} + 1")
+  set(CPACK_DEBIAN_PACKAGE_RECOMMENDS
+      "${CPACK_DEBIAN_PACKAGE_RECOMMENDS}, python3 (>= ${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}~), python3 (<< ${Python3_VERSION_MAJOR}.${simbob_python_next}), python3-numpy")
+endif()
 include(CPack)

@@ -17,6 +17,7 @@ import os
 import pickle
 import signal
 import struct
+import threading
 import time
 import weakref
 
@@ -239,7 +240,8 @@ class Batch:
     A stopped world raises again at every later call until reset().
 
     Close it with close() (or use `with simbob.Batch(...) as b:`); it is also closed when
-    garbage-collected. Create a Batch while no other thread of this process is inside simbob.
+    garbage-collected. Use it from one thread at a time (another thread's call meanwhile raises
+    UsageError), and create it while no other thread of this process is inside simbob.
     """
 
     def __init__(self, scene, n, overrides=None, seeds=None, dt=None, workers=None):
@@ -265,6 +267,7 @@ class Batch:
                 raise _usage(f"Batch: world {i}'s overrides change the scene's bodies, joints, actuators "
                              f"or sensors; every world must have the same ones")
         self.n = n
+        self._lock = threading.Lock()
         self.scene = first.scene
         self.body_keys = first.body_keys
         self.joint_keys = first.joint_keys
@@ -317,6 +320,14 @@ class Batch:
 
     def _run(self, op, args):
         """Runs op on every world (args: one per worker, or one for all), raises the first failure."""
+        if not self._lock.acquire(blocking=False):
+            raise _usage("this Batch is in use by another thread: use one Batch from one thread at a time")
+        try:
+            self._run_locked(op, args)
+        finally:
+            self._lock.release()
+
+    def _run_locked(self, op, args):
         if self._sims is None and not self._pipes:
             raise _usage("this Batch is closed")
         if self._sims is not None:

@@ -189,6 +189,7 @@ class SimbobEnv:
 
     @property
     def unwrapped(self):
+        """This environment (Gymnasium's wrappers reach the base environment through it)."""
         return self
 
     def __repr__(self):

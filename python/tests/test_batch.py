@@ -212,13 +212,17 @@ def test_workers_are_reaped_on_close_and_run_in_their_own_processes():
     b.close()  # idempotent
 
 
-def test_the_caller_waits_with_the_gil_released():
+def test_the_caller_waits_with_the_gil_released_and_a_second_thread_is_refused():
     with simbob.Batch(CHAIN, 2, workers=2) as b:
-        stamps, done = [], threading.Event()
+        stamps, done, refused = [], threading.Event(), []
 
         def tick():
             while not done.is_set():
                 stamps.append(time.monotonic())
+                try:
+                    b.step(1)
+                except simbob.UsageError as e:
+                    refused.append(str(e))
                 time.sleep(0.001)
 
         t = threading.Thread(target=tick)
@@ -231,3 +235,12 @@ def test_the_caller_waits_with_the_gil_released():
         t.join()
     assert t1 - t0 > 0.2, "the step was too short to tell"
     assert len([s for s in stamps if t0 + 0.05 < s < t1 - 0.05]) > 10
+    assert refused and "in use by another thread" in refused[0]
+
+
+def test_docstrings():
+    assert simbob.Batch.__doc__ and simbob.SimbobEnv.__doc__ and simbob.Box.__doc__
+    for cls in (simbob.Batch, simbob.SimbobEnv, simbob.Box):
+        for name in dir(cls):
+            if not name.startswith("_"):
+                assert getattr(cls, name).__doc__, f"{cls.__name__}.{name}"

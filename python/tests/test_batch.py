@@ -212,17 +212,39 @@ def test_workers_are_reaped_on_close_and_run_in_their_own_processes():
     b.close()  # idempotent
 
 
-def test_the_caller_waits_with_the_gil_released_and_a_second_thread_is_refused():
+def test_a_second_thread_is_refused_while_a_call_runs():
     with simbob.Batch(CHAIN, 2, workers=2) as b:
-        stamps, done, refused = [], threading.Event(), []
+        done = threading.Event()
+
+        def long_call():
+            while True:
+                try:
+                    b.step(40000)
+                    break
+                except simbob.UsageError:  # the main thread's step(1) was running: again
+                    time.sleep(0.001)
+            done.set()
+
+        t = threading.Thread(target=long_call)
+        t.start()
+        refused = []
+        while not done.is_set():
+            try:
+                b.step(1)
+            except simbob.UsageError as e:
+                refused.append(str(e))
+            time.sleep(0.001)
+        t.join()
+    assert refused and "in use by another thread" in refused[0]
+
+
+def test_the_caller_waits_with_the_gil_released():
+    with simbob.Batch(CHAIN, 2, workers=2) as b:
+        stamps, done = [], threading.Event()
 
         def tick():
             while not done.is_set():
                 stamps.append(time.monotonic())
-                try:
-                    b.step(1)
-                except simbob.UsageError as e:
-                    refused.append(str(e))
                 time.sleep(0.001)
 
         t = threading.Thread(target=tick)
@@ -235,7 +257,6 @@ def test_the_caller_waits_with_the_gil_released_and_a_second_thread_is_refused()
         t.join()
     assert t1 - t0 > 0.2, "the step was too short to tell"
     assert len([s for s in stamps if t0 + 0.05 < s < t1 - 0.05]) > 10
-    assert refused and "in use by another thread" in refused[0]
 
 
 def test_docstrings():

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import simbob
+from conftest import child_env
 
 ROOT = Path(os.environ.get("SIMBOB_SOURCE_DIR", Path(__file__).resolve().parents[2]))
 ROBOT = ROOT / "scenes" / "two_wheel_robot.xml"
@@ -109,7 +110,7 @@ def test_random_policy_example_prints_the_return_of_the_same_loop_by_hand():
     """The example runs 1,000 steps; its return equals the same random actions applied with
     Simulation.set_command and step(10), summed by hand, to the last bit."""
     script = ROOT / "examples" / "python" / "random_policy.py"
-    env = dict(os.environ)
+    env = child_env()
     out = subprocess.run([sys.executable, str(script), "--seed", "4"], check=True, capture_output=True, text=True,
                          env=env).stdout
     first = out.splitlines()[0].split()

@@ -22,7 +22,11 @@ from ._simbob import (  # noqa: F401
 from .batch import Batch  # noqa: E402,F401
 from .env import Box, SimbobEnv  # noqa: E402,F401
 
-__doc__ = _simbob.__doc__
+__doc__ = _simbob.__doc__ + """
+
+Many worlds at once: simbob.Batch(scene, n, overrides=..., seeds=...) steps n worlds in parallel
+worker processes and returns their state as stacked arrays, each world the same numbers as it
+alone. A scene as a Gymnasium-style environment: simbob.SimbobEnv(scene, observe, reward, ...)."""
 for _cls in (Simulation, Batch, Box, SimbobEnv):
     _cls.__module__ = "simbob"
 

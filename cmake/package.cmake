@@ -4,6 +4,7 @@
 #   P/share/simbob/scripts/simbob_client.py   the peer socket_robot.xml starts (../scripts/)
 #   P/share/simbob/python/simbob_client.py and P/share/simbob/examples/clients/: the client libraries
 #   P/share/doc/simbob/README.md and P/share/doc/simbob/docs/ (the reference README links to)
+#   P/lib/python3/dist-packages/simbob/   the Python package, when it is built (docs/python.md)
 # The .deb installs under /usr; its Depends comes from dpkg-shlibdeps over the binary, so it
 # names Debian's runtime library packages (libode8, libcairo2, ...) and never a -dev package:
 # `apt install ./simbob_*.deb` on a Debian 12 node pulls exactly those.
@@ -17,6 +18,13 @@ install(FILES ${PROJECT_SOURCE_DIR}/python/simbob_client.py DESTINATION ${CMAKE_
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/clients/ DESTINATION ${CMAKE_INSTALL_DATADIR}/simbob/examples/clients)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs)
+# The Python package (`import simbob`) where Debian's /usr/bin/python3 finds it:
+# P/lib/python3/dist-packages/simbob/ (the compiled _simbob*.so and python/simbob/*.py).
+if(SIMBOB_PYTHON_BUILT)
+  set(SIMBOB_PYTHON_INSTALL_DIR lib/python3/dist-packages/simbob)
+  install(TARGETS simbob_python LIBRARY DESTINATION ${SIMBOB_PYTHON_INSTALL_DIR})
+  install(FILES ${SIMBOB_PYTHON_SOURCES} DESTINATION ${SIMBOB_PYTHON_INSTALL_DIR})
+endif()
 
 set(CPACK_GENERATOR "DEB")
 set(CPACK_PACKAGE_NAME "simbob")
@@ -37,4 +45,11 @@ set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "libegl-mesa0, libgl1-mesa-dri, libosmesa6")
 # `simbob view` reads three.js from Debian's libjs-three at run time (lib/view): appended to the
 # shlibs Depends.
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "libjs-three")
+# The Python module is built for one interpreter version (its file name carries the ABI tag) and
+# needs numpy. Recommended, not required: a cluster node that runs the CLI needs no Python.
+if(SIMBOB_PYTHON_BUILT)
+  math(EXPR simbob_python_next "${Python3_VERSION_MINOR} + 1")
+  set(CPACK_DEBIAN_PACKAGE_RECOMMENDS
+      "${CPACK_DEBIAN_PACKAGE_RECOMMENDS}, python3 (>= ${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}~), python3 (<< ${Python3_VERSION_MAJOR}.${simbob_python_next}), python3-numpy")
+endif()
 include(CPack)

@@ -537,7 +537,7 @@ int sensorIndex(PySimulation& s, const std::string& key) {
 
 }  // namespace
 
-PYBIND11_MODULE(simbob, m) {
+PYBIND11_MODULE(_simbob, m) {
   thisModule() = m.ptr();
   m.doc() = R"(simbob: headless robot simulation (Simulator Bob scenes on ODE) from Python.
 

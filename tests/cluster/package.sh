@@ -7,7 +7,10 @@
 #     Debian; `apt-get --simulate install ./simbob_*.deb` accepts it on this machine;
 #   - the package unpacked into a temporary root (`dpkg -x`: a real chroot would need
 #     debootstrap and a network) runs `simbob --version` and an example scene, byte-identical
-#     to the build tree's binary.
+#     to the build tree's binary;
+#   - when the build has the Python module: both put the package simbob/ into
+#     lib/python3/dist-packages, and Debian's /usr/bin/python3 imports it from the unpacked root
+#     (nothing of the build tree on its path) and steps a scene to the build tree's numbers.
 #
 #   bash tests/cluster/package.sh /path/to/simbob /path/to/repo /path/to/build
 set -euo pipefail
@@ -39,6 +42,41 @@ version_line=$(cat "$LAST_OUT")
 SCENE=imported_bodies
 expect_status 0 "$SIMBOB" run "$SCENES/$SCENE.xml" --duration 1 --quiet --out "$WORK/reference.csv"
 
+# The Python package, when the build has it (CMake found python3-dev and pybind11-dev).
+PYMOD=$(find "$BUILD/python/simbob" -maxdepth 1 -name '_simbob*.so' 2>/dev/null | head -n 1)
+PYFILES=()
+if [[ -n "$PYMOD" ]]; then
+  PYFILES=("$(basename "$PYMOD")" $(cd "$REPO/python/simbob" && ls -1 ./*.py | sed 's|^\./||'))
+  # One scene stepped 1000 times; prints where simbob came from and a digest of every pose.
+  PYRUN='import hashlib, sys
+sys.path.insert(0, sys.argv[1])
+import simbob
+sim = simbob.Simulation(sys.argv[2])
+h = hashlib.sha256()
+for _ in range(100):
+    sim.step(10)
+    h.update(sim.poses().tobytes())
+print(simbob.__file__)
+print(simbob.__version__, sim.time, h.hexdigest())'
+  expect_status 0 env -u PYTHONPATH /usr/bin/python3 -s -c "$PYRUN" "$BUILD/python" "$SCENES/$SCENE.xml"
+  py_reference=$(tail -n 1 "$LAST_OUT")
+  say "build tree module: $py_reference"
+else
+  say "note: the build has no Python module (python3-dev, pybind11-dev missing?): its install is not checked"
+fi
+
+# Debian's python3 imports simbob from DIST (a dist-packages directory) and gets the build tree's numbers.
+expect_installed_python() {
+  local dist=$1 f
+  [[ -n "$PYMOD" ]] || return 0
+  for f in "${PYFILES[@]}"; do
+    [[ -f "$dist/simbob/$f" ]] || fail "no $dist/simbob/$f"
+  done
+  expect_status 0 env -u PYTHONPATH /usr/bin/python3 -s -c "$PYRUN" "$dist" "$SCENES/$SCENE.xml"
+  expect_eq "simbob imported from" "$(head -n 1 "$LAST_OUT")" "$dist/simbob/__init__.py"
+  expect_eq "installed module's run" "$(tail -n 1 "$LAST_OUT")" "$py_reference"
+}
+
 check "cmake --install --prefix puts the binary, the scenes with their parts, the README and docs/ there"
 t0=$SECONDS
 expect_status 0 cmake --install "$BUILD" --prefix "$WORK/prefix"
@@ -54,6 +92,7 @@ for f in "$REPO"/docs/*.md; do
 done
 expect_status 0 "$P/bin/simbob" run "$P/share/simbob/scenes/$SCENE.xml" --duration 1 --quiet --out "$WORK/prefix.csv"
 expect_same_file "$WORK/prefix.csv" "$WORK/reference.csv"
+expect_installed_python "$P/lib/python3/dist-packages"
 
 check "cpack -G DEB builds simbob_${version}_*.deb"
 t0=$SECONDS
@@ -77,6 +116,9 @@ done
 for f in "$SCENES"/*.xml "$SCENES"/parts/*; do
   grep -qxF "/usr/share/simbob/scenes/${f#"$SCENES"/}" "$WORK/contents" || fail "the package lacks scene file ${f#"$SCENES"/}"
 done
+for f in "${PYFILES[@]}"; do
+  grep -qxF "/usr/lib/python3/dist-packages/simbob/$f" "$WORK/contents" || fail "the package lacks the Python file simbob/$f"
+done
 
 say "at $SECONDS s"
 check "Depends: exactly the Debian packages of the libraries the binary links, no -dev"
@@ -88,8 +130,10 @@ tr ',|' '\n\n' <<<"$depends" | sed 's/(.*)//; s/^ *//; s/ *$//' | sed '/^$/d' | 
 if grep -E -- '-(dev|dbg)$' "$WORK/depends"; then fail "Depends names a development package"; fi
 # The packages that own the libraries the binary needs (NEEDED entries, resolved by ldd).
 # The binary and the video module it opens on demand (libsimbob_video.so: FFmpeg) both count.
+# And the Python module, when there is one (it links no libpython: the interpreter provides it).
 ELVES=("$SIMBOB" "$(dirname "$SIMBOB")/libsimbob_video.so")
 [[ -f "${ELVES[1]}" ]] || fail "no video module beside the binary: ${ELVES[1]}"
+[[ -z "$PYMOD" ]] || ELVES+=("$PYMOD")
 for elf in "${ELVES[@]}"; do objdump -p "$elf" | awk '/NEEDED/ && $2 !~ /^ld-linux/ {print $2}'; done | sort -u >"$WORK/needed"
 [[ -s "$WORK/needed" ]] || fail "objdump found no NEEDED libraries in $SIMBOB"
 for elf in "${ELVES[@]}"; do ldd "$elf"; done >"$WORK/ldd"
@@ -148,4 +192,10 @@ expect_eq "installed --version" "$(cat "$LAST_OUT")" "$version_line"
 expect_status 0 "$R/usr/bin/simbob" run "$R/usr/share/simbob/scenes/$SCENE.xml" --duration 1 --quiet --out "$WORK/deb.csv"
 expect_same_file "$WORK/deb.csv" "$WORK/reference.csv"
 expect_eq "scene in the installed run's summary" "$(json_get "$WORK/deb.json" 'j["scene"]')" "$R/usr/share/simbob/scenes/$SCENE.xml"
+if [[ -n "$PYMOD" ]]; then
+  check "Debian's python3 imports simbob from the unpacked root's dist-packages and runs a scene"
+  expect_installed_python "$R/usr/lib/python3/dist-packages"
+  recommends=$(dpkg-deb -f "$deb" Recommends)
+  [[ "$recommends" == *python3-numpy* ]] || fail "Recommends lacks python3-numpy: $recommends"
+fi
 say "ok ($SECONDS s)"

@@ -18,6 +18,7 @@
 #include "cli.h"
 #include "commands.h"
 #include "workers.h"
+#include "simbob/csv.h"
 #include "simbob/files.h"
 #include "simbob/sweep.h"
 #include "simbob/trajectory.h"
@@ -403,14 +404,6 @@ int sweepRun(const SweepArgs& a, const Common& common) {
 }
 
 // ---- gather ----
-
-// RFC 4180: a field with a comma, a quote or a line break is quoted, its quotes doubled.
-std::string csvField(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char ch : s) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-  return q + "\"";
-}
 
 int sweepGather(const SweepArgs& a) {
   const std::string manifest = (fs::path(a.input) / "manifest.jsonl").string();

@@ -1,3 +1,4 @@
+#include "simbob/csv.h"
 #include "simbob/trajectory.h"
 
 #include "simbob/files.h"
@@ -37,19 +38,6 @@ constexpr size_t kMaxCellsPerRow = 16;
 constexpr size_t kSparseAllowance = size_t{1} << 20;
 constexpr const char* kColumnNames[kVelocityFieldCount] = {"time", "body", "x",  "y",  "z",  "qw", "qx", "qy",
                                                            "qz",   "vx",   "vy", "vz", "wx", "wy", "wz"};
-
-bool needsQuoting(std::string_view key) { return key.find_first_of(",\"\r\n") != std::string_view::npos; }
-
-std::string encodeKey(std::string_view key) {
-  if (!needsQuoting(key)) return std::string(key);
-  std::string out = "\"";
-  for (char c : key) {
-    if (c == '"') out += '"';  // CSV escapes a quote by doubling it
-    out += c;
-  }
-  out += '"';
-  return out;
-}
 
 Error makeError(ErrorKind kind, const std::string& file, int line, std::string message) {
   Error e;
@@ -93,7 +81,7 @@ std::unique_ptr<TrajectoryWriter> TrajectoryWriter::open(const std::string& fina
   }
   w->keys_ = std::move(body_keys);
   w->encoded_keys_.reserve(w->keys_.size());
-  for (const std::string& key : w->keys_) w->encoded_keys_.push_back(encodeKey(key));
+  for (const std::string& key : w->keys_) w->encoded_keys_.push_back(csvField(key));
   w->buf_.reserve(kFlushBytes + 4096);
   w->velocity_ = velocity;
   w->buf_ += velocity ? kTrajectoryVelocityHeader : kTrajectoryHeader;
@@ -294,10 +282,10 @@ std::string quoteForMessage(std::string_view f) {
   return out;
 }
 
-class CsvParser {
+// Reads a trajectory CSV's records (CsvReader) into a Trajectory, checking every row.
+class TrajectoryParser {
  public:
-  CsvParser(const std::string& path, std::string_view text)
-      : path_(path), p_(text.data()), end_(text.data() + text.size()) {}
+  TrajectoryParser(const std::string& path, std::string_view text) : path_(path), csv_(text, path) {}
 
   bool run(Trajectory* out, Error* err);
 
@@ -306,86 +294,24 @@ class CsvParser {
     setError(err, makeError(ErrorKind::InvalidInput, path_, line, std::move(message)));
     return false;
   }
-  /// Parses one record starting at p_; fields beyond kFieldCount are only counted.
-  bool parseRecord(Error* err);
 
   const std::string& path_;
-  const char* p_;
-  const char* end_;
-  int line_ = 1;         ///< line of p_
-  int record_line_ = 1;  ///< line where the current record started
-  std::array<std::string_view, kVelocityFieldCount> fields_;
-  std::array<std::string, kVelocityFieldCount> unquoted_;  ///< storage for quoted fields
-  size_t field_count_ = 0;
+  CsvReader csv_;
 };
 
-bool CsvParser::parseRecord(Error* err) {
-  record_line_ = line_;
-  field_count_ = 0;
-  for (;;) {
-    std::string_view f;
-    if (p_ < end_ && *p_ == '"') {
-      ++p_;
-      std::string& s = unquoted_[field_count_ < kVelocityFieldCount ? field_count_ : kVelocityFieldCount - 1];
-      s.clear();
-      for (;;) {
-        if (p_ == end_) return fail(err, record_line_, "unterminated quoted field");
-        char c = *p_++;
-        if (c == '"') {
-          if (p_ < end_ && *p_ == '"') {
-            s += '"';
-            ++p_;
-            continue;
-          }
-          break;
-        }
-        if (c == '\n') ++line_;
-        s += c;
-      }
-      if (p_ < end_ && *p_ == '\r' && (p_ + 1 == end_ || p_[1] == '\n')) ++p_;
-      if (p_ < end_ && *p_ != ',' && *p_ != '\n')
-        return fail(err, record_line_, "unexpected character after closing quote");
-      f = s;
-    } else {
-      const char* b = p_;
-      while (p_ < end_ && *p_ != ',' && *p_ != '\n') {
-        if (*p_ == '"') return fail(err, record_line_, "unexpected '\"' in unquoted field");
-        ++p_;
-      }
-      f = std::string_view(b, static_cast<size_t>(p_ - b));
-      if (!f.empty() && f.back() == '\r' && (p_ == end_ || *p_ == '\n')) f.remove_suffix(1);
-    }
-    if (field_count_ < kVelocityFieldCount) fields_[field_count_] = f;
-    ++field_count_;
-    if (p_ == end_) return true;
-    if (*p_ == ',') {
-      ++p_;
-      continue;
-    }
-    ++p_;  // '\n'
-    ++line_;
-    return true;
-  }
-}
-
-bool CsvParser::run(Trajectory* out, Error* err) {
-  // A UTF-8 byte order mark (added by some editors) is not part of the header.
-  if (end_ - p_ >= 3 && std::memcmp(p_, "\xEF\xBB\xBF", 3) == 0) p_ += 3;
-  if (p_ == end_) return fail(err, 0, std::string("empty file, expected header ") + kTrajectoryHeader);
-
+bool TrajectoryParser::run(Trajectory* out, Error* err) {
   // Header: the whole first line, compared verbatim.
-  const char* nl = static_cast<const char*>(std::memchr(p_, '\n', static_cast<size_t>(end_ - p_)));
-  const char* line_end = nl ? nl : end_;
-  std::string_view header(p_, static_cast<size_t>(line_end - p_));
-  if (!header.empty() && header.back() == '\r') header.remove_suffix(1);
+  Error header_err;
+  const bool have_header = csv_.next(&header_err);
+  if (!have_header && header_err.message.empty())
+    return fail(err, 0, std::string("empty file, expected header ") + kTrajectoryHeader);
+  const std::string_view header = csv_.rawLine();
   const bool velocity = header == kTrajectoryVelocityHeader;
-  if (header != kTrajectoryHeader && !velocity)
+  if (!have_header || (header != kTrajectoryHeader && !velocity))
     return fail(err, 1,
                 std::string("expected header '") + kTrajectoryHeader + "' (or with ',vx,vy,vz,wx,wy,wz'), found " +
                     quoteForMessage(header));
   const size_t fields = velocity ? kVelocityFieldCount : kFieldCount;
-  p_ = nl ? nl + 1 : end_;
-  line_ = 2;
 
   Trajectory& t = *out;
   t = Trajectory();
@@ -396,17 +322,12 @@ bool CsvParser::run(Trajectory* out, Error* err) {
   size_t rows = 0;
   double pose[kPoseSize];
 
-  while (p_ < end_) {
-    // Blank lines (e.g. a trailing one added by an editor) carry no row.
-    if (*p_ == '\n' || (*p_ == '\r' && p_ + 1 < end_ && p_[1] == '\n')) {
-      p_ += (*p_ == '\n') ? 1 : 2;
-      ++line_;
-      continue;
-    }
-    if (!parseRecord(err)) return false;
-    const int line = record_line_;
-    if (field_count_ != fields)
-      return fail(err, line, "expected " + std::to_string(fields) + " fields, found " + std::to_string(field_count_));
+  Error record_err;
+  while (csv_.next(&record_err)) {
+    const std::vector<std::string_view>& fields_ = csv_.fields();
+    const int line = csv_.line();
+    if (fields_.size() != fields)
+      return fail(err, line, "expected " + std::to_string(fields) + " fields, found " + std::to_string(fields_.size()));
 
     double values[kVelocityFieldCount] = {};
     for (size_t i = 0; i < fields; ++i) {
@@ -473,6 +394,10 @@ bool CsvParser::run(Trajectory* out, Error* err) {
     t.setPose(s, b, pose);
     if (velocity) t.setVelocity(s, b, values + kFieldCount);
   }
+  if (!record_err.message.empty()) {
+    setError(err, record_err);
+    return false;
+  }
   t.finalize();
   return true;
 }
@@ -489,7 +414,7 @@ bool readTrajectory(const std::string& path, Trajectory* out, Error* err) {
     return false;
   }
   Trajectory t;
-  CsvParser parser(path, text);
+  TrajectoryParser parser(path, text);
   if (!parser.run(&t, err)) return false;
   *out = std::move(t);
   return true;

@@ -1,5 +1,6 @@
 // The run log party: joint states, sensor readings and actuator commands at the trajectory's
 // sample times, as rows `time,component,quantity,value`.
+#include "simbob/csv.h"
 #include "simbob/run_log.h"
 
 #include <string_view>
@@ -12,18 +13,6 @@ namespace simbob {
 namespace {
 
 constexpr size_t kFlushBytes = size_t{1} << 20;
-
-// As the trajectory writes body keys: quoted CSV-style when they hold ',', '"', CR or LF.
-std::string csvField(std::string_view key) {
-  if (key.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(key);
-  std::string out = "\"";
-  for (char c : key) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  out += '"';
-  return out;
-}
 
 }  // namespace
 

@@ -1,6 +1,7 @@
 // End metrics of a sweep case, from its trajectory.
 #include <algorithm>
 
+#include "simbob/csv.h"
 #include "simbob/sweep.h"
 #include "simbob/values.h"
 
@@ -48,51 +49,20 @@ bool computeMetrics(const Trajectory& t, const std::vector<SweepMetric>& metrics
 
 namespace simbob {
 
-namespace {
-
-// The records of an RFC 4180 table: a quoted field may hold commas, doubled quotes and line
-// breaks. `lines[i]` is the line record i starts on (for messages).
-std::vector<std::vector<std::string>> csvRecords(const std::string& text, std::vector<int>* lines) {
-  std::vector<std::vector<std::string>> rows;
-  std::vector<std::string> row(1);
-  bool quoted = false, any = false;
-  int line = 1, start = 1;
-  for (size_t i = 0; i < text.size(); ++i) {
-    const char ch = text[i];
-    if (quoted && ch == '"' && i + 1 < text.size() && text[i + 1] == '"') {
-      row.back() += '"';
-      ++i;
-    } else if (ch == '"') {
-      quoted = !quoted;
-      any = true;
-    } else if (ch == '\n' && !quoted) {
-      if (any || row.size() > 1 || !row.back().empty()) {
-        rows.push_back(std::move(row));
-        lines->push_back(start);
-      }
-      row.assign(1, "");
-      any = false;
-      start = ++line;
-    } else if (ch == ',' && !quoted) {
-      row.emplace_back();
-    } else if (ch != '\r' || quoted) {
-      if (ch == '\n') ++line;
-      row.back() += ch;
-    }
-  }
-  if (any || row.size() > 1 || !row.back().empty()) {
-    rows.push_back(std::move(row));
-    lines->push_back(start);
-  }
-  return rows;
-}
-
-}  // namespace
-
 bool sweepTableSeries(const std::string& text, const std::string& path, const std::string& x_col,
                       const std::string& y_col, Trajectory* out, Error* err) {
   std::vector<int> lines;
-  const std::vector<std::vector<std::string>> rows = csvRecords(text, &lines);
+  std::vector<std::vector<std::string>> rows;
+  CsvReader csv(text, path);
+  Error bad;
+  while (csv.next(&bad)) {
+    rows.emplace_back(csv.fields().begin(), csv.fields().end());
+    lines.push_back(csv.line());
+  }
+  if (!bad.message.empty()) {
+    *err = bad;
+    return false;
+  }
   if (rows.empty()) {
     *err = {ErrorKind::InvalidInput, {path, 0}, "empty table"};
     return false;

@@ -36,12 +36,6 @@ namespace {
 using batch::Job;
 namespace fs = std::filesystem;
 
-std::string fixed(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
-
 pid_t startWorker(const Job& j, const BatchArgs& a) {
   std::vector<std::string> args = {"simbob", "run", j.scene, "--quiet", "--out", j.out};
   args.emplace_back("--duration");
@@ -151,7 +145,7 @@ int writeReport(const std::vector<Job>& jobs, const BatchArgs& a, int workers, d
     table += buf;
   }
   table += "\n" + std::to_string(jobs.size() - failed) + " of " + std::to_string(jobs.size()) + " scenes ok (" +
-           countOf(static_cast<size_t>(workers), "worker", "workers") + ", " + fixed(wall, 2) + " s)\n";
+           countOf(static_cast<size_t>(workers), "worker", "workers") + ", " + fixedDecimals(wall, 2) + " s)\n";
   if (a.json)
     std::fputs(jsonText(rep).c_str(), stdout);
   else
@@ -200,7 +194,7 @@ int cmdBatch(const BatchArgs& a, const Common& common) {
         ++done;
         finish(j, wstatus, a);
         std::string line = "[" + std::to_string(done) + "/" + std::to_string(jobs.size()) + "] " + j.status + "  " +
-                           j.scene + "  " + fixed(j.wall, 2) + " s";
+                           j.scene + "  " + fixedDecimals(j.wall, 2) + " s";
         if (!j.golden_status.empty()) line += "  golden: " + j.golden_status;
         if (!j.error.empty()) line += "  -- " + j.error;
         std::printf("%s\n", line.c_str());

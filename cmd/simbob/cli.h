@@ -124,6 +124,9 @@ int sceneOverrides(const Common& c, const std::string& scene, const std::vector<
 std::string jsonText(const nlohmann::json& j);
 std::string jsonText(const nlohmann::ordered_json& j);
 
+/// `v` with exactly `decimals` digits after the point ("1.50"), for tables and progress lines.
+std::string fixedDecimals(double v, int decimals);
+
 bool endsWith(const std::string& s, const std::string& suffix);
 
 /// SIGINT/SIGTERM set g_stop, for a loop that stops by itself. Blocking calls (waitpid) return

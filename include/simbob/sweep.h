@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -62,6 +63,29 @@ bool computeMetrics(const Trajectory& t, const std::vector<SweepMetric>& metrics
 /// coordinate is the metric and whose time is the parameter. Errors name the table and line.
 bool sweepTableSeries(const std::string& text, const std::string& path, const std::string& x_col,
                       const std::string& y_col, Trajectory* out, Error* err);
+
+/// What `sweep gather` found of one case in OUT/case-NNNN/case.json.
+struct GatheredCase {
+  int index = 0;
+  std::string status = "missing";  ///< ok, failed, diverged, missing
+  std::string error;               ///< why it is not ok ("" when ok or missing)
+};
+
+/// The gathered table of a sweep's cases (docs/sweeps.md): one row per case with its varied
+/// parameters, seed, status, wall time and metrics, and what each case's case.json says. A case
+/// file that cannot be read or holds a field of the wrong type makes that case failed, never
+/// the gather.
+struct GatheredTable {
+  std::string csv;
+  std::vector<GatheredCase> cases;
+};
+GatheredTable gatherSweep(const std::string& out_dir, const std::vector<SweepCase>& cases);
+
+/// OUT/case-NNNN/case.json of a finished case (docs/sweeps.md): status (exit status 0 ok, 1
+/// diverged, else failed), error, wall time, parameters and, for an ok case, the metrics computed
+/// from DIR/trajectory.csv -- a metric that cannot be computed makes the case failed (exit 65).
+nlohmann::ordered_json sweepCaseRecord(const SweepCase& c, const std::string& dir, int exit_code,
+                                       const std::string& error, double wall);
 
 /// "case-0007": a case's directory below OUT (at least four digits).
 std::string caseDirName(int index);

@@ -1,8 +1,13 @@
 // End metrics of a sweep case, from its trajectory.
 #include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
 
 #include "simbob/csv.h"
+#include "simbob/files.h"
 #include "simbob/sweep.h"
+#include "simbob/trajectory.h"
 #include "simbob/values.h"
 
 namespace simbob {
@@ -118,6 +123,101 @@ bool sweepTableSeries(const std::string& text, const std::string& path, const st
   }
   out->finalize();
   return true;
+}
+
+namespace {
+
+// One case's row values from its case.json: status, wall time, error and metric texts.
+void readCase(const std::string& dir, const SweepCase& c, GatheredCase* g, std::string* wall,
+              std::vector<std::string>* values) {
+  values->assign(c.metrics.size(), "");
+  std::string jt;
+  if (!readFile(dir + "/case.json", 1 << 20, &jt, nullptr, true)) return;
+  // A field of the wrong type makes the case failed, never the gather.
+  try {
+    const nlohmann::json j = nlohmann::json::parse(jt);
+    if (!j.is_object()) throw std::runtime_error("not a JSON object");
+    g->status = j.value("status", "failed");
+    *wall = formatNumber(j.value("wall_seconds", 0.0));
+    g->error = j.value("error", "");
+    if (g->status != "ok") return;
+    for (size_t i = 0; i < c.metrics.size(); ++i) {
+      const std::string& name = c.metrics[i].name;
+      if (!j.contains("metrics") || !j["metrics"].is_object() || !j["metrics"].contains(name)) continue;
+      const nlohmann::json& v = j["metrics"][name];
+      if (!v.is_number() || !std::isfinite(v.get<double>()))
+        throw std::runtime_error("metric '" + name + "' is " + v.dump() + ", not a number");
+      (*values)[i] = formatNumber(v.get<double>());
+    }
+  } catch (const std::exception& e) {
+    g->status = "failed";
+    std::string what = e.what();  // "[json.exception.type_error.302] type must be ...": the part after "] "
+    if (size_t b = what.find("] "); what.rfind("[json.exception", 0) == 0 && b != std::string::npos)
+      what = what.substr(b + 2);
+    g->error = "unreadable case.json: " + what;
+    values->assign(c.metrics.size(), "");
+  }
+}
+
+}  // namespace
+
+GatheredTable gatherSweep(const std::string& out_dir, const std::vector<SweepCase>& cases) {
+  GatheredTable t;
+  if (cases.empty()) return t;
+  const SweepCase& first = cases.front();
+  t.csv = "case";
+  for (const auto& [k, v] : first.vary) t.csv += "," + csvField(k);
+  t.csv += ",seed,status,wall_seconds";
+  for (const SweepMetric& m : first.metrics) t.csv += "," + csvField(m.name);
+  t.csv += "\n";
+  for (const SweepCase& c : cases) {
+    GatheredCase g;
+    g.index = c.index;
+    std::string wall;
+    std::vector<std::string> values;
+    readCase(out_dir + "/" + caseDirName(c.index), c, &g, &wall, &values);
+    t.csv += std::to_string(c.index);
+    for (const auto& [k, v] : c.vary) t.csv += "," + csvField(v);
+    t.csv += "," + std::to_string(c.seed) + "," + csvField(g.status) + "," + csvField(wall);
+    for (const std::string& v : values) t.csv += "," + v;
+    t.csv += "\n";
+    t.cases.push_back(std::move(g));
+  }
+  return t;
+}
+
+nlohmann::ordered_json sweepCaseRecord(const SweepCase& c, const std::string& dir, int exit_code,
+                                       const std::string& error, double wall) {
+  nlohmann::ordered_json j;
+  j["case"] = c.index;
+  j["status"] = exit_code == 0 ? "ok" : exit_code == 1 ? "diverged" : "failed";
+  j["exit_code"] = exit_code;
+  if (!error.empty()) j["error"] = error;
+  j["wall_seconds"] = wall;
+  j["seed"] = c.seed;
+  nlohmann::ordered_json vary = nlohmann::ordered_json::object();
+  for (const auto& [k, v] : c.vary) vary[k] = v;
+  j["vary"] = vary;
+  j["set"] = c.set;
+  nlohmann::ordered_json metrics = nlohmann::ordered_json::object();
+  if (exit_code == 0) {
+    Trajectory t;
+    Error terr;
+    std::vector<double> values;
+    std::string merr;
+    if (!readTrajectory(dir + "/trajectory.csv", &t, &terr)) {
+      merr = terr.str();
+    } else if (computeMetrics(t, c.metrics, &values, &merr)) {
+      for (size_t i = 0; i < values.size(); ++i) metrics[c.metrics[i].name] = values[i];
+    }
+    if (!merr.empty()) {
+      j["status"] = "failed";
+      j["error"] = merr;
+      j["exit_code"] = 65;  // EX_DATAERR: the trajectory does not hold what a metric needs
+    }
+  }
+  j["metrics"] = metrics;
+  return j;
 }
 
 }  // namespace simbob

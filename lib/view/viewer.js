@@ -406,10 +406,38 @@
   function verticalFov(hfov, aspect) {
     return 2 * Math.atan(Math.tan(hfov * Math.PI / 360) / aspect) * 180 / Math.PI;
   }
-  function bodyPoseOf(modelIndex) {
+  function bodyPoseOf(modelIndex, sample = state.sample) {
     const key = modelIndex >= 0 ? model.bodies[modelIndex].key : null;
     const i = key === null ? undefined : actual.index[key];
-    return i === undefined ? null : actual.pose(i, state.sample);
+    return i === undefined ? null : actual.pose(i, sample);
+  }
+  // Where a camera looks (its body's position at a sample, else its fixed target).
+  function targetAt(c, sample) {
+    const bp = bodyPoseOf(c.body, sample);
+    return bp ? new THREE.Vector3(bp[0], bp[1], bp[2]) : new THREE.Vector3(c.target[0], c.target[1], c.target[2]);
+  }
+  // A camera that moves or remembers is where `simbob render --at T` (and a recording) puts it:
+  // the renderer follows every frame of a recording at FPS from t = 0 to before T, then draws T
+  // (lib/render/renderer.cpp's cameraFrame, cmd/simbob/render.cpp's Follower). So its state is a
+  // function of the time shown, not of the times the page happened to draw before.
+  const FPS = 30;
+  function trackingPosition(c, st) {
+    // Pulled like a rod of length Distance: keep the direction from the body, fix the length.
+    const pull = (pos, target) => {
+      const away = pos.clone().sub(target);
+      const len = away.length();
+      return len > 1e-12 ? target.clone().addScaledVector(away, c.distance / len) : pos.clone();
+    };
+    if (!st.frames) {  // after frame 0 (t = 0): Distance from the body towards +Z, a little above
+      st.frames = [pull(targetAt(c, 0).addScaledVector(new THREE.Vector3(0, 0.5, 1).normalize(), c.distance), targetAt(c, 0))];
+    }
+    // Frames k / FPS before the time shown, each with the pose sampled at or before it.
+    const due = state.time - t0 > 1e-12 ? Math.ceil((state.time - t0) * FPS - 1e-9) : 0;
+    while (st.frames.length < due) {
+      const k = st.frames.length;
+      st.frames.push(pull(st.frames[k - 1], targetAt(c, actual.sampleAt(t0 + k / FPS))));
+    }
+    return due === 0 ? st.frames[0] : pull(st.frames[due - 1], targetAt(c, state.sample));
   }
   function placeSceneCamera(c, aspect) {
     const st = cameraState[c.key] || (cameraState[c.key] = {});
@@ -428,15 +456,13 @@
       camera.position.set(c.pose.p[0], c.pose.p[1], c.pose.p[2]);
       const dist = camera.position.distanceTo(target);
       if (c.auto_view_angle && dist > 0) {
-        if (st.dist0 === undefined) st.dist0 = dist;  // keep the body's apparent size
+        // Keep the body's apparent size: the view angle it had at the first frame's distance.
+        if (st.dist0 === undefined) st.dist0 = camera.position.distanceTo(targetAt(c, 0)) || dist;
         va = 2 * Math.atan(Math.tan(c.view_angle * Math.PI / 360) * st.dist0 / dist) * 180 / Math.PI;
       }
       camera.lookAt(target);
-    } else {  // tracking: pulled like a rod of length Distance behind the body
-      if (!st.pos) st.pos = target.clone().addScaledVector(new THREE.Vector3(0, 0.5, 1).normalize(), c.distance);
-      const away = st.pos.clone().sub(target);
-      if (away.length() > 1e-12) st.pos.copy(target).addScaledVector(away.normalize(), c.distance);
-      camera.position.copy(st.pos);
+    } else {  // tracking
+      camera.position.copy(trackingPosition(c, st));
       camera.lookAt(target);
     }
     camera.fov = verticalFov(va, aspect);

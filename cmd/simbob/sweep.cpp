@@ -309,6 +309,10 @@ int runOneCase(const SweepArgs& a, const SweepCase& c, const std::string& manife
     }
   }
   j["metrics"] = metrics;
+  if (int code = status == "ok" && a.case_pages ? sweepCasePage(c, manifest, tmp.string(), common) : kExitOk) {
+    fs::remove_all(tmp, ec);
+    return code;
+  }
   Error err;
   if (!writeFileAtomically((tmp / "case.json").string(), jsonText(j), &err)) {
     g_log.error(err);
@@ -348,6 +352,7 @@ int runAllCases(const SweepArgs& a, const std::vector<SweepCase>& cases, const C
         std::vector<std::string> args = {"simbob", "sweep", "run",    a.input, "--case", std::to_string(todo[k]),
                                          "-o",     a.out,   "--quiet"};
         if (a.force) args.emplace_back("--force");
+        if (a.case_pages) args.emplace_back("--html");
         for (std::string& o : caseOptions(common)) args.push_back(std::move(o));
         const pid_t pid = spawnSelf(args, "/dev/null");
         if (pid < 0) {
@@ -626,6 +631,7 @@ CLI::App* addSweepCommands(CLI::App& app, SweepArgs& s, Common& common) {
       ->check(CLI::Range(0, 999999999));
   run->add_option("-j,--jobs", s.jobs, "Run every case here on N worker processes")->check(CLI::Range(1, 1024));
   run->add_flag("--force", s.force, "Redo cases that are done already");
+  run->add_flag("--html", s.case_pages, "Also write each case's replay page, case-NNNN/view.html (simbob view)");
   addCommon(run, common);
   CLI::App* gather = sweep->add_subcommand("gather", "Merge the case results into one CSV table");
   gather->add_option("out", s.input, "Output folder of the sweep")->required();

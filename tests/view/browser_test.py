@@ -13,6 +13,8 @@ CASE is one of
   gallery     `sweep gather --html`: rows, links to the case pages, marks, sorting, the plot
   golden      a chain against a run with a heavier link: ghosts at the golden poses, the slider's
               divergence marker at the time `simbob compare` reports
+  outputs     `batch --html` writes OUT_DIR/STEM.html beside each trajectory and `sweep run --html`
+              case-NNNN/view.html in each ok case; the pages open and show the CSV poses
   instanced   300 alike boxes moving and turning: drawn in a few draw calls (one instanced mesh),
               the instance matrices hold the CSV poses, the picture equals the one drawn body by
               body (#inst=0)
@@ -374,6 +376,37 @@ def case_gallery(d):
     print('ok: gallery rows, links, marks, sorting, plot, a case page')
 
 
+def case_outputs(d):
+    scenes = [os.path.join(REPO, 'scenes', n) for n in ('chain.xml', 'sliding_box.xml')]
+    run('batch', *scenes, '--duration', '0.3', '--sample-interval', '0.05', '--out-dir', 'b', '-j', '2', '--html', '-q')
+    for stem in ('chain', 'sliding_box'):
+        page = os.path.join('b', stem + '.html')
+        if not os.path.isfile(page):
+            fail(f'batch --html wrote no {page}: {sorted(os.listdir("b"))}')
+            continue
+        open_page(d, page)
+        rows = read_csv(os.path.join('b', stem + '.csv'))
+        times = sorted(rows)
+        check_poses(d, rows, [times[0], times[-1]], page)
+        print(f'ok: {page}')
+    run('sweep', 'plan', os.path.join(REPO, 'scenes', 'sliding_box.sweep.json'), '-o', 'box.jsonl')
+    run('sweep', 'run', 'box.jsonl', '-j', '2', '-o', 'box', '--html', '-q')
+    cases = sorted(c for c in os.listdir('box') if c.startswith('case-'))
+    if len(cases) != 20:
+        fail(f'{len(cases)} cases, expected 20')
+    for c in cases:
+        if not os.path.isfile(os.path.join('box', c, 'view.html')):
+            fail(f'sweep run --html wrote no {c}/view.html: {sorted(os.listdir(os.path.join("box", c)))}')
+    page = os.path.join('box', cases[-1], 'view.html')
+    open_page(d, page)
+    rows = read_csv(os.path.join('box', cases[-1], 'trajectory.csv'))
+    check_poses(d, rows, [sorted(rows)[-1]], page)
+    if not d.title.startswith(f'case {int(cases[-1][5:])} '):
+        fail(f'{page} is titled {d.title!r}')
+    check_console(d, 'outputs')
+    print(f'ok: {len(cases)} case pages')
+
+
 def case_instanced(d):
     n, samples = 300, 50
     scene = 'boxes.xml'
@@ -443,7 +476,8 @@ def main():
         sys.exit(f'FAIL: chromium did not start: {e}')
     try:
         {'scenes': case_scenes, 'screenshot': case_screenshot, 'golden': case_golden, 'ui': case_ui,
-         'gallery': case_gallery, 'instanced': case_instanced}[CASE](d)
+         'gallery': case_gallery, 'instanced': case_instanced,
+         'outputs': case_outputs}[CASE](d)
     finally:
         d.quit()
     if failures:

@@ -94,6 +94,7 @@ int checkBatchFiles(const std::vector<Job>& jobs, const BatchArgs& a, const Comm
     outputs.push_back({"the trajectory", j.out});
     outputs.push_back({"the worker log", j.log});
     outputs.push_back({"the summary", fs::path(j.out).replace_extension(".json").string()});
+    if (a.html) outputs.push_back({"the replay page", fs::path(j.out).replace_extension(".html").string()});
     if (!a.golden.empty())
       outputs.push_back({"the comparison report", fs::path(j.out).replace_extension(".compare.txt").string()});
   }

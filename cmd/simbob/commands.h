@@ -15,6 +15,7 @@ namespace simbob {
 class Registry;
 struct Override;
 struct RenderOptions;
+struct SweepCase;
 struct Trajectory;
 }  // namespace simbob
 
@@ -150,6 +151,7 @@ struct BatchArgs {
   double tol_rot = 1e-6;
   std::string report;
   bool json = false;
+  bool html = false;  ///< --html: each run's replay page beside its trajectory (STEM.html)
 };
 int cmdBatch(const BatchArgs& a, const Common& common);
 
@@ -159,6 +161,7 @@ struct SweepArgs {
   int case_index = -1;
   int jobs = 0;  ///< run: 0 = one case
   bool force = false;
+  bool case_pages = false;  ///< run --html: each ok case's replay page, case-NNNN/view.html
   bool retry = false;
   int max_parallel = 0;
   std::string partition;
@@ -170,5 +173,9 @@ int cmdSweep(const SweepArgs& a, const Common& common);
 /// `sweep gather --html PAGE` after the table is written (`gathered`: gather's exit status):
 /// each ok case's replay page (OUT/case-NNNN/view.html) and the gallery linking them.
 int galleryAfterGather(const SweepArgs& a, const Common& common, int gathered);
+/// The replay page of sweep case `c` of `manifest` (its scene is relative to the manifest's
+/// folder), from DIR/trajectory.csv to DIR/view.html, titled with the case's index and varied
+/// values: `sweep run --html` and `sweep gather --html`. The exit status.
+int sweepCasePage(const SweepCase& c, const std::string& manifest, const std::string& dir, const Common& common);
 
 }  // namespace simbob::cli

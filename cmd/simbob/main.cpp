@@ -167,6 +167,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   batch->add_option("--tol-rot", ba.tol_rot, "Rotation tolerance in rad (default 1e-6)");
   batch->add_option("--report", ba.report, "Also write the summary to FILE (JSON if it ends in .json)");
   batch->add_flag("--json", ba.json, "Print the summary as JSON");
+  batch->add_flag("--html", ba.html, "Also write each run's replay page beside its trajectory, STEM.html");
   addCommon(batch, common);
 
   PlotArgs pa;

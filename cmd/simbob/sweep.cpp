@@ -168,6 +168,7 @@ CLI::App* addSweepCommands(CLI::App& app, SweepArgs& s, Common& common) {
       ->check(CLI::Range(0, 999999999));
   run->add_option("-j,--jobs", s.jobs, "Run every case here on N worker processes")->check(CLI::Range(1, 1024));
   run->add_flag("--force", s.force, "Redo cases that are done already");
+  run->add_flag("--html", s.case_pages, "Also write each case's replay page, case-NNNN/view.html (simbob view)");
   addCommon(run, common);
   CLI::App* gather = sweep->add_subcommand("gather", "Merge the case results into one CSV table");
   gather->add_option("out", s.input, "Output folder of the sweep")->required();

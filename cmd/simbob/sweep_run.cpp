@@ -148,6 +148,10 @@ int runOneCase(const SweepArgs& a, const SweepCase& c, const std::string& manife
   }
   if (run_exit == kExitOk) fs::rename(tmp / "trajectory.json", tmp / "summary.json", ec);
   const nlohmann::ordered_json j = sweepCaseRecord(c, tmp.string(), run_exit, error, wall);
+  if (int code = j["status"] == "ok" && a.case_pages ? sweepCasePage(c, manifest, tmp.string(), common) : kExitOk) {
+    fs::remove_all(tmp, ec);
+    return code;
+  }
   Error err;
   if (!writeFileAtomically((tmp / "case.json").string(), jsonText(j), &err)) {
     g_log.error(err);
@@ -181,6 +185,7 @@ int runAllCases(const SweepArgs& a, const std::vector<SweepCase>& cases, const C
         std::vector<std::string> args = {"simbob", "sweep", "run",    a.input, "--case", std::to_string(todo[k]),
                                          "-o",     a.out,   "--quiet"};
         if (a.force) args.emplace_back("--force");
+        if (a.case_pages) args.emplace_back("--html");
         for (std::string& o : caseOptions(common)) args.push_back(std::move(o));
         const pid_t pid = spawnSelf(args, "/dev/null");
         if (pid < 0) {

@@ -121,6 +121,19 @@ std::vector<std::vector<std::string>> csvRows(const std::string& text) {
 
 }  // namespace
 
+int sweepCasePage(const SweepCase& c, const std::string& manifest, const std::string& dir, const Common& common) {
+  // The case's own page beside its trajectory, in its scene with its overrides.
+  namespace fs = std::filesystem;
+  ViewPageArgs v;
+  v.trajectory = (fs::path(dir) / "trajectory.csv").string();
+  v.scene = fs::path(c.scene).is_relative() ? (fs::path(manifest).parent_path() / c.scene).string() : c.scene;
+  v.out = (fs::path(dir) / "view.html").string();
+  v.sets = c.set;
+  v.title = "case " + std::to_string(c.index);
+  for (const auto& [k, val] : c.vary) v.title += " " + k + "=" + val;
+  return cmdView(v, common);
+}
+
 int galleryAfterGather(const SweepArgs& a, const Common& common, int gathered) {
   if (gathered != kExitOk && gathered != kExitResultWrong) return gathered;  // no table
   namespace fs = std::filesystem;
@@ -145,16 +158,8 @@ int galleryAfterGather(const SweepArgs& a, const Common& common, int gathered) {
     GalleryCase g{c.index, status_col < rows[r].size() ? rows[r][status_col] : "missing", rows[r], ""};
     const fs::path dir = fs::path(a.input) / caseDirName(c.index);
     if (g.status == "ok" && fs::exists(dir / "trajectory.csv")) {
-      // Each case's own page beside its trajectory, in its scene with its overrides.
-      ViewPageArgs v;
-      v.trajectory = (dir / "trajectory.csv").string();
-      v.scene = fs::path(c.scene).is_relative() ? (fs::path(manifest).parent_path() / c.scene).string() : c.scene;
-      v.out = (dir / "view.html").string();
-      v.sets = c.set;
-      v.title = "case " + std::to_string(c.index);
-      for (const auto& [k, val] : c.vary) v.title += " " + k + "=" + val;
-      if (int code = cmdView(v, common)) return code;
-      g.page = fs::relative(fs::absolute(v.out), gallery_dir).generic_string();
+      if (int code = sweepCasePage(c, manifest, dir.string(), common)) return code;
+      g.page = fs::relative(fs::absolute(dir / "view.html"), gallery_dir).generic_string();
     }
     gallery.push_back(std::move(g));
   }

@@ -278,7 +278,11 @@ bool readThree(const std::string& rel, std::string* text, Error* err) {
   return false;
 }
 
-/// The template with each `{{NAME}}` marker replaced by its value (markers are looked for in the
+}  // namespace
+
+namespace view {
+
+// The template with each `{{NAME}}` marker replaced by its value (markers are looked for in the
 /// template only, never in the values put in).
 std::string fill(const std::string& page, const std::vector<std::pair<std::string, std::string>>& values) {
   std::string out;
@@ -326,7 +330,7 @@ std::string escapeHtml(const std::string& s) {
   return out;
 }
 
-/// Script text must not contain "</script" (nor "<!--"): JSON escapes '<' as \u003c.
+// Script text must not contain "</script" (nor "<!--"): JSON escapes '<' as \u003c.
 std::string scriptSafe(const std::string& s) {
   std::string out;
   out.reserve(s.size());
@@ -339,7 +343,7 @@ std::string scriptSafe(const std::string& s) {
   return out;
 }
 
-}  // namespace
+}  // namespace view
 
 std::string threeJsDir() {
   const char* env = std::getenv("SIMBOB_THREE_DIR");
@@ -369,11 +373,11 @@ bool buildViewPage(const ViewPageInput& in, std::string* html, Error* err) {
     data["golden"] = encodeTrajectory(*in.golden);
     data["compare"] = encodeComparison(*in.actual, *in.golden, in.compare);
   }
-  const std::string page =
-      fill(view::kPageHtml, {{"TITLE", escapeHtml(data["title"].get<std::string>())},
-                             {"THREE", three + "\n" + orbit},
-                             {"VIEWER", view::kViewerJs},
-                             {"DATA", scriptSafe(data.dump(-1, ' ', false, json::error_handler_t::replace))}});
+  const std::string page = view::fill(
+      view::kPageHtml, {{"TITLE", view::escapeHtml(data["title"].get<std::string>())},
+                        {"THREE", three + "\n" + orbit},
+                        {"VIEWER", view::kViewerJs},
+                        {"DATA", view::scriptSafe(data.dump(-1, ' ', false, json::error_handler_t::replace))}});
   *html = page;
   return true;
 }

@@ -36,6 +36,18 @@
       const g = out.origins[b];
       return [g[0] + p[o], g[1] + p[o + 1], g[2] + p[o + 2], p[o + 3], p[o + 4], p[o + 5], p[o + 6]];
     };
+    // The same into obj's position and quaternion, without allocating (the frame loop's path);
+    // false, and nothing changed, where the body has no row.
+    out.poseInto = function (b, s, obj) {
+      const o = (b * out.count + s) * 7;
+      const p = out.poses;
+      if (s < 0 || s >= out.count) return false;
+      for (let k = 0; k < 7; ++k) if (Number.isNaN(p[o + k])) return false;
+      const g = out.origins[b];
+      obj.position.set(g[0] + p[o], g[1] + p[o + 1], g[2] + p[o + 2]);
+      obj.quaternion.set(p[o + 4], p[o + 5], p[o + 6], p[o + 3]);
+      return true;
+    };
     // The last sample at or before time t (0 before the first).
     out.sampleAt = function (t) {
       let lo = 0, hi = out.count - 1;
@@ -56,7 +68,12 @@
   // ---- three.js scene: renderer, light, background, fog ----
   const view = model.view;
   const rgb = (c) => new THREE.Color(c[0], c[1], c[2]);
-  const ANTIALIAS = !/aa=0/.test(location.hash);
+  // Antialiasing costs a software renderer (SwiftShader) much of its frame: off by default from
+  // LARGE bodies on; #aa=0 / #aa=1 in the first URL choose. Likewise #inst=0 draws every body on
+  // its own instead of instancing (for comparisons: tests/view, bench/view_bench.py).
+  const LARGE = 100;
+  const ANTIALIAS = /aa=1/.test(location.hash) || (!/aa=0/.test(location.hash) && actual.bodies.length < LARGE);
+  const INSTANCING = !/inst=0/.test(location.hash);
   const container = $('view');
   const renderer = new THREE.WebGLRenderer({ antialias: ANTIALIAS, preserveDrawingBuffer: true });
   renderer.setPixelRatio(1);
@@ -232,15 +249,86 @@
     group.add(geoms);
     geoms.visible = vis.length === 0;
     geoms.userData.alone = vis.length === 0;
-    scene.add(group);
-    return { key, group, geoms, model: mi, trail: null };
+    return { key, group, geoms, model: mi, trail: null, batch: null };
   });
+  const batches = INSTANCING ? makeBatches() : [];
+  for (const b of bodies) if (!b.batch) scene.add(b.group);
   for (const v of staticVisuals) scene.add(visualMesh(v));
   const staticGeomGroup = new THREE.Group();
   for (const g of staticGeoms) staticGeomGroup.add(geomMesh(g, staticVisuals.length ? geomWire : geomStatic));
   staticGeomGroup.userData.alone = staticVisuals.length === 0;
   staticGeomGroup.visible = staticGeomGroup.userData.alone;
   scene.add(staticGeomGroup);
+
+  // ---- Instancing: bodies that carry the same models and shapes (a grid of 1,000 boxes) are
+  // drawn as one InstancedMesh per mesh of such a body: one draw call for all of them. Their
+  // groups stay out of the scene but keep the poses (test hook, selection, follow, highlight);
+  // updateInstances writes each group's matrix times the mesh's place in it into the instance
+  // matrices. Transparent meshes (drawn back to front one by one) and helpers are not instanced.
+  function contentKey(mi) {
+    if (mi === undefined) return null;
+    const strip = (o) => { const c = Object.assign({}, o); delete c.body; delete c.key; return c; };
+    return JSON.stringify([visualsOf[mi].map(strip), geomsOf[mi].map(strip)]);
+  }
+  function makeBatches() {
+    const byContent = new Map();
+    bodies.forEach((b, i) => {
+      const k = contentKey(b.model);
+      if (k === null) return;
+      if (!byContent.has(k)) byContent.set(k, []);
+      byContent.get(k).push(i);
+    });
+    const out = [];
+    for (const members of byContent.values()) {
+      if (members.length < 2) continue;
+      const template = bodies[members[0]].group;
+      const parts = [];
+      let ok = true;
+      template.traverse((o) => {
+        if (o === template || o.isGroup) return;
+        if (!o.isMesh || Array.isArray(o.material) || o.material.transparent) { ok = false; return; }
+        const local = new THREE.Matrix4();
+        const chain = [];
+        for (let a = o; a !== template; a = a.parent) {
+          a.updateMatrix();
+          local.premultiply(a.matrix);
+          if (a !== o) chain.push(a);
+        }
+        const mesh = new THREE.InstancedMesh(o.geometry, o.material, members.length);
+        mesh.instanceMatrix.setUsage(THREE.DynamicDrawUsage);
+        mesh.frustumCulled = false;  // its bounding sphere is one instance's
+        parts.push({ mesh, local, inverse: new THREE.Matrix4().getInverse(local), chain });
+      });
+      if (!ok || parts.length === 0) continue;
+      const batch = { members, parts };
+      for (const i of members) bodies[i].batch = batch;
+      for (const p of parts) scene.add(p.mesh);
+      out.push(batch);
+    }
+    return out;
+  }
+  const instanceMatrix = new THREE.Matrix4();
+  function updateInstances() {
+    for (const batch of batches) {
+      for (const part of batch.parts) {
+        let shown = true;
+        for (const a of part.chain) shown = shown && a.visible;  // the shapes' group: switched
+        part.mesh.visible = shown;
+        const m = part.mesh.instanceMatrix;
+        for (let k = 0; k < batch.members.length; ++k) {
+          const g = bodies[batch.members[k]].group;
+          if (g.visible) {
+            g.updateMatrix();
+            instanceMatrix.multiplyMatrices(g.matrix, part.local);
+          } else {
+            instanceMatrix.makeScale(0, 0, 0);  // no row at this time: not drawn
+          }
+          instanceMatrix.toArray(m.array, k * 16);
+        }
+        m.needsUpdate = true;
+      }
+    }
+  }
 
   // Golden ghosts: the golden run's bodies, translucent, with the same models (or shapes).
   const ghostMaterial = new THREE.MeshBasicMaterial({ color: 0x88aaff, transparent: true, opacity: 0.35, depthWrite: false });
@@ -262,24 +350,23 @@
   const t0 = actual.count ? actual.times[0] : 0;
   const tEnd = actual.count ? actual.times[actual.count - 1] : 0;
 
-  function setPose(obj, p) {
-    if (!p || p.some(Number.isNaN)) { obj.visible = false; return; }
-    obj.visible = true;
-    obj.position.set(p[0], p[1], p[2]);
-    obj.quaternion.set(p[4], p[5], p[6], p[3]);
+  function setPose(obj, traj, b, s) {
+    obj.visible = traj.poseInto(b, s, obj);
   }
   // Puts every body (and ghost) at the sample of time t.
   function applyTime(t) {
     state.time = Math.min(Math.max(t, t0), tEnd);
     state.sample = actual.sampleAt(state.time);
-    bodies.forEach((b, i) => {
-      setPose(b.group, actual.pose(i, state.sample));
+    for (let i = 0; i < bodies.length; ++i) {
+      const b = bodies[i];
+      setPose(b.group, actual, i, state.sample);
       if (b.trail) b.trail.geometry.setDrawRange(0, state.sample + 1);
-    });
+    }
+    updateInstances();
     if (golden) {
       const gs = golden.sampleAt(state.time);
       for (const g of ghosts) {
-        setPose(g.group, golden.pose(g.index, gs));
+        setPose(g.group, golden, g.index, gs);
         if (!$('ghosts').checked) g.group.visible = false;
       }
     }
@@ -319,10 +406,38 @@
   function verticalFov(hfov, aspect) {
     return 2 * Math.atan(Math.tan(hfov * Math.PI / 360) / aspect) * 180 / Math.PI;
   }
-  function bodyPoseOf(modelIndex) {
+  function bodyPoseOf(modelIndex, sample = state.sample) {
     const key = modelIndex >= 0 ? model.bodies[modelIndex].key : null;
     const i = key === null ? undefined : actual.index[key];
-    return i === undefined ? null : actual.pose(i, state.sample);
+    return i === undefined ? null : actual.pose(i, sample);
+  }
+  // Where a camera looks (its body's position at a sample, else its fixed target).
+  function targetAt(c, sample) {
+    const bp = bodyPoseOf(c.body, sample);
+    return bp ? new THREE.Vector3(bp[0], bp[1], bp[2]) : new THREE.Vector3(c.target[0], c.target[1], c.target[2]);
+  }
+  // A camera that moves or remembers is where `simbob render --at T` (and a recording) puts it:
+  // the renderer follows every frame of a recording at FPS from t = 0 to before T, then draws T
+  // (lib/render/renderer.cpp's cameraFrame, cmd/simbob/render.cpp's Follower). So its state is a
+  // function of the time shown, not of the times the page happened to draw before.
+  const FPS = 30;
+  function trackingPosition(c, st) {
+    // Pulled like a rod of length Distance: keep the direction from the body, fix the length.
+    const pull = (pos, target) => {
+      const away = pos.clone().sub(target);
+      const len = away.length();
+      return len > 1e-12 ? target.clone().addScaledVector(away, c.distance / len) : pos.clone();
+    };
+    if (!st.frames) {  // after frame 0 (t = 0): Distance from the body towards +Z, a little above
+      st.frames = [pull(targetAt(c, 0).addScaledVector(new THREE.Vector3(0, 0.5, 1).normalize(), c.distance), targetAt(c, 0))];
+    }
+    // Frames k / FPS before the time shown, each with the pose sampled at or before it.
+    const due = state.time - t0 > 1e-12 ? Math.ceil((state.time - t0) * FPS - 1e-9) : 0;
+    while (st.frames.length < due) {
+      const k = st.frames.length;
+      st.frames.push(pull(st.frames[k - 1], targetAt(c, actual.sampleAt(t0 + k / FPS))));
+    }
+    return due === 0 ? st.frames[0] : pull(st.frames[due - 1], targetAt(c, state.sample));
   }
   function placeSceneCamera(c, aspect) {
     const st = cameraState[c.key] || (cameraState[c.key] = {});
@@ -341,15 +456,13 @@
       camera.position.set(c.pose.p[0], c.pose.p[1], c.pose.p[2]);
       const dist = camera.position.distanceTo(target);
       if (c.auto_view_angle && dist > 0) {
-        if (st.dist0 === undefined) st.dist0 = dist;  // keep the body's apparent size
+        // Keep the body's apparent size: the view angle it had at the first frame's distance.
+        if (st.dist0 === undefined) st.dist0 = camera.position.distanceTo(targetAt(c, 0)) || dist;
         va = 2 * Math.atan(Math.tan(c.view_angle * Math.PI / 360) * st.dist0 / dist) * 180 / Math.PI;
       }
       camera.lookAt(target);
-    } else {  // tracking: pulled like a rod of length Distance behind the body
-      if (!st.pos) st.pos = target.clone().addScaledVector(new THREE.Vector3(0, 0.5, 1).normalize(), c.distance);
-      const away = st.pos.clone().sub(target);
-      if (away.length() > 1e-12) st.pos.copy(target).addScaledVector(away.normalize(), c.distance);
-      camera.position.copy(st.pos);
+    } else {  // tracking
+      camera.position.copy(trackingPosition(c, st));
       camera.lookAt(target);
     }
     camera.fov = verticalFov(va, aspect);
@@ -520,6 +633,7 @@
     const all = $('geoms').checked;
     for (const b of bodies) b.geoms.visible = all || b.geoms.userData.alone;
     staticGeomGroup.visible = all || staticGeomGroup.userData.alone;
+    updateInstances();
   };
   $('trails').onchange = () => setTrails($('trails').checked);
   $('ghosts').onchange = () => applyTime(state.time);
@@ -549,6 +663,7 @@
   renderer.domElement.addEventListener('pointerup', (ev) => {
     if (!down || Math.hypot(ev.clientX - down[0], ev.clientY - down[1]) > 4) return;  // a drag turns the camera
     const r = renderer.domElement.getBoundingClientRect();
+    for (const b of bodies) if (b.batch) b.group.updateMatrixWorld(true);  // out of the scene
     ray.setFromCamera(new THREE.Vector2((ev.clientX - r.left) / r.width * 2 - 1, -(ev.clientY - r.top) / r.height * 2 + 1), camera);
     for (const hit of ray.intersectObjects(bodies.map((b) => b.group), true)) {
       let o = hit.object;
@@ -573,6 +688,7 @@
     renderer.domElement.style.height = h + 'px';
     camera.aspect = w / Math.max(1, h);
   }
+  const followStep = new THREE.Vector3();
   function draw() {
     resize();
     const c = sceneCamera(state.camera);
@@ -582,7 +698,7 @@
       camera.fov = 45;
       if ($('follow').checked && state.selected >= 0 && bodies[state.selected].group.visible) {
         const p = bodies[state.selected].group.position;
-        camera.position.add(p.clone().sub(controls.target));
+        camera.position.add(followStep.copy(p).sub(controls.target));
         controls.target.copy(p);
       }
       controls.update();
@@ -624,7 +740,24 @@
     }
     return out;
   };
+  // The poses the instanced meshes draw: each instanced body's matrix in its batch's first mesh,
+  // back through the mesh's place in the body (float32 matrices: not bit-equal to poses()).
+  const instancedPoses = () => {
+    const out = {};
+    const m = new THREE.Matrix4(), p = new THREE.Vector3(), q = new THREE.Quaternion(), s = new THREE.Vector3();
+    for (const b of bodies) {
+      if (!b.batch) continue;
+      const part = b.batch.parts[0];
+      m.fromArray(part.mesh.instanceMatrix.array, b.batch.members.indexOf(b.group.userData.body) * 16).multiply(part.inverse);
+      m.decompose(p, q, s);
+      out[b.key] = s.x === 0 ? null : [p.x, p.y, p.z, q.w, q.x, q.y, q.z];
+    }
+    return out;
+  };
   window.simbobView = {
+    instancedPoses,
+    drawCalls: () => renderer.info.render.calls,
+    antialias: ANTIALIAS,
     get ready() { return pendingTextures === 0; },
     seek(t) { state.playing = false; updatePlayButton(); applyTime(t); draw(); return state.time; },
     time: () => state.time,

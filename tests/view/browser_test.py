@@ -13,6 +13,11 @@ CASE is one of
   gallery     `sweep gather --html`: rows, links to the case pages, marks, sorting, the plot
   golden      a chain against a run with a heavier link: ghosts at the golden poses, the slider's
               divergence marker at the time `simbob compare` reports
+  outputs     `batch --html` writes OUT_DIR/STEM.html beside each trajectory and `sweep run --html`
+              case-NNNN/view.html in each ok case; the pages open and show the CSV poses
+  instanced   300 alike boxes moving and turning: drawn in a few draw calls (one instanced mesh),
+              the instance matrices hold the CSV poses, the picture equals the one drawn body by
+              body (#inst=0)
 Chromium must start: a browser that cannot is a failure, never a skip.
 """
 import json
@@ -181,9 +186,10 @@ def case_screenshot(d):
     d.execute_script("document.body.style.gridTemplateColumns = '320px 300px';"
                      "document.body.style.gridTemplateRows = '240px auto';")
     canvas = d.find_element('css selector', '#view canvas')
-    # A tracking camera remembers where it was: only its first frame is compared (t = 0, the
-    # first time the page draws it, as the first frame of a recording).
-    views = [(c, t) for c in ('Front', 'Spot', 'Rider') for t in (0.0, 0.5, 1.0)] + [('Chase', 0.0)]
+    # The tracking camera is pulled along by the body over a recording's frames: seen late first
+    # and then earlier, the page must put it where `render --at` does whatever it drew before.
+    views = [(c, t) for c in ('Front', 'Spot', 'Rider') for t in (0.0, 0.5, 1.0)] + \
+        [('Chase', t) for t in (1.0, 0.3, 0.0, 0.5)]
     for cam, t in views:
         seek(d, t, cam)
         size = d.execute_script('const c = arguments[0]; return [c.width, c.height]', canvas)
@@ -370,6 +376,99 @@ def case_gallery(d):
     print('ok: gallery rows, links, marks, sorting, plot, a case page')
 
 
+def case_outputs(d):
+    scenes = [os.path.join(REPO, 'scenes', n) for n in ('chain.xml', 'sliding_box.xml')]
+    run('batch', *scenes, '--duration', '0.3', '--sample-interval', '0.05', '--out-dir', 'b', '-j', '2', '--html', '-q')
+    for stem in ('chain', 'sliding_box'):
+        page = os.path.join('b', stem + '.html')
+        if not os.path.isfile(page):
+            fail(f'batch --html wrote no {page}: {sorted(os.listdir("b"))}')
+            continue
+        open_page(d, page)
+        rows = read_csv(os.path.join('b', stem + '.csv'))
+        times = sorted(rows)
+        check_poses(d, rows, [times[0], times[-1]], page)
+        print(f'ok: {page}')
+    run('sweep', 'plan', os.path.join(REPO, 'scenes', 'sliding_box.sweep.json'), '-o', 'box.jsonl')
+    run('sweep', 'run', 'box.jsonl', '-j', '2', '-o', 'box', '--html', '-q')
+    cases = sorted(c for c in os.listdir('box') if c.startswith('case-'))
+    if len(cases) != 20:
+        fail(f'{len(cases)} cases, expected 20')
+    for c in cases:
+        if not os.path.isfile(os.path.join('box', c, 'view.html')):
+            fail(f'sweep run --html wrote no {c}/view.html: {sorted(os.listdir(os.path.join("box", c)))}')
+    page = os.path.join('box', cases[-1], 'view.html')
+    open_page(d, page)
+    rows = read_csv(os.path.join('box', cases[-1], 'trajectory.csv'))
+    check_poses(d, rows, [sorted(rows)[-1]], page)
+    if not d.title.startswith(f'case {int(cases[-1][5:])} '):
+        fail(f'{page} is titled {d.title!r}')
+    check_console(d, 'outputs')
+    print(f'ok: {len(cases)} case pages')
+
+
+def case_instanced(d):
+    n, samples = 300, 50
+    scene = 'boxes.xml'
+    subprocess.run([sys.executable, os.path.join(REPO, 'bench', 'gen_scene.py'), str(n), scene], check=True)
+    import math
+    keys = [f'Box{i}' for i in range(n)]
+    with open('boxes.csv', 'w') as f:  # each box circling and turning about its place
+        f.write('time,body,x,y,z,qw,qx,qy,qz\n')
+        for s in range(samples):
+            t = s * 0.02
+            for i, key in enumerate(keys):
+                a = t * 5 + i * 0.1
+                f.write(f'{round(t, 2)!r},{key},{(i % 18) * 0.3 + 0.1 * math.cos(a)!r},{0.101 + 0.05 * math.sin(2 * a)!r},'
+                        f'{(i // 18) * 0.3 + 0.1 * math.sin(a)!r},{math.cos(a / 2)!r},0,{math.sin(a / 2)!r},0\n')
+    run('view', 'boxes.csv', '--scene', scene, '-o', 'boxes.html')
+    rows = read_csv('boxes.csv')
+    times = sorted(rows)
+    picks = [times[0], times[len(times) // 2], times[-1]]
+    pictures = {}
+    for frag in ('', 'inst=0'):
+        d.get('about:blank')
+        open_page(d, 'boxes.html', frag)
+        check_poses(d, rows, picks, f'boxes #{frag}')
+        calls = d.execute_script('simbobView.draw(); return simbobView.drawCalls()')
+        print(f'#{frag}: {calls} draw calls for {n} boxes')
+        if frag == '' and calls > 5:
+            fail(f'{n} alike boxes take {calls} draw calls: not instanced')
+        if frag == 'inst=0' and calls < n:
+            fail(f'#inst=0: {calls} draw calls for {n} boxes: still instanced')
+        if frag == '':
+            if d.execute_script('return simbobView.antialias') is not False:
+                fail(f'antialiasing is on with {n} bodies')
+            for t in picks:
+                seek(d, t)
+                shown = d.execute_script('return simbobView.instancedPoses()')
+                if sorted(shown) != sorted(rows[t]):
+                    fail(f't={t}: instanced bodies {len(shown)}, CSV bodies {len(rows[t])}')
+                    continue
+                worst = 0
+                for body, row in rows[t].items():
+                    got = shown[body]
+                    sign = 1 if sum(a * b for a, b in zip(got[3:], row[3:])) >= 0 else -1
+                    worst = max(worst, max(abs(g - r) for g, r in zip(got[:3], row[:3])),
+                                max(abs(sign * g - r) for g, r in zip(got[3:], row[3:])))
+                if worst > 1e-5:
+                    fail(f't={t}: an instance matrix is {worst} away from its CSV pose')
+                print(f'instances at t={t}: at most {worst:.2e} from the CSV poses')
+        # The same picture drawn instanced or body by body (the same antialiasing for both).
+        d.execute_script("simbobView.seek(arguments[0]); simbobView.draw()", picks[1])
+        shot = f'boxes_{frag or "instanced"}.png'
+        d.find_element('css selector', '#view canvas').screenshot(shot)
+        pictures[frag] = read_png(shot)
+    (w, h, ch, a), (_, _, _, b) = pictures[''], pictures['inst=0']
+    differ = sum(1 for y in range(h) for x in range(w * ch) if abs(a[y][x] - b[y][x]) > 24) / ch
+    # The boxes' orange (the filled shapes' colour, lit): red well above blue; the grey ground not.
+    lit = sum(1 for y in range(h) for x in range(0, w * ch, ch) if a[y][x] - a[y][x + 2] > 60)
+    print(f'instanced vs body by body: {differ:.0f} of {w * h} pixel values differ, {lit} pixels of boxes')
+    if lit < w * h // 50 or differ > w * h // 1000:
+        fail(f'the instanced picture differs from the body-by-body one ({differ:.0f} values) or shows too little ({lit})')
+    check_console(d, 'instanced')
+
+
 def main():
     try:
         d = browser()
@@ -377,7 +476,8 @@ def main():
         sys.exit(f'FAIL: chromium did not start: {e}')
     try:
         {'scenes': case_scenes, 'screenshot': case_screenshot, 'golden': case_golden, 'ui': case_ui,
-         'gallery': case_gallery}[CASE](d)
+         'gallery': case_gallery, 'instanced': case_instanced,
+         'outputs': case_outputs}[CASE](d)
     finally:
         d.quit()
     if failures:

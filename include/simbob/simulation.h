@@ -20,6 +20,7 @@
 
 #include "simbob/error.h"
 #include "simbob/graph.h"
+#include "simbob/render.h"
 #include "simbob/model.h"
 #include "simbob/overrides.h"
 #include "simbob/physics.h"
@@ -43,6 +44,9 @@ struct SimulationOptions {
   const volatile std::sig_atomic_t* stop = nullptr;
   /// Called about every 1% of `duration` with the simulated time reached.
   std::function<void(double)> progress;
+  /// Camera sensors' renderer (RCCameraSensor): GL back end and global TextureFolder.
+  GlBackend gl = GlBackend::Auto;
+  std::string texture_folder;
 };
 
 /// What the run summary says of a run beyond its model and result.
@@ -62,6 +66,8 @@ const char* runStatusName(RunStatus s);
 /// counts, speed (waiting for peers excluded) and what reproducibility depends on. Clients
 /// add what only they know (outputs written, frames, a determinism check).
 nlohmann::ordered_json runSummary(const Model& model, const RunResult& r, const RunSummaryInput& in);
+
+class CameraSensors;
 
 class Simulation {
  public:
@@ -128,6 +134,10 @@ class Simulation {
   int joint(const std::string& key) const;
   int actuator(const std::string& key) const;
   int sensor(const std::string& key) const;
+  /// The latest image of the RCCameraSensor with this fully qualified key (RGB, rows top first,
+  /// Width x Height): drawn at the grid instants at or after t = 0, Period, 2 Period, ... before
+  /// the controllers there are served, and held in between. Null if there is no such sensor.
+  const Image* cameraImage(const std::string& key) const;
   /// Commands actuator i from the current instant on (clamped by its limits, as controllers'
   /// commands are). An index out of range is an error value, not a crash.
   Error setCommand(int actuator, double value);
@@ -149,6 +159,7 @@ class Simulation {
   std::vector<Party*> extra_;                  ///< the caller's parties, in the order added
   RunResult final_;                            ///< what finish() returned (samples counted)
   std::unique_ptr<Runner> runner_;
+  std::unique_ptr<CameraSensors> cameras_;  ///< null unless the scene has camera sensors
 };
 
 }  // namespace simbob

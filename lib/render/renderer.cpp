@@ -108,7 +108,7 @@ class GlRenderer : public Renderer {
     const auto* s = reinterpret_cast<const char*>(gl_.GetString(GL_RENDERER));
     return s ? s : "(unknown)";
   }
-  std::string cameraName() const override { return camera_ < 0 ? "(default)" : model_.cameras[camera_].key; }
+  std::string cameraName() const override { return camera_ ? camera_->key : "(default)"; }
 
   void follow(const std::vector<Transform>& poses) override {
     double va = 0, near_clip = 0, far_clip = 0;
@@ -116,6 +116,9 @@ class GlRenderer : public Renderer {
   }
 
   const Error* render(const std::vector<Transform>& poses, double /*t*/, Image* out) override {
+    // Another renderer on this thread (a camera sensor's, Python's) may have made its own
+    // context current since: GL calls go to the current one.
+    if (const Error* e = acquire()) return e;
     const int w = opts_.width, h = opts_.height;
     const ViewSettings& view = model_.view;
     const Quality q = opts_.quality;
@@ -128,7 +131,7 @@ class GlRenderer : public Renderer {
     gl_.DepthFunc(GL_LEQUAL);
     gl_.Enable(GL_NORMALIZE);
 
-    if (camera_ < 0) frameBodies(poses);
+    if (!camera_) frameBodies(poses);
     // Projection: ViewAngle is the horizontal field of view (guide 3.5).
     double va = 60, near_clip = 0.1, far_clip = 1000;
     const Transform eye = cameraFrame(poses, &va, &near_clip, &far_clip);
@@ -352,13 +355,13 @@ class GlRenderer : public Renderer {
 
   /// The camera's world frame and view at these poses.
   Transform cameraFrame(const std::vector<Transform>& poses, double* va, double* near_clip, double* far_clip) {
-    if (camera_ < 0) {
+    if (!camera_) {
       *va = default_va_;
       *near_clip = default_near_;
       *far_clip = default_far_;
       return default_eye_;
     }
-    const CameraDef& c = model_.cameras[static_cast<size_t>(camera_)];
+    const CameraDef& c = *camera_;
     *va = c.view_angle;
     *near_clip = c.near_clip;
     *far_clip = c.far_clip;
@@ -395,18 +398,23 @@ class GlRenderer : public Renderer {
 
   bool chooseCamera(Error* err) {
     if (!opts_.camera.empty()) {
-      for (size_t i = 0; i < model_.cameras.size(); ++i)
-        if (model_.cameras[i].key == opts_.camera) camera_ = static_cast<int>(i);
-      if (camera_ < 0) {
+      // The scene's cameras, then the camera sensors' (RCCameraSensor): a sensor's image is this
+      // renderer's picture through its camera.
+      for (const CameraDef& c : model_.cameras)
+        if (!camera_ && c.key == opts_.camera) camera_ = &c;
+      for (const CameraSensorDef& s : model_.camera_sensors)
+        if (!camera_ && s.camera.key == opts_.camera) camera_ = &s.camera;
+      if (!camera_) {
         std::string known;
         for (const CameraDef& c : model_.cameras) known += (known.empty() ? "" : ", ") + c.key;
+        for (const CameraSensorDef& s : model_.camera_sensors) known += (known.empty() ? "" : ", ") + s.key;
         err->kind = ErrorKind::InvalidInput;
         err->message = "no camera '" + opts_.camera + "' in the scene (" +
                        (known.empty() ? std::string("it has none") : "cameras: " + known) + ")";
         return false;
       }
     } else if (!model_.cameras.empty()) {
-      camera_ = 0;
+      camera_ = &model_.cameras[0];
     }
     return true;
   }
@@ -590,9 +598,9 @@ class GlRenderer : public Renderer {
   RenderOptions opts_;
   std::unique_ptr<render::GlContext> ctx_;
   const GlApi& gl_;
-  int camera_ = -1;
-  std::vector<SkinDef> skins_;      ///< the model's, then those of the collision shapes
-  std::vector<VisualDef> visuals_;  ///< what is drawn: the models and/or the collision shapes
+  const CameraDef* camera_ = nullptr;  ///< null: the default view
+  std::vector<SkinDef> skins_;         ///< the model's, then those of the collision shapes
+  std::vector<VisualDef> visuals_;     ///< what is drawn: the models and/or the collision shapes
   Transform default_eye_;
   Vec3 frame_lo_{0, 0, 0}, frame_hi_{0, 0, 0};  ///< what the default view has framed so far
   bool framed_ = false;

@@ -208,6 +208,7 @@ class GlRenderer : public Renderer {
       gl_.Disable(GL_BLEND);
     }
     gl_.Disable(GL_FOG);
+    if (opts_.draw_sensors) drawSensorRays(poses);
 
     // Read back (GL's rows are bottom first).
     Image img(w, h);
@@ -351,6 +352,55 @@ class GlRenderer : public Renderer {
     gl_.Enable(GL_DEPTH_TEST);
     // The next shadow plane starts from a clear stencil: no shadow of it lands on this one.
     gl_.Clear(GL_STENCIL_BUFFER_BIT);
+  }
+
+  void setSensorRays(const std::vector<double>& lengths) override { rays_ = lengths; }
+
+  /// --draw sensors: each range sensor's and scanner's rays from the sensor's origin to its
+  /// reading (red), and the hit points (readings below MaxRange, yellow), over the scene (not
+  /// hidden by it): the rays start inside the robot.
+  void drawSensorRays(const std::vector<Transform>& poses) {
+    gl_.Disable(GL_LIGHTING);
+    gl_.Disable(GL_TEXTURE_2D);
+    gl_.Disable(GL_DEPTH_TEST);
+    std::vector<Vec3> hits;
+    size_t at = 0;
+    gl_.LineWidth(1.0F);
+    gl_.Color4d(1.0, 0.0, 0.0, 1.0);
+    gl_.Begin(GL_LINES);
+    for (const SensorDef& s : model_.sensors) {
+      int rays = 0;
+      switch (s.kind) {
+        case SensorKind::Range:
+          rays = 1;
+          break;
+        case SensorKind::Scanner:
+          rays = s.rays;
+          break;
+        case SensorKind::Proximity:
+        case SensorKind::Imu:
+        case SensorKind::Encoder:
+          break;
+      }
+      const bool on_body = s.body >= 0 && static_cast<size_t>(s.body) < poses.size();
+      const Transform frame = on_body ? compose(poses[static_cast<size_t>(s.body)], s.pose) : s.pose;
+      for (int k = 0; k < rays; ++k, ++at) {
+        const double len = at < rays_.size() ? rays_[at] : s.max_range;
+        const double a = s.kind == SensorKind::Scanner ? scannerRayAngle(s, k) : 0.0;
+        const Vec3 end = add(frame.p, scale(rotate(frame.q, Vec3{-std::sin(a), 0, -std::cos(a)}), len));
+        gl_.Vertex3d(frame.p[0], frame.p[1], frame.p[2]);
+        gl_.Vertex3d(end[0], end[1], end[2]);
+        if (len < s.max_range) hits.push_back(end);
+      }
+    }
+    gl_.End();
+    gl_.PointSize(5.0F);
+    gl_.Color4d(1.0, 1.0, 0.0, 1.0);
+    gl_.Begin(GL_POINTS);
+    for (const Vec3& h : hits) gl_.Vertex3d(h[0], h[1], h[2]);
+    gl_.End();
+    gl_.PointSize(1.0F);
+    gl_.Enable(GL_DEPTH_TEST);
   }
 
   /// The camera's world frame and view at these poses.
@@ -608,6 +658,7 @@ class GlRenderer : public Renderer {
   double spot_dist0_ = -1;
   bool track_init_ = false;
   Vec3 track_pos_{0, 0, 0};
+  std::vector<double> rays_;         ///< sensor ray lengths for draw_sensors (setSensorRays)
   std::vector<Texture> textures_;    ///< per skin
   std::vector<GLuint> texture_ids_;  ///< per texture file (TextureFiles' slot): what the destructor deletes
   Error error_;

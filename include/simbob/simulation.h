@@ -4,11 +4,11 @@
 // Python module are its clients, as MuJoCo's mjModel/mjData serve its C API, Python and viewer.
 //
 // A Simulation is stepped in whole steps of h (step(n), runUntil(t)); at each grid instant it
-// reaches, every party due there is served first (sampler, then controllers and peers in scene
-// order, then parties added here, in the order added). Between calls the caller reads the state
-// and sets commands: a command set between calls applies from the current instant on, after the
-// controllers served there (as a socket peer's does). Same scene + seed = same bytes, however the
-// simulation is stepped or watched.
+// reaches, every party due there is served first (sampler, camera sensors, then controllers and
+// peers in scene order, then parties added here, in the order added). Between calls the caller
+// reads the state and sets commands: a command set between calls applies from the current instant
+// on, after the controllers served there (as a socket peer's does). Same scene + seed = same
+// bytes, however the simulation is stepped or watched.
 #pragma once
 
 #include <cstdint>

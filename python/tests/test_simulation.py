@@ -560,6 +560,24 @@ def test_camera_sensor_image_equals_simbob_render_of_that_camera_at_that_time(tm
         sim.camera_image("Bot.Nose")
 
 
+def test_a_controller_at_t_reads_the_camera_image_of_t(tmp_path):
+    """Camera sensors are served before the controllers of an instant: a Python controller at
+    the camera's Period instants reads the picture of that instant (the box is falling, so every
+    instant's picture differs), the one sim.render() draws through that camera there."""
+    scene = tmp_path / "eye.xml"
+    scene.write_text(CAMERA_SENSOR_SCENE)
+    seen = []
+    sim = simbob.Simulation(str(scene))
+    sim.add_controller(0.1, lambda s: seen.append((s.time, s.camera_image("Bot.Eye").copy())))
+    sim.run_until(0.3)
+    assert [t for t, _ in seen] == pytest.approx([0.0, 0.1, 0.2, 0.3])
+    direct = simbob.Simulation(str(scene))
+    for t, img in seen:
+        direct.run_until(t)
+        assert np.array_equal(img, direct.render(camera="Bot.Eye", size=(64, 48))), t
+    assert not np.array_equal(seen[1][1], seen[2][1])
+
+
 def test_render_errors():
     sim = simbob.Simulation(str(SCENES / "gallery.xml"))
     with pytest.raises(simbob.SceneError):

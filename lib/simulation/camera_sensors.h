@@ -11,13 +11,14 @@
 #include <string>
 #include <vector>
 
+#include "simbob/physics.h"
 #include "simbob/render.h"
 #include "simbob/run.h"
 #include "simbob/simulation.h"
 
 namespace simbob {
 
-class CameraSensors : public Party {
+class CameraSensors : public Party, public CameraImages {
  public:
   /// A renderer per Model::camera_sensors entry (the model must outlive this). Null and *err
   /// (no GL back end, a texture missing) on failure.
@@ -26,7 +27,7 @@ class CameraSensors : public Party {
   SimTime onGrant(SimTime now, World& world) override;
   const Error* failure() const override { return failed_ ? &error_ : nullptr; }
   /// The latest image of the camera sensor with this key (empty before its first); null if none.
-  const Image* image(const std::string& key) const;
+  const Image* image(const std::string& key) const override;
 
  private:
   struct Camera {

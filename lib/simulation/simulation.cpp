@@ -127,6 +127,7 @@ bool Simulation::start() {
   for (auto& p : robot_) parties.push_back(p.get());
   parties.insert(parties.end(), extra_.begin(), extra_.end());
   runner_ = std::make_unique<Runner>(model_, ro, std::move(parties));
+  if (cameras_ && runner_->world()) runner_->world()->setCameraImages(cameras_.get());
   return runner_->running();
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "render/reference_frames.h"
+#include "simbob/physics.h"
 #include "simbob/render.h"
 #include "simbob/simulation.h"
 #include "test_registry.h"
@@ -118,4 +119,35 @@ TEST_CASE("a camera sensor leaves the physics alone: the same poses bit for bit"
   CHECK(a.p == b.p);
   CHECK(a.q == b.q);
   CHECK(a.p[1] < 0.5);  // it fell and landed
+}
+
+namespace {
+
+// A controller's view: at 0.2 s it reads the camera sensor's image through the World, as
+// built-in and plug-in controllers do.
+class Reader : public Party {
+ public:
+  SimTime first() override { return toSimTime(0.2).value_or(kNever); }
+  SimTime onGrant(SimTime /*now*/, World& world) override {
+    if (const Image* img = world.cameraImage("Bot.Eye")) seen = *img;
+    unknown = world.cameraImage("Bot.Nose") != nullptr;
+    return kNever;
+  }
+  Image seen;
+  bool unknown = true;
+};
+
+}  // namespace
+
+TEST_CASE("a controller reads the camera sensor's image of its instant through the World") {
+  auto sim = open(true);
+  Reader reader;
+  sim->addParty(reader);
+  REQUIRE(sim->runUntil(0.2));
+  CHECK_FALSE(reader.unknown);
+  REQUIRE(reader.seen.width == 64);
+  CHECK(reader.seen.rgb == renderNow(*sim).rgb);
+  // A World no Simulation draws for has no images.
+  std::unique_ptr<World> bare = World::create(sim->model(), 0);
+  CHECK(bare->cameraImage("Bot.Eye") == nullptr);
 }

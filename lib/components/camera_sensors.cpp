@@ -81,8 +81,8 @@ void registerCameraSensors(Registry& r) {
        number(kPeriod, 0.1, "s", "time between images (0: every step); held in between", Range::NonNegative)},
       {},
       "A camera on the robot: an RGB image (rows top first) rendered at each Period instant by the "
-      "renderer of `simbob render`, read through Simulation::cameraImage or Python's "
-      "sim.camera_image (docs/sensors.md)."};
+      "renderer of `simbob render`, read through World::cameraImage (controllers), Simulation::cameraImage or "
+      "Python's sim.camera_image (docs/sensors.md)."};
   cam.interfaces = {"RCCameraSensor"};
   r.add(cam);
 }

@@ -756,6 +756,26 @@ sensors of other kinds (read them with sensor()).)");
 order of sensor_quantities(key) (docs/sensors.md): touching (0 or 1); distance (m); range0..
 (m); ax ay az (m/s^2) gx gy gz (rad/s); ticks. Raises simbob.UsageError for an unknown key.)");
   cls.def(
+      "camera_image",
+      [](PySimulation& s, const std::string& key) {
+        ReadGuard g(s);
+        const simbob::Image* img = s.sim().cameraImage(key);
+        if (!img) {
+          std::string list;
+          for (const auto& d : s.sim().model().camera_sensors) list += (list.empty() ? "" : ", ") + d.key;
+          raiseUsage("no camera sensor '" + simbob::quoteInput(key) + "' in " + s.scene() +
+                     (list.empty() ? " (it has none)" : " (its camera sensors: " + list + ")"));
+        }
+        py::array_t<uint8_t> a({img->height, img->width, 3});
+        if (!img->rgb.empty()) std::memcpy(a.mutable_data(), img->rgb.data(), img->rgb.size());
+        return a;
+      },
+      py::arg("key"),
+      R"(The latest image of the RCCameraSensor with this key, numpy uint8 (height, width, 3): RGB,
+rows top first, drawn at t = 0, Period, 2 Period, ... (before the controllers there) and held in
+between; (0, 0, 3) before the first instant is served (docs/sensors.md). Raises
+simbob.UsageError for an unknown key.)");
+  cls.def(
       "sensor_quantities",
       [](PySimulation& s, const std::string& key) {
         ReadGuard g(s);

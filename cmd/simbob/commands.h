@@ -33,7 +33,7 @@ struct ViewArgs {
   /// Frames per simulated second: of --record and --video; for `render --at T`, those of the
   /// recording whose camera moves the still repeats.
   double fps = 30;
-  std::string draw;  ///< models, geoms, or both ("" = models, else geoms when no body has a model)
+  std::string draw;  ///< models, geoms, sensors, a comma list ("" = models, else geoms when no body has a model)
 };
 void addViewOptions(CLI::App* app, ViewArgs& v);
 /// Checks the view options and fills `o` (the back end from $SIMBOB_GL when --gl is not given);

@@ -22,22 +22,26 @@ namespace simbob::cli {
 
 namespace {
 
-/// The party of `render --at T`: keeps the poses at T.
+/// The party of `render --at T`: keeps the poses at T (and the sensor rays, for --draw sensors).
 class Still : public Party {
  public:
-  Still(SimTime at, size_t bodies) : at_(at), poses_(bodies) {}
+  Still(SimTime at, size_t bodies, const Model* rays_of) : at_(at), poses_(bodies), rays_of_(rays_of) {}
   SimTime first() override { return at_; }
   SimTime onGrant(SimTime /*now*/, World& world) override {
     for (int i = 0; i < world.bodyCount(); ++i) poses_[static_cast<size_t>(i)] = world.body(i).pose;
+    if (rays_of_) rays_ = sensorRays(*rays_of_, world);
     taken_ = true;
     return kNever;
   }
   bool taken() const { return taken_; }
   const std::vector<Transform>& poses() const { return poses_; }
+  const std::vector<double>& rays() const { return rays_; }
 
  private:
   SimTime at_;
   std::vector<Transform> poses_;
+  const Model* rays_of_;
+  std::vector<double> rays_;
   bool taken_ = false;
 };
 
@@ -80,8 +84,9 @@ void addViewOptions(CLI::App* app, ViewArgs& v) {
                   "Frames per simulated second (default 30): of --record and --video; of the recording a still at "
                   "--at matches (moving cameras follow its frames)");
   app->add_option("--draw", v.draw,
-                  "What to draw: models (default), geoms (the collision shapes), or models,geoms (collision shapes "
-                  "as wire frames over the models); without it, geoms when no body has a model");
+                  "What to draw, a comma list: models (default), geoms (the collision shapes; wire frames over "
+                  "models), sensors (range sensor and scanner rays to their readings, hit points); without it, geoms "
+                  "when no body has a model");
   app->add_option("--gl", v.gl, "GL back end: egl or osmesa (default: $SIMBOB_GL, else EGL, falling back to OSMesa)");
 }
 
@@ -130,9 +135,12 @@ int renderOptions(const ViewArgs& v, const Common& common, RenderOptions* o) {
         o->draw_models = true;
       } else if (item == "geoms") {
         o->draw_geoms = true;
+      } else if (item == "sensors") {
+        o->draw_sensors = true;
       } else {
-        g_log.error(
-            {ErrorKind::InvalidInput, {}, "--draw must be models, geoms or models,geoms, got '" + v.draw + "'"});
+        g_log.error({ErrorKind::InvalidInput,
+                     {},
+                     "--draw must be models, geoms, sensors or a list of them (models,sensors), got '" + v.draw + "'"});
         return kExitUsage;
       }
       start = comma + 1;
@@ -197,7 +205,7 @@ int cmdRender(const RenderArgs& a, const Common& common) {
     return exitCodeFor(err.kind);
   }
   std::vector<Transform> poses = initialPoses(model);
-  if (a.at > 0) {
+  if (a.at > 0 || ro.draw_sensors) {  // the rays need the readings: a world at T
     // Simulate up to T with the controllers acting, as `run` would: a Simulation whose
     // parties (after the scene's) are the frames a recording would follow, then the still.
     catchStopSignals();
@@ -210,7 +218,7 @@ int cmdRender(const RenderArgs& a, const Common& common) {
     std::unique_ptr<Simulation> sim = Simulation::fromModel(model, so, sd);
     if (!sim) return report(sd, false);
     const std::optional<SimTime> at = toSimTime(a.at);
-    Still still(at ? *at : kNever, model.bodies.size());
+    Still still(at ? *at : kNever, model.bodies.size(), ro.draw_sensors ? &model : nullptr);
     Follower follower(*renderer, a.view.fps, at ? *at : kNever, toSimTime(model.settings.min_time_step).value_or(0),
                       model.bodies.size());
     sim->addParty(follower);
@@ -222,6 +230,7 @@ int cmdRender(const RenderArgs& a, const Common& common) {
       return exitCodeFor(r.error.kind);
     }
     poses = still.poses();
+    renderer->setSensorRays(still.rays());
   }
   Image img;
   if (const Error* e = renderer->render(poses, a.at, &img)) {

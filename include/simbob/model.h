@@ -157,6 +157,18 @@ inline std::vector<std::string> sensorQuantities(const SensorDef& s) {
   return {};
 }
 
+/// An RCCameraSensor: a camera riding on a construction's root body whose image (RGB, rows top
+/// first) the Simulation renders at each Period instant (docs/sensors.md). Not a physics sensor:
+/// a World has no GL, so the image lives in the Simulation (Simulation::cameraImage).
+struct CameraSensorDef {
+  std::string key;  ///< fully qualified key of the periphery
+  SourceLoc loc;
+  CameraDef camera;     ///< a Mounted camera on the body (Static at a global pose on a static root); key = key
+  int width = 160;      ///< pixels
+  int height = 120;     ///< pixels
+  double period = 0.1;  ///< s between images (0: every step); the image is held in between
+};
+
 class Party;
 struct ControllerDef;
 /// A plug-in controller's party factory (simbob/plugin.h).
@@ -240,14 +252,15 @@ struct SolverSettings {
 
 struct Model {
   SolverSettings settings;
-  std::vector<MaterialDef> materials;      ///< [0] is the default material
-  std::vector<BodyDef> bodies;             ///< mobile bodies, document order
-  std::vector<GeomDef> geoms;              ///< document order
-  std::vector<JointDef> joints;            ///< document order
-  std::vector<ActuatorDef> actuators;      ///< document order (after the joints they drive)
-  std::vector<SensorDef> sensors;          ///< document order (peripheries, after the joints)
-  std::vector<ControllerDef> controllers;  ///< document order; a schedule's TwoWheel target may come first
-  std::vector<SocketDef> sockets;          ///< document order
+  std::vector<MaterialDef> materials;           ///< [0] is the default material
+  std::vector<BodyDef> bodies;                  ///< mobile bodies, document order
+  std::vector<GeomDef> geoms;                   ///< document order
+  std::vector<JointDef> joints;                 ///< document order
+  std::vector<ActuatorDef> actuators;           ///< document order (after the joints they drive)
+  std::vector<SensorDef> sensors;               ///< document order (peripheries, after the joints)
+  std::vector<CameraSensorDef> camera_sensors;  ///< document order; drawn by the Simulation, never by the physics
+  std::vector<ControllerDef> controllers;       ///< document order; a schedule's TwoWheel target may come first
+  std::vector<SocketDef> sockets;               ///< document order
   // What the renderer draws (simbob/visuals.h); the physics never reads these.
   std::vector<VisualDef> visuals;  ///< document order
   std::vector<SkinDef> skins;      ///< [0] is the default skin

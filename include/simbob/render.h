@@ -38,7 +38,15 @@ struct RenderOptions {
   std::string texture_folder;               ///< global setting TextureFolder ("" = only beside the scene)
   bool draw_models = true;                  ///< the models (visuals) of the scene
   bool draw_geoms = false;                  ///< the collision shapes: filled alone, wire frames over models
+  /// Range sensors' and laser scanners' rays, from the sensor to its reading (setSensorRays),
+  /// red, and the hit points (readings below MaxRange), yellow, drawn over the scene.
+  bool draw_sensors = false;
 };
+
+class World;
+/// The lengths the rays of RenderOptions::draw_sensors end at: the reading (m) of every ray of
+/// every RCRangeSensor and RCLaserScanner, in Model::sensors order, concatenated.
+std::vector<double> sensorRays(const Model& model, const World& world);
 
 /// True when the models show none of the bodies there are (no model on any mobile body, or no
 /// model at all while there are collision shapes): drawing them alone gives an empty picture.
@@ -60,6 +68,9 @@ class Renderer {
   /// A tracking camera moves and a spotlight with AutoViewAngle takes its first distance here,
   /// so the picture depends on the frames drawn before it.
   virtual const Error* render(const std::vector<Transform>& poses, double t, Image* out) = 0;
+  /// The ray lengths (sensorRays) the next render() draws with draw_sensors; until set, every
+  /// ray is drawn to its MaxRange without a hit point.
+  virtual void setSensorRays(const std::vector<double>& lengths) = 0;
   /// Moves the camera as drawing a frame at these poses would, without drawing: a still at T
   /// follows the frames a recording would have drawn before T.
   virtual void follow(const std::vector<Transform>& poses) = 0;
@@ -85,8 +96,10 @@ uint64_t framesDue(uint64_t drawn, double fps, SimTime now, SimTime min_step);
 class FrameDrawer {
  public:
   virtual ~FrameDrawer() = default;
-  /// The frame at these poses. The first error of drawing or of the sink, else null.
-  virtual const Error* draw(const std::vector<Transform>& poses, double t) = 0;
+  /// The frame at these poses, with these sensor ray lengths (sensorRays; empty when not
+  /// drawn). The first error of drawing or of the sink, else null.
+  virtual const Error* draw(const std::vector<Transform>& poses, double t, const std::vector<double>& rays) = 0;
+  const Error* draw(const std::vector<Transform>& poses, double t) { return draw(poses, t, {}); }
   /// Every frame drawn and handed on, then the sink finished. Null on success.
   virtual const Error* finish() = 0;
 };
@@ -109,7 +122,9 @@ std::unique_ptr<FrameDrawer> drawOnRenderThread(Renderer& renderer, FrameSink& s
 /// frame due. It only reads the world.
 class Recorder : public Party {
  public:
-  Recorder(FrameDrawer& drawer, double fps, SimTime min_step, int body_count);
+  /// `rays_of` (may be null): also hands the drawer this model's sensor ray lengths
+  /// (RenderOptions::draw_sensors).
+  Recorder(FrameDrawer& drawer, double fps, SimTime min_step, int body_count, const Model* rays_of = nullptr);
   SimTime first() override;
   SimTime onGrant(SimTime now, World& world) override;
   void finish(SimTime end, World& world) override;
@@ -121,6 +136,8 @@ class Recorder : public Party {
   double fps_;
   SimTime min_step_;
   std::vector<Transform> poses_;
+  const Model* rays_of_ = nullptr;
+  std::vector<double> rays_;
   uint64_t frames_ = 0;
   Error error_;
   bool failed_ = false;

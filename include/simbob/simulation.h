@@ -4,11 +4,11 @@
 // Python module are its clients, as MuJoCo's mjModel/mjData serve its C API, Python and viewer.
 //
 // A Simulation is stepped in whole steps of h (step(n), runUntil(t)); at each grid instant it
-// reaches, every party due there is served first (sampler, then controllers and peers in scene
-// order, then parties added here, in the order added). Between calls the caller reads the state
-// and sets commands: a command set between calls applies from the current instant on, after the
-// controllers served there (as a socket peer's does). Same scene + seed = same bytes, however the
-// simulation is stepped or watched.
+// reaches, every party due there is served first (sampler, camera sensors, then controllers and
+// peers in scene order, then parties added here, in the order added). Between calls the caller
+// reads the state and sets commands: a command set between calls applies from the current instant
+// on, after the controllers served there (as a socket peer's does). Same scene + seed = same
+// bytes, however the simulation is stepped or watched.
 #pragma once
 
 #include <cstdint>
@@ -20,6 +20,7 @@
 
 #include "simbob/error.h"
 #include "simbob/graph.h"
+#include "simbob/render.h"
 #include "simbob/model.h"
 #include "simbob/overrides.h"
 #include "simbob/physics.h"
@@ -49,6 +50,9 @@ struct SimulationOptions {
   const volatile std::sig_atomic_t* stop = nullptr;
   /// Called about every 1% of `duration` with the simulated time reached.
   std::function<void(double)> progress;
+  /// Camera sensors' renderer (RCCameraSensor): GL back end and global TextureFolder.
+  GlBackend gl = GlBackend::Auto;
+  std::string texture_folder;
 };
 
 /// What the run summary says of a run beyond its model and result.
@@ -68,6 +72,8 @@ const char* runStatusName(RunStatus s);
 /// counts, speed (waiting for peers excluded) and what reproducibility depends on. Clients
 /// add what only they know (outputs written, frames, a determinism check).
 nlohmann::ordered_json runSummary(const Model& model, const RunResult& r, const RunSummaryInput& in);
+
+class CameraSensors;
 
 class Simulation {
  public:
@@ -134,6 +140,10 @@ class Simulation {
   int joint(const std::string& key) const;
   int actuator(const std::string& key) const;
   int sensor(const std::string& key) const;
+  /// The latest image of the RCCameraSensor with this fully qualified key (RGB, rows top first,
+  /// Width x Height): drawn at the grid instants at or after t = 0, Period, 2 Period, ... before
+  /// the controllers there are served, and held in between. Null if there is no such sensor.
+  const Image* cameraImage(const std::string& key) const;
   /// Commands actuator i from the current instant on (clamped by its limits, as controllers'
   /// commands are). An index out of range is an error value, not a crash.
   Error setCommand(int actuator, double value);
@@ -155,6 +165,7 @@ class Simulation {
   std::vector<Party*> extra_;                  ///< the caller's parties, in the order added
   RunResult final_;                            ///< what finish() returned (samples counted)
   std::unique_ptr<Runner> runner_;
+  std::unique_ptr<CameraSensors> cameras_;  ///< null unless the scene has camera sensors
 };
 
 }  // namespace simbob

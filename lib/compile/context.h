@@ -197,6 +197,8 @@ void lowerPeriphery(CompileContext& ctx, const Component& c, const Built& parent
 void lowerRangeSensor(CompileContext& ctx, const Component& c, const Built& parent);
 void lowerImuSensor(CompileContext& ctx, const Component& c, const Built& parent);
 void lowerEncoder(CompileContext& ctx, const Component& c, const Built& parent);
+/// camera_sensors.cpp: an RCCameraSensor (Model::camera_sensors).
+void lowerCameraSensor(CompileContext& ctx, const Component& c, const Built& parent);
 /// peripheries.cpp: the pose of a sensor (its Pose link, as RCProximitySensor's) relative to the
 /// frame of the body it is attached to (global for a static body). False after an error.
 bool lowerSensorPose(CompileContext& ctx, const Component& c, const Link& pose, const Built& parent, Transform* out);

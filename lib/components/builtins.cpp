@@ -21,6 +21,7 @@ bool registerBuiltins(Registry& r) {
   registerRangeSensors(r);
   registerImuSensors(r);
   registerEncoders(r);
+  registerCameraSensors(r);
   registerControllers(r);
   registerCameras(r);
   return r.problems().empty();

@@ -22,6 +22,7 @@ void registerMotions(Registry& r);
 void registerInertias(Registry& r);
 void registerPeripheries(Registry& r);
 void registerRangeSensors(Registry& r);
+void registerCameraSensors(Registry& r);
 void registerImuSensors(Registry& r);
 void registerEncoders(Registry& r);
 void registerControllers(Registry& r);
@@ -41,6 +42,7 @@ enum class PeripheryKind {
   LaserScanner,
   ImuSensor,
   Encoder,
+  CameraSensor,
 };
 
 // Parameter names read outside their family file: the loader reads the scene root and the

@@ -233,6 +233,7 @@ bool peripheryLimits(const Component& c, double* lo, double* hi) {
     case PeripheryKind::LaserScanner:
     case PeripheryKind::ImuSensor:
     case PeripheryKind::Encoder:
+    case PeripheryKind::CameraSensor:
       return false;
   }
   return false;
@@ -261,6 +262,9 @@ void lowerPeriphery(CompileContext& ctx, const Component& c, const Built& parent
       break;
     case PeripheryKind::Encoder:
       lowerEncoder(ctx, c, parent);
+      break;
+    case PeripheryKind::CameraSensor:
+      lowerCameraSensor(ctx, c, parent);
       break;
     case PeripheryKind::LocalSocketCommunicator: {
       if (c.get(kPort) > kMaxPort) {

@@ -76,6 +76,7 @@ struct ActuatorState {
 };
 
 struct WorldImpl {
+  const CameraImages* cameraImages = nullptr;  ///< World::cameraImage (the Simulation's camera sensors)
   dWorldID world = nullptr;
   dSpaceID space = nullptr;
   /// Sensor geoms live here, so the collision space (and the order in which it reports pairs)

@@ -19,8 +19,9 @@ class InlineDrawer : public FrameDrawer {
  public:
   InlineDrawer(Renderer& renderer, FrameSink& sink) : renderer_(renderer), sink_(sink) {}
 
-  const Error* draw(const std::vector<Transform>& poses, double t) override {
+  const Error* draw(const std::vector<Transform>& poses, double t, const std::vector<double>& rays) override {
     Image img;
+    renderer_.setSensorRays(rays);
     if (const Error* e = renderer_.render(poses, t, &img)) return e;
     return sink_.add(std::move(img));
   }
@@ -34,6 +35,7 @@ class InlineDrawer : public FrameDrawer {
 struct FrameJob {
   std::vector<Transform> poses;
   double t = 0;
+  std::vector<double> rays;
 };
 
 class RenderThread : public FrameDrawer {
@@ -52,7 +54,9 @@ class RenderThread : public FrameDrawer {
     // The sink is left unfinished: its owner destroys it, which removes its temporary output.
   }
 
-  const Error* draw(const std::vector<Transform>& poses, double t) override { return queue_.push(FrameJob{poses, t}); }
+  const Error* draw(const std::vector<Transform>& poses, double t, const std::vector<double>& rays) override {
+    return queue_.push(FrameJob{poses, t, rays});
+  }
 
   const Error* finish() override {
     if (joined_) return queue_.failure();
@@ -74,6 +78,7 @@ class RenderThread : public FrameDrawer {
     }
     queue_.serve([this](FrameJob& job) -> const Error* {
       Image img;
+      renderer_.setSensorRays(job.rays);
       if (const Error* e = renderer_.render(job.poses, job.t, &img)) return e;
       return sink_.add(std::move(img));
     });

@@ -50,7 +50,8 @@ std::unique_ptr<Recording> Recording::open(const Model& model, const RecordingRe
   if (!r->renderer_) return nullptr;
   r->sink_ = makeAsyncSink(std::move(sinks));
   r->drawer_ = drawOnRenderThread(*r->renderer_, *r->sink_);
-  r->recorder_ = std::make_unique<Recorder>(*r->drawer_, q.fps, min_step, static_cast<int>(model.bodies.size()));
+  r->recorder_ = std::make_unique<Recorder>(*r->drawer_, q.fps, min_step, static_cast<int>(model.bodies.size()),
+                                            q.render.draw_sensors ? &model : nullptr);
   return r;
 }
 

@@ -108,7 +108,7 @@ class GlRenderer : public Renderer {
     const auto* s = reinterpret_cast<const char*>(gl_.GetString(GL_RENDERER));
     return s ? s : "(unknown)";
   }
-  std::string cameraName() const override { return camera_ < 0 ? "(default)" : model_.cameras[camera_].key; }
+  std::string cameraName() const override { return camera_ ? camera_->key : "(default)"; }
 
   void follow(const std::vector<Transform>& poses) override {
     double va = 0, near_clip = 0, far_clip = 0;
@@ -116,6 +116,9 @@ class GlRenderer : public Renderer {
   }
 
   const Error* render(const std::vector<Transform>& poses, double /*t*/, Image* out) override {
+    // Another renderer on this thread (a camera sensor's, Python's) may have made its own
+    // context current since: GL calls go to the current one.
+    if (const Error* e = acquire()) return e;
     const int w = opts_.width, h = opts_.height;
     const ViewSettings& view = model_.view;
     const Quality q = opts_.quality;
@@ -128,7 +131,7 @@ class GlRenderer : public Renderer {
     gl_.DepthFunc(GL_LEQUAL);
     gl_.Enable(GL_NORMALIZE);
 
-    if (camera_ < 0) frameBodies(poses);
+    if (!camera_) frameBodies(poses);
     // Projection: ViewAngle is the horizontal field of view (guide 3.5).
     double va = 60, near_clip = 0.1, far_clip = 1000;
     const Transform eye = cameraFrame(poses, &va, &near_clip, &far_clip);
@@ -205,6 +208,7 @@ class GlRenderer : public Renderer {
       gl_.Disable(GL_BLEND);
     }
     gl_.Disable(GL_FOG);
+    if (opts_.draw_sensors) drawSensorRays(poses);
 
     // Read back (GL's rows are bottom first).
     Image img(w, h);
@@ -350,15 +354,64 @@ class GlRenderer : public Renderer {
     gl_.Clear(GL_STENCIL_BUFFER_BIT);
   }
 
+  void setSensorRays(const std::vector<double>& lengths) override { rays_ = lengths; }
+
+  /// --draw sensors: each range sensor's and scanner's rays from the sensor's origin to its
+  /// reading (red), and the hit points (readings below MaxRange, yellow), over the scene (not
+  /// hidden by it): the rays start inside the robot.
+  void drawSensorRays(const std::vector<Transform>& poses) {
+    gl_.Disable(GL_LIGHTING);
+    gl_.Disable(GL_TEXTURE_2D);
+    gl_.Disable(GL_DEPTH_TEST);
+    std::vector<Vec3> hits;
+    size_t at = 0;
+    gl_.LineWidth(1.0F);
+    gl_.Color4d(1.0, 0.0, 0.0, 1.0);
+    gl_.Begin(GL_LINES);
+    for (const SensorDef& s : model_.sensors) {
+      int rays = 0;
+      switch (s.kind) {
+        case SensorKind::Range:
+          rays = 1;
+          break;
+        case SensorKind::Scanner:
+          rays = s.rays;
+          break;
+        case SensorKind::Proximity:
+        case SensorKind::Imu:
+        case SensorKind::Encoder:
+          break;
+      }
+      const bool on_body = s.body >= 0 && static_cast<size_t>(s.body) < poses.size();
+      const Transform frame = on_body ? compose(poses[static_cast<size_t>(s.body)], s.pose) : s.pose;
+      for (int k = 0; k < rays; ++k, ++at) {
+        const double len = at < rays_.size() ? rays_[at] : s.max_range;
+        const double a = s.kind == SensorKind::Scanner ? scannerRayAngle(s, k) : 0.0;
+        const Vec3 end = add(frame.p, scale(rotate(frame.q, Vec3{-std::sin(a), 0, -std::cos(a)}), len));
+        gl_.Vertex3d(frame.p[0], frame.p[1], frame.p[2]);
+        gl_.Vertex3d(end[0], end[1], end[2]);
+        if (len < s.max_range) hits.push_back(end);
+      }
+    }
+    gl_.End();
+    gl_.PointSize(5.0F);
+    gl_.Color4d(1.0, 1.0, 0.0, 1.0);
+    gl_.Begin(GL_POINTS);
+    for (const Vec3& h : hits) gl_.Vertex3d(h[0], h[1], h[2]);
+    gl_.End();
+    gl_.PointSize(1.0F);
+    gl_.Enable(GL_DEPTH_TEST);
+  }
+
   /// The camera's world frame and view at these poses.
   Transform cameraFrame(const std::vector<Transform>& poses, double* va, double* near_clip, double* far_clip) {
-    if (camera_ < 0) {
+    if (!camera_) {
       *va = default_va_;
       *near_clip = default_near_;
       *far_clip = default_far_;
       return default_eye_;
     }
-    const CameraDef& c = model_.cameras[static_cast<size_t>(camera_)];
+    const CameraDef& c = *camera_;
     *va = c.view_angle;
     *near_clip = c.near_clip;
     *far_clip = c.far_clip;
@@ -395,18 +448,23 @@ class GlRenderer : public Renderer {
 
   bool chooseCamera(Error* err) {
     if (!opts_.camera.empty()) {
-      for (size_t i = 0; i < model_.cameras.size(); ++i)
-        if (model_.cameras[i].key == opts_.camera) camera_ = static_cast<int>(i);
-      if (camera_ < 0) {
+      // The scene's cameras, then the camera sensors' (RCCameraSensor): a sensor's image is this
+      // renderer's picture through its camera.
+      for (const CameraDef& c : model_.cameras)
+        if (!camera_ && c.key == opts_.camera) camera_ = &c;
+      for (const CameraSensorDef& s : model_.camera_sensors)
+        if (!camera_ && s.camera.key == opts_.camera) camera_ = &s.camera;
+      if (!camera_) {
         std::string known;
         for (const CameraDef& c : model_.cameras) known += (known.empty() ? "" : ", ") + c.key;
+        for (const CameraSensorDef& s : model_.camera_sensors) known += (known.empty() ? "" : ", ") + s.key;
         err->kind = ErrorKind::InvalidInput;
         err->message = "no camera '" + opts_.camera + "' in the scene (" +
                        (known.empty() ? std::string("it has none") : "cameras: " + known) + ")";
         return false;
       }
     } else if (!model_.cameras.empty()) {
-      camera_ = 0;
+      camera_ = &model_.cameras[0];
     }
     return true;
   }
@@ -590,9 +648,9 @@ class GlRenderer : public Renderer {
   RenderOptions opts_;
   std::unique_ptr<render::GlContext> ctx_;
   const GlApi& gl_;
-  int camera_ = -1;
-  std::vector<SkinDef> skins_;      ///< the model's, then those of the collision shapes
-  std::vector<VisualDef> visuals_;  ///< what is drawn: the models and/or the collision shapes
+  const CameraDef* camera_ = nullptr;  ///< null: the default view
+  std::vector<SkinDef> skins_;         ///< the model's, then those of the collision shapes
+  std::vector<VisualDef> visuals_;     ///< what is drawn: the models and/or the collision shapes
   Transform default_eye_;
   Vec3 frame_lo_{0, 0, 0}, frame_hi_{0, 0, 0};  ///< what the default view has framed so far
   bool framed_ = false;
@@ -600,6 +658,7 @@ class GlRenderer : public Renderer {
   double spot_dist0_ = -1;
   bool track_init_ = false;
   Vec3 track_pos_{0, 0, 0};
+  std::vector<double> rays_;         ///< sensor ray lengths for draw_sensors (setSensorRays)
   std::vector<Texture> textures_;    ///< per skin
   std::vector<GLuint> texture_ids_;  ///< per texture file (TextureFiles' slot): what the destructor deletes
   Error error_;

@@ -9,6 +9,7 @@
 #include "simbob/compile.h"
 #include "simbob/robot.h"
 #include "simbob/values.h"
+#include "simulation/camera_sensors.h"
 
 namespace simbob {
 
@@ -31,6 +32,8 @@ Simulation::Simulation(Model model, SimulationOptions opts) : model_(std::move(m
 Simulation::~Simulation() {
   runner_.reset();  // it points at the parties below
 }
+
+const Image* Simulation::cameraImage(const std::string& key) const { return cameras_ ? cameras_->image(key) : nullptr; }
 
 std::unique_ptr<Simulation> Simulation::fromFile(const std::string& path, const Registry& reg,
                                                  const SimulationOptions& opts, Diagnostics& diag) {
@@ -96,7 +99,16 @@ std::unique_ptr<Simulation> Simulation::fromModel(Model model, const SimulationO
   for (SocketDef& d : model.sockets)
     if (!d.controller.empty() && !opts.controller_log.empty())
       d.controller_log = started > 1 ? opts.controller_log + "." + d.key : opts.controller_log;
-  return std::unique_ptr<Simulation>(new Simulation(std::move(model), opts));
+  std::unique_ptr<Simulation> sim(new Simulation(std::move(model), opts));
+  if (!sim->model_.camera_sensors.empty()) {
+    Error err;
+    sim->cameras_ = CameraSensors::create(sim->model_, sim->opts_, &err);
+    if (!sim->cameras_) {
+      diag.error(err.loc, err.message, err.kind);
+      return nullptr;
+    }
+  }
+  return sim;
 }
 
 void Simulation::sampleTrajectory(TrajectoryWriter* writer, double interval,
@@ -139,10 +151,12 @@ bool Simulation::start() {
     parties.push_back(sampler_.get());
   }
   for (SocketDef& d : model_.sockets) d.seed = opts_.seed;  // SIMBOB_SEED of a started controller
+  if (cameras_) parties.push_back(cameras_.get());  // before the controllers: they read its images
   robot_ = robotParties(model_);
   for (auto& p : robot_) parties.push_back(p.get());
   parties.insert(parties.end(), extra_.begin(), extra_.end());
   runner_ = std::make_unique<Runner>(model_, ro, std::move(parties));
+  if (cameras_ && runner_->world()) runner_->world()->setCameraImages(cameras_.get());
   return runner_->running();
 }
 

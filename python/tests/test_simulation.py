@@ -513,6 +513,71 @@ def test_render_equals_simbob_render_of_that_camera_at_that_time(tmp_path, camer
     assert not np.array_equal(sim.render(camera=camera, size=(96, 72)), img)
 
 
+CAMERA_SENSOR_SCENE = """<Simulation>
+  <SceneSettings><MaxTimeStep Value="0.001"/></SceneSettings>
+  <ComponentList>
+    <RCGround Key="Ground"/>
+    <RCStaticRigidBody Key="Wall">
+      <Pose><RCGlobalCoordinates><Pose Value="0 0.5 -3 0 0 0"/></RCGlobalCoordinates></Pose>
+      <Geom><RCCuboidGeom><Width Value="2"/><Height Value="1"/><Depth Value="0.2"/></RCCuboidGeom></Geom>
+    </RCStaticRigidBody>
+    <RCConstruction Key="Bot">
+      <Body><RCMobileRigidBody Key="Chassis">
+        <Pose><RCGlobalCoordinates><Pose Value="0 1 0 0 0 0"/></RCGlobalCoordinates></Pose>
+        <Geom><RCCuboidGeom><Width Value="0.2"/><Height Value="0.1"/><Depth Value="0.2"/></RCCuboidGeom></Geom>
+      </RCMobileRigidBody></Body>
+      <ChildList>
+        <RCCameraSensor Key="Eye">
+          <Pose><RCLocalCoordinates><Pose Value="0 0.1 0 -10 0 0"/></RCLocalCoordinates></Pose>
+          <Width Value="64"/><Height Value="48"/><Period Value="0.1"/>
+        </RCCameraSensor>
+      </ChildList>
+    </RCConstruction>
+  </ComponentList>
+</Simulation>
+"""
+
+
+def test_camera_sensor_image_equals_simbob_render_of_that_camera_at_that_time(tmp_path):
+    """An RCCameraSensor's image at t is `simbob render --camera KEY --at t --size WxH`, byte for
+    byte; it is held between Period instants (a box with the camera falls onto the ground)."""
+    scene = tmp_path / "eye.xml"
+    scene.write_text(CAMERA_SENSOR_SCENE)
+    still = tmp_path / "still.png"
+    subprocess.run([str(BINARY), "render", str(scene), "--at", "0.3", "--camera", "Bot.Eye", "--size", "64x48",
+                    "--out", str(still), "--quiet"], check=True)
+    sim = simbob.Simulation(str(scene))
+    assert sim.camera_image("Bot.Eye").shape == (0, 0, 3)  # nothing served yet
+    sim.run_until(0.3)
+    img = sim.camera_image("Bot.Eye")
+    assert img.shape == (48, 64, 3) and img.dtype == np.uint8
+    assert np.array_equal(img, read_png_rgb(still))
+    sim.run_until(0.35)  # held until the next Period instant
+    assert np.array_equal(sim.camera_image("Bot.Eye"), img)
+    sim.run_until(0.4)  # the box has fallen on: another picture, so the check can fail
+    assert not np.array_equal(sim.camera_image("Bot.Eye"), img)
+    with pytest.raises(simbob.UsageError, match="no camera sensor 'Bot.Nose'.*its camera sensors: Bot.Eye"):
+        sim.camera_image("Bot.Nose")
+
+
+def test_a_controller_at_t_reads_the_camera_image_of_t(tmp_path):
+    """Camera sensors are served before the controllers of an instant: a Python controller at
+    the camera's Period instants reads the picture of that instant (the box is falling, so every
+    instant's picture differs), the one sim.render() draws through that camera there."""
+    scene = tmp_path / "eye.xml"
+    scene.write_text(CAMERA_SENSOR_SCENE)
+    seen = []
+    sim = simbob.Simulation(str(scene))
+    sim.add_controller(0.1, lambda s: seen.append((s.time, s.camera_image("Bot.Eye").copy())))
+    sim.run_until(0.3)
+    assert [t for t, _ in seen] == pytest.approx([0.0, 0.1, 0.2, 0.3])
+    direct = simbob.Simulation(str(scene))
+    for t, img in seen:
+        direct.run_until(t)
+        assert np.array_equal(img, direct.render(camera="Bot.Eye", size=(64, 48))), t
+    assert not np.array_equal(seen[1][1], seen[2][1])
+
+
 def test_render_errors():
     sim = simbob.Simulation(str(SCENES / "gallery.xml"))
     with pytest.raises(simbob.SceneError):

@@ -21,7 +21,7 @@ expect_match "--out x.bmp" "$LAST_ERR" "not .bmp$"
 
 check "--draw takes models, geoms or both; anything else is a usage error (64)"
 expect_status 64 "$SIMBOB" render "$BASIC" --out x.png --draw meshes
-expect_match "--draw" "$LAST_ERR" "--draw must be models, geoms or models,geoms, got 'meshes'"
+expect_match "--draw" "$LAST_ERR" "--draw must be models, geoms, sensors or a list of them \\(models,sensors\\), got 'meshes'"
 expect_no_file x.png
 
 info_status=0
@@ -72,3 +72,42 @@ n=$(pixels frames/frame_000002.png --differing $BG)
 expect_status 0 "$SIMBOB" run "$PENDULUM" --duration 0.2 --out p.csv --record frames2 --fps 10 --size 80x60 \
   --draw models
 expect_eq "pixels off the background with --draw models" "$(pixels frames2/frame_000002.png --differing $BG)" 0
+
+# A range sensor on a box at (0.25, 0.5, 0) looks along -Z at a wall whose face is at z = -1.9;
+# camera Top at (0, 10, -1) looks straight down (image top = -Z), 160x120, 60 degrees: the ray
+# is column 80 + f 0.25 / 9.5 = 83 (f = 80 / tan 30 deg), rows 60 + f (z + 1) / 9.5, so pixel
+# (83, 60) is the ray at z = -1 (tests/render/sensor_rays_test.cpp checks every ray pixel).
+cat >ray.xml <<'XML'
+<Simulation>
+  <CameraList>
+    <RCStaticCamera Key="Top">
+      <Pose><RCGlobalCoordinates><Pose Value="0 10 -1 -90 0 0"/></RCGlobalCoordinates></Pose>
+    </RCStaticCamera>
+  </CameraList>
+  <ComponentList>
+    <RCStaticRigidBody Key="Wall">
+      <Pose><RCGlobalCoordinates><Pose Value="0 0.5 -2 0 0 0"/></RCGlobalCoordinates></Pose>
+      <Geom><RCCuboidGeom><Width Value="6"/><Height Value="1"/><Depth Value="0.2"/></RCCuboidGeom></Geom>
+    </RCStaticRigidBody>
+    <RCConstruction Key="Bot">
+      <Body><RCMobileRigidBody Key="Chassis">
+        <Pose><RCGlobalCoordinates><Pose Value="0.25 0.5 0 0 0 0"/></RCGlobalCoordinates></Pose>
+        <Geom><RCCuboidGeom><Width Value="0.1"/><Height Value="0.1"/><Depth Value="0.1"/></RCCuboidGeom></Geom>
+      </RCMobileRigidBody></Body>
+      <ChildList><RCRangeSensor Key="Front"><MaxRange Value="5"/></RCRangeSensor></ChildList>
+    </RCConstruction>
+  </ComponentList>
+</Simulation>
+XML
+check "--draw geoms,sensors draws the range sensor's ray (red) where the projection puts it; --draw geoms does not"
+expect_status 0 "$SIMBOB" render ray.xml --out plain.png --size 160x120 --camera Top --draw geoms
+expect_status 0 "$SIMBOB" render ray.xml --out ray.png --size 160x120 --camera Top --draw geoms,sensors
+bg=$(pixels plain.png 90 60)
+expect_eq "pixel on the ray without sensors" "$(pixels plain.png 83 60)" "$bg"
+expect_eq "pixel on the ray" "$(pixels ray.png 83 60)" "255 0 0"
+expect_eq "pixel beside the ray" "$(pixels ray.png 90 60)" "$bg"
+
+check "run --record --draw sensors draws the rays on the render thread's frames too"
+expect_status 0 "$SIMBOB" run ray.xml --duration 0.1 --out r.csv --record rayframes --fps 10 --size 160x120 \
+  --camera Top --draw sensors
+expect_eq "frame 0 pixel on the ray" "$(pixels rayframes/frame_000000.png 83 60)" "255 0 0"

@@ -120,3 +120,44 @@ TEST_CASE("sensor types: bad parameters are errors at their line", "[scene][sens
     CHECK(errors[0].rfind("test.xml:17: ", 0) == 0);
   }
 }
+
+TEST_CASE("RCCameraSensor lowers to Model::camera_sensors, a camera riding on the body", "[scene][sensors]") {
+  const Model m = mustCompile(robot(R"(
+    <RCCameraSensor Key="Eye">
+      <Pose><RCLocalCoordinates><Pose Value="0.2 0.1 0 0 -90 0"/></RCLocalCoordinates></Pose>
+      <Width Value="32"/><Height Value="24"/><ViewAngle Value="90"/><Period Value="0.05"/>
+    </RCCameraSensor>)"));
+  CHECK(m.sensors.empty());  // not a physics sensor
+  CHECK(m.cameras.empty());  // nor a camera of the CameraList: the default view stays the default
+  REQUIRE(m.camera_sensors.size() == 1);
+  const CameraSensorDef& c = m.camera_sensors[0];
+  CHECK(c.key == "Bot.Eye");
+  CHECK(c.width == 32);
+  CHECK(c.height == 24);
+  CHECK(c.period == 0.05);
+  CHECK(c.camera.key == "Bot.Eye");
+  CHECK(c.camera.kind == CameraDef::Mounted);
+  CHECK(c.camera.body == 0);
+  CHECK(c.camera.view_angle == 90);
+  // Relative to the chassis' frame, as the other sensors' poses.
+  CHECK(std::fabs(c.camera.pose.p[0] - 0.2) < 1e-12);
+  CHECK(std::fabs(c.camera.pose.p[1] - 0.1) < 1e-12);
+}
+
+TEST_CASE("RCCameraSensor: bad parameters are errors at their line", "[scene][sensors]") {
+  const std::pair<const char*, const char*> cases[] = {
+      {"<RCCameraSensor Key=\"S\"><Width Value=\"0\"/></RCCameraSensor>", "Width"},
+      {"<RCCameraSensor Key=\"S\"><Height Value=\"8193\"/></RCCameraSensor>", "'Height' must be at most 8192"},
+      {"<RCCameraSensor Key=\"S\"><ViewAngle Value=\"180\"/></RCCameraSensor>", "below 180 degrees"},
+      {"<RCCameraSensor Key=\"S\"><NearClip Value=\"5\"/><FarClip Value=\"1\"/></RCCameraSensor>", "NearClip (5 m)"},
+      {"<RCCameraSensor Key=\"S\"><Period Value=\"-1\"/></RCCameraSensor>", "Period"},
+  };
+  for (const auto& [sensor, message] : cases) {
+    const std::vector<std::string> errors = compileErrors(robot(sensor));
+    INFO(sensor);
+    INFO((errors.empty() ? std::string("no error") : errors[0]));
+    REQUIRE(errors.size() == 1);
+    CHECK(errors[0].find(message) != std::string::npos);
+    CHECK(errors[0].rfind("test.xml:17: ", 0) == 0);
+  }
+}

@@ -2,17 +2,18 @@
 // RC2DMotionControl along a wall on one Side at Distance. Ray k of the scanner has the bearing
 // b_k in the body's frame (its direction projected on the body's ground plane, from the forward
 // axis +X, counter-clockwise seen from above); sigma = +1 for Side Left, -1 for Right.
-//   side distance  d = min r_k over the rays with sigma b_k in [10, 170] degrees
+//   side distance  d = min r_k over the rays with sigma b_k in [45, 170] degrees
 //                      (the nearest wall point on that side: its perpendicular distance);
 //   front distance g = min r_k cos b_k over the rays with |b_k| < 25 degrees
-//                      (narrow: in a corridor 2 Distance wide the side walls stay beyond 2 Distance).
+//                      (narrow: a side wall s away reads at least s cot 20 = 2.7 s there, so one
+//                      at 0.55 Distance or more never counts as a wall ahead).
 // With e = d - Distance and e' its change since the last reading over the Period (clamped to
 // +-Speed, 0 at the first reading), a PD law keeps the wall at Distance:
 //   w = sigma clamp(Kp e + Kd e', -TurnRate, TurnRate),  Kp = W^2 / Speed, Kd = 2 W / Speed,
-// W = Speed / Distance. For small angles e'' = -Speed w sigma, so e'' + 2 W e' + W^2 e = 0: the
-// error dies out critically damped over a few Distances of travel. An outer corner (the wall
-// ends: d jumps) turns it round towards the wall at TurnRate. An inner corner (a wall ahead,
-// g < 2 Distance) overrides: it turns away from its wall side at TurnRate and slows down,
+// W = 2 Speed / Distance. For small angles e'' = -Speed w sigma, so e'' + 2 W e' + W^2 e = 0: the
+// error dies out critically damped within a few Distances of travel. An outer corner (the wall
+// ends: d grows) turns it round the wall's end towards its side. An inner corner (a wall ahead,
+// g < 1.5 Distance) overrides: it turns away from its wall side at TurnRate and slows down,
 //   v = Speed clamp((g - Distance) / Distance, 0, 1), w = -sigma TurnRate;
 // otherwise v = Speed.
 #include <algorithm>
@@ -43,7 +44,7 @@ class WallFollower : public Party {
       const double a = scannerRayAngle(s, k);
       const Vec3 d = rotate(s.pose.q, Vec3{-std::sin(a), 0, -std::cos(a)});
       const double b = std::atan2(-d[2], d[0]);
-      if (sigma_ * b >= 10 * deg && sigma_ * b <= 170 * deg) side_rays_.push_back(k);
+      if (sigma_ * b >= 45 * deg && sigma_ * b <= 170 * deg) side_rays_.push_back(k);
       if (std::fabs(b) < 25 * deg) {
         front_rays_.push_back(k);
         front_cos_.push_back(std::cos(b));
@@ -63,11 +64,11 @@ class WallFollower : public Party {
     first_ = false;
     last_e_ = e;
     double v = speed_, w;
-    if (g < 2 * distance_) {
+    if (g < 1.5 * distance_) {
       v = speed_ * std::clamp((g - distance_) / distance_, 0.0, 1.0);
       w = -sigma_ * turn_rate_;
     } else {
-      const double wn = speed_ / distance_;
+      const double wn = 2 * speed_ / distance_;
       w = sigma_ * std::clamp(wn * wn / speed_ * e + 2 * wn / speed_ * de, -turn_rate_, turn_rate_);
     }
     motion_->setMotion(v, w, world);

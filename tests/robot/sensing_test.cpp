@@ -131,8 +131,8 @@ TEST_CASE("robot: RCWallFollower keeps its distance along a straight wall", "[ro
 }
 
 TEST_CASE("robot: RCWallFollower closes an offset without hitting the wall", "[robot][sensing]") {
-  // Started 0.15 m farther out (0.45 m from the wall): critically damped with W = Speed /
-  // Distance = 0.67 rad/s, the error decays as (1 + W t) exp(-W t): below 1 % of 0.15 m by
+  // Started 0.15 m farther out (0.45 m from the wall): critically damped with W = 2 Speed /
+  // Distance = 1.33 rad/s, the error decays as (1 + W t) exp(-W t): below 1 % of 0.15 m by
   // t = 10 s; it never goes nearer than the set distance by more than the 5 mm above, and its
   // footprint stays off the wall.
   const Track tr = runScene("corridor_offset.xml", 25);

@@ -187,6 +187,8 @@ struct ControllerDef {
     WallStop,         ///< drives controllers[target] (TwoWheel) at `speed` until sensors[0] touches, then stops
     Plugin,           ///< a plug-in's type: `make` builds its party
     GoToPoint,        ///< steers controllers[target] (TwoWheel) until bodies[body] is within `tolerance` of goal
+    ObstacleAvoider,  ///< steers controllers[target] (TwoWheel) away from what its range sensors[] see
+    WallFollower,     ///< steers controllers[target] (TwoWheel) along a wall seen by its laser scanner sensors[0]
   } kind = DriveTest;
   double period = 0.01;               ///< s, loop period (DriveTest, ServoTest)
   double variation = 6.0;             ///< 1/min (DriveTest, ServoTest); wheel radius in m (TwoWheel)
@@ -198,11 +200,13 @@ struct ControllerDef {
   std::string type;                   ///< Plugin: the type name
   std::vector<double> numbers;        ///< Plugin: its number parameters, in the order it declared them
   PluginPartyFactory make = nullptr;  ///< Plugin
-  std::vector<int> sensors;           ///< indices into Model::sensors (WallStop)
-  double speed = 0.1;                 ///< m/s (WallStop, GoToPoint)
+  std::vector<int> sensors;           ///< indices into Model::sensors (WallStop, ObstacleAvoider, WallFollower)
+  double speed = 0.1;                 ///< m/s (WallStop, GoToPoint, ObstacleAvoider, WallFollower)
   int body = -1;                      ///< GoToPoint: index into Model::bodies whose pose it reads
   double goal_x = 0, goal_z = 0;      ///< GoToPoint: the target point on the ground plane (m)
-  double turn_rate = 1.0;             ///< GoToPoint: largest angular velocity commanded (rad/s)
+  double turn_rate = 1.0;             ///< GoToPoint, ObstacleAvoider, WallFollower: largest angular velocity (rad/s)
+  double wall_distance = 0.3;         ///< WallFollower: m to keep between the scanner and the wall
+  int side = 1;                       ///< WallFollower: +1 the wall on the robot's left, -1 on its right
   double tolerance = 0.05;            ///< GoToPoint: m from the goal at which it stops
   std::string plugin;                 ///< Plugin: the plug-in's name (SimbobPluginV1::name), for messages
 };

@@ -3,7 +3,10 @@
 // lib/robot runs them as parties of the run loop. RCCommandSchedule (simbob's own) sends timed
 // commands to a drive, a servo or an RC2DMotionControl; RCWallStop drives an RC2DMotionControl
 // forward until an RCContactSensor touches something; RCSimGoToPoint (a SimControllerComponent,
-// guide 2.1) reads a body's pose and steers an RC2DMotionControl to a point.
+// guide 2.1) reads a body's pose and steers an RC2DMotionControl to a point; RCObstacleAvoider
+// steers one away from what its RCRangeSensors see and RCWallFollower along a wall its
+// RCLaserScanner sees (docs/sensors.md).
+#include <algorithm>
 #include <cmath>
 
 #include "compile/context.h"
@@ -14,7 +17,17 @@ namespace simbob {
 
 namespace {
 
-enum class ControllerKind { DriveTest, ServoTest, TwoWheelMotionControl, CommandSchedule, WallStop, GoToPoint, Plugin };
+enum class ControllerKind {
+  DriveTest,
+  ServoTest,
+  TwoWheelMotionControl,
+  CommandSchedule,
+  WallStop,
+  GoToPoint,
+  Plugin,
+  ObstacleAvoider,
+  WallFollower
+};
 
 constexpr LinkParam kDrive{"Drive"};
 constexpr LinkParam kPosControl{"PosControl"};
@@ -32,6 +45,11 @@ constexpr LinkParam kBody{"Body"};
 constexpr ValueParam<std::string> kGoal{"Target"};  // RCSimGoToPoint's point (not a Ref)
 constexpr ValueParam<double> kTurnRate{"TurnRate"};
 constexpr ValueParam<double> kTolerance{"Tolerance"};
+constexpr ListParam kSensors{"Sensors"};
+constexpr LinkParam kScanner{"Scanner"};
+constexpr ValueParam<double> kDistance{"Distance"};
+constexpr EnumParam kSideParam{"Side"};
+const EnumTable kSide{"Side", {{"Left", 0}, {"Right", 1}}};
 
 /// Model::actuators index of a drive or servo component, or -1 after an error.
 int actuatorOf(CompileContext& ctx, const Component& c, const Link& l, const Component& drive) {
@@ -131,6 +149,26 @@ int sensorOf(CompileContext& ctx, const Component& c, LinkParam param) {
   return i < 0 ? -1 : i;
 }
 
+/// Model::sensors index of the sensor `l` (an item of `param`) refers to, which must implement
+/// `interface`; -1 after an error.
+int sensorLinkOf(CompileContext& ctx, const Component& c, const Link& l, const char* param, const char* interface) {
+  if (l.comp < 0) return -1;  // a bad Ref: reported where it was resolved
+  const Component& t = ctx.at(l.comp);
+  if (!t.type->implements(interface)) {
+    ctx.error(l, c,
+              std::string("parameter '") + param + "' must refer to components implementing " + interface + ", but " +
+                  CompileContext::describe(t) + " does not");
+    return -1;
+  }
+  const int i = ctx.sensorIndex(ctx.modelKey(t));
+  if (i == -1 && !ctx.failedQuietly())
+    ctx.error(l, c,
+              CompileContext::describe(t) +
+                  " is not part of a construction built before this controller (put it in the ChildList of "
+                  "its robot's construction)");
+  return i < 0 ? -1 : i;
+}
+
 /// Model::bodies index of the mobile body behind `param`, or -1 after an error.
 int mobileBodyOf(CompileContext& ctx, const Component& c, LinkParam param) {
   const Link& l = c.get(param);
@@ -224,6 +262,30 @@ void registerControllers(Registry& r) {
           number(kTolerance, 0.05, "m", "distance to the target at which it stops for good", Range::Positive), period},
          {},
          "Sim controller: reads its body's pose and steers a motion control to a point, then stops."});
+  r.add({"RCObstacleAvoider",
+         Family::Controller,
+         int(ControllerKind::ObstacleAvoider),
+         {componentParam(kMotion, {Family::Controller}, "", "motion control to steer (Ref, RC2DMotionControl)"),
+          listParam(kSensors, {Family::Periphery},
+                    "range sensors on the robot's body (Refs, RCRangeSensor); each one's direction in the body's "
+                    "frame (forward +X, left -Z) says which way it pushes"),
+          number(kSpeed, 0.2, "m/s", "cruise speed when nothing is in range", Range::NonNegative),
+          number(kTurnRate, 1.5, "rad/s", "largest angular velocity", Range::NonNegative), period},
+         {},
+         "Braitenberg-style: slows down and turns away from what its range sensors see (docs/sensors.md)."});
+  r.add({"RCWallFollower",
+         Family::Controller,
+         int(ControllerKind::WallFollower),
+         {componentParam(kMotion, {Family::Controller}, "", "motion control to steer (Ref, RC2DMotionControl)"),
+          componentParam(kScanner, {Family::Periphery}, "",
+                         "laser scanner on the robot's body, upright, covering the wall's side and the front (Ref, "
+                         "RCLaserScanner)"),
+          enumParam(kSideParam, ValueType::Enum, &kSide, 0, "the side the wall is kept on"),
+          number(kDistance, 0.3, "m", "distance to keep between the scanner and the wall", Range::Positive),
+          number(kSpeed, 0.2, "m/s", "forward speed along a straight wall", Range::Positive),
+          number(kTurnRate, 1.0, "rad/s", "largest angular velocity", Range::Positive), period},
+         {},
+         "Follows a wall on one side at a set distance, turning at corners (docs/sensors.md)."});
 }
 
 PluginHost::~PluginHost() = default;
@@ -352,6 +414,31 @@ void lowerController(CompileContext& ctx, const Component& c) {
       if (!parseGoal(ctx, c, &d.goal_x, &d.goal_z)) ok = false;
       if (d.target < 0 || d.body < 0) ok = false;
       break;
+    case ControllerKind::ObstacleAvoider: {
+      d.kind = ControllerDef::ObstacleAvoider;
+      d.period = c.get(kPeriod);
+      d.speed = c.get(kSpeed);
+      d.turn_rate = c.get(kTurnRate);
+      d.target = motionControlOf(ctx, c, kMotion);
+      const std::vector<Link>& sensors = c.get(kSensors);
+      if (sensors.empty()) ctx.error(c, "parameter 'Sensors' needs at least one Ref to an RCRangeSensor");
+      for (const Link& l : sensors) d.sensors.push_back(sensorLinkOf(ctx, c, l, kSensors.name, "RCRangeSensor"));
+      if (d.target < 0 || sensors.empty() || std::count(d.sensors.begin(), d.sensors.end(), -1)) ok = false;
+      break;
+    }
+    case ControllerKind::WallFollower: {
+      d.kind = ControllerDef::WallFollower;
+      d.period = c.get(kPeriod);
+      d.speed = c.get(kSpeed);
+      d.turn_rate = c.get(kTurnRate);
+      d.wall_distance = c.get(kDistance);
+      d.side = c.get(kSideParam) == 0 ? 1 : -1;
+      d.target = motionControlOf(ctx, c, kMotion);
+      const Component* t = target(ctx, c, kScanner, "RCLaserScanner");
+      d.sensors.push_back(t ? sensorLinkOf(ctx, c, c.get(kScanner), kScanner.name, "RCLaserScanner") : -1);
+      if (d.target < 0 || d.sensors[0] < 0) ok = false;
+      break;
+    }
   }
   if (!ok) return;
   ctx.controller_index[ci] = static_cast<int>(ctx.model.controllers.size());

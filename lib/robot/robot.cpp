@@ -173,6 +173,12 @@ std::vector<std::unique_ptr<Party>> robotParties(const Model& model) {
       case ControllerDef::GoToPoint:
         out[i] = robot::makeGoToPoint(c, motion[static_cast<size_t>(c.target)]);
         break;
+      case ControllerDef::ObstacleAvoider:
+        out[i] = robot::makeObstacleAvoider(c, model, motion[static_cast<size_t>(c.target)]);
+        break;
+      case ControllerDef::WallFollower:
+        out[i] = robot::makeWallFollower(c, model, motion[static_cast<size_t>(c.target)]);
+        break;
     }
   }
   for (size_t i = 0; i < out.size(); ++i) {

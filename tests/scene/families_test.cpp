@@ -44,7 +44,8 @@ std::string driveConstruction(const std::string& key, const std::string& qkey, c
          "<RCGenericVelControlledDrive Key=\"V\"><Joint Ref=\"" +
          qkey +
          ".H\"/></RCGenericVelControlledDrive>"
-         "<RCProximitySensor Key=\"P\"><Geom><RCSphereGeom/></Geom></RCProximitySensor>" +
+         "<RCProximitySensor Key=\"P\"><Geom><RCSphereGeom/></Geom></RCProximitySensor>"
+         "<RCRangeSensor Key=\"R\"/><RCLaserScanner Key=\"L\"/>" +
          more_children + "</ChildList></RCConstruction>";
 }
 
@@ -86,6 +87,8 @@ std::string element(const TypeSpec& t, const std::string& construction_key) {
       if (has("Body")) p += "<Body Ref=\"Bot.C.H.Wheel\"/>";
       if (has("Motion")) p += "<Motion Ref=\"Bot.M\"/>";
       if (has("Sensor")) p += "<Sensor Ref=\"Bot.C.P\"/>";
+      if (has("Sensors")) p += "<Sensors><Sensor Ref=\"Bot.C.R\"/></Sensors>";
+      if (has("Scanner")) p += "<Scanner Ref=\"Bot.C.L\"/>";
       break;
     case Family::Camera:
       if (has("Body")) p += "<Body Ref=\"Ball\"/>";

@@ -178,4 +178,35 @@ int galleryAfterGather(const SweepArgs& a, const Common& common, int gathered);
 /// values: `sweep run --html` and `sweep gather --html`. The exit status.
 int sweepCasePage(const SweepCase& c, const std::string& manifest, const std::string& dir, const Common& common);
 
+/// Every command's arguments and its CLI11 subcommand (command_line.cpp): what main parses,
+/// checks and dispatches.
+struct Invocation {
+  Common common;
+  RunArgs run;
+  std::string check_scene;
+  std::vector<std::string> check_sets;
+  double check_dt = 0;
+  std::string dump_scene, dump_format = "xml";
+  std::vector<std::string> dump_sets;
+  bool markdown = false;
+  std::string types_only;
+  CompareArgs compare;
+  BatchArgs batch;
+  PlotArgs plot;
+  SweepArgs sweep;
+  RenderArgs render;
+  ViewPageArgs view;
+  std::string info_gl;
+  struct {
+    CLI::App *run = nullptr, *check = nullptr, *dump = nullptr, *types = nullptr, *compare = nullptr, *batch = nullptr,
+             *plot = nullptr, *sweep = nullptr, *render = nullptr, *view = nullptr, *info = nullptr;
+  } cmd;
+};
+/// Adds every command and its options to `app`, bound to `in`.
+void defineCommands(CLI::App& app, Invocation& in);
+/// The files the parsed command writes (checked against --log-file before anything starts).
+std::vector<NamedPath> commandOutputs(const Invocation& in);
+/// Runs the parsed command; its exit status.
+int dispatch(Invocation& in, Registry& registry);
+
 }  // namespace simbob::cli

@@ -158,7 +158,10 @@ void drawFallback(const ViewArgs& v, const Model& model, RenderOptions* o) {
   g_log.info("no body has a model: drawing the collision shapes (--draw geoms; --draw models for the models alone)");
 }
 
-int cmdRender(const RenderArgs& a, const Common& common) {
+namespace {
+
+// The still's arguments: a .png name, --at and --dt in range. 0, or 64 (reported).
+int renderArgsProblem(const RenderArgs& a) {
   {
     // A still is PNG bytes: a name that says otherwise is refused, as `plot` refuses its formats.
     std::string ext = std::filesystem::path(a.out).extension().string();
@@ -179,6 +182,46 @@ int cmdRender(const RenderArgs& a, const Common& common) {
     g_log.error({ErrorKind::InvalidInput, {}, "--dt must be between 1e-9 and 1e9 s, got " + formatNumber(a.dt)});
     return kExitUsage;
   }
+  return 0;
+}
+
+// Simulates up to --at with the controllers acting, as `run` would: a Simulation whose parties
+// (after the scene's) are the frames a recording would follow, then the still. 0, or the exit
+// status (reported).
+int simulateTo(const RenderArgs& a, const Model& model, const RenderOptions& ro, Renderer& renderer,
+               std::vector<Transform>* poses) {
+  // Simulate up to T with the controllers acting, as `run` would: a Simulation whose
+  // parties (after the scene's) are the frames a recording would follow, then the still.
+  catchStopSignals();
+  SimulationOptions so;
+  so.duration = a.at;
+  so.dt = a.dt;
+  so.seed = a.seed;
+  so.stop = &g_stop;
+  Diagnostics sd;
+  std::unique_ptr<Simulation> sim = Simulation::fromModel(model, so, sd);
+  if (!sim) return report(sd, false);
+  const std::optional<SimTime> at = toSimTime(a.at);
+  Still still(at ? *at : kNever, model.bodies.size(), ro.draw_sensors ? &model : nullptr);
+  Follower follower(renderer, a.view.fps, at ? *at : kNever, toSimTime(model.settings.min_time_step).value_or(0),
+                    model.bodies.size());
+  sim->addParty(follower);
+  sim->addParty(still);
+  const RunResult r = sim->runToEnd();
+  if (r.status != RunStatus::Completed || !still.taken()) {
+    g_log.error(r.error.message.empty() ? Error{ErrorKind::Internal, {}, "the run ended before --at"} : r.error);
+    if (r.status == RunStatus::Interrupted) return stopExitCode();
+    return exitCodeFor(r.error.kind);
+  }
+  *poses = still.poses();
+  renderer.setSensorRays(still.rays());
+  return 0;
+}
+
+}  // namespace
+
+int cmdRender(const RenderArgs& a, const Common& common) {
+  if (int c = renderArgsProblem(a)) return c;
   RenderOptions ro;
   if (int c = renderOptions(a.view, common, &ro)) return c;
   std::vector<Override> overrides;
@@ -205,33 +248,8 @@ int cmdRender(const RenderArgs& a, const Common& common) {
     return exitCodeFor(err.kind);
   }
   std::vector<Transform> poses = initialPoses(model);
-  if (a.at > 0 || ro.draw_sensors) {  // the rays need the readings: a world at T
-    // Simulate up to T with the controllers acting, as `run` would: a Simulation whose
-    // parties (after the scene's) are the frames a recording would follow, then the still.
-    catchStopSignals();
-    SimulationOptions so;
-    so.duration = a.at;
-    so.dt = a.dt;
-    so.seed = a.seed;
-    so.stop = &g_stop;
-    Diagnostics sd;
-    std::unique_ptr<Simulation> sim = Simulation::fromModel(model, so, sd);
-    if (!sim) return report(sd, false);
-    const std::optional<SimTime> at = toSimTime(a.at);
-    Still still(at ? *at : kNever, model.bodies.size(), ro.draw_sensors ? &model : nullptr);
-    Follower follower(*renderer, a.view.fps, at ? *at : kNever, toSimTime(model.settings.min_time_step).value_or(0),
-                      model.bodies.size());
-    sim->addParty(follower);
-    sim->addParty(still);
-    const RunResult r = sim->runToEnd();
-    if (r.status != RunStatus::Completed || !still.taken()) {
-      g_log.error(r.error.message.empty() ? Error{ErrorKind::Internal, {}, "the run ended before --at"} : r.error);
-      if (r.status == RunStatus::Interrupted) return stopExitCode();
-      return exitCodeFor(r.error.kind);
-    }
-    poses = still.poses();
-    renderer->setSensorRays(still.rays());
-  }
+  if (a.at > 0 || ro.draw_sensors)  // the rays need the readings: a world at T
+    if (int c = simulateTo(a, model, ro, *renderer, &poses)) return c;
   Image img;
   if (const Error* e = renderer->render(poses, a.at, &img)) {
     g_log.error(*e);

@@ -151,7 +151,7 @@ bool Simulation::start() {
     parties.push_back(sampler_.get());
   }
   for (SocketDef& d : model_.sockets) d.seed = opts_.seed;  // SIMBOB_SEED of a started controller
-  if (cameras_) parties.push_back(cameras_.get());  // before the controllers: they read its images
+  if (cameras_) parties.push_back(cameras_.get());          // before the controllers: they read its images
   robot_ = robotParties(model_);
   for (auto& p : robot_) parties.push_back(p.get());
   parties.insert(parties.end(), extra_.begin(), extra_.end());

@@ -27,7 +27,9 @@ import time
 
 sys.dont_write_bytecode = True
 from selenium import webdriver  # noqa: E402
-from selenium.webdriver.chrome.service import Service  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'tests', 'view'))
+from chromedriver import LocalService  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SIMBOB = sys.argv[1] if len(sys.argv) > 1 else os.path.join(HERE, '..', 'build', 'simbob')
@@ -53,7 +55,7 @@ def browser():
               '--enable-unsafe-swiftshader', '--window-size=1000,700', '--host-resolver-rules=MAP * ~NOTFOUND',
               '--proxy-server=127.0.0.1:9']:
         o.add_argument(a)
-    return webdriver.Chrome(service=Service('/usr/bin/chromedriver'), options=o)
+    return webdriver.Chrome(service=LocalService(), options=o)
 
 
 def open_time(d, page, fragment=''):

@@ -50,3 +50,13 @@ if [ ${#missing[@]} -gt 0 ]; then
   $SUDO apt-get update -qq
   $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
+
+# The browser tests: chromedriver reaches Chromium's DevTools at "localhost". Every Debian install
+# maps it in /etc/hosts; a minimal chroot or container may have no /etc/hosts at all. Then the
+# standard line is added (nothing else changes, and nothing listens beyond 127.0.0.1).
+if [ "${1:-}" = test ] && ! getent hosts localhost >/dev/null; then
+  echo "simbob: localhost does not resolve; adding '127.0.0.1 localhost' to /etc/hosts" >&2
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  echo "127.0.0.1 localhost" | $SUDO tee -a /etc/hosts >/dev/null
+fi

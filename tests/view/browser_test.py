@@ -31,7 +31,8 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', 'cli'))
 from png_pixels import read_png  # noqa: E402
 
 from selenium import webdriver  # noqa: E402
-from selenium.webdriver.chrome.service import Service  # noqa: E402
+
+from chromedriver import LocalService  # noqa: E402
 
 SIMBOB, REPO, CASE, WORK = sys.argv[1:5]
 os.makedirs(WORK, exist_ok=True)
@@ -62,7 +63,7 @@ def browser():
               '--proxy-server=127.0.0.1:9', '--disable-background-networking']:
         o.add_argument(a)
     o.set_capability('goog:loggingPrefs', {'browser': 'ALL'})
-    d = webdriver.Chrome(service=Service('/usr/bin/chromedriver'), options=o)
+    d = webdriver.Chrome(service=LocalService(), options=o)
     d.execute_cdp_cmd('Network.enable', {})
     d.execute_cdp_cmd('Network.emulateNetworkConditions',
                       {'offline': True, 'latency': 0, 'downloadThroughput': 0, 'uploadThroughput': 0})

@@ -58,7 +58,7 @@ for _ in range(100):
     h.update(sim.poses().tobytes())
 print(simbob.__file__)
 print(simbob.__version__, sim.time, h.hexdigest())'
-  expect_status 0 env -u PYTHONPATH /usr/bin/python3 -s -c "$PYRUN" "$BUILD/python" "$SCENES/$SCENE.xml"
+  expect_status 0 env -u PYTHONPATH ${SIMBOB_ASAN_RUNTIME:+LD_PRELOAD=$SIMBOB_ASAN_RUNTIME ASAN_OPTIONS=detect_leaks=0} /usr/bin/python3 -s -c "$PYRUN" "$BUILD/python" "$SCENES/$SCENE.xml"
   py_reference=$(tail -n 1 "$LAST_OUT")
   say "build tree module: $py_reference"
 else
@@ -72,7 +72,7 @@ expect_installed_python() {
   for f in "${PYFILES[@]}"; do
     [[ -f "$dist/simbob/$f" ]] || fail "no $dist/simbob/$f"
   done
-  expect_status 0 env -u PYTHONPATH /usr/bin/python3 -s -c "$PYRUN" "$dist" "$SCENES/$SCENE.xml"
+  expect_status 0 env -u PYTHONPATH ${SIMBOB_ASAN_RUNTIME:+LD_PRELOAD=$SIMBOB_ASAN_RUNTIME ASAN_OPTIONS=detect_leaks=0} /usr/bin/python3 -s -c "$PYRUN" "$dist" "$SCENES/$SCENE.xml"
   expect_eq "simbob imported from" "$(head -n 1 "$LAST_OUT")" "$dist/simbob/__init__.py"
   expect_eq "installed module's run" "$(tail -n 1 "$LAST_OUT")" "$py_reference"
 }

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "simbob/transform.h"
 #include "world_impl.h"
@@ -22,22 +23,25 @@ namespace simbob {
 
 namespace {
 
-struct RayProbe {
-  dGeomID ray;
+struct ReachProbe {
+  dGeomID reach;
   dBodyID own;
-  double nearest = std::numeric_limits<double>::infinity();
+  std::vector<dGeomID>* out;
 };
 
-void rayPair(void* data, dGeomID a, dGeomID b) {
-  RayProbe& p = *static_cast<RayProbe*>(data);
-  dGeomID other = a == p.ray ? b : a;
+void reachPair(void* data, dGeomID a, dGeomID b) {
+  ReachProbe& p = *static_cast<ReachProbe*>(data);
+  dGeomID other = a == p.reach ? b : a;
   dBodyID body = dGeomGetBody(other);
   // As for contacts and proximity sensors: not its own body (for a static sensor: not the static
   // geoms), not the bodies joined to it.
   if (body == p.own) return;
   if (p.own && body && dAreConnected(p.own, body)) return;
-  dContactGeom c;
-  if (dCollide(p.ray, other, 1, &c, sizeof(dContactGeom)) > 0 && c.depth < p.nearest) p.nearest = c.depth;
+  p.out->push_back(other);
+}
+
+bool disjoint(const dReal a[6], const dReal b[6]) {
+  return a[0] > b[1] || a[1] < b[0] || a[2] > b[3] || a[3] < b[2] || a[4] > b[5] || a[5] < b[4];
 }
 
 /// One ray's reading from its raw distance (+infinity: nothing hit).
@@ -51,7 +55,22 @@ double rayReading(SensorState& s, double d) {
 
 }  // namespace
 
-double castRay(WorldImpl& im, dBodyID own, const Vec3& origin, const Vec3& dir, double length) {
+// Why the candidates: ODE's dSpaceCollide2 of one geom against a hash space tests every geom of
+// the space, so a scanner of 36 rays among 800 geoms tested 28,800 bounding boxes per scan. Its
+// rays now test only the geoms within its reach, gathered by one dSpaceCollide2 per scan. The
+// reading is the same: every geom a ray can hit is a candidate, and the nearest of the hits does
+// not depend on the order they are found in.
+void gatherRayCandidates(WorldImpl& im, dBodyID own, const Vec3& origin, double reach) {
+  if (!im.rayReach) im.rayReach = dCreateBox(nullptr, 1, 1, 1);  // axis-aligned: never rotated
+  const double half = reach * (1 + 1e-9) + 1e-9;                 // a margin for the rounding of a ray's end
+  dGeomBoxSetLengths(im.rayReach, 2 * half, 2 * half, 2 * half);
+  dGeomSetPosition(im.rayReach, origin[0], origin[1], origin[2]);
+  im.rayCandidates.clear();
+  ReachProbe p{im.rayReach, own, &im.rayCandidates};
+  dSpaceCollide2(im.rayReach, reinterpret_cast<dGeomID>(im.space), &p, &reachPair);
+}
+
+double castRay(WorldImpl& im, const Vec3& origin, const Vec3& dir, double length) {
   if (!im.ray) {
     im.ray = dCreateRay(nullptr, length);
     dGeomRaySetFirstContact(im.ray, 0);  // not the first contact found: the nearest
@@ -60,23 +79,32 @@ double castRay(WorldImpl& im, dBodyID own, const Vec3& origin, const Vec3& dir, 
   }
   dGeomRaySetLength(im.ray, length);
   dGeomRaySet(im.ray, origin[0], origin[1], origin[2], dir[0], dir[1], dir[2]);
-  RayProbe p{im.ray, own};
-  dSpaceCollide2(im.ray, reinterpret_cast<dGeomID>(im.space), &p, &rayPair);
-  return p.nearest <= length ? p.nearest : std::numeric_limits<double>::infinity();
+  dReal rayBox[6];
+  dGeomGetAABB(im.ray, rayBox);
+  double nearest = std::numeric_limits<double>::infinity();
+  for (dGeomID g : im.rayCandidates) {
+    dReal box[6];
+    dGeomGetAABB(g, box);
+    if (disjoint(rayBox, box)) continue;
+    dContactGeom c;
+    if (dCollide(im.ray, g, 1, &c, sizeof(dContactGeom)) > 0 && c.depth < nearest) nearest = c.depth;
+  }
+  return nearest <= length ? nearest : std::numeric_limits<double>::infinity();
 }
 
 void readRays(WorldImpl& im, SensorState& s) {
   const SensorDef& d = s.def;
   const Transform f = sensorFrame(im, d);
   dBodyID own = d.body >= 0 ? im.bodies[static_cast<size_t>(d.body)] : nullptr;
+  gatherRayCandidates(im, own, f.p, d.max_range);
   if (d.kind == SensorKind::Range) {
-    s.reading[0] = rayReading(s, castRay(im, own, f.p, rotate(f.q, Vec3{0, 0, -1}), d.max_range));
+    s.reading[0] = rayReading(s, castRay(im, f.p, rotate(f.q, Vec3{0, 0, -1}), d.max_range));
     return;
   }
   for (int k = 0; k < d.rays; ++k) {
     const double a = scannerRayAngle(d, k);
     const Vec3 local{-std::sin(a), 0, -std::cos(a)};
-    s.reading[static_cast<size_t>(k)] = rayReading(s, castRay(im, own, f.p, rotate(f.q, local), d.max_range));
+    s.reading[static_cast<size_t>(k)] = rayReading(s, castRay(im, f.p, rotate(f.q, local), d.max_range));
   }
 }
 

@@ -92,6 +92,7 @@ WorldImpl::~WorldImpl() {
   if (space) dSpaceDestroy(space);  // cleanup mode is on by default: destroys its geoms
   if (sensorSpace) dSpaceDestroy(sensorSpace);
   if (ray) dGeomDestroy(ray);
+  if (rayReach) dGeomDestroy(rayReach);
   if (world) dWorldDestroy(world);
 }
 

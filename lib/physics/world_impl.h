@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "simbob/physics.h"
+#include "broadphase.h"
 #include "sensor_noise.h"
 
 namespace simbob {
@@ -91,7 +92,10 @@ struct WorldImpl {
   std::vector<JointInfo> jointInfo;
   std::vector<ActuatorState> actuators;
   std::vector<SensorState> sensors;
+  HashSpacePairs hashPairs;             ///< broadphase.h: the default space's pairs, faster
   dGeomID ray = nullptr;                ///< rays.cpp: the one ray of range sensors and scanners, in no space
+  dGeomID rayReach = nullptr;           ///< rays.cpp: a box about a sensor's reach, in no space
+  std::vector<dGeomID> rayCandidates;   ///< rays.cpp: the geoms within a sensor's reach
   Vec3 gravity{0, 0, 0};                ///< m/s^2 (imu.cpp: specific force = acceleration - gravity)
   int64_t time_ns = 0;                  ///< simulated time: the sum of the steps taken (ns)
   std::vector<dContact> contactBuffer;  ///< sized max_contacts once; reused by every collision
@@ -162,10 +166,15 @@ void updateSensors(WorldImpl& im, double h);
 Transform sensorFrame(const WorldImpl& im, const SensorDef& d);
 
 // rays.cpp
-/// Distance (m) along the ray from `origin` in unit direction `dir` to the first geom of the
-/// collision space that belongs to neither `own` nor a body joined to it (null `own`: static
-/// geoms are skipped), or +infinity when nothing is hit within `length`.
-double castRay(WorldImpl& im, dBodyID own, const Vec3& origin, const Vec3& dir, double length);
+/// Collects in im.rayCandidates the geoms of the collision space whose bounding boxes meet the
+/// cube of half side `reach` about `origin` and that belong to neither `own` nor a body joined
+/// to it (null `own`: static geoms are skipped): every geom a ray of length <= reach from
+/// `origin` can hit.
+void gatherRayCandidates(WorldImpl& im, dBodyID own, const Vec3& origin, double reach);
+/// Distance (m) along the ray from `origin` in unit direction `dir` to the nearest of
+/// im.rayCandidates (gathered for this origin and a reach >= `length`), or +infinity when
+/// nothing is hit within `length`.
+double castRay(WorldImpl& im, const Vec3& origin, const Vec3& dir, double length);
 /// Range sensor and laser scanner readings (SensorKind::Range, Scanner) into s.reading.
 void readRays(WorldImpl& im, SensorState& s);
 

@@ -14,7 +14,9 @@
  * sb_connect negotiates the newest version both sides speak (3); keys are unescaped on reading
  * and escaped on writing (%XX), so they are plain C strings (UTF-8) here. Numbers are written with
  * %.17g, which reads back to the same double. Errors: -1 with the reason in c.error (simbob's
- * 'error MESSAGE' included). Limits: SB_MAX entries of each kind, SB_VALUES numbers a line. */
+ * 'error MESSAGE' included). Limits: SB_MAX entries of each kind, SB_VALUES numbers a line,
+ * SB_CAMERAS camera sensors. Camera images (version 3, after sb_subscribe(c, "cameras", ...)):
+ * sb_image_of; their bytes live in buffers this file allocates and sb_close frees. */
 #ifndef _POSIX_C_SOURCE
 #define _POSIX_C_SOURCE 200809L /* clock_gettime, nanosleep */
 #endif
@@ -34,6 +36,7 @@
 #define SB_KEY 256    /* bytes of a key, its terminating 0 included */
 #define SB_VALUES 64  /* numbers on one state line */
 #define SB_LINE 4097  /* a line and its 0 */
+#define SB_CAMERAS 16 /* camera sensors */
 
 typedef struct {
   char key[SB_KEY];
@@ -42,6 +45,15 @@ typedef struct {
   double v[SB_VALUES];
   int present; /* in the last state block (subscriptions leave some out) */
 } sb_entry;
+
+typedef struct {
+  char key[SB_KEY];
+  int width, height;  /* pixels, from the hello */
+  double period;      /* s between images */
+  unsigned char* rgb; /* the last image: RGB, rows top first, 3 bytes a pixel (malloc'd) */
+  size_t size, cap;   /* bytes in rgb; bytes allocated */
+  int present;        /* in the last state block (only cameras subscribed to are) */
+} sb_image;
 
 typedef struct {
   int fd;
@@ -53,6 +65,8 @@ typedef struct {
   double period, t, end_time;
   sb_entry actuators[SB_MAX], motions[SB_MAX], joints[SB_MAX], sensors[SB_MAX], bodies[SB_MAX];
   int n_actuators, n_motions, n_joints, n_sensors, n_bodies;
+  sb_image cameras[SB_CAMERAS];
+  int n_cameras;
   int first_pending; /* the state block read while connecting has not been returned yet */
   char out[1 << 16];
   size_t out_len;
@@ -137,6 +151,27 @@ static inline int sb_words(char* line, char** w, int max) {
   return n;
 }
 
+/* Reads exactly n bytes (an image's block) into out; out NULL: reads and drops them. */
+static inline int sb_bytes(sb_client* c, unsigned char* out, size_t n) {
+  while (n > 0) {
+    if (c->len == 0) {
+      ssize_t r = recv(c->fd, c->in, sizeof c->in, 0);
+      if (r < 0 && errno == EINTR) continue;
+      if (r <= 0) return sb_fail(c, "simbob closed the connection");
+      c->len = (size_t)r;
+    }
+    size_t k = n < c->len ? n : c->len;
+    if (out) {
+      memcpy(out, c->in, k);
+      out += k;
+    }
+    memmove(c->in, c->in + k, c->len - k);
+    c->len -= k;
+    n -= k;
+  }
+  return 0;
+}
+
 static inline int sb_send(sb_client* c, const char* text, size_t n) {
   while (n > 0) {
     ssize_t r = send(c->fd, text, n, MSG_NOSIGNAL);
@@ -175,6 +210,8 @@ static inline int sb_hello(sb_client* c) {
   c->n_offered = 1;
   c->offered[0] = c->version;
   c->n_actuators = c->n_motions = c->n_joints = c->n_sensors = c->n_bodies = 0;
+  for (int i = 0; i < c->n_cameras; ++i) free(c->cameras[i].rgb);
+  c->n_cameras = 0;
   for (;;) {
     if (sb_line(c, line) != 0) return -1;
     n = sb_words(line, w, 8);
@@ -193,6 +230,13 @@ static inline int sb_hello(sb_client* c) {
       sb_add(c->sensors, &c->n_sensors, w[1], n >= 4 ? w[2] : "proximity", n >= 4 ? atoi(w[3]) : 1);
     } else if (strcmp(w[0], "body") == 0) {
       sb_add(c->bodies, &c->n_bodies, w[1], "body", c->version >= 3 ? 13 : 7);
+    } else if (strcmp(w[0], "camera") == 0 && n >= 5 && c->n_cameras < SB_CAMERAS) {
+      sb_image* im = &c->cameras[c->n_cameras++];
+      memset(im, 0, sizeof *im);
+      sb_unescape(w[1], im->key, sizeof im->key);
+      im->width = atoi(w[2]);
+      im->height = atoi(w[3]);
+      im->period = strtod(w[4], NULL);
     }
   }
 }
@@ -216,12 +260,33 @@ static inline int sb_read_state(sb_client* c) {
   int counts[3] = {c->n_joints, c->n_sensors, c->n_bodies};
   for (int k = 0; k < 3; ++k)
     for (int i = 0; i < counts[k]; ++i) lists[k][i].present = 0;
+  for (int i = 0; i < c->n_cameras; ++i) c->cameras[i].present = 0;
   for (;;) {
     if (sb_line(c, line) != 0) return -1;
     n = sb_words(line, w, SB_VALUES + 4);
     if (n == 1 && strcmp(w[0], "end") == 0) return 1;
     if (n < 2) continue;
     sb_unescape(w[1], key, sizeof key);
+    if (strcmp(w[0], "image") == 0 && n >= 5) { /* N bytes of RGB follow the line */
+      size_t size = (size_t)strtoull(w[4], NULL, 10);
+      sb_image* im = NULL;
+      for (int i = 0; i < c->n_cameras; ++i)
+        if (strcmp(c->cameras[i].key, key) == 0) im = &c->cameras[i];
+      if (im && size > im->cap) {
+        unsigned char* grown = (unsigned char*)realloc(im->rgb, size);
+        if (!grown) return sb_fail(c, "no memory for an image of %zu bytes", size);
+        im->rgb = grown;
+        im->cap = size;
+      }
+      if (sb_bytes(c, im ? im->rgb : NULL, size) != 0) return -1;
+      if (im) {
+        im->width = atoi(w[2]);
+        im->height = atoi(w[3]);
+        im->size = size;
+        im->present = 1;
+      }
+      continue;
+    }
     sb_entry* e = NULL;
     if (strcmp(w[0], "joint") == 0) e = sb_find(c->joints, c->n_joints, key);
     if (strcmp(w[0], "sensor") == 0) e = sb_find(c->sensors, c->n_sensors, key);
@@ -310,6 +375,19 @@ static inline const double* sb_sensor(sb_client* c, const char* key, int* n) {
   return e && e->present ? e->v : NULL;
 }
 
+/* The last image of the camera sensor with this key (width, height, RGB bytes rows top first), or
+ * NULL when the last state block had none (subscribe to it first: sb_subscribe "cameras"). */
+static inline const unsigned char* sb_image_of(sb_client* c, const char* key, int* width, int* height) {
+  for (int i = 0; i < c->n_cameras; ++i) {
+    sb_image* im = &c->cameras[i];
+    if (strcmp(im->key, key) != 0 || !im->present) continue;
+    if (width) *width = im->width;
+    if (height) *height = im->height;
+    return im->rgb;
+  }
+  return NULL;
+}
+
 static inline void sb_append(sb_client* c, const char* text) {
   size_t n = strlen(text);
   if (c->out_len + n < sizeof c->out) {
@@ -331,7 +409,8 @@ static inline void sb_set(sb_client* c, const char* key, int n, const double* v)
   sb_append(c, "\n");
 }
 
-/* Buffers 'subscribe KIND KEY...' (version 3; kind "bodies", "joints" or "sensors"; n = -1: all). */
+/* Buffers 'subscribe KIND KEY...' (version 3; kind "bodies", "joints", "sensors" or "cameras";
+ * n = -1: all). */
 static inline void sb_subscribe(sb_client* c, const char* kind, int n, const char* const* keys) {
   char word[3 * SB_KEY];
   sb_append(c, "subscribe ");
@@ -357,4 +436,9 @@ static inline int sb_step(sb_client* c) { return sb_reply(c, 0); }
 static inline void sb_close(sb_client* c) {
   if (c->fd >= 0) close(c->fd);
   c->fd = -1;
+  for (int i = 0; i < c->n_cameras; ++i) {
+    free(c->cameras[i].rgb);
+    c->cameras[i].rgb = NULL;
+    c->cameras[i].cap = c->cameras[i].size = 0;
+  }
 }

@@ -4,7 +4,10 @@
 # drive_two_wheel example, started by simbob as the Controller -- (1) drives socket_robot.xml
 # to golden/socket_robot.csv byte for byte with the same commands, and (2) negotiates version 3,
 # reads keys with a space, a comma and UTF-8, subscribes to one body and no joints, and reads
-# that body's pose and velocities: the same printout, line for line, for every client.
+# that body's pose and velocities: the same printout, line for line, for every client; (3) each
+# client's maze follower (examples/clients/maze_follower.py and .c, the same law with the same
+# float64 operations), started by simbob, drives scenes/maze_socket.xml to golden/maze_socket.csv
+# byte for byte, reading the laser scanner over version 3.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 cli_setup "$@"
@@ -49,5 +52,21 @@ for client in "${CLIENTS[@]}"; do
     --controller "$KEY=${COMMAND[$client]} probe"
   diff probe.expected "probe_$client.controller.log" >probe.diff ||
     fail "$client: the probe's printout differs: $(cat probe.diff)"
+done
+
+check "the C maze follower builds as C99 without warnings"
+${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror -O2 -ffp-contract=off -o maze_follower \
+  "$EX/maze_follower.c" -lm || fail "examples/clients/maze_follower.c does not build"
+declare -A FOLLOWER=(
+  [python]="/usr/bin/python3 $EX/maze_follower.py"
+  [c]="$WORK/maze_follower"
+)
+for client in "${CLIENTS[@]}"; do
+  check "$client client: maze_socket.xml to its golden byte for byte"
+  expect_status 0 "$SIMBOB" run "$SCENES/maze_socket.xml" --duration 10 --out "maze_$client.csv" -q \
+    --controller "$KEY=${FOLLOWER[$client]}"
+  expect_same_file "maze_$client.csv" "$REPO/golden/maze_socket.csv"
+  expect_match "$client: the follower ran to the end" "maze_$client.controller.log" \
+    "the run ended at t=10 s after 201 exchanges"
 done
 say "ok"

@@ -32,11 +32,24 @@
 #include <time.h>
 #include <unistd.h>
 
-#define SB_MAX 256    /* bodies, joints, sensors, actuators, motions */
-#define SB_KEY 256    /* bytes of a key, its terminating 0 included */
-#define SB_VALUES 64  /* numbers on one state line */
-#define SB_LINE 4097  /* a line and its 0 */
+/* Limits; define any of them before the #include to change it (a scanner of 360 rays needs
+ * SB_VALUES 360 or more). simbob's lines have no length limit: one carries a whole scanner. A
+ * state line beyond SB_VALUES numbers or SB_LINE bytes is an error (-1), never cut short. */
+#ifndef SB_MAX
+#define SB_MAX 256 /* bodies, joints, sensors, actuators, motions */
+#endif
+#ifndef SB_KEY
+#define SB_KEY 256 /* bytes of a key, its terminating 0 included */
+#endif
+#ifndef SB_VALUES
+#define SB_VALUES 64 /* numbers on one state line */
+#endif
+#ifndef SB_LINE
+#define SB_LINE (SB_VALUES * 25 + 3 * SB_KEY + 64) /* a line and its 0: room for SB_VALUES numbers */
+#endif
+#ifndef SB_CAMERAS
 #define SB_CAMERAS 16 /* camera sensors */
+#endif
 
 typedef struct {
   char key[SB_KEY];
@@ -57,7 +70,7 @@ typedef struct {
 
 typedef struct {
   int fd;
-  char in[1 << 16];
+  char in[SB_LINE > (1 << 16) ? SB_LINE : (1 << 16)];
   size_t len;
   int version;
   int offered[8], n_offered;
@@ -68,6 +81,7 @@ typedef struct {
   sb_image cameras[SB_CAMERAS];
   int n_cameras;
   int first_pending; /* the state block read while connecting has not been returned yet */
+  char line[SB_LINE]; /* the line being read */
   char out[1 << 16];
   size_t out_len;
   char error[SB_LINE + 64];
@@ -123,7 +137,7 @@ static inline int sb_line(sb_client* c, char* line) {
     char* nl = memchr(c->in, '\n', c->len);
     if (nl) {
       size_t n = (size_t)(nl - c->in);
-      if (n >= SB_LINE) return sb_fail(c, "simbob sent a line longer than %d bytes", SB_LINE - 1);
+      if (n >= SB_LINE) return sb_fail(c, "simbob sent a line longer than %d bytes (define SB_LINE larger)", SB_LINE - 1);
       memcpy(line, c->in, n);
       line[n] = 0;
       if (n > 0 && line[n - 1] == '\r') line[n - 1] = 0;
@@ -131,7 +145,7 @@ static inline int sb_line(sb_client* c, char* line) {
       c->len -= n + 1;
       return 0;
     }
-    if (c->len == sizeof c->in) return sb_fail(c, "simbob sent a line too long to read");
+    if (c->len == sizeof c->in) return sb_fail(c, "simbob sent a line longer than %d bytes (define SB_LINE larger)", (int)sizeof c->in);
     ssize_t r = recv(c->fd, c->in + c->len, sizeof c->in - c->len, 0);
     if (r < 0 && errno == EINTR) continue;
     if (r <= 0) return sb_fail(c, "simbob closed the connection");
@@ -199,8 +213,8 @@ static inline void sb_add(sb_entry* list, int* n, const char* word, const char* 
 }
 
 static inline int sb_hello(sb_client* c) {
-  char line[SB_LINE];
-  char* w[SB_VALUES + 4];
+  char* line = c->line;
+  char* w[8];
   if (sb_line(c, line) != 0) return -1;
   int n = sb_words(line, w, 8);
   if (n < 4 || strcmp(w[0], "simbob") != 0) return sb_fail(c, "not a simbob hello");
@@ -242,13 +256,14 @@ static inline int sb_hello(sb_client* c) {
 }
 
 static inline int sb_read_state(sb_client* c) {
-  char line[SB_LINE], key[SB_KEY];
-  char* w[SB_VALUES + 4];
+  char* line = c->line;
+  char key[SB_KEY];
+  char* w[SB_VALUES + 3];
   int n;
   for (;;) { /* up to 't' */
     if (sb_line(c, line) != 0) return -1;
     if (strncmp(line, "error ", 6) == 0) return sb_fail(c, "simbob says: %s", line + 6);
-    n = sb_words(line, w, SB_VALUES + 4);
+    n = sb_words(line, w, SB_VALUES + 3);
     if (n >= 2 && strcmp(w[0], "bye") == 0) {
       c->end_time = strtod(w[1], NULL);
       return 0;
@@ -263,8 +278,9 @@ static inline int sb_read_state(sb_client* c) {
   for (int i = 0; i < c->n_cameras; ++i) c->cameras[i].present = 0;
   for (;;) {
     if (sb_line(c, line) != 0) return -1;
-    n = sb_words(line, w, SB_VALUES + 4);
+    n = sb_words(line, w, SB_VALUES + 3);
     if (n == 1 && strcmp(w[0], "end") == 0) return 1;
+    if (n > SB_VALUES + 2) return sb_fail(c, "a '%s' line with more than %d numbers (define SB_VALUES larger)", w[0], SB_VALUES);
     if (n < 2) continue;
     sb_unescape(w[1], key, sizeof key);
     if (strcmp(w[0], "image") == 0 && n >= 5) { /* N bytes of RGB follow the line */
@@ -335,7 +351,8 @@ static inline int sb_connect_version(sb_client* c, int port, double wait, int ma
   for (int i = 0; i < c->n_offered; ++i)
     if (c->offered[i] > chosen && c->offered[i] <= max_version) chosen = c->offered[i];
   if (chosen > c->version) {
-    char text[64], line[SB_LINE];
+    char text[64];
+    char* line = c->line;
     int n = snprintf(text, sizeof text, "version %d\n", chosen);
     if (sb_send(c, text, (size_t)n) != 0) return -1;
     for (;;) { /* simbob's answer comes after the rest of what it had sent */

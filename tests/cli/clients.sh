@@ -7,7 +7,8 @@
 # that body's pose and velocities: the same printout, line for line, for every client; (3) each
 # client's maze follower (examples/clients/maze_follower.py and .c, the same law with the same
 # float64 operations), started by simbob, drives scenes/maze_socket.xml to golden/maze_socket.csv
-# byte for byte, reading the laser scanner over version 3.
+# byte for byte, reading the laser scanner over version 3, and, with a 360-ray scanner (a state
+# line of about 7 kB; the C client built with -DSB_VALUES=360), to the same bytes as each other.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 cli_setup "$@"
@@ -69,4 +70,16 @@ for client in "${CLIENTS[@]}"; do
   expect_match "$client: the follower ran to the end" "maze_$client.controller.log" \
     "the run ended at t=10 s after 201 exchanges"
 done
+
+check "a 360-ray scanner (one line of about 7 kB): both followers give the same trajectory bytes"
+sed 's|<Rays Value="36"/>|<Rays Value="360"/>|' "$SCENES/maze_socket.xml" >maze360.xml
+grep -q '<Rays Value="360"/>' maze360.xml || fail "maze360.xml has no 360-ray scanner"
+${CC:-cc} -std=c99 -Wall -Wextra -Wpedantic -Werror -O2 -ffp-contract=off -DSB_VALUES=360 -o maze_follower360 \
+  "$EX/maze_follower.c" -lm || fail "maze_follower.c does not build with -DSB_VALUES=360"
+expect_status 0 "$SIMBOB" run maze360.xml --duration 10 --out maze360_python.csv -q \
+  --controller "$KEY=${FOLLOWER[python]}"
+expect_status 0 "$SIMBOB" run maze360.xml --duration 10 --out maze360_c.csv -q --controller "$KEY=$WORK/maze_follower360"
+expect_match "c: the follower ran to the end" maze360_c.controller.log "the run ended at t=10 s after 201 exchanges"
+expect_same_file maze360_c.csv maze360_python.csv
+cmp -s maze360_c.csv "$REPO/golden/maze_socket.csv" && fail "360 rays drove the robot as 36 do: the scanner was not read"
 say "ok"

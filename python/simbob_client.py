@@ -7,8 +7,9 @@
             x = s.bodies["Bot.Cart.Chassis"][0]
             c.reply(sets=[("Bot.Motion", 0.2, 0.0)])
 
-It negotiates version 3 (versions=(2,) keeps version 2), escapes and unescapes keys, and
-raises SimbobError when simbob sends `error`. Numbers are written with repr(): the shortest text
+It negotiates version 3 (versions=(2,) keeps version 2), escapes and unescapes keys, reads
+camera images (reply(subscribe={"cameras": [key]}), then State.images), and raises SimbobError
+when simbob sends `error`. Numbers are written with repr(): the shortest text
 that reads back to the same double.
 """
 import os
@@ -51,13 +52,16 @@ def unescape_key(word):
 
 class State:
     """One exchange's state: t (s); joints {key: (position, velocity)}; sensors {key: [values]};
-    bodies {key: [x, y, z, qw, qx, qy, qz] (+ [vx, vy, vz, wx, wy, wz] in version 3)}."""
+    bodies {key: [x, y, z, qw, qx, qy, qz] (+ [vx, vy, vz, wx, wy, wz] in version 3)};
+    images {key: (width, height, rgb bytes)} of the cameras subscribed to (version 3; RGB, rows
+    top first, 3 bytes a pixel)."""
 
     def __init__(self, t):
         self.t = t
         self.joints = {}
         self.sensors = {}
         self.bodies = {}
+        self.images = {}
 
 
 class Client:
@@ -150,11 +154,14 @@ class Client:
                 s.sensors[key] = [float(v) for v in w[2:]]
             elif w[0] == "body" and len(w) >= 9:
                 s.bodies[key] = [float(v) for v in w[2:]]
+            elif w[0] == "image" and len(w) >= 5:
+                s.images[key] = (int(w[2]), int(w[3]), self._bytes(int(w[4])))
         return s
 
     def reply(self, sets=(), subscribe=None, done=False):
         """One reply in one write: `set` lines (key, value...), subscriptions ({kind: [keys] or
-        None for all}; version 3), then 'step' (or 'done')."""
+        None for all}, kind "bodies", "joints", "sensors" or "cameras"; version 3), then 'step'
+        (or 'done')."""
         text = []
         for kind, keys in (subscribe or {}).items():
             words = ["*"] if keys is None else [escape_key(k) for k in keys]
@@ -172,6 +179,7 @@ class Client:
         self.version, self.key, self.period = int(w[1]), unescape_key(w[2]), float(w[3])
         self.offered = [self.version]
         self.actuators, self.motions, self.joints, self.sensors, self.bodies = {}, [], {}, {}, []
+        self.cameras = {}  # version 3: {key: (width, height, period)}
         while (line := self._line()) != "end":
             w = line.split()
             if len(w) >= 2 and w[0] == "versions":
@@ -186,6 +194,8 @@ class Client:
                 self.sensors[unescape_key(w[1])] = (w[2], int(w[3])) if len(w) >= 4 else ("proximity", 1)
             elif len(w) >= 2 and w[0] == "body":
                 self.bodies.append(unescape_key(w[1]))
+            elif len(w) >= 5 and w[0] == "camera":
+                self.cameras[unescape_key(w[1])] = (int(w[2]), int(w[3]), float(w[4]))
 
     def _line(self):
         while b"\n" not in self.buf:
@@ -195,6 +205,16 @@ class Client:
             self.buf += chunk
         line, self.buf = self.buf.split(b"\n", 1)
         return line.rstrip(b"\r").decode("ascii")
+
+    def _bytes(self, n):
+        """Exactly n bytes (an image's block after its line)."""
+        while len(self.buf) < n:
+            chunk = self.sock.recv(max(65536, n - len(self.buf)))
+            if not chunk:
+                raise SimbobError("simbob closed the connection")
+            self.buf += chunk
+        data, self.buf = self.buf[:n], self.buf[n:]
+        return data
 
     def _send(self, text):
         self.sock.sendall(text.encode("ascii"))

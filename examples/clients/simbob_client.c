@@ -14,7 +14,9 @@
  * sb_connect negotiates the newest version both sides speak (3); keys are unescaped on reading
  * and escaped on writing (%XX), so they are plain C strings (UTF-8) here. Numbers are written with
  * %.17g, which reads back to the same double. Errors: -1 with the reason in c.error (simbob's
- * 'error MESSAGE' included). Limits: SB_MAX entries of each kind, SB_VALUES numbers a line. */
+ * 'error MESSAGE' included). Limits: SB_MAX entries of each kind, SB_VALUES numbers a line,
+ * SB_CAMERAS camera sensors. Camera images (version 3, after sb_subscribe(c, "cameras", ...)):
+ * sb_image_of; their bytes live in buffers this file allocates and sb_close frees. */
 #ifndef _POSIX_C_SOURCE
 #define _POSIX_C_SOURCE 200809L /* clock_gettime, nanosleep */
 #endif
@@ -30,10 +32,24 @@
 #include <time.h>
 #include <unistd.h>
 
-#define SB_MAX 256    /* bodies, joints, sensors, actuators, motions */
-#define SB_KEY 256    /* bytes of a key, its terminating 0 included */
-#define SB_VALUES 64  /* numbers on one state line */
-#define SB_LINE 4097  /* a line and its 0 */
+/* Limits; define any of them before the #include to change it (a scanner of 360 rays needs
+ * SB_VALUES 360 or more). simbob's lines have no length limit: one carries a whole scanner. A
+ * state line beyond SB_VALUES numbers or SB_LINE bytes is an error (-1), never cut short. */
+#ifndef SB_MAX
+#define SB_MAX 256 /* bodies, joints, sensors, actuators, motions */
+#endif
+#ifndef SB_KEY
+#define SB_KEY 256 /* bytes of a key, its terminating 0 included */
+#endif
+#ifndef SB_VALUES
+#define SB_VALUES 64 /* numbers on one state line */
+#endif
+#ifndef SB_LINE
+#define SB_LINE (SB_VALUES * 25 + 3 * SB_KEY + 64) /* a line and its 0: room for SB_VALUES numbers */
+#endif
+#ifndef SB_CAMERAS
+#define SB_CAMERAS 16 /* camera sensors */
+#endif
 
 typedef struct {
   char key[SB_KEY];
@@ -44,8 +60,17 @@ typedef struct {
 } sb_entry;
 
 typedef struct {
+  char key[SB_KEY];
+  int width, height;  /* pixels, from the hello */
+  double period;      /* s between images */
+  unsigned char* rgb; /* the last image: RGB, rows top first, 3 bytes a pixel (malloc'd) */
+  size_t size, cap;   /* bytes in rgb; bytes allocated */
+  int present;        /* in the last state block (only cameras subscribed to are) */
+} sb_image;
+
+typedef struct {
   int fd;
-  char in[1 << 16];
+  char in[SB_LINE > (1 << 16) ? SB_LINE : (1 << 16)];
   size_t len;
   int version;
   int offered[8], n_offered;
@@ -53,7 +78,10 @@ typedef struct {
   double period, t, end_time;
   sb_entry actuators[SB_MAX], motions[SB_MAX], joints[SB_MAX], sensors[SB_MAX], bodies[SB_MAX];
   int n_actuators, n_motions, n_joints, n_sensors, n_bodies;
+  sb_image cameras[SB_CAMERAS];
+  int n_cameras;
   int first_pending; /* the state block read while connecting has not been returned yet */
+  char line[SB_LINE]; /* the line being read */
   char out[1 << 16];
   size_t out_len;
   char error[SB_LINE + 64];
@@ -109,7 +137,7 @@ static inline int sb_line(sb_client* c, char* line) {
     char* nl = memchr(c->in, '\n', c->len);
     if (nl) {
       size_t n = (size_t)(nl - c->in);
-      if (n >= SB_LINE) return sb_fail(c, "simbob sent a line longer than %d bytes", SB_LINE - 1);
+      if (n >= SB_LINE) return sb_fail(c, "simbob sent a line longer than %d bytes (define SB_LINE larger)", SB_LINE - 1);
       memcpy(line, c->in, n);
       line[n] = 0;
       if (n > 0 && line[n - 1] == '\r') line[n - 1] = 0;
@@ -117,7 +145,7 @@ static inline int sb_line(sb_client* c, char* line) {
       c->len -= n + 1;
       return 0;
     }
-    if (c->len == sizeof c->in) return sb_fail(c, "simbob sent a line too long to read");
+    if (c->len == sizeof c->in) return sb_fail(c, "simbob sent a line longer than %d bytes (define SB_LINE larger)", (int)sizeof c->in);
     ssize_t r = recv(c->fd, c->in + c->len, sizeof c->in - c->len, 0);
     if (r < 0 && errno == EINTR) continue;
     if (r <= 0) return sb_fail(c, "simbob closed the connection");
@@ -135,6 +163,27 @@ static inline int sb_words(char* line, char** w, int max) {
     while (*p && *p != ' ' && *p != '\t') ++p;
   }
   return n;
+}
+
+/* Reads exactly n bytes (an image's block) into out; out NULL: reads and drops them. */
+static inline int sb_bytes(sb_client* c, unsigned char* out, size_t n) {
+  while (n > 0) {
+    if (c->len == 0) {
+      ssize_t r = recv(c->fd, c->in, sizeof c->in, 0);
+      if (r < 0 && errno == EINTR) continue;
+      if (r <= 0) return sb_fail(c, "simbob closed the connection");
+      c->len = (size_t)r;
+    }
+    size_t k = n < c->len ? n : c->len;
+    if (out) {
+      memcpy(out, c->in, k);
+      out += k;
+    }
+    memmove(c->in, c->in + k, c->len - k);
+    c->len -= k;
+    n -= k;
+  }
+  return 0;
 }
 
 static inline int sb_send(sb_client* c, const char* text, size_t n) {
@@ -164,8 +213,8 @@ static inline void sb_add(sb_entry* list, int* n, const char* word, const char* 
 }
 
 static inline int sb_hello(sb_client* c) {
-  char line[SB_LINE];
-  char* w[SB_VALUES + 4];
+  char* line = c->line;
+  char* w[8];
   if (sb_line(c, line) != 0) return -1;
   int n = sb_words(line, w, 8);
   if (n < 4 || strcmp(w[0], "simbob") != 0) return sb_fail(c, "not a simbob hello");
@@ -175,6 +224,8 @@ static inline int sb_hello(sb_client* c) {
   c->n_offered = 1;
   c->offered[0] = c->version;
   c->n_actuators = c->n_motions = c->n_joints = c->n_sensors = c->n_bodies = 0;
+  for (int i = 0; i < c->n_cameras; ++i) free(c->cameras[i].rgb);
+  c->n_cameras = 0;
   for (;;) {
     if (sb_line(c, line) != 0) return -1;
     n = sb_words(line, w, 8);
@@ -193,18 +244,26 @@ static inline int sb_hello(sb_client* c) {
       sb_add(c->sensors, &c->n_sensors, w[1], n >= 4 ? w[2] : "proximity", n >= 4 ? atoi(w[3]) : 1);
     } else if (strcmp(w[0], "body") == 0) {
       sb_add(c->bodies, &c->n_bodies, w[1], "body", c->version >= 3 ? 13 : 7);
+    } else if (strcmp(w[0], "camera") == 0 && n >= 5 && c->n_cameras < SB_CAMERAS) {
+      sb_image* im = &c->cameras[c->n_cameras++];
+      memset(im, 0, sizeof *im);
+      sb_unescape(w[1], im->key, sizeof im->key);
+      im->width = atoi(w[2]);
+      im->height = atoi(w[3]);
+      im->period = strtod(w[4], NULL);
     }
   }
 }
 
 static inline int sb_read_state(sb_client* c) {
-  char line[SB_LINE], key[SB_KEY];
-  char* w[SB_VALUES + 4];
+  char* line = c->line;
+  char key[SB_KEY];
+  char* w[SB_VALUES + 3];
   int n;
   for (;;) { /* up to 't' */
     if (sb_line(c, line) != 0) return -1;
     if (strncmp(line, "error ", 6) == 0) return sb_fail(c, "simbob says: %s", line + 6);
-    n = sb_words(line, w, SB_VALUES + 4);
+    n = sb_words(line, w, SB_VALUES + 3);
     if (n >= 2 && strcmp(w[0], "bye") == 0) {
       c->end_time = strtod(w[1], NULL);
       return 0;
@@ -216,12 +275,34 @@ static inline int sb_read_state(sb_client* c) {
   int counts[3] = {c->n_joints, c->n_sensors, c->n_bodies};
   for (int k = 0; k < 3; ++k)
     for (int i = 0; i < counts[k]; ++i) lists[k][i].present = 0;
+  for (int i = 0; i < c->n_cameras; ++i) c->cameras[i].present = 0;
   for (;;) {
     if (sb_line(c, line) != 0) return -1;
-    n = sb_words(line, w, SB_VALUES + 4);
+    n = sb_words(line, w, SB_VALUES + 3);
     if (n == 1 && strcmp(w[0], "end") == 0) return 1;
+    if (n > SB_VALUES + 2) return sb_fail(c, "a '%s' line with more than %d numbers (define SB_VALUES larger)", w[0], SB_VALUES);
     if (n < 2) continue;
     sb_unescape(w[1], key, sizeof key);
+    if (strcmp(w[0], "image") == 0 && n >= 5) { /* N bytes of RGB follow the line */
+      size_t size = (size_t)strtoull(w[4], NULL, 10);
+      sb_image* im = NULL;
+      for (int i = 0; i < c->n_cameras; ++i)
+        if (strcmp(c->cameras[i].key, key) == 0) im = &c->cameras[i];
+      if (im && size > im->cap) {
+        unsigned char* grown = (unsigned char*)realloc(im->rgb, size);
+        if (!grown) return sb_fail(c, "no memory for an image of %zu bytes", size);
+        im->rgb = grown;
+        im->cap = size;
+      }
+      if (sb_bytes(c, im ? im->rgb : NULL, size) != 0) return -1;
+      if (im) {
+        im->width = atoi(w[2]);
+        im->height = atoi(w[3]);
+        im->size = size;
+        im->present = 1;
+      }
+      continue;
+    }
     sb_entry* e = NULL;
     if (strcmp(w[0], "joint") == 0) e = sb_find(c->joints, c->n_joints, key);
     if (strcmp(w[0], "sensor") == 0) e = sb_find(c->sensors, c->n_sensors, key);
@@ -270,7 +351,8 @@ static inline int sb_connect_version(sb_client* c, int port, double wait, int ma
   for (int i = 0; i < c->n_offered; ++i)
     if (c->offered[i] > chosen && c->offered[i] <= max_version) chosen = c->offered[i];
   if (chosen > c->version) {
-    char text[64], line[SB_LINE];
+    char text[64];
+    char* line = c->line;
     int n = snprintf(text, sizeof text, "version %d\n", chosen);
     if (sb_send(c, text, (size_t)n) != 0) return -1;
     for (;;) { /* simbob's answer comes after the rest of what it had sent */
@@ -310,6 +392,19 @@ static inline const double* sb_sensor(sb_client* c, const char* key, int* n) {
   return e && e->present ? e->v : NULL;
 }
 
+/* The last image of the camera sensor with this key (width, height, RGB bytes rows top first), or
+ * NULL when the last state block had none (subscribe to it first: sb_subscribe "cameras"). */
+static inline const unsigned char* sb_image_of(sb_client* c, const char* key, int* width, int* height) {
+  for (int i = 0; i < c->n_cameras; ++i) {
+    sb_image* im = &c->cameras[i];
+    if (strcmp(im->key, key) != 0 || !im->present) continue;
+    if (width) *width = im->width;
+    if (height) *height = im->height;
+    return im->rgb;
+  }
+  return NULL;
+}
+
 static inline void sb_append(sb_client* c, const char* text) {
   size_t n = strlen(text);
   if (c->out_len + n < sizeof c->out) {
@@ -331,7 +426,8 @@ static inline void sb_set(sb_client* c, const char* key, int n, const double* v)
   sb_append(c, "\n");
 }
 
-/* Buffers 'subscribe KIND KEY...' (version 3; kind "bodies", "joints" or "sensors"; n = -1: all). */
+/* Buffers 'subscribe KIND KEY...' (version 3; kind "bodies", "joints", "sensors" or "cameras";
+ * n = -1: all). */
 static inline void sb_subscribe(sb_client* c, const char* kind, int n, const char* const* keys) {
   char word[3 * SB_KEY];
   sb_append(c, "subscribe ");
@@ -357,4 +453,9 @@ static inline int sb_step(sb_client* c) { return sb_reply(c, 0); }
 static inline void sb_close(sb_client* c) {
   if (c->fd >= 0) close(c->fd);
   c->fd = -1;
+  for (int i = 0; i < c->n_cameras; ++i) {
+    free(c->cameras[i].rgb);
+    c->cameras[i].rgb = NULL;
+    c->cameras[i].cap = c->cameras[i].size = 0;
+  }
 }

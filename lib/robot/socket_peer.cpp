@@ -25,6 +25,7 @@
 
 #include "robot/controllers.h"
 #include "robot/peer_process.h"
+#include "simbob/image.h"
 #include "simbob/physics.h"
 #include "simbob/values.h"
 
@@ -33,7 +34,8 @@ namespace simbob::robot {
 namespace {
 
 // 2: sensor lines (version 1 did not promise to skip unknown lines). 3: negotiated by the peer
-// (`version`), subscriptions, body velocities, sensor readings as vectors.
+// (`version`), subscriptions, body velocities, sensor readings as vectors, camera images (binary
+// blocks after an `image` line, to peers that subscribed to that camera only).
 constexpr int kFirstVersion = 2;  ///< every peer gets this hello first
 constexpr int kNewestVersion = 3;
 constexpr size_t kMaxLine = 4096;  ///< bytes of one line from the peer, newline excluded
@@ -162,6 +164,7 @@ class SocketPeer : public Party {
     subscribed_[kBodies].assign(model.bodies.size(), 1);
     subscribed_[kJoints].assign(model.joints.size(), 1);
     subscribed_[kSensors].assign(model.sensors.size(), 1);
+    subscribed_[kCameras].assign(model.camera_sensors.size(), 0);  // images only on request
   }
   ~SocketPeer() override {
     closeFd(&conn_);
@@ -445,6 +448,10 @@ class SocketPeer : public Party {
       if (version_ >= 3) s += std::string(" ") + sensorKind(d) + " " + std::to_string(sensorQuantities(d).size());
       s += "\n";
     }
+    if (version_ >= 3)
+      for (const CameraSensorDef& c : model_.camera_sensors)
+        s += "camera " + escapeKey(c.key) + " " + std::to_string(c.width) + " " + std::to_string(c.height) + " " +
+             formatNumber(c.period) + "\n";
     for (const BodyDef& b : model_.bodies) s += "body " + escapeKey(b.key) + "\n";
     s += "end\n";
     return s;
@@ -466,6 +473,17 @@ class SocketPeer : public Party {
       s += "sensor " + escapeKey(model_.sensors[i].key);
       appendNumbers(s, r.data(), r.size());
       s += '\n';
+    }
+    for (size_t i = 0; i < model_.camera_sensors.size() && version_ >= 3; ++i) {
+      if (!subscribed_[kCameras][i]) continue;
+      // The camera's latest image, drawn before the controllers of its last Period instant.
+      const std::string& key = model_.camera_sensors[i].key;
+      const Image* img = world.cameraImage(key);
+      const bool drawn = img && !img->rgb.empty();
+      const int w = drawn ? img->width : 0, h = drawn ? img->height : 0;
+      s += "image " + escapeKey(key) + " " + std::to_string(w) + " " + std::to_string(h) + " " +
+           std::to_string(drawn ? img->rgb.size() : 0) + "\n";
+      if (drawn) s.append(reinterpret_cast<const char*>(img->rgb.data()), img->rgb.size());
     }
     for (size_t i = 0; i < model_.bodies.size(); ++i) {
       if (!subscribed_[kBodies][i]) continue;
@@ -504,17 +522,18 @@ class SocketPeer : public Party {
     return send("version " + std::to_string(chosen) + "\n" + hello() + state(now, world));
   }
 
-  /// `subscribe bodies|joints|sensors [KEY...]` (version 3): the state blocks from the next one on
-  /// carry only these of that kind; `*` for all of them, no key for none.
+  /// `subscribe bodies|joints|sensors|cameras [KEY...]` (version 3): the state blocks from the next
+  /// one on carry only these of that kind (cameras: their images); `*` for all, no key for none.
   bool subscribe(const std::vector<std::string_view>& w) {
     int kind = -1;
     if (w.size() >= 2) {
       if (w[1] == "bodies") kind = kBodies;
       if (w[1] == "joints") kind = kJoints;
       if (w[1] == "sensors") kind = kSensors;
+      if (w[1] == "cameras") kind = kCameras;
     }
     if (kind < 0) {
-      problem_ = "'subscribe' takes bodies, joints or sensors, then keys";
+      problem_ = "'subscribe' takes bodies, joints, sensors or cameras, then keys";
       return false;
     }
     std::vector<char> on(subscribed_[kind].size(), 0);
@@ -527,7 +546,7 @@ class SocketPeer : public Party {
       int found = -1;
       if (unescapeKey(w[i], &key)) found = indexOfKey(kind, key);
       if (found < 0) {
-        static const char* kSingular[] = {"body", "joint", "sensor"};
+        static const char* kSingular[] = {"body", "joint", "sensor", "camera sensor"};
         problem_ =
             "'subscribe " + std::string(w[1]) + "': no " + kSingular[kind] + " has the key '" + quoteInput(w[i]) + "'";
         return false;
@@ -546,6 +565,7 @@ class SocketPeer : public Party {
     };
     if (kind == kBodies) return find(model_.bodies);
     if (kind == kJoints) return find(model_.joints);
+    if (kind == kCameras) return find(model_.camera_sensors);
     return find(model_.sensors);
   }
 
@@ -658,8 +678,8 @@ class SocketPeer : public Party {
   bool hello_sent_ = false;
   bool replied_ = false;  ///< the peer has sent a line (`version` must be its first)
   int version_ = kFirstVersion;
-  enum { kBodies, kJoints, kSensors };
-  std::vector<char> subscribed_[3];  ///< per kind, per Model index: in the state blocks
+  enum { kBodies, kJoints, kSensors, kCameras };
+  std::vector<char> subscribed_[4];  ///< per kind, per Model index: in the state blocks
   bool done_ = false;
   bool stopped_ = false;  ///< a stop was requested while waiting for the peer
   std::string in_;

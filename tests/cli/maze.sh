@@ -6,13 +6,15 @@
 # (1.6 < z < 2.4),
 # having stayed inside the maze's outline until then. Walls never touched: every sample keeps the
 # footprint (0.135 m about the chassis centre) off every wall segment.
+# scenes/maze_socket.xml, the same robot driven over the socket by a Python program simbob starts
+# (examples/clients/maze_follower.py), must do the same.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 cli_setup "$@"
 
-check "the maze robot reaches the exit within 60 s without touching a wall"
-expect_status 0 "$SIMBOB" run "$SCENES/maze.xml" --duration 60 --out maze.csv
-/usr/bin/python3 - maze.csv "$SCENES/maze.xml" <<'PY'
+# leaves_maze CSV SCENE: the chassis leaves through the exit, touching no wall of SCENE.
+leaves_maze() {
+  /usr/bin/python3 - "$1" "$2" <<'PY'
 import csv, math, re, sys
 rows = [r for r in csv.reader(open(sys.argv[1])) if len(r) > 4 and r[1] == "Bot.Cart.Chassis"]
 assert rows, "no chassis rows"
@@ -44,3 +46,14 @@ print(f"check: out of the exit at t = {exit_t} s; closest chassis centre to a wa
 assert exit_t is not None, "never reached the exit"
 assert closest > R, closest
 PY
+}
+
+check "the maze robot reaches the exit within 60 s without touching a wall"
+expect_status 0 "$SIMBOB" run "$SCENES/maze.xml" --duration 60 --out maze.csv
+leaves_maze maze.csv "$SCENES/maze.xml"
+
+check "driven by examples/clients/maze_follower.py over the socket (simbob starts it), it does too"
+expect_status 0 "$SIMBOB" run "$SCENES/maze_socket.xml" --duration 60 --out maze_socket.csv
+leaves_maze maze_socket.csv "$SCENES/maze_socket.xml"
+expect_match "the follower ran to the end" maze_socket.controller.log \
+  "maze_follower.py: the run ended at t=60 s after 1201 exchanges"

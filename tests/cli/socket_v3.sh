@@ -73,7 +73,7 @@ expect_error no_common_version "no protocol version in common: simbob speaks 2 a
 expect_error version_not_first "the peer sent 'version 3'" "set Bot.Mo%20tion 0 0" "version 3"
 expect_error bad_version "'version': 'x' is not a version number" "version x"
 expect_error subscribe_in_v2 "the peer sent 'subscribe bodies \*'" "subscribe bodies *"
-expect_error subscribe_kind "'subscribe' takes bodies, joints or sensors" "version 3" "subscribe wheels"
+expect_error subscribe_kind "'subscribe' takes bodies, joints, sensors or cameras" "version 3" "subscribe wheels"
 expect_error subscribe_key "'subscribe bodies': no body has the key 'Bot.Cart.Chassis'" \
   "version 3" "subscribe bodies Bot.Cart.Chassis"
 expect_error unescaped_key "'set Bot.Mo': 'tion' is not a finite number" "set Bot.Mo tion 0 0"

@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
 # A real Slurm job array runs simbob: a single-node cluster on 127.0.0.1 (tests/cluster/slurm.sh)
-# takes an `sbatch --array=0-3` script whose task I runs `simbob run` on scene I into a file
+# takes an `sbatch --array=0-4` script whose task I runs `simbob run` on scene I into a file
 # named by $SLURM_ARRAY_TASK_ID; every task's trajectory must be byte-identical to a local run
 # of the same command, and every task must have run under Slurm as a task of the same array.
+# One task runs a socket scene (socket_robot.xml) whose controller simbob starts itself, for the
+# golden's 10 s: its trajectory must equal golden/socket_robot.csv, its controller's log must
+# lie beside its CSV, and the controller must not outlive the task.
 #
 #   bash tests/cluster/slurm_array.sh /path/to/simbob /path/to/repo
 #
@@ -13,8 +16,11 @@ source "$HERE/../cli/lib.sh"
 source "$HERE/slurm.sh"
 cli_setup "$@"
 
-SCENE_LIST=(pendulum bounce chain box_stack)
+SCENE_LIST=(pendulum bounce chain box_stack socket_robot)
 DURATION=2
+SOCKET_TASK=4          # socket_robot: simbob starts its Python client (its Controller)
+SOCKET_DURATION=10     # as golden/socket_robot.csv
+duration_of() { [[ $1 == "$SOCKET_TASK" ]] && echo $SOCKET_DURATION || echo $DURATION; }
 
 check "a single-node Slurm cluster comes up on 127.0.0.1"
 t0=$SECONDS
@@ -39,8 +45,8 @@ fi
 
 check "the job array script"
 mkdir -p "$WORK/slurm" "$WORK/local"
-# The scenes of the array, one a line: task I takes line I+1.
-printf '%s\n' "${SCENE_LIST[@]}" >"$WORK/scenes.txt"
+# The scenes of the array and their durations, one a line: task I takes line I+1.
+for i in "${!SCENE_LIST[@]}"; do printf '%s %s\n' "${SCENE_LIST[$i]}" "$(duration_of "$i")"; done >"$WORK/scenes.txt"
 cat >"$WORK/array.sbatch" <<EOF
 #!/bin/bash
 #SBATCH --job-name=simbob-array
@@ -50,9 +56,9 @@ cat >"$WORK/array.sbatch" <<EOF
 #SBATCH --time=5
 #SBATCH --output=$WORK/slurm/task-%a.log
 set -euo pipefail
-scene=\$(sed -n "\$((SLURM_ARRAY_TASK_ID + 1))p" "$WORK/scenes.txt")
+read -r scene duration <<<"\$(sed -n "\$((SLURM_ARRAY_TASK_ID + 1))p" "$WORK/scenes.txt")"
 printf '%s %s %s\n' "\$SLURM_ARRAY_JOB_ID" "\$SLURM_ARRAY_TASK_ID" "\$SLURM_JOB_ID" >"$WORK/slurm/ids-\$SLURM_ARRAY_TASK_ID"
-exec "$SIMBOB" run "$SCENES/\$scene.xml" --duration $DURATION --quiet --out "$WORK/slurm/task-\$SLURM_ARRAY_TASK_ID.csv"
+exec "$SIMBOB" run "$SCENES/\$scene.xml" --duration "\$duration" --quiet --out "$WORK/slurm/task-\$SLURM_ARRAY_TASK_ID.csv"
 EOF
 
 check "sbatch --wait runs the array to the end (bounded: 240 s)"
@@ -89,12 +95,22 @@ expect_eq "distinct job ids" "$(cat "$WORK"/slurm/ids-* | awk '{print $3}' | sor
 
 check "each task's trajectory is byte-identical to a local run of the same command"
 for i in "${!SCENE_LIST[@]}"; do
-  expect_status 0 "$SIMBOB" run "$SCENES/${SCENE_LIST[$i]}.xml" --duration $DURATION --quiet \
+  expect_status 0 "$SIMBOB" run "$SCENES/${SCENE_LIST[$i]}.xml" --duration "$(duration_of "$i")" --quiet \
     --out "$WORK/local/task-$i.csv"
   expect_same_file "$WORK/slurm/task-$i.csv" "$WORK/local/task-$i.csv"
-  # A trajectory of DURATION s at the default 0.01 s interval.
+  # A trajectory of its duration at the default 0.01 s interval.
   read -r samples _ <<<"$(csv_summary "$WORK/slurm/task-$i.csv")"
-  expect_eq "task $i: samples" "$samples" $((DURATION * 100 + 1))
+  expect_eq "task $i: samples" "$samples" $(($(duration_of "$i") * 100 + 1))
+done
+
+check "the socket task: simbob started its controller under Slurm; the trajectory is the golden"
+expect_same_file "$WORK/slurm/task-$SOCKET_TASK.csv" "$REPO/golden/socket_robot.csv"
+expect_match "the controller's log is beside the task's CSV" "$WORK/slurm/task-$SOCKET_TASK.controller.log" \
+  "the run ended at t=10 s"
+# Nothing started by the task outlives it: no client whose environment names this cluster
+# (SLURM_CONF, under $WORK) is left running.
+for pid in $(pgrep -f "scripts/simbob_client.py" || true); do
+  if grep -qs "$WORK" "/proc/$pid/environ"; then fail "a controller started by the socket task still runs: pid $pid"; fi
 done
 
 check "the cluster stops and leaves no daemon behind"

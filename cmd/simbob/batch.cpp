@@ -47,6 +47,7 @@ pid_t startWorker(const Job& j, const BatchArgs& a) {
   args.emplace_back("--sample-interval");
   args.push_back(formatNumber(a.sample_interval));
   args.emplace_back("--batch-child");
+  args.emplace_back("--refusal-summary");
   if (a.html) args.insert(args.end(), {"--html", fs::path(j.out).replace_extension(".html").string()});
   // Manifest options come last: CLI11 keeps the last value of a repeated option.
   args.insert(args.end(), j.args.begin(), j.args.end());

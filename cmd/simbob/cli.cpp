@@ -181,7 +181,10 @@ int Log::close() {
   return kExitIoErr;
 }
 // "file:line: error: message" so that editors and CI logs can jump to the place.
-void Log::error(const Error& e) { write(e.errorLine(), true); }
+void Log::error(const Error& e) {
+  if (!first_error) first_error = e;
+  write(e.errorLine(), true);
+}
 void Log::warning(const Error& e) { write(place(e) + ": warning: " + e.message, level != Level::Quiet); }
 void Log::info(const std::string& s) { write("simbob: " + s, level != Level::Quiet); }
 void Log::debug(const std::string& s) { write("simbob: " + s, level == Level::Verbose); }

@@ -5,6 +5,7 @@
 #include <csignal>
 #include <nlohmann/json.hpp>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,7 @@ struct Log {
   std::FILE* file = nullptr;
   std::string path;     ///< of the log file
   int write_errno = 0;  ///< first failed write to the log file
+  std::optional<Error> first_error;  ///< the first error reported (run --refusal-summary writes it)
 
   void error(const Error& e);
   void warning(const Error& e);

@@ -51,6 +51,9 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
   run->add_option("--log", ra.log, "Also write a run log: comma list of joints, sensors, commands");
   run->add_option("--log-out", ra.log_out, "The run log CSV (default: --out with .csv replaced by .log.csv)");
   run->add_flag("--batch-child", ra.batch_child, "(internal) started by simbob batch")->group("");
+  run->add_flag("--refusal-summary", ra.refusal_summary,
+                "(internal) started by batch or sweep run: a refused run writes its partial summary")
+      ->group("");
   run->add_option("--record", ra.record, "Render frames to DIR/frame_000000.png, ... (frame n at t = n / fps)");
   run->add_option("--video", ra.video, "Render the frames into one video: FILE.avi (MJPEG) or FILE.mp4 (H.264)");
   addViewOptions(run, ra.view);

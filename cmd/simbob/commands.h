@@ -53,6 +53,7 @@ struct RunArgs {
   bool json = false;
   bool check_determinism = false;
   bool batch_child = false;       ///< started by `simbob batch`: warnings stay out of the log
+  bool refusal_summary = false;   ///< a run refused before it starts writes its partial summary
   std::string space;              ///< overrides SceneSettings Space ("" = the scene's)
   bool auto_disable = false;      ///< turns SceneSettings AutoDisable on
   int max_contacts = 0;           ///< overrides SceneSettings MaxContacts (0 = the scene's)

@@ -61,6 +61,15 @@ int loadForRun(const RunArgs& a, const Common& common, std::vector<Override>* ov
   return 0;
 }
 
+// A worker of batch or sweep run that is refused leaves its error in a partial summary, where
+// its parent reads every failed worker's outcome (workerError). Returns `code`.
+int refused(const RunArgs& a, int code) {
+  if (!a.refusal_summary || !g_log.first_error) return code;
+  Error ignored;  // without it the parent reads the worker's log: stderr keeps its one line
+  writeRefusedSummary(a.out, a.scene, *g_log.first_error, &ignored);
+  return code;
+}
+
 SimulationOptions simulationOptions(const RunArgs& a) {
   SimulationOptions so;
   so.seed = a.seed;
@@ -196,17 +205,17 @@ int cmdRun(RunArgs& a, const Common& common) {
   std::vector<Override> overrides;
   Scene scene;
   Model model;
-  if (int c = loadForRun(a, common, &overrides, &scene, &model)) return c;
   if (a.out.empty()) a.out = std::filesystem::path(a.scene).stem().string() + ".csv";
+  if (int c = loadForRun(a, common, &overrides, &scene, &model)) return refused(a, c);
   Progress progress(a.duration, g_log.level != Level::Quiet);
   SimulationOptions so = simulationOptions(a);
   so.progress = [&](double t) { progress.update(t); };
   std::unique_ptr<Simulation> sim;
   {  // built now, so that options it refuses fail before any output exists
     Diagnostics sd;
-    if (!(sim = Simulation::fromModel(model, so, sd))) return report(sd, false);
+    if (!(sim = Simulation::fromModel(model, so, sd))) return refused(a, report(sd, false));
   }
-  if (int c = checkRunFiles(a, common, scene, model, overrides)) return c;
+  if (int c = checkRunFiles(a, common, scene, model, overrides)) return refused(a, c);
   Error err;
   std::unique_ptr<RunOutputs> outputs = RunOutputs::open(model, runPaths(a), &err);
   if (!outputs) return fail(err);

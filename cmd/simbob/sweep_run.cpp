@@ -78,7 +78,8 @@ std::vector<std::string> caseRunArgs(const SweepCase& c, const std::string& mani
                                    "--seed",
                                    std::to_string(c.seed),
                                    "--out",
-                                   (tmp / "trajectory.csv").string()};
+                                   (tmp / "trajectory.csv").string(),
+                                   "--refusal-summary"};
   if (c.dt > 0) {
     args.emplace_back("--dt");
     args.push_back(formatNumber(c.dt));

@@ -30,8 +30,9 @@ WorkerOutcome workerOutcome(int wstatus);
 std::string firstErrorLine(const std::string& log_path);
 
 /// Why a worker's run failed, in one line: the error its run summary records (`error.text` of
-/// the failed run's partial summary beside `trajectory`, written since `since`); for a run refused
-/// before it started, which writes no summary, the first error line of its log.
+/// the partial summary beside `trajectory`, written since `since`: a failed run's, or a refused
+/// one's, which workers write with run --refusal-summary); only for a worker that left no summary
+/// (it crashed, or could not write one) the first error line of its log.
 std::string workerError(const std::string& trajectory, const std::string& log, std::filesystem::file_time_type since);
 
 /// Runs tasks 0 .. count-1 on at most `jobs` workers: start(i) spawns one (a pid, or -1 when it

@@ -41,6 +41,13 @@ RunOutputPaths defaultOutputPaths(const std::string& trajectory, bool with_log);
 /// "out.json" -> "out.partial.json": where a failed run writes its summary.
 std::string partialSummaryPath(const std::string& summary);
 
+/// The partial summary of a run refused before it started (its scene does not load or cannot
+/// run), beside `trajectory` as for a failed run: simbob_version, scene, status "refused" and
+/// error. `simbob batch` and `sweep run` ask their workers for it (run --refusal-summary), so
+/// they learn every failed worker's outcome from its summary. False (and `err`) if it cannot be
+/// written; nothing for a streamed trajectory.
+bool writeRefusedSummary(const std::string& trajectory, const std::string& scene, const Error& refusal, Error* err);
+
 /// What a failed run kept, for its summary and its messages.
 struct KeptOutputs {
   std::string trajectory;     ///< the .partial.csv kept ("" if none: a stream, or it failed)

@@ -19,6 +19,20 @@ std::string withExtension(const std::string& path, const std::string& ext) {
 
 }  // namespace
 
+bool writeRefusedSummary(const std::string& trajectory, const std::string& scene, const Error& refusal, Error* err) {
+  const RunOutputPaths paths = defaultOutputPaths(trajectory, false);
+  if (paths.summary.empty()) return true;
+  nlohmann::ordered_json summary;
+  summary["simbob_version"] = SIMBOB_VERSION;
+  summary["scene"] = scene;
+  summary["status"] = "refused";
+  summary["error"] = {{"file", refusal.loc.file},
+                      {"line", refusal.loc.line},
+                      {"message", refusal.message},
+                      {"text", refusal.errorLine()}};
+  return writeFileAtomically(partialSummaryPath(paths.summary), summary.dump(2) + "\n", err);
+}
+
 std::string partialSummaryPath(const std::string& summary) {
   std::filesystem::path p(summary);
   const std::string ext = p.extension().string();

@@ -55,6 +55,15 @@ set -e
 grep -q "failed  bad.xml" b1.txt || fail "failed scene not reported: $(cat b1.txt)"
 grep -q "bad.xml:1: error: unknown component type 'RCNoSuchThing'" b1.txt || fail "scene error not shown: $(cat b1.txt)"
 [ -s b1/pendulum.csv ] || fail "the good scene did not finish"
+# The refused worker's outcome is in its summary, where batch reads every failed worker's error.
+[ -s b1/bad.partial.json ] || fail "the refused scene left no partial summary: $(ls b1)"
+/usr/bin/python3 - b1/bad.partial.json <<'PY' || fail "refusal summary: $(cat b1/bad.partial.json)"
+import json, sys
+s = json.load(open(sys.argv[1]))
+assert s["status"] == "refused", s
+assert s["error"]["text"] == "bad.xml:1: error: unknown component type 'RCNoSuchThing'", s
+assert s["error"]["file"] == "bad.xml" and s["error"]["line"] == 1, s
+PY
 
 echo "== a crashing worker (killed by SIGKILL) is reported and the others still finish"
 "$simbob" batch pendulum.xml chain.xml --duration 100000 --out-dir c1 -j 2 > c1.txt &

@@ -42,8 +42,8 @@ struct Log {
   static constexpr size_t kMaxLogLine = 4096;
   Level level = Level::Normal;
   std::FILE* file = nullptr;
-  std::string path;     ///< of the log file
-  int write_errno = 0;  ///< first failed write to the log file
+  std::string path;                  ///< of the log file
+  int write_errno = 0;               ///< first failed write to the log file
   std::optional<Error> first_error;  ///< the first error reported (run --refusal-summary writes it)
 
   void error(const Error& e);

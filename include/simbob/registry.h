@@ -93,7 +93,7 @@ struct ListParam {
   const char* name;
 };
 
-struct PluginControllerType;  // simbob/plugin.h
+struct PluginType;  // simbob/plugin.h
 
 struct TypeSpec {
   TypeSpec() = default;
@@ -118,9 +118,9 @@ struct TypeSpec {
   std::string import_root;              ///< non-empty: parameter File names an XML file with this root
                                         ///< element ("Body", "Joint", "RefList") read into the scene
   std::vector<std::string> interfaces;  ///< guide interfaces it offers controllers ("RCDriver", ...)
-  /// A plug-in's controller type (kept by its loader), or null.
-  const PluginControllerType* plugin = nullptr;
-  std::string plugin_name;  ///< the plug-in that added the type (SimbobPluginV1::name), for messages
+  /// A plug-in's type (kept by registerPlugin), or null.
+  const PluginType* plugin = nullptr;
+  std::string plugin_name;  ///< the plug-in that added the type (SimbobPlugin::name), for messages
 
   /// Whether it offers `interface`.
   bool implements(std::string_view interface) const;

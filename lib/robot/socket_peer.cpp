@@ -48,6 +48,8 @@ const char* actuatorKind(ActuatorDef::Kind k) {
       return "position";
     case ActuatorDef::VelDrive:
       return "velocity";
+    case ActuatorDef::Plugin:
+      return "command";
   }
   return "?";
 }
@@ -141,6 +143,8 @@ const char* sensorKind(const SensorDef& d) {
       return "imu";
     case SensorKind::Encoder:
       return "encoder";
+    case SensorKind::Plugin:
+      return "plugin";
   }
   return "proximity";
 }

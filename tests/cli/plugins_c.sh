@@ -1,0 +1,108 @@
+#!/usr/bin/env bash
+# The C plug-in ABI (docs/plugins.md, include/simbob/plugin_c.h): the header compiles as C99 with
+# cc and clang; plug-ins built here with clang from the public header alone load into the
+# g++-built simbob: the example BeamSensor (examples/plugins/beam_sensor.c) read by the built-in
+# RCObstacleAvoider brings the robot of examples/plugins/beam_robot.xml to rest MinRange from
+# the wall as the avoider's law says, and reads the analytic distance; the test plug-ins'
+# Thruster (an actuator) and Throttle (a controller in C reading a sensor) push a free box as
+# x = F t^2 / (2 m) (tests/data/plugins/thruster.xml); the same bytes twice.
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+cli_setup "$@"
+
+command -v clang >/dev/null || {
+  say "SKIP: clang is not installed (scripts/deps.sh test installs it)"
+  exit 77
+}
+INC="$REPO/include"
+
+check "simbob/plugin_c.h is C99: cc and clang, -Wall -Wextra -Werror -pedantic"
+cat >header.c <<'C'
+#include "simbob/plugin_c.h"
+static int use(const SimbobHost* h) { return h->set_command(h, 0, h->time(h)); }
+int main(void) {
+  SimbobType t = {SIMBOB_SENSOR, "T", "doc", 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  SimbobPlugin p = {SIMBOB_PLUGIN_ABI_VERSION, "p", 0, 0};
+  p.types = &t;
+  (void)use;
+  return p.type_count;
+}
+C
+cc -std=c99 -Wall -Wextra -Werror -pedantic -I "$INC" -c header.c -o header_cc.o || fail "cc -std=c99"
+clang -std=c99 -Wall -Wextra -Werror -pedantic -I "$INC" -c header.c -o header_clang.o || fail "clang -std=c99"
+
+check "plug-ins built with clang from the public header alone; simbob built with GCC"
+clang -std=c99 -Wall -Wextra -Werror -pedantic -shared -fPIC -I "$INC" "$REPO/examples/plugins/beam_sensor.c" -o beam.so
+clang -std=c99 -Wall -Wextra -Werror -pedantic -shared -fPIC -I "$INC" "$REPO/tests/plugins/c_plugins.c" -o c_plugins.so -lm
+expect_match "the plug-in is clang's" <(readelf -p .comment beam.so) "clang"
+if readelf -p .comment "$SIMBOB" | grep -q "GCC"; then
+  say "simbob: $(readelf -p .comment "$SIMBOB" | grep -o 'GCC.*' | head -n 1)"
+else
+  say "note: simbob was not built by GCC here (CMAKE_CXX_COMPILER): the clang plug-in still loads"
+fi
+
+check "simbob types lists the plug-in sensor with its parameters and doc"
+expect_status 0 "$SIMBOB" types --plugin ./beam.so
+expect_match "BeamSensor" "$LAST_OUT" "^BeamSensor \(PeripheryComponent\): One ray along the mount's -Z"
+expect_match "MaxRange" "$LAST_OUT" "MaxRange : Number = 5 \[m\]"
+
+check "BeamSensor read by RCObstacleAvoider: the robot stops MinRange from the wall, the same bytes twice"
+BEAM="$REPO/examples/plugins/beam_robot.xml"
+expect_status 0 "$SIMBOB" run "$BEAM" --duration 30 --plugin ./beam.so --out b1.csv --log sensors -q
+expect_status 0 "$SIMBOB" run "$BEAM" --duration 30 --plugin ./beam.so --out b2.csv --log sensors -q
+expect_same_file b1.csv b2.csv
+expect_same_file b1.log.csv b2.log.csv
+/usr/bin/python3 - b1.csv b1.log.csv <<'PY' || fail "beam robot"
+import csv, math, sys
+x = {r["time"]: float(r["x"]) for r in csv.DictReader(open(sys.argv[1])) if r["body"] == "Bot.Cart.Chassis"}
+d = {r["time"]: float(r["value"]) for r in csv.DictReader(open(sys.argv[2])) if r["component"] == "Bot.Cart.Beam"}
+def near(what, got, want, tol):
+    print(f"check: {what} = {got:.9g} (expected {want:.9g} +- {tol})")
+    if not abs(got - want) <= tol:
+        sys.exit(f"FAIL: {what}")
+# The wall's face is at x = 2, the beam starts 0.2 m ahead of the chassis centre.
+near("the reading at t=0 (m)", d["0"], 1.8, 1e-12)
+# Within 5e-5 m: the chassis pitches a little as it speeds up and brakes, tilting the beam.
+worst = max(abs(d[t] - (2.0 - 0.2 - x[t])) for t in d)
+near("largest |reading - (2 - 0.2 - x)| over the run (m)", worst, 0.0, 5e-5)
+print(f"check: closest reading = {min(d.values()):.9g} m (never nearer than MinRange 0.3 m)")
+if min(d.values()) < 0.3:
+    sys.exit("FAIL: the robot came nearer than MinRange")
+# RCObstacleAvoider with TurnRate 0: v = Speed (MaxRange - d) / (MaxRange - MinRange), so d - MinRange
+# decays as exp(-Speed t / (MaxRange - MinRange)) = exp(-0.5 t / 2.2).
+near("(d(20) - MinRange) / (d(10) - MinRange)", (d["20"] - 0.3) / (d["10"] - 0.3), math.exp(-10 * 0.5 / 2.2), 0.002)
+near("rest distance at t=30 (m)", d["30"], 0.3, 0.003)
+PY
+
+check "Thruster (an actuator) commanded by Throttle (a controller in C): x = F t^2 / (2 m)"
+THR="$REPO/tests/data/plugins/thruster.xml"
+expect_status 0 "$SIMBOB" run "$THR" --duration 2.5 --plugin ./c_plugins.so --plugin ./beam.so --out t1.csv --log sensors,commands -q
+expect_status 0 "$SIMBOB" run "$THR" --duration 2.5 --plugin ./c_plugins.so --plugin ./beam.so --out t2.csv --log sensors,commands -q
+expect_same_file t1.csv t2.csv
+expect_same_file t1.log.csv t2.log.csv
+/usr/bin/python3 - t1.csv t1.log.csv <<'PY' || fail "thruster"
+import csv, sys
+F, m, h, t0 = 3.0, 2.0, 0.001, 0.5
+rows = [r for r in csv.DictReader(open(sys.argv[1])) if r["body"] == "Bot.Cart.Box"]
+log = {(r["time"], r["component"]): float(r["value"]) for r in csv.DictReader(open(sys.argv[2]))}
+worst_step = worst_law = 0.0
+for r in rows:
+    t, x = float(r["time"]), float(r["x"])
+    tau = max(0.0, t - t0)
+    # The commanded force acts from the step after t0 on: ODE's semi-implicit Euler gives
+    # x = F tau (tau + h) / (2 m) exactly (h the step); the law F tau^2 / (2 m) within F h tau / (2 m).
+    worst_step = max(worst_step, abs(x - F * tau * (tau + h) / (2 * m)))
+    worst_law = max(worst_law, abs(x - F * tau * tau / (2 * m)) - F * h * tau / (2 * m))
+    want_cmd = 1.0 if t >= t0 else 0.0
+    if log[(r["time"], "Bot.Cart.Jet")] != want_cmd:
+        sys.exit(f"FAIL: command at {t} is {log[(r['time'], 'Bot.Cart.Jet')]}, expected {want_cmd}")
+    beam = log[(r["time"], "Bot.Cart.Beam")]
+    if abs(beam - (4.9 - x)) > 1e-9:
+        sys.exit(f"FAIL: beam at {t} reads {beam}, expected {4.9 - x}")
+print(f"check: x(2.5) = {float(rows[-1]['x']):.9g} (F t^2 / 2m = {F * 4 / (2 * m)})")
+print(f"check: largest |x - F tau (tau + h) / 2m| = {worst_step:.3g} (<= 1e-9)")
+print(f"check: largest excess over F h tau / 2m of |x - F tau^2 / 2m| = {worst_law:.3g} (<= 1e-12)")
+if worst_step > 1e-9 or worst_law > 1e-12:
+    sys.exit("FAIL: the box does not follow x = F t^2 / (2 m)")
+PY
+say "ok: plugins_c"

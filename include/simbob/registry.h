@@ -172,7 +172,7 @@ class Registry {
   /// ("RCBoxGeom" -> the ...Geom types, nearest first: RCCuboidGeom). Struct types are left out.
   std::vector<std::string> suggestTypes(std::string_view name) const;
   /// "unknown component type 'X' (did you mean 'Y'?)"; where `plugin_family` (a place that takes
-  /// controllers, the family plug-ins add), also how to load a plug-in that would define it.
+  /// controllers or peripheries, the families plug-ins add), also how to load a plug-in that would define it.
   std::string unknownTypeMessage(std::string_view name, bool plugin_family) const;
 
  private:

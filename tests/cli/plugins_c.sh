@@ -41,6 +41,12 @@ else
   say "note: simbob was not built by GCC here (CMAKE_CXX_COMPILER): the clang plug-in still loads"
 fi
 
+check "without the plug-in, a periphery of its type is unknown, and the message says how to load one (65)"
+expect_status 65 "$SIMBOB" check "$REPO/examples/plugins/beam_robot.xml"
+expect_match "unknown periphery" "$LAST_ERR" \
+  "unknown component type 'BeamSensor'.*; if a plug-in defines it, load the plug-in with --plugin FILE"
+expect_status 0 "$SIMBOB" check "$REPO/examples/plugins/beam_robot.xml" --plugin ./beam.so
+
 check "simbob types lists the plug-in sensor with its parameters and doc"
 expect_status 0 "$SIMBOB" types --plugin ./beam.so
 expect_match "BeamSensor" "$LAST_OUT" "^BeamSensor \(PeripheryComponent\): One ray along the mount's -Z"

@@ -211,19 +211,21 @@ struct ControllerDef {
   std::string type;                         ///< Plugin: the type name
   std::vector<double> numbers;              ///< Plugin: its number parameters, in the order it declared them
   const SimbobType* plugin_type = nullptr;  ///< Plugin: the plug-in's type (simbob/plugin_c.h)
-  /// Plugin: per ref of the type, an index into Model::sensors (a sensor interface) or
-  /// Model::actuators (RCDriver, RCPosControl, RCVelControl or an actuator type's interface).
+  /// Plugin: per ref of the type, an index into Model::sensors (a sensor interface),
+  /// Model::actuators (RCDriver, RCPosControl, RCVelControl or an actuator type's interface) or
+  /// Model::bodies (RCBody).
   std::vector<int> refs;
-  std::vector<uint8_t> ref_is_sensor;  ///< Plugin: per ref, 1 when refs[i] is a sensor
-  std::vector<int> sensors;            ///< indices into Model::sensors (WallStop, ObstacleAvoider, WallFollower)
-  double speed = 0.1;                  ///< m/s (WallStop, GoToPoint, ObstacleAvoider, WallFollower)
-  int body = -1;                       ///< GoToPoint: index into Model::bodies whose pose it reads
-  double goal_x = 0, goal_z = 0;       ///< GoToPoint: the target point on the ground plane (m)
-  double turn_rate = 1.0;              ///< GoToPoint, ObstacleAvoider, WallFollower: largest angular velocity (rad/s)
-  double wall_distance = 0.3;          ///< WallFollower: m to keep between the scanner and the wall
-  int side = 1;                        ///< WallFollower: +1 the wall on the robot's left, -1 on its right
-  double tolerance = 0.05;             ///< GoToPoint: m from the goal at which it stops
-  std::string plugin;                  ///< Plugin: the plug-in's name (SimbobPlugin::name), for messages
+  /// Plugin: per ref, what refs[i] indexes: 0 Model::actuators, 1 Model::sensors, 2 Model::bodies.
+  std::vector<uint8_t> ref_kind;
+  std::vector<int> sensors;       ///< indices into Model::sensors (WallStop, ObstacleAvoider, WallFollower)
+  double speed = 0.1;             ///< m/s (WallStop, GoToPoint, ObstacleAvoider, WallFollower)
+  int body = -1;                  ///< GoToPoint: index into Model::bodies whose pose it reads
+  double goal_x = 0, goal_z = 0;  ///< GoToPoint: the target point on the ground plane (m)
+  double turn_rate = 1.0;         ///< GoToPoint, ObstacleAvoider, WallFollower: largest angular velocity (rad/s)
+  double wall_distance = 0.3;     ///< WallFollower: m to keep between the scanner and the wall
+  int side = 1;                   ///< WallFollower: +1 the wall on the robot's left, -1 on its right
+  double tolerance = 0.05;        ///< GoToPoint: m from the goal at which it stops
+  std::string plugin;             ///< Plugin: the plug-in's name (SimbobPlugin::name), for messages
 };
 
 /// An RCLocalSocketCommunicator (guide 6.11.6): a peer program on 127.0.0.1 that reads the

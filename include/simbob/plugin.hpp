@@ -63,6 +63,12 @@ class Host {
   void bodyVelocity(double linear[3], double angular[3]) const {
     if (h_->body_velocity(h_, linear, angular) != 0) throw HostError("body_velocity() failed");
   }
+  /// A body's global state (any pointer may be null): controllers the body behind ref `ref`
+  /// (interface RCBody), sensors and actuators their own (ref -1).
+  void bodyState(int ref, double position[3], double quaternion[4], double linear[3], double angular[3]) const {
+    if (h_->body_state(h_, ref, position, quaternion, linear, angular) != 0)
+      throw HostError("body_state(" + std::to_string(ref) + ") failed");
+  }
   /// Sensors and actuators: distance along a ray in the mount frame, or -1 when nothing is hit.
   double castRay(const double origin[3], const double direction[3], double max_length) const {
     return h_->cast_ray(h_, origin, direction, max_length);

@@ -53,8 +53,9 @@ typedef struct SimbobNumber {
 
 /** A controller's reference parameter (<Name Ref="Robot.Part.Key"/>) to a periphery that
  * offers `interface`: an actuator ("RCDriver", "RCPosControl", "RCVelControl", or an actuator
- * type's own interface) it commands with set_command, or a sensor ("RCSensor": any sensor,
- * "RCRangeSensor", "RCLaserScanner", ...) it reads with read_sensor. */
+ * type's own interface) it commands with set_command, a sensor ("RCSensor": any sensor,
+ * "RCRangeSensor", "RCLaserScanner", ...) it reads with read_sensor, or ("RCBody") a mobile body
+ * whose state it reads with body_state. */
 typedef struct SimbobRef {
   const char* name;
   const char* interface;
@@ -83,6 +84,12 @@ struct SimbobHost {
   /** Sensors and actuators: the global linear (m/s) and angular (rad/s) velocity of the body they
    * are attached to (zeros for a static mount). */
   int (*body_velocity)(const SimbobHost* host, double linear[3], double angular[3]);
+  /** The state of a mobile body: for a controller the one behind ref `ref` (interface "RCBody");
+   * for a sensor or actuator (ref -1) the body it rides on (the identity pose at the origin and
+   * zeros for a static mount). Global: position (m), quaternion (w, x, y, z) of the body's
+   * frame, linear (m/s) and angular (rad/s) velocity. Any pointer may be NULL. */
+  int (*body_state)(const SimbobHost* host, int ref, double position[3], double quaternion[4], double linear[3],
+                    double angular[3]);
   /** Sensors and actuators: casts a ray from `origin` along `direction` (both in the mount frame;
    * the direction need not be unit) against every geom of another body (its own body and bodies
    * joined to it are not seen; static geoms are). Returns the distance (m) to the first hit, or -1

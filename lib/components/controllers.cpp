@@ -157,11 +157,35 @@ int sensorLinkOf(CompileContext& ctx, const Component& c, const Link& l, const c
   return i < 0 ? -1 : i;
 }
 
+/// Model::bodies index of the mobile body behind `param`, or -1 after an error.
+int mobileBodyOf(CompileContext& ctx, const Component& c, LinkParam param) {
+  const Link& l = c.get(param);
+  if (l.comp < 0) {
+    if (!l.isRef()) ctx.error(c, std::string("parameter '") + param.name + "' is required (a Ref to a mobile body)");
+    return -1;
+  }
+  const Component& t = ctx.at(l.comp);
+  const int i = ctx.bodyIndex(ctx.modelKey(t));
+  if (i < 0 && !ctx.failedQuietly())
+    ctx.error(l, c,
+              std::string("parameter '") + param.name +
+                  "' must refer to a mobile body built before this controller, but " + CompileContext::describe(t) +
+                  " is not one");
+  return i < 0 ? -1 : i;
+}
+
 /// A plug-in controller's ref `r`: appends to d->refs the Model::actuators index of the actuator
 /// or the Model::sensors index of the sensor it refers to (which must offer r.interface;
-/// "RCSensor": any sensor) and returns it, or -1 after an error.
+/// "RCSensor": any sensor), or for "RCBody" the Model::bodies index of the mobile body, and
+/// returns it, or -1 after an error.
 int pluginRefOf(CompileContext& ctx, const Component& c, const PluginRef& r, ControllerDef* d) {
   const LinkParam param{r.name.c_str()};
+  if (r.interface == "RCBody") {
+    const int b = mobileBodyOf(ctx, c, param);
+    d->refs.push_back(b);
+    d->ref_kind.push_back(2);
+    return b;
+  }
   const Link& l = c.get(param);
   const Component* t = nullptr;
   if (l.comp >= 0 && r.interface == "RCSensor" && ctx.at(l.comp).type->family == Family::Periphery)
@@ -182,25 +206,8 @@ int pluginRefOf(CompileContext& ctx, const Component& c, const PluginRef& r, Con
     i = std::max(i, -1);
   }
   d->refs.push_back(i);
-  d->ref_is_sensor.push_back(is_actuator ? 0 : 1);
+  d->ref_kind.push_back(is_actuator ? 0 : 1);
   return i;
-}
-
-/// Model::bodies index of the mobile body behind `param`, or -1 after an error.
-int mobileBodyOf(CompileContext& ctx, const Component& c, LinkParam param) {
-  const Link& l = c.get(param);
-  if (l.comp < 0) {
-    if (!l.isRef()) ctx.error(c, std::string("parameter '") + param.name + "' is required (a Ref to a mobile body)");
-    return -1;
-  }
-  const Component& t = ctx.at(l.comp);
-  const int i = ctx.bodyIndex(ctx.modelKey(t));
-  if (i < 0 && !ctx.failedQuietly())
-    ctx.error(l, c,
-              std::string("parameter '") + param.name +
-                  "' must refer to a mobile body built before this controller, but " + CompileContext::describe(t) +
-                  " is not one");
-  return i < 0 ? -1 : i;
 }
 
 /// RCSimGoToPoint's Target "x z"; false after an error.

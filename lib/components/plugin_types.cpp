@@ -78,8 +78,9 @@ TypeSpec specOf(const PluginType& t) {
     family = Family::Controller;
     kind = int(ControllerKind::Plugin);
     for (const PluginRef& r : t.refs)
-      params.push_back(
-          componentParam(LinkParam{r.name.c_str()}, {Family::Periphery}, "", r.doc + " (Ref, " + r.interface + ")"));
+      params.push_back(componentParam(LinkParam{r.name.c_str()},
+                                      {r.interface == "RCBody" ? Family::Body : Family::Periphery}, "",
+                                      r.doc + " (Ref, " + r.interface + ")"));
     params.push_back(number(kPeriod, 0.01, "s", "loop period", Range::Positive));
   } else {
     kind = int(t.c->kind == SIMBOB_SENSOR ? PeripheryKind::PluginSensor : PeripheryKind::PluginActuator);

@@ -60,6 +60,24 @@ int hostBodyVelocity(const SimbobHost* h, double linear[3], double angular[3]) {
   return 0;
 }
 
+int hostBodyState(const SimbobHost* h, int ref, double* p, double* q, double* v, double* w) {
+  MountContext& m = ctx(h);
+  if (ref != -1) {
+    if (m.misuse->empty())
+      *m.misuse = "body_state(" + std::to_string(ref) + "): a sensor or actuator reads its own body: ref -1";
+    return -1;
+  }
+  BodyState s;
+  if (m.body >= 0) s = bodyState(*m.im, m.body);
+  for (size_t k = 0; k < 3; ++k) {
+    if (p) p[k] = s.pose.p[k];
+    if (v) v[k] = s.lin_vel[k];
+    if (w) w[k] = s.ang_vel[k];
+  }
+  for (size_t k = 0; k < 4 && q; ++k) q[k] = s.pose.q[k];
+  return 0;
+}
+
 double hostCastRay(const SimbobHost* h, const double origin[3], const double direction[3], double max_length) {
   MountContext& m = ctx(h);
   const Vec3 d{direction[0], direction[1], direction[2]};
@@ -86,6 +104,7 @@ SimbobHost hostFor(MountContext* m) {
   h.set_command = noCommand;
   h.mount_pose = hostMountPose;
   h.body_velocity = hostBodyVelocity;
+  h.body_state = hostBodyState;
   h.cast_ray = hostCastRay;
   return h;
 }

@@ -44,6 +44,9 @@ class PluginController : public Party {
     h.set_command = [](const SimbobHost* host, int ref, double v) { return self(host).command(ref, v); };
     h.mount_pose = [](const SimbobHost* host, double*, double*) { return self(host).misuse("mount_pose()"); };
     h.body_velocity = [](const SimbobHost* host, double*, double*) { return self(host).misuse("body_velocity()"); };
+    h.body_state = [](const SimbobHost* host, int ref, double* p, double* q, double* v, double* w) {
+      return self(host).bodyState(ref, p, q, v, w);
+    };
     h.cast_ray = [](const SimbobHost* host, const double*, const double*, double) {
       return static_cast<double>(self(host).misuse("cast_ray()"));
     };
@@ -62,32 +65,47 @@ class PluginController : public Party {
     const size_t n = strnlen(buf, SIMBOB_MESSAGE_SIZE);
     return n ? std::string(buf, n) : std::string("(no message)");
   }
-  /// The Model index behind ref `ref` if it is of the wanted kind; -1 after recording the misuse.
-  int refIndex(const char* call, int ref, bool sensor) {
+  /// The Model index behind ref `ref` if it is of the wanted kind (ControllerDef::ref_kind); -1
+  /// after recording the misuse.
+  int refIndex(const char* call, int ref, uint8_t kind) {
     const int count = static_cast<int>(def_.refs.size());
     if (ref < 0 || ref >= count) {
       fail(std::string(call) + "(" + std::to_string(ref) + "): there is no ref " + std::to_string(ref) +
            " (the type has " + std::to_string(count) + ")");
       return -1;
     }
-    if ((def_.ref_is_sensor[static_cast<size_t>(ref)] != 0) != sensor) {
-      fail(std::string(call) + "(" + std::to_string(ref) + "): ref " + std::to_string(ref) + " is " +
-           (sensor ? "an actuator, not a sensor" : "a sensor, not an actuator"));
+    static const char* const kKinds[] = {"an actuator", "a sensor", "a body"};
+    const uint8_t is = def_.ref_kind[static_cast<size_t>(ref)];
+    if (is != kind) {
+      fail(std::string(call) + "(" + std::to_string(ref) + "): ref " + std::to_string(ref) + " is " + kKinds[is] +
+           ", not " + kKinds[kind]);
       return -1;
     }
     return def_.refs[static_cast<size_t>(ref)];
   }
   int read(int ref, double* out, int n) {
-    const int i = refIndex("read_sensor", ref, true);
+    const int i = refIndex("read_sensor", ref, 1);
     if (i < 0) return -1;
     const std::vector<double>& r = world_->sensorReading(i);
     for (int k = 0; k < n && k < static_cast<int>(r.size()); ++k) out[k] = r[static_cast<size_t>(k)];
     return static_cast<int>(r.size());
   }
   int command(int ref, double value) {
-    const int i = refIndex("set_command", ref, false);
+    const int i = refIndex("set_command", ref, 0);
     if (i < 0) return -1;
     world_->setCommand(i, value);
+    return 0;
+  }
+  int bodyState(int ref, double* p, double* q, double* v, double* w) {
+    const int i = refIndex("body_state", ref, 2);
+    if (i < 0) return -1;
+    const BodyState s = world_->body(i);
+    for (size_t k = 0; k < 3; ++k) {
+      if (p) p[k] = s.pose.p[k];
+      if (v) v[k] = s.lin_vel[k];
+      if (w) w[k] = s.ang_vel[k];
+    }
+    for (size_t k = 0; k < 4 && q; ++k) q[k] = s.pose.q[k];
     return 0;
   }
   int misuse(const char* call) {

@@ -4,8 +4,9 @@
 # g++-built simbob: the example BeamSensor (examples/plugins/beam_sensor.c) read by the built-in
 # RCObstacleAvoider brings the robot of examples/plugins/beam_robot.xml to rest MinRange from
 # the wall as the avoider's law says, and reads the analytic distance; the test plug-ins'
-# Thruster (an actuator) and Throttle (a controller in C reading a sensor) push a free box as
-# x = F t^2 / (2 m) (tests/data/plugins/thruster.xml); the same bytes twice.
+# Thruster (an actuator) and Throttle (a controller in C reading a sensor and a body) push a free
+# box as x = F t^2 / (2 m), then let it coast (tests/data/plugins/thruster.xml); the same bytes
+# twice.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 cli_setup "$@"
@@ -80,7 +81,7 @@ near("(d(20) - MinRange) / (d(10) - MinRange)", (d["20"] - 0.3) / (d["10"] - 0.3
 near("rest distance at t=30 (m)", d["30"], 0.3, 0.003)
 PY
 
-check "Thruster (an actuator) commanded by Throttle (a controller in C): x = F t^2 / (2 m)"
+check "Thruster (an actuator) commanded by Throttle (a controller in C): x = F t^2 / (2 m), then coasting"
 THR="$REPO/tests/data/plugins/thruster.xml"
 expect_status 0 "$SIMBOB" run "$THR" --duration 2.5 --plugin ./c_plugins.so --plugin ./beam.so --out t1.csv --log sensors,commands -q
 expect_status 0 "$SIMBOB" run "$THR" --duration 2.5 --plugin ./c_plugins.so --plugin ./beam.so --out t2.csv --log sensors,commands -q
@@ -88,27 +89,34 @@ expect_same_file t1.csv t2.csv
 expect_same_file t1.log.csv t2.log.csv
 /usr/bin/python3 - t1.csv t1.log.csv <<'PY' || fail "thruster"
 import csv, sys
-F, m, h, t0 = 3.0, 2.0, 0.001, 0.5
+F, m, h, t0, t1 = 3.0, 2.0, 0.001, 0.5, 1.5
 rows = [r for r in csv.DictReader(open(sys.argv[1])) if r["body"] == "Bot.Cart.Box"]
 log = {(r["time"], r["component"]): float(r["value"]) for r in csv.DictReader(open(sys.argv[2]))}
+def x_pushed(t):
+    # The commanded force acts from the step after t0 on: ODE's semi-implicit Euler gives
+    # x = F tau (tau + h) / (2 m) exactly (h the step); the law F tau^2 / (2 m) within F h tau / (2 m).
+    tau = max(0.0, t - t0)
+    return F * tau * (tau + h) / (2 * m)
 worst_step = worst_law = 0.0
 for r in rows:
     t, x = float(r["time"]), float(r["x"])
-    tau = max(0.0, t - t0)
-    # The commanded force acts from the step after t0 on: ODE's semi-implicit Euler gives
-    # x = F tau (tau + h) / (2 m) exactly (h the step); the law F tau^2 / (2 m) within F h tau / (2 m).
-    worst_step = max(worst_step, abs(x - F * tau * (tau + h) / (2 * m)))
-    worst_law = max(worst_law, abs(x - F * tau * tau / (2 * m)) - F * h * tau / (2 * m))
-    want_cmd = 1.0 if t >= t0 else 0.0
+    tau = min(max(0.0, t - t0), t1 - t0)
+    # Throttle reads x(1.49) = 0.7358 < StopX = 0.75 <= x(1.5) = 0.75075 and commands 0 at t1 =
+    # 1.5 s, before the step after it: from t1 on the box coasts at F (t1 - t0) / m = 1.5 m/s.
+    want = x_pushed(t) if t <= t1 else x_pushed(t1) + F * (t1 - t0) / m * (t - t1)
+    worst_step = max(worst_step, abs(x - want))
+    if t <= t1:
+        worst_law = max(worst_law, abs(x - F * tau * tau / (2 * m)) - F * h * tau / (2 * m))
+    want_cmd = 1.0 if t0 <= t < t1 else 0.0
     if log[(r["time"], "Bot.Cart.Jet")] != want_cmd:
         sys.exit(f"FAIL: command at {t} is {log[(r['time'], 'Bot.Cart.Jet')]}, expected {want_cmd}")
     beam = log[(r["time"], "Bot.Cart.Beam")]
     if abs(beam - (4.9 - x)) > 1e-9:
         sys.exit(f"FAIL: beam at {t} reads {beam}, expected {4.9 - x}")
-print(f"check: x(2.5) = {float(rows[-1]['x']):.9g} (F t^2 / 2m = {F * 4 / (2 * m)})")
-print(f"check: largest |x - F tau (tau + h) / 2m| = {worst_step:.3g} (<= 1e-9)")
-print(f"check: largest excess over F h tau / 2m of |x - F tau^2 / 2m| = {worst_law:.3g} (<= 1e-12)")
+print(f"check: x(1.5) = {x_pushed(t1):.9g}, x(2.5) = {float(rows[-1]['x']):.9g} (expected {x_pushed(t1) + 1.5:.9g})")
+print(f"check: largest |x - expected| = {worst_step:.3g} (<= 1e-9)")
+print(f"check: largest excess over F h tau / 2m of |x - F tau^2 / 2m| while pushed = {worst_law:.3g} (<= 1e-12)")
 if worst_step > 1e-9 or worst_law > 1e-12:
-    sys.exit("FAIL: the box does not follow x = F t^2 / (2 m)")
+    sys.exit("FAIL: the box does not follow x = F t^2 / (2 m), then coast")
 PY
 say "ok: plugins_c"

@@ -2,9 +2,10 @@
  * simbob/plugin_c.h alone):
  * - Thruster (actuator, interface RCDriver): pushes its body along its mount's +X with
  *   Force * command N (the command as controllers give it, unclamped), no torque.
- * - Throttle (controller): from Start s on, commands ref 0 (an RCDriver) with Command; before
- *   that with 0. Before it commands, it reads ref 1 (any sensor) and fails unless the reading
- *   has exactly one entry that is a finite number: a controller in C that reads a sensor. */
+ * - Throttle (controller): from Start s on, commands ref 0 (an RCDriver) with Command while the
+ *   body behind ref 2 (RCBody) is short of x = StopX m (read with body_state), else with 0. Before
+ *   it commands, it reads ref 1 (any sensor) and fails unless the reading has exactly one entry
+ *   that is a finite number: a controller in C that reads a sensor and a body. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -36,7 +37,7 @@ static int thruster_apply(void* user, const SimbobHost* host, double t, double d
 
 /* --- Throttle --- */
 typedef struct Throttle {
-  double start, command;
+  double start, command, stop_x;
 } Throttle;
 
 static void* throttle_create(const double* numbers, char* message) {
@@ -47,31 +48,35 @@ static void* throttle_create(const double* numbers, char* message) {
   }
   c->start = numbers[0];
   c->command = numbers[1];
+  c->stop_x = numbers[2];
   return c;
 }
 
 static int throttle_act(void* user, const SimbobHost* host, double t, char* message) {
   const Throttle* c = (const Throttle*)user;
-  double reading[4];
+  double reading[4], position[3];
   const int n = host->read_sensor(host, 1, reading, 4);
   if (n != 1 || !isfinite(reading[0])) {
     snprintf(message, SIMBOB_MESSAGE_SIZE, "ref 1 read %d values", n);
     return 1;
   }
-  return host->set_command(host, 0, t >= c->start - 1e-9 ? c->command : 0.0) == 0 ? 0 : 1;
+  if (host->body_state(host, 2, position, NULL, NULL, NULL) != 0) return 1;
+  return host->set_command(host, 0, t >= c->start - 1e-9 && position[0] < c->stop_x ? c->command : 0.0) == 0 ? 0 : 1;
 }
 
 static const SimbobNumber kThrusterNumbers[] = {{"Force", 1.0, "N", "force at command 1"}};
 static const SimbobNumber kThrottleNumbers[] = {{"Start", 0.0, "s", "when to start commanding"},
-                                                {"Command", 1.0, "", "the command from Start on"}};
+                                                {"Command", 1.0, "", "the command from Start on"},
+                                                {"StopX", 1e9, "m", "commands 0 once the body is this far along X"}};
 static const SimbobRef kThrottleRefs[] = {{"Drive", "RCDriver", "what it commands"},
-                                          {"Sensor", "RCSensor", "a sensor it reads"}};
+                                          {"Sensor", "RCSensor", "a sensor it reads"},
+                                          {"Body", "RCBody", "the body whose x it watches"}};
 
 static const SimbobType kTypes[] = {
     {SIMBOB_ACTUATOR, "Thruster", "A force along the mount's +X: Force * command (test plug-in).", kThrusterNumbers, 1,
      NULL, 0, NULL, 0, "RCDriver", thruster_create, free, NULL, NULL, thruster_apply},
-    {SIMBOB_CONTROLLER, "Throttle", "Commands Command from Start on (test plug-in).", kThrottleNumbers, 2,
-     kThrottleRefs, 2, NULL, 0, NULL, throttle_create, free, throttle_act, NULL, NULL},
+    {SIMBOB_CONTROLLER, "Throttle", "Commands Command from Start on (test plug-in).", kThrottleNumbers, 3,
+     kThrottleRefs, 3, NULL, 0, NULL, throttle_create, free, throttle_act, NULL, NULL},
 };
 
 static const SimbobPlugin kPlugin = {SIMBOB_PLUGIN_ABI_VERSION, "c_plugins", kTypes, 2};

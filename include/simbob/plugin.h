@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "simbob/error.h"
 #include "simbob/plugin_c.h"
 
 namespace simbob {
@@ -48,6 +49,13 @@ std::string pluginWho(const std::string& plugin, const std::string& type);
 /// taken, a description that is incomplete), after which the registry may hold the types before
 /// it. The types are kept for the process's lifetime.
 std::string registerPlugin(Registry& reg, const SimbobPlugin& plugin);
+
+/// Loads the plug-in library `path` (dlopen; a name without '/' is taken relative to the working
+/// directory) and registers its types (registerPlugin). False with *error set, one line placed at
+/// `path`: MissingInput when it cannot be loaded (exit 66), InvalidInput when it is not a simbob
+/// plug-in, speaks another ABI (the C++ ABI's simbob_plugin_v1 included) or cannot register its
+/// types (65). A library is never unloaded.
+bool loadPluginLibrary(Registry& reg, const std::string& path, Error* error);
 
 /// Whether `interface` names an actuator interface (RCDriver, RCPosControl, RCVelControl).
 bool isActuatorInterface(const std::string& interface);

@@ -4,6 +4,8 @@
 // construction's root body with a Pose; a sensor also has Period) -- and lowers the
 // peripheries to Model::sensors (SensorKind::Plugin) and Model::actuators (ActuatorDef::Plugin).
 // Controllers are lowered with the built-ins (controllers.cpp).
+#include <dlfcn.h>
+
 #include <deque>
 
 #include "compile/context.h"
@@ -132,6 +134,39 @@ std::string registerPlugin(Registry& reg, const SimbobPlugin& p) {
     if (!reg.add(specOf(keptTypes().back()))) return reg.problems().back();
   }
   return "";
+}
+
+bool loadPluginLibrary(Registry& reg, const std::string& path, Error* error) {
+  auto fail = [&](ErrorKind kind, const std::string& what) {
+    *error = {kind, {path, 0}, what};
+    return false;
+  };
+  // RTLD_NOW: a missing symbol is an error here, not a crash in the middle of a run.
+  void* lib = dlopen(path.find('/') == std::string::npos ? ("./" + path).c_str() : path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!lib) {
+    const char* e = dlerror();
+    return fail(ErrorKind::MissingInput, std::string("cannot load the plug-in: ") + (e ? e : "dlopen failed"));
+  }
+  void* sym = dlsym(lib, "simbob_plugin_v2");
+  if (!sym && dlsym(lib, "simbob_plugin_v1"))
+    return fail(ErrorKind::InvalidInput,
+                "built for plug-in ABI 1 (the C++ ABI, entry point simbob_plugin_v1), which this simbob no longer "
+                "loads: rebuild it against simbob/plugin_c.h or simbob/plugin.hpp (docs/plugins.md)");
+  if (!sym)
+    return fail(ErrorKind::InvalidInput,
+                "not a simbob plug-in: it has no entry point simbob_plugin_v2 (see simbob/plugin_c.h)");
+  using Entry = const SimbobPlugin* (*)();
+  const SimbobPlugin* p = reinterpret_cast<Entry>(sym)();  // NOLINT(cppcoreguidelines-pro-type-reinterpret-cast)
+  if (!p) return fail(ErrorKind::InvalidInput, "simbob_plugin_v2 returned null");
+  if (p->abi_version != SIMBOB_PLUGIN_ABI_VERSION)
+    return fail(ErrorKind::InvalidInput, "plug-in ABI version " + std::to_string(p->abi_version) +
+                                             ", but this simbob loads version " +
+                                             std::to_string(SIMBOB_PLUGIN_ABI_VERSION) +
+                                             " (rebuild it against this simbob's simbob/plugin_c.h)");
+  const std::string problem = registerPlugin(reg, *p);
+  if (!problem.empty())
+    return fail(ErrorKind::InvalidInput, "plug-in '" + str(p->name) + "' could not register its types: " + problem);
+  return true;
 }
 
 void lowerPluginPeriphery(CompileContext& ctx, const Component& c, const Built& parent) {

@@ -11,6 +11,7 @@
 //                 space of their own, that only detect) and encoders
 //   rays.cpp      range sensors and laser scanners: ODE rays cast against the collision space
 //   imu.cpp       inertial measurement units: specific force and angular velocity
+//   plugin_peripheries.cpp  plug-in sensors and actuators (simbob/plugin_c.h) and World::failure
 //   world.cpp     World: create, step, accessors
 //
 // Actuators and sensors join as files of their own: a create function called by World::create

@@ -142,6 +142,9 @@ bad_run act_fails 1
 expect_eq "act message" "$(cat "$LAST_ERR")" "$WHO: act() failed: act failed on purpose at t=0.5"
 bad_run throw_act 1
 expect_eq "C++ act message" "$(cat "$LAST_ERR")" "$WHO: act() failed: act failed on purpose"
+bad_run controller_ray 1
+expect_eq "cast_ray from a controller" "$(cat "$LAST_ERR")" \
+  "$WHO: cast_ray() is for sensors and actuators, not controllers"
 
 check "a plug-in sensor whose read fails stops the run at its scene element (1)"
 sed 's|<RCGenericVelControlledDrive Key="LeftDrive">|<BadSensor Key="Bad"><Period Value="0.1"/></BadSensor>\n&|' "$SCENE" >bad_sensor.xml
@@ -151,4 +154,11 @@ expect_eq "read message" "$(cat "$LAST_ERR")" \
   "bad_sensor.xml:$SLINE: error: sensor 'Bot.Cart.Bad' (plug-in 'bad', type 'BadSensor'): read() failed: read failed on purpose at t=0.5"
 # Nothing acts on the failed reading: the run stops before the instant's grants (and samples).
 expect_eq "the partial ends before the failure" "$(tail -n 1 s.partial.csv | cut -d, -f1)" "0.49"
+
+check "a plug-in actuator whose force is not finite stops the run at its scene element (1)"
+sed 's|<RCGenericVelControlledDrive Key="LeftDrive">|<BadActuator Key="Bad"/>\n&|' "$SCENE" >bad_actuator.xml
+ALINE=$(grep -n '<BadActuator' bad_actuator.xml | cut -d: -f1)
+expect_status 1 "$SIMBOB" run bad_actuator.xml --duration 1 --plugin "$SQUARE" --plugin "$PLUGINS/bad_actuator_nan.so" --out a.csv -q
+expect_eq "apply message" "$(cat "$LAST_ERR")" \
+  "bad_actuator.xml:$ALINE: error: actuator 'Bot.Cart.Bad' (plug-in 'bad', type 'BadActuator'): apply() gave a force or torque that is not finite"
 say "ok: plugins"

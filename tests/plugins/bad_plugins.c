@@ -4,8 +4,10 @@
  * NO_READ (a sensor type without read), and plug-ins adding the controller type BadController
  * (no parameters but Period) that fails in one place: CREATE_FAILS (create returns NULL),
  * ACT_FAILS (act returns 1 at t >= 0.5 s), BAD_INDEX (set_command(99999) at t >= 0.5 s),
- * NEG_INDEX (set_command(-1)); SENSOR_FAILS adds the sensor type BadSensor whose read fails at
- * t >= 0.5 s. */
+ * NEG_INDEX (set_command(-1)), CONTROLLER_RAY (cast_ray, which is for sensors and actuators);
+ * SENSOR_FAILS adds the sensor type BadSensor whose read fails at t >= 0.5 s, ACTUATOR_NAN the
+ * actuator type BadActuator whose force is not a number. */
+#include <math.h>
 #include <stdio.h>
 
 #include "simbob/plugin_c.h"
@@ -35,6 +37,9 @@ static int act(void* user, const SimbobHost* host, double t, char* message) {
     host->set_command(host, 99999, 1.0);
 #elif defined(NEG_INDEX)
     host->set_command(host, -1, 1.0);
+#elif defined(CONTROLLER_RAY)
+    const double o[3] = {0, 0, 0}, d[3] = {1, 0, 0};
+    host->cast_ray(host, o, d, 1.0);
 #endif
   }
   (void)host;
@@ -53,6 +58,20 @@ static int read_value(void* user, const SimbobHost* host, double t, double* out,
   return 0;
 }
 
+static int apply_nan(void* user, const SimbobHost* host, double t, double dt, double command, double force[3],
+                     double torque[3], char* message) {
+  (void)user;
+  (void)host;
+  (void)t;
+  (void)dt;
+  (void)command;
+  (void)message;
+  force[0] = NAN;
+  force[1] = force[2] = 0;
+  torque[0] = torque[1] = torque[2] = 0;
+  return 0;
+}
+
 static const char* const kQuantities[] = {"t"};
 
 #if defined(DUPLICATE)
@@ -62,7 +81,9 @@ static const char* const kQuantities[] = {"t"};
 #endif
 
 static const SimbobType kTypes[] = {
-#if defined(SENSOR_FAILS) || defined(NO_READ)
+#if defined(ACTUATOR_NAN)
+    {SIMBOB_ACTUATOR, "BadActuator", "fails", NULL, 0, NULL, 0, NULL, 0, NULL, create, NULL, NULL, NULL, apply_nan},
+#elif defined(SENSOR_FAILS) || defined(NO_READ)
     {SIMBOB_SENSOR, "BadSensor", "fails", NULL, 0, NULL, 0, kQuantities, 1, NULL, create, NULL, NULL,
 #ifdef NO_READ
      NULL,

@@ -6,7 +6,7 @@
 # the wall as the avoider's law says, and reads the analytic distance; the test plug-ins'
 # Thruster (an actuator) and Throttle (a controller in C reading a sensor and a body) push a free
 # box as x = F t^2 / (2 m), then let it coast (tests/data/plugins/thruster.xml); the same bytes
-# twice.
+# twice. A plug-in sensor's reading also reaches a socket peer (protocol version 3).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 cli_setup "$@"
@@ -119,4 +119,15 @@ print(f"check: largest excess over F h tau / 2m of |x - F tau^2 / 2m| while push
 if worst_step > 1e-9 or worst_law > 1e-12:
     sys.exit("FAIL: the box does not follow x = F t^2 / (2 m), then coast")
 PY
+check "socket protocol version 3 carries the plug-in sensor (kind plugin) and its reading"
+# A BeamSensor at the chassis centre of socket_robot.xml looking down (-90 degrees about X turns
+# its -Z to -Y): it reads the chassis centre's height above the ground, 0.125 m at t = 0.
+sed 's|<RCGenericVelControlledDrive Key="LeftDrive">|<BeamSensor Key="Down"><Pose><RCLocalCoordinates><Pose Value="0 0 0 -90 0 0"/></RCLocalCoordinates></Pose></BeamSensor>\n&|' \
+  "$SCENES/socket_robot.xml" >sock.xml
+grep -q '<BeamSensor' sock.xml || fail "the sensor was not inserted"
+expect_status 0 "$SIMBOB" run sock.xml --duration 1 --plugin ./beam.so --out sock.csv --log sensors -q \
+  --controller "Bot.Cart.Link=/usr/bin/python3 $CLI_DIR/socket_v3_peer.py v3 Bot.Cart.Chassis Bot.Motion"
+expect_match "the version 3 hello names its kind" sock.controller.log "^hello3: sensor Bot.Cart.Down plugin 1$"
+expect_match "the state at t=0 carries its reading" sock.controller.log "^state0: sensor Bot.Cart.Down 0.125$"
+expect_match "the run log has the same reading" sock.log.csv "^0,Bot.Cart.Down,distance,0.125$"
 say "ok: plugins_c"

@@ -68,8 +68,8 @@ typedef struct SimbobHost SimbobHost;
  * Valid only during the callback that received it. Every function returns 0 (or a count) on
  * success and -1 for an argument out of range, which also stops the run with an error. */
 struct SimbobHost {
-  uint32_t size;   /**< sizeof(SimbobHost) as simbob built it */
-  void* context;   /**< simbob's; do not touch */
+  uint32_t size; /**< sizeof(SimbobHost) as simbob built it */
+  void* context; /**< simbob's; do not touch */
   /** Simulated time, s. */
   double (*time)(const SimbobHost* host);
   /** Controllers: reads the sensor behind ref `ref` (index into SimbobType.refs) into out[0..n-1];

@@ -128,7 +128,7 @@ std::string registerPlugin(Registry& reg, const SimbobPlugin& p) {
   if (p.type_count < 0 || (p.type_count > 0 && !p.types)) return "types and type_count disagree";
   for (int i = 0; i < p.type_count; ++i) {
     PluginType t;
-    const std::string problem = describe(p.types[i], plugin, &t);
+    std::string problem = describe(p.types[i], plugin, &t);
     if (!problem.empty()) return problem;
     keptTypes().push_back(std::move(t));
     if (!reg.add(specOf(keptTypes().back()))) return reg.problems().back();

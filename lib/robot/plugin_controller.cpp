@@ -117,7 +117,7 @@ class PluginController : public Party {
       error_ = {ErrorKind::Diverged, def_.loc, "controller '" + def_.key + "' (" + who_ + "): " + what};
   }
 
-  const ControllerDef& def_;
+  const ControllerDef def_;  // a copy, so the party points into nothing of the Model
   const SimbobType& type_;
   Periodic tick_;
   std::string who_;

@@ -119,6 +119,14 @@ print(f"check: largest excess over F h tau / 2m of |x - F tau^2 / 2m| while push
 if worst_step > 1e-9 or worst_law > 1e-12:
     sys.exit("FAIL: the box does not follow x = F t^2 / (2 m), then coast")
 PY
+check "a built-in controller commands the plug-in actuator: RCCommandSchedule, command 1 from 0.5 s to 1.5 s"
+sed '/<Throttle Key/,/<\/Throttle>/c\        <RCCommandSchedule Key="Plan"><Target Ref="Bot.Cart.Jet"/><Commands Value="0 0; 0.5 1; 1.5 0"/></RCCommandSchedule>' \
+  "$THR" >schedule.xml
+grep -q RCCommandSchedule schedule.xml || fail "the controller was not replaced"
+expect_status 0 "$SIMBOB" run schedule.xml --duration 2.5 --plugin ./c_plugins.so --plugin ./beam.so --out sched.csv -q
+# The Throttle stopped at t = 1.5 s too: the same pushes, the same bytes.
+expect_same_file sched.csv t1.csv
+
 check "socket protocol version 3 carries the plug-in sensor (kind plugin) and its reading"
 # A BeamSensor at the chassis centre of socket_robot.xml looking down (-90 degrees about X turns
 # its -Z to -Y): it reads the chassis centre's height above the ground, 0.125 m at t = 0.

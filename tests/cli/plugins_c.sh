@@ -127,6 +127,21 @@ expect_status 0 "$SIMBOB" run schedule.xml --duration 2.5 --plugin ./c_plugins.s
 # The Throttle stopped at t = 1.5 s too: the same pushes, the same bytes.
 expect_same_file sched.csv t1.csv
 
+HPP="$(dirname "$SIMBOB")/plugins/hpp_peripheries.so"
+if [[ -f "$HPP" ]]; then
+  check "the same sensor and actuator in C++ through simbob/plugin.hpp give the same bytes"
+  sed 's/BeamSensor/HppBeam/g' "$BEAM" >hpp_beam.xml
+  expect_status 0 "$SIMBOB" run hpp_beam.xml --duration 30 --plugin "$HPP" --out hb.csv --log sensors -q
+  expect_same_file hb.csv b1.csv
+  sed 's/<Thruster /<HppThruster /; s/<\/Thruster>/<\/HppThruster>/' "$THR" >hpp_thruster.xml
+  grep -q HppThruster hpp_thruster.xml || fail "the actuator was not replaced"
+  expect_status 0 "$SIMBOB" run hpp_thruster.xml --duration 2.5 --plugin ./c_plugins.so --plugin ./beam.so \
+    --plugin "$HPP" --out ht.csv -q
+  expect_same_file ht.csv t1.csv
+else
+  say "note: $HPP is not built (cmake --build builds it with simbob): the C++ check is left out"
+fi
+
 check "socket protocol version 3 carries the plug-in sensor (kind plugin) and its reading"
 # A BeamSensor at the chassis centre of socket_robot.xml looking down (-90 degrees about X turns
 # its -Z to -Y): it reads the chassis centre's height above the ground, 0.125 m at t = 0.

@@ -24,6 +24,7 @@
 #include "simbob/error.h"
 #include "simbob/overrides.h"
 #include "simbob/physics.h"
+#include "simbob/plugin.h"
 #include "simbob/registry.h"
 #include "simbob/render.h"
 #include "simbob/run.h"
@@ -37,10 +38,11 @@ using simbob::Error;
 using simbob::ErrorKind;
 using simbob::SimTime;
 
-// The one registry of component types, built at import (as `main` builds the CLI's). Never
-// destroyed: compiled models may point at its types until the interpreter ends.
-const simbob::Registry& registry() {
-  static const simbob::Registry* reg = [] {
+// The one registry of component types, built at import (as `main` builds the CLI's); plug-ins
+// add to it (load_plugin). Never destroyed: compiled models may point at its types until the
+// interpreter ends.
+simbob::Registry& registry() {
+  static simbob::Registry* reg = [] {
     auto* r = new simbob::Registry;
     if (!simbob::registerBuiltins(*r))
       throw std::runtime_error("simbob: the built-in component types did not register");
@@ -557,6 +559,18 @@ Errors are simbob.Error subclasses carrying kind, file, line and message.)";
                            "UnavailableError", "OutputError", "ProtocolError", "InternalError"})
     m.attr(name).attr("__module__") = "simbob";
   registry();
+  m.def(
+      "load_plugin",
+      [](const py::object& path) {
+        const std::string p = py::module_::import("os").attr("fspath")(path).cast<std::string>();
+        Error e;
+        if (!simbob::loadPluginLibrary(registry(), p, &e)) raiseError(e);
+      },
+      py::arg("path"),
+      R"(Loads a plug-in library (docs/plugins.md) as `simbob --plugin` does: its controller, sensor
+and actuator types join the registry for every scene loaded after. Raises simbob.MissingInputError
+when the file cannot be loaded and simbob.SceneError when it is not a simbob plug-in of this ABI
+or its type names are taken (loading it twice included).)");
 
   py::class_<PySimulation> cls(m, "Simulation",
                                R"(One run of a scene: its compiled model, its world, the clock on the fixed step
@@ -754,7 +768,8 @@ sensors of other kinds (read them with sensor()).)");
       py::arg("key"),
       R"(The reading of the sensor with this key now, numpy float64 (N,): its quantities in the
 order of sensor_quantities(key) (docs/sensors.md): touching (0 or 1); distance (m); range0..
-(m); ax ay az (m/s^2) gx gy gz (rad/s); ticks. Raises simbob.UsageError for an unknown key.)");
+(m); ax ay az (m/s^2) gx gy gz (rad/s); ticks; a plug-in sensor's own quantities. Raises
+simbob.UsageError for an unknown key.)");
   cls.def(
       "camera_image",
       [](PySimulation& s, const std::string& key) {

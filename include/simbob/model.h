@@ -15,6 +15,8 @@
 #include "simbob/frames.h"
 #include "simbob/visuals.h"
 
+struct SimbobType;  // simbob/plugin_c.h: a plug-in's type
+
 namespace simbob {
 
 /// Contact properties of one material (guide 6.7.1, combined per 7.1).
@@ -77,14 +79,21 @@ struct ActuatorDef {
     Drive,     ///< RCGenericDrive: command = voltage in [-1, 1] (RCDriver)
     Servo,     ///< RCGenericServo: command = target position, m or rad (RCPosControl)
     VelDrive,  ///< RCGenericVelControlledDrive: command = target velocity, m/s or rad/s (RCVelControl)
+    Plugin,    ///< a plug-in's actuator type: command = whatever it says; a force and torque on `body`
   } kind = Drive;
-  int joint = -1;                                             ///< index into Model::joints (hinge or slider)
-  double max_power = 10.0;                                    ///< N or N m, largest force or torque
-  double max_velocity = 1.0;                                  ///< m/s or rad/s
+  int joint = -1;             ///< index into Model::joints (hinge or slider); -1 for Plugin
+  double max_power = 10.0;    ///< N or N m, largest force or torque
+  double max_velocity = 1.0;  ///< m/s or rad/s
   double min_pos = -std::numeric_limits<double>::infinity();  ///< m or rad; -inf: no stop
   double max_pos = std::numeric_limits<double>::infinity();   ///< m or rad; inf: no stop
   double stall = 0.8;                                         ///< Drive: power fades above stall * max_velocity
   double smooth = 1.0;                                        ///< Servo: s, time constant of the final approach
+  // Plugin only:
+  int body = -1;                       ///< index into Model::bodies it pushes; -1 = static (pushes nothing)
+  Transform pose;                      ///< its mount relative to the body's frame (global if body == -1)
+  const SimbobType* plugin = nullptr;  ///< the plug-in's type (simbob/plugin_c.h)
+  std::vector<double> numbers;         ///< its number parameters, in the order the type declares them
+  std::string plugin_who;              ///< "plug-in 'p', type 'T'", for messages
 };
 
 /// What a sensor measures; see SensorDef and docs/sensors.md for each kind's reading.
@@ -94,6 +103,7 @@ enum class SensorKind : uint8_t {
   Scanner,    ///< RCLaserScanner: `range0` .. `range<Rays-1>` (m)
   Imu,        ///< RCImuSensor: `ax ay az` (m/s^2, specific force) `gx gy gz` (rad/s), sensor frame
   Encoder,    ///< RCEncoder: `ticks` on a hinge
+  Plugin,     ///< a plug-in's sensor type: the quantities it declares (simbob/plugin_c.h)
 };
 
 /// A sensor (guide 6.11.4 and simbob's own sensors). Every sensor has a reading: a fixed-length
@@ -117,11 +127,15 @@ struct SensorDef {
   double noise = 0.0;       ///< standard deviation: m (Range, Scanner), m/s^2 (Imu accelerometer)
   double resolution = 0.0;  ///< Range, Scanner: quantisation step (m, 0 = none); Encoder: ticks per turn
   int rays = 1;             ///< Scanner: number of rays (>= 1)
-  double field_of_view = 180.0;  ///< Scanner: degrees, (0, 360]
-  double gyro_noise = 0.0;       ///< Imu: standard deviation of the gyro (rad/s)
-  Vec3 accel_bias{0, 0, 0};      ///< Imu: constant accelerometer bias (m/s^2, sensor frame)
-  Vec3 gyro_bias{0, 0, 0};       ///< Imu: constant gyro bias (rad/s, sensor frame)
-  int joint = -1;                ///< Encoder: index into Model::joints (a hinge)
+  double field_of_view = 180.0;         ///< Scanner: degrees, (0, 360]
+  double gyro_noise = 0.0;              ///< Imu: standard deviation of the gyro (rad/s)
+  Vec3 accel_bias{0, 0, 0};             ///< Imu: constant accelerometer bias (m/s^2, sensor frame)
+  Vec3 gyro_bias{0, 0, 0};              ///< Imu: constant gyro bias (rad/s, sensor frame)
+  int joint = -1;                       ///< Encoder: index into Model::joints (a hinge)
+  const SimbobType* plugin = nullptr;   ///< Plugin: the plug-in's type (simbob/plugin_c.h)
+  std::vector<double> numbers;          ///< Plugin: its number parameters, in declaration order
+  std::vector<std::string> quantities;  ///< Plugin: the names of its reading's entries
+  std::string plugin_who;               ///< Plugin: "plug-in 'p', type 'T'", for messages
 };
 
 /// Scanner: the angle (rad) of ray k (0 <= k < rays) about the sensor's local +Y, from its -Z,
@@ -153,6 +167,8 @@ inline std::vector<std::string> sensorQuantities(const SensorDef& s) {
       return {"ax", "ay", "az", "gx", "gy", "gz"};
     case SensorKind::Encoder:
       return {"ticks"};
+    case SensorKind::Plugin:
+      return s.quantities;
   }
   return {};
 }
@@ -169,11 +185,6 @@ struct CameraSensorDef {
   double period = 0.1;  ///< s between images (0: every step); the image is held in between
 };
 
-class Party;
-struct ControllerDef;
-/// A plug-in controller's party factory (simbob/plugin.h).
-using PluginPartyFactory = std::unique_ptr<Party> (*)(const ControllerDef& def);
-
 /// A built-in controller (guide 6.12), a command schedule or a plug-in controller; runs as a
 /// party of the run loop.
 struct ControllerDef {
@@ -185,30 +196,36 @@ struct ControllerDef {
     TwoWheel,         ///< (v, w) -> wheel velocities of actuators[0] (left), actuators[1] (right)
     CommandSchedule,  ///< timed commands to actuators[0], or to controllers[target] (TwoWheel)
     WallStop,         ///< drives controllers[target] (TwoWheel) at `speed` until sensors[0] touches, then stops
-    Plugin,           ///< a plug-in's type: `make` builds its party
+    Plugin,           ///< a plug-in's controller type: `plugin` acts through `refs`
     GoToPoint,        ///< steers controllers[target] (TwoWheel) until bodies[body] is within `tolerance` of goal
     ObstacleAvoider,  ///< steers controllers[target] (TwoWheel) away from what its range sensors[] see
     WallFollower,     ///< steers controllers[target] (TwoWheel) along a wall seen by its laser scanner sensors[0]
   } kind = DriveTest;
-  double period = 0.01;               ///< s, loop period (DriveTest, ServoTest)
-  double variation = 6.0;             ///< 1/min (DriveTest, ServoTest); wheel radius in m (TwoWheel)
-  double wheel_distance = 0.5;        ///< m (TwoWheel)
-  std::vector<int> actuators;         ///< indices into Model::actuators
-  int target = -1;                    ///< CommandSchedule to a controller: index into Model::controllers
-  int values = 1;                     ///< CommandSchedule: values per row (1, or 2 for linear angular)
-  std::vector<double> commands;       ///< CommandSchedule: rows of (time s, values...), times increasing
-  std::string type;                   ///< Plugin: the type name
-  std::vector<double> numbers;        ///< Plugin: its number parameters, in the order it declared them
-  PluginPartyFactory make = nullptr;  ///< Plugin
-  std::vector<int> sensors;           ///< indices into Model::sensors (WallStop, ObstacleAvoider, WallFollower)
-  double speed = 0.1;                 ///< m/s (WallStop, GoToPoint, ObstacleAvoider, WallFollower)
-  int body = -1;                      ///< GoToPoint: index into Model::bodies whose pose it reads
-  double goal_x = 0, goal_z = 0;      ///< GoToPoint: the target point on the ground plane (m)
-  double turn_rate = 1.0;             ///< GoToPoint, ObstacleAvoider, WallFollower: largest angular velocity (rad/s)
-  double wall_distance = 0.3;         ///< WallFollower: m to keep between the scanner and the wall
-  int side = 1;                       ///< WallFollower: +1 the wall on the robot's left, -1 on its right
-  double tolerance = 0.05;            ///< GoToPoint: m from the goal at which it stops
-  std::string plugin;                 ///< Plugin: the plug-in's name (SimbobPluginV1::name), for messages
+  double period = 0.01;                     ///< s, loop period (DriveTest, ServoTest)
+  double variation = 6.0;                   ///< 1/min (DriveTest, ServoTest); wheel radius in m (TwoWheel)
+  double wheel_distance = 0.5;              ///< m (TwoWheel)
+  std::vector<int> actuators;               ///< indices into Model::actuators
+  int target = -1;                          ///< CommandSchedule to a controller: index into Model::controllers
+  int values = 1;                           ///< CommandSchedule: values per row (1, or 2 for linear angular)
+  std::vector<double> commands;             ///< CommandSchedule: rows of (time s, values...), times increasing
+  std::string type;                         ///< Plugin: the type name
+  std::vector<double> numbers;              ///< Plugin: its number parameters, in the order it declared them
+  const SimbobType* plugin_type = nullptr;  ///< Plugin: the plug-in's type (simbob/plugin_c.h)
+  /// Plugin: per ref of the type, an index into Model::sensors (a sensor interface),
+  /// Model::actuators (RCDriver, RCPosControl, RCVelControl or an actuator type's interface) or
+  /// Model::bodies (RCBody).
+  std::vector<int> refs;
+  /// Plugin: per ref, what refs[i] indexes: 0 Model::actuators, 1 Model::sensors, 2 Model::bodies.
+  std::vector<uint8_t> ref_kind;
+  std::vector<int> sensors;       ///< indices into Model::sensors (WallStop, ObstacleAvoider, WallFollower)
+  double speed = 0.1;             ///< m/s (WallStop, GoToPoint, ObstacleAvoider, WallFollower)
+  int body = -1;                  ///< GoToPoint: index into Model::bodies whose pose it reads
+  double goal_x = 0, goal_z = 0;  ///< GoToPoint: the target point on the ground plane (m)
+  double turn_rate = 1.0;         ///< GoToPoint, ObstacleAvoider, WallFollower: largest angular velocity (rad/s)
+  double wall_distance = 0.3;     ///< WallFollower: m to keep between the scanner and the wall
+  int side = 1;                   ///< WallFollower: +1 the wall on the robot's left, -1 on its right
+  double tolerance = 0.05;        ///< GoToPoint: m from the goal at which it stops
+  std::string plugin;             ///< Plugin: the plug-in's name (SimbobPlugin::name), for messages
 };
 
 /// An RCLocalSocketCommunicator (guide 6.11.6): a peer program on 127.0.0.1 that reads the

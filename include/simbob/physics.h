@@ -142,6 +142,12 @@ class World {
   /// party that made it (a plug-in) fails the run with a message instead of a crash.
   const std::string& misuse() const;
 
+  /// The first failure of a plug-in sensor or actuator (create() gave no instance, a callback
+  /// returned nonzero, a host call was given an argument out of range), at the periphery's scene
+  /// element; null when there is none. From then on that periphery is not called again; the run
+  /// stops with this error.
+  const Error* failure() const;
+
  private:
   World();
   std::unique_ptr<WorldImpl> impl_;

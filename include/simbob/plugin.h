@@ -1,32 +1,22 @@
-// Plug-ins (guide 2, 3.3.1 ExtensionFolder, 9.2): shared libraries that add component types.
-// A plug-in exports one C function, simbob_plugin_v1, returning a SimbobPluginV1 whose
-// abi_version is SIMBOB_PLUGIN_ABI_VERSION; simbob calls its register_types with a PluginHost,
-// through which it adds controller types to the same Registry as the built-ins. A plug-in
-// controller's party is made by the plug-in's factory from the lowered ControllerDef and acts
-// through World (simbob/physics.h), like the built-in controllers. The ABI is C++: a plug-in
-// must be built with the same compiler and simbob headers as the simbob that loads it
-// (docs/plugins.md); the version number changes whenever this header or the types it uses change.
+// simbob's side of plug-ins (docs/plugins.md): how the types a plug-in lists through the C ABI
+// (simbob/plugin_c.h, the only header a plug-in needs) enter the Registry. The loader (the CLI,
+// the Python module) finds the entry point simbob_plugin_v2 and hands its SimbobPlugin to
+// registerPlugin; scenes then use the types like built-ins: controllers lower to
+// ControllerDef::Plugin, sensors to SensorKind::Plugin, actuators to ActuatorDef::Plugin, each
+// keeping a pointer to the plug-in's SimbobType (static storage in the library, never unloaded).
 #pragma once
 
-#include <cstdint>
-#include <memory>
 #include <string>
 #include <vector>
 
-#include "simbob/model.h"
-#include "simbob/registry.h"
-#include "simbob/run.h"
-
-#define SIMBOB_PLUGIN_ABI_VERSION 2u
+#include "simbob/error.h"
+#include "simbob/plugin_c.h"
 
 namespace simbob {
 
-// PluginPartyFactory (simbob/model.h) builds the party of one plug-in controller from its
-// lowered definition: def.numbers holds the values of PluginControllerType::numbers in their
-// order, def.actuators the Model::actuators index of each of PluginControllerType::refs in
-// their order, def.period its Period (s).
+class Registry;
 
-/// A number parameter of a plug-in controller (a Value of type Number).
+/// A number parameter of a plug-in type (a Value of type Number).
 struct PluginNumber {
   std::string name;
   double default_value = 0;
@@ -34,46 +24,40 @@ struct PluginNumber {
   std::string doc;
 };
 
-/// A reference parameter: a Ref to a periphery that implements `interface` (RCDriver,
-/// RCPosControl or RCVelControl).
+/// A controller's reference parameter: a Ref to a periphery that offers `interface`.
 struct PluginRef {
   std::string name;
   std::string interface;
   std::string doc;
 };
 
-/// A controller type a plug-in adds (family ControllerComponent).
-struct PluginControllerType {
-  std::string name;  ///< the type's element name; must not be taken (by a built-in or a plug-in)
-  std::string doc;
-  std::vector<PluginRef> refs;
+/// A plug-in's type as simbob keeps it: the C description copied into C++ values, checked.
+struct PluginType {
+  const SimbobType* c = nullptr;  ///< the plug-in's own description (lives as long as the process)
+  std::string plugin;             ///< SimbobPlugin::name, for messages
+  std::string name, doc, interface;
   std::vector<PluginNumber> numbers;
-  PluginPartyFactory make = nullptr;
+  std::vector<PluginRef> refs;          ///< controllers
+  std::vector<std::string> quantities;  ///< sensors
 };
 
-/// The registry entry of a plug-in controller type: its refs, then Period (s, default 0.01),
-/// then its numbers (lib/components/controllers.cpp). `type` must outlive the registry.
-TypeSpec controllerTypeSpec(const PluginControllerType& type);
+/// "plug-in 'p', type 'T'", for messages.
+std::string pluginWho(const std::string& plugin, const std::string& type);
 
-/// What register_types may call.
-class PluginHost {
- public:
-  virtual ~PluginHost();
-  /// Adds a controller type; false (and the run stops with the reason) if its name is taken.
-  virtual bool addController(const PluginControllerType& type) = 0;
-};
+/// Checks a plug-in's description (its version must be SIMBOB_PLUGIN_ABI_VERSION) and adds its
+/// types to `reg`, in order. Returns "" or the first problem in words (a type whose name is
+/// taken, a description that is incomplete), after which the registry may hold the types before
+/// it. The types are kept for the process's lifetime.
+std::string registerPlugin(Registry& reg, const SimbobPlugin& plugin);
+
+/// Loads the plug-in library `path` (dlopen; a name without '/' is taken relative to the working
+/// directory) and registers its types (registerPlugin). False with *error set, one line placed at
+/// `path`: MissingInput when it cannot be loaded (exit 66), InvalidInput when it is not a simbob
+/// plug-in, speaks another ABI (the C++ ABI's simbob_plugin_v1 included) or cannot register its
+/// types (65). A library is never unloaded.
+bool loadPluginLibrary(Registry& reg, const std::string& path, Error* error);
+
+/// Whether `interface` names an actuator interface (RCDriver, RCPosControl, RCVelControl).
+bool isActuatorInterface(const std::string& interface);
 
 }  // namespace simbob
-
-extern "C" {
-
-struct SimbobPluginV1 {
-  uint32_t abi_version;  ///< SIMBOB_PLUGIN_ABI_VERSION of the headers it was built with
-  const char* name;      ///< for messages
-  /// Adds the plug-in's types through `host`; false if it could not.
-  bool (*register_types)(simbob::PluginHost* host);
-};
-
-/// The entry point every plug-in defines.
-const SimbobPluginV1* simbob_plugin_v1(void);
-}

@@ -93,7 +93,7 @@ struct ListParam {
   const char* name;
 };
 
-struct PluginControllerType;  // simbob/plugin.h
+struct PluginType;  // simbob/plugin.h
 
 struct TypeSpec {
   TypeSpec() = default;
@@ -118,9 +118,9 @@ struct TypeSpec {
   std::string import_root;              ///< non-empty: parameter File names an XML file with this root
                                         ///< element ("Body", "Joint", "RefList") read into the scene
   std::vector<std::string> interfaces;  ///< guide interfaces it offers controllers ("RCDriver", ...)
-  /// A plug-in's controller type (kept by its loader), or null.
-  const PluginControllerType* plugin = nullptr;
-  std::string plugin_name;  ///< the plug-in that added the type (SimbobPluginV1::name), for messages
+  /// A plug-in's type (kept by registerPlugin), or null.
+  const PluginType* plugin = nullptr;
+  std::string plugin_name;  ///< the plug-in that added the type (SimbobPlugin::name), for messages
 
   /// Whether it offers `interface`.
   bool implements(std::string_view interface) const;
@@ -172,7 +172,7 @@ class Registry {
   /// ("RCBoxGeom" -> the ...Geom types, nearest first: RCCuboidGeom). Struct types are left out.
   std::vector<std::string> suggestTypes(std::string_view name) const;
   /// "unknown component type 'X' (did you mean 'Y'?)"; where `plugin_family` (a place that takes
-  /// controllers, the family plug-ins add), also how to load a plug-in that would define it.
+  /// controllers or peripheries, the families plug-ins add), also how to load a plug-in that would define it.
   std::string unknownTypeMessage(std::string_view name, bool plugin_family) const;
 
  private:

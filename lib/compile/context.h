@@ -197,6 +197,9 @@ void lowerPeriphery(CompileContext& ctx, const Component& c, const Built& parent
 void lowerRangeSensor(CompileContext& ctx, const Component& c, const Built& parent);
 void lowerImuSensor(CompileContext& ctx, const Component& c, const Built& parent);
 void lowerEncoder(CompileContext& ctx, const Component& c, const Built& parent);
+/// plugin_types.cpp: a plug-in's sensor or actuator (TypeSpec::plugin) on a construction whose
+/// root is `parent`.
+void lowerPluginPeriphery(CompileContext& ctx, const Component& c, const Built& parent);
 /// camera_sensors.cpp: an RCCameraSensor (Model::camera_sensors).
 void lowerCameraSensor(CompileContext& ctx, const Component& c, const Built& parent);
 /// peripheries.cpp: the pose of a sensor (its Pose link, as RCProximitySensor's) relative to the

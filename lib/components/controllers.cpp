@@ -17,18 +17,6 @@ namespace simbob {
 
 namespace {
 
-enum class ControllerKind {
-  DriveTest,
-  ServoTest,
-  TwoWheelMotionControl,
-  CommandSchedule,
-  WallStop,
-  GoToPoint,
-  Plugin,
-  ObstacleAvoider,
-  WallFollower
-};
-
 constexpr LinkParam kDrive{"Drive"};
 constexpr LinkParam kPosControl{"PosControl"};
 constexpr LinkParam kControlLeft{"ControlLeft"};
@@ -186,6 +174,42 @@ int mobileBodyOf(CompileContext& ctx, const Component& c, LinkParam param) {
   return i < 0 ? -1 : i;
 }
 
+/// A plug-in controller's ref `r`: appends to d->refs the Model::actuators index of the actuator
+/// or the Model::sensors index of the sensor it refers to (which must offer r.interface;
+/// "RCSensor": any sensor), or for "RCBody" the Model::bodies index of the mobile body, and
+/// returns it, or -1 after an error.
+int pluginRefOf(CompileContext& ctx, const Component& c, const PluginRef& r, ControllerDef* d) {
+  const LinkParam param{r.name.c_str()};
+  if (r.interface == "RCBody") {
+    const int b = mobileBodyOf(ctx, c, param);
+    d->refs.push_back(b);
+    d->ref_kind.push_back(2);
+    return b;
+  }
+  const Link& l = c.get(param);
+  const Component* t = nullptr;
+  if (l.comp >= 0 && r.interface == "RCSensor" && ctx.at(l.comp).type->family == Family::Periphery)
+    t = &ctx.at(l.comp);
+  else
+    t = target(ctx, c, param, r.interface.c_str());
+  int i = -1;
+  const bool is_actuator = t && ctx.actuatorIndex(ctx.modelKey(*t)) != -1;
+  if (is_actuator)
+    i = actuatorOf(ctx, c, l, *t);
+  else if (t) {
+    i = ctx.sensorIndex(ctx.modelKey(*t));
+    if (i == -1 && !ctx.failedQuietly())
+      ctx.error(l, c,
+                CompileContext::describe(*t) +
+                    " is not a sensor of a construction built before this controller (put it in the ChildList of "
+                    "its robot's construction)");
+    i = std::max(i, -1);
+  }
+  d->refs.push_back(i);
+  d->ref_kind.push_back(is_actuator ? 0 : 1);
+  return i;
+}
+
 /// RCSimGoToPoint's Target "x z"; false after an error.
 bool parseGoal(CompileContext& ctx, const Component& c, double* x, double* z) {
   std::string err;
@@ -288,21 +312,6 @@ void registerControllers(Registry& r) {
          "Follows a wall on one side at a set distance, turning at corners (docs/sensors.md)."});
 }
 
-PluginHost::~PluginHost() = default;
-
-TypeSpec controllerTypeSpec(const PluginControllerType& t) {
-  std::vector<ParamSpec> params;
-  for (const PluginRef& r : t.refs)
-    params.push_back(
-        componentParam(LinkParam{r.name.c_str()}, {Family::Periphery}, "", r.doc + " (Ref, " + r.interface + ")"));
-  params.push_back(number(kPeriod, 0.01, "s", "loop period", Range::Positive));
-  for (const PluginNumber& n : t.numbers)
-    params.push_back(number(ValueParam<double>{n.name.c_str()}, n.default_value, n.unit, n.doc));
-  TypeSpec spec{t.name, Family::Controller, int(ControllerKind::Plugin), std::move(params), {}, t.doc};
-  spec.plugin = &t;
-  return spec;
-}
-
 void lowerController(CompileContext& ctx, const Component& c) {
   const int ci = ctx.indexOf(c);
   if (ctx.controller_index.count(ci)) return;  // lowered already (a schedule's target, or listed twice)
@@ -393,13 +402,16 @@ void lowerController(CompileContext& ctx, const Component& c) {
       if (d.target < 0 || d.sensors[0] < 0) ok = false;
       break;
     case ControllerKind::Plugin: {
-      const PluginControllerType& t = *c.type->plugin;
+      const PluginType& t = *c.type->plugin;
       d.kind = ControllerDef::Plugin;
       d.type = t.name;
-      d.plugin = c.type->plugin_name;
-      d.make = t.make;
+      d.plugin = t.plugin;
+      d.plugin_type = t.c;
       d.period = c.get(kPeriod);
-      for (const PluginRef& r : t.refs) actuator(LinkParam{r.name.c_str()}, r.interface.c_str());
+      for (const PluginRef& r : t.refs) {
+        const int i = pluginRefOf(ctx, c, r, &d);
+        if (i < 0) ok = false;
+      }
       for (const PluginNumber& n : t.numbers) d.numbers.push_back(c.get(ValueParam<double>{n.name.c_str()}));
       break;
     }

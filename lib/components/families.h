@@ -32,6 +32,19 @@ void registerSettings(Registry& r);
 /// The kinds of the Periphery family, whose types live in several files: peripheries.cpp (drives,
 /// servos, the proximity sensor, the socket communicator), range_sensors.cpp, imu_sensors.cpp,
 /// encoders.cpp. peripheries.cpp dispatches on it (lowerPeriphery).
+/// TypeSpec::kind of the controller family (controllers.cpp; plug-in controllers: Plugin).
+enum class ControllerKind {
+  DriveTest,
+  ServoTest,
+  TwoWheelMotionControl,
+  CommandSchedule,
+  WallStop,
+  GoToPoint,
+  Plugin,
+  ObstacleAvoider,
+  WallFollower
+};
+
 enum class PeripheryKind {
   GenericDrive,
   GenericServo,
@@ -43,6 +56,8 @@ enum class PeripheryKind {
   ImuSensor,
   Encoder,
   CameraSensor,
+  PluginSensor,    ///< a plug-in's sensor type (plugin_types.cpp)
+  PluginActuator,  ///< a plug-in's actuator type (plugin_types.cpp)
 };
 
 // Parameter names read outside their family file: the loader reads the scene root and the

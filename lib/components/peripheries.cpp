@@ -234,6 +234,8 @@ bool peripheryLimits(const Component& c, double* lo, double* hi) {
     case PeripheryKind::ImuSensor:
     case PeripheryKind::Encoder:
     case PeripheryKind::CameraSensor:
+    case PeripheryKind::PluginSensor:
+    case PeripheryKind::PluginActuator:
       return false;
   }
   return false;
@@ -265,6 +267,10 @@ void lowerPeriphery(CompileContext& ctx, const Component& c, const Built& parent
       break;
     case PeripheryKind::CameraSensor:
       lowerCameraSensor(ctx, c, parent);
+      break;
+    case PeripheryKind::PluginSensor:
+    case PeripheryKind::PluginActuator:
+      lowerPluginPeriphery(ctx, c, parent);
       break;
     case PeripheryKind::LocalSocketCommunicator: {
       if (c.get(kPort) > kMaxPort) {

@@ -30,9 +30,13 @@ double stallFactor(double speed, double vmax, double stall) {
   return (vmax - speed) / (vmax - vstall);
 }
 
-void act(WorldImpl& im, size_t i) {
+void act(WorldImpl& im, size_t i, double h) {
   ActuatorState& a = im.actuators[i];
   const ActuatorDef& d = a.def;
+  if (d.kind == ActuatorDef::Plugin) {
+    applyPluginActuator(im, a, h);
+    return;
+  }
   const size_t ji = static_cast<size_t>(d.joint);
   dJointID j = im.joints[ji];
   const JointKind kind = im.jointInfo[ji].kind;
@@ -63,6 +67,8 @@ void act(WorldImpl& im, size_t i) {
       setParam(j, kind, dParamVel, a.motor_sign * a.command);
       setParam(j, kind, dParamFMax, a.commanded ? d.max_power : 0.0);
       break;
+    case ActuatorDef::Plugin:
+      break;  // above
   }
 }
 
@@ -73,6 +79,11 @@ void createActuators(WorldImpl& im, const Model& model) {
   for (const ActuatorDef& d : model.actuators) {
     ActuatorState a;
     a.def = d;
+    if (d.kind == ActuatorDef::Plugin) {
+      createPluginActuator(im, a);
+      im.actuators.push_back(std::move(a));
+      continue;
+    }
     if (d.kind == ActuatorDef::Servo) a.command = std::clamp(0.0, d.min_pos, d.max_pos);
     const size_t ji = static_cast<size_t>(d.joint);
     const JointKind kind = im.jointInfo[ji].kind;
@@ -88,8 +99,8 @@ void createActuators(WorldImpl& im, const Model& model) {
     if (std::isfinite(hi)) setParam(im.joints[ji], kind, dParamHiStop, hi);
   }
   if (!im.actuators.empty())
-    im.beforeStep.push_back([](WorldImpl& w, double) {
-      for (size_t i = 0; i < w.actuators.size(); ++i) act(w, i);
+    im.beforeStep.push_back([](WorldImpl& w, double h) {
+      for (size_t i = 0; i < w.actuators.size(); ++i) act(w, i, h);
     });
 }
 
@@ -107,6 +118,9 @@ void commandActuator(WorldImpl& im, int i, double value) {
       break;
     case ActuatorDef::VelDrive:
       a.command = std::clamp(value, -d.max_velocity, d.max_velocity);
+      break;
+    case ActuatorDef::Plugin:
+      a.command = value;  // the plug-in's apply() makes of it what it says
       break;
   }
   // Recorded, not reported: the run says it once per actuator (World::clampedCommands).

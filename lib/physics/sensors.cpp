@@ -67,6 +67,7 @@ void createSensors(WorldImpl& im, const Model& model, uint32_t seed) {
     s.reading.assign(s.quantities.size(), 0.0);
     if (d.period > 0) s.period_ns = std::max<int64_t>(1, std::llround(d.period * 1e9));
     for (int gi : d.geoms) s.geoms.push_back(im.geoms[static_cast<size_t>(gi)]);
+    if (d.kind == SensorKind::Plugin) createPluginSensor(im, s);
     im.sensors.push_back(std::move(s));
   }
   if (!im.sensors.empty()) updateSensors(im, 0.0);
@@ -91,6 +92,9 @@ void updateSensors(WorldImpl& im, double h) {
         break;
       case SensorKind::Encoder:
         if (due) readEncoder(im, s);
+        break;
+      case SensorKind::Plugin:
+        if (due) readPluginSensor(im, s);
         break;
     }
   }

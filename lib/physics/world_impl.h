@@ -11,6 +11,7 @@
 //                 space of their own, that only detect) and encoders
 //   rays.cpp      range sensors and laser scanners: ODE rays cast against the collision space
 //   imu.cpp       inertial measurement units: specific force and angular velocity
+//   plugin_peripheries.cpp  plug-in sensors and actuators (simbob/plugin_c.h) and World::failure
 //   world.cpp     World: create, step, accessors
 //
 // Actuators and sensors join as files of their own: a create function called by World::create
@@ -21,6 +22,7 @@
 
 #include <atomic>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <vector>
 
@@ -61,6 +63,8 @@ struct SensorState {
   bool touching = false;                ///< Proximity: one of its geoms touched another body at the last update
   Vec3 prev_vel{0, 0, 0};               ///< Imu: global velocity of the sensor point after the previous step
   bool has_prev = false;                ///< Imu: prev_vel is set (false at creation)
+  std::shared_ptr<void> user;           ///< Plugin: its instance (destroyed by the plug-in's destroy())
+  bool broken = false;                  ///< Plugin: it failed (World::failure); never called again
 };
 
 /// An actuator's definition and its current command (see World::setCommand).
@@ -72,8 +76,10 @@ struct ActuatorState {
   /// The sense of ODE's motor and stops against simbob's: -1, or +1 for a hinge whose parent is
   /// the world (ODE swaps its bodies and flips its readings but not its motor and stops).
   double motor_sign = -1.0;
-  uint64_t clamped = 0;      ///< commands beyond the actuator's limits (clamped), for a notice
-  double first_clamped = 0;  ///< the first of them, as asked
+  uint64_t clamped = 0;        ///< commands beyond the actuator's limits (clamped), for a notice
+  double first_clamped = 0;    ///< the first of them, as asked
+  std::shared_ptr<void> user;  ///< Plugin: its instance (destroyed by the plug-in's destroy())
+  bool broken = false;         ///< Plugin: it failed (World::failure); never called again
 };
 
 struct WorldImpl {
@@ -108,6 +114,8 @@ struct WorldImpl {
   std::atomic<bool> stepping{false};
   /// The first call of World with an index out of range, in words (World::misuse).
   std::string misuse;
+  /// The first failure of a plug-in sensor or actuator (World::failure).
+  Error failure;
   /// Run in order at the start of every step (before collision) with the step size in s: where
   /// motors, applied forces and sensors that act every step hook in. Empty today.
   std::vector<std::function<void(WorldImpl&, double)>> beforeStep;
@@ -181,6 +189,15 @@ void readRays(WorldImpl& im, SensorState& s);
 // imu.cpp
 /// Tracks the sensor point's velocity every step of `h` s and, when `due`, writes the reading.
 void readImu(WorldImpl& im, SensorState& s, double h, bool due);
+
+// plugin_peripheries.cpp
+/// Makes a plug-in sensor's or actuator's instance (a failure goes to WorldImpl::failure).
+void createPluginSensor(WorldImpl& im, SensorState& s);
+void createPluginActuator(WorldImpl& im, ActuatorState& a);
+/// A plug-in sensor's reading into s.reading (when due).
+void readPluginSensor(WorldImpl& im, SensorState& s);
+/// A plug-in actuator's force and torque on its body for the next step of h s.
+void applyPluginActuator(WorldImpl& im, ActuatorState& a, double h);
 
 // contacts.cpp
 /// Collides the space and creates this step's contact joints (guide 7.1); counts them in lastContacts.

@@ -43,6 +43,7 @@ std::vector<double> sensorRays(const Model& model, const World& world) {
       case SensorKind::Proximity:
       case SensorKind::Imu:
       case SensorKind::Encoder:
+      case SensorKind::Plugin:
         break;
     }
   }

@@ -380,6 +380,7 @@ class GlRenderer : public Renderer {
         case SensorKind::Proximity:
         case SensorKind::Imu:
         case SensorKind::Encoder:
+        case SensorKind::Plugin:
           break;
       }
       const bool on_body = s.body >= 0 && static_cast<size_t>(s.body) < poses.size();

@@ -43,6 +43,8 @@ std::unique_ptr<Party> makeSocketPeer(const SocketDef& d, const Model& model,
                                       std::vector<std::pair<std::string, MotionControl2D*>> motions);
 /// A SimControllerComponent: reads its body's pose from the World. `motion` never nullptr.
 std::unique_ptr<Party> makeGoToPoint(const ControllerDef& c, MotionControl2D* motion);
+/// A plug-in's controller (plugin_controller.cpp).
+std::unique_ptr<Party> makePluginController(const ControllerDef& c);
 /// Reads the range sensors model.sensors[c.sensors[i]]; `motion` never nullptr.
 std::unique_ptr<Party> makeObstacleAvoider(const ControllerDef& c, const Model& model, MotionControl2D* motion);
 /// Reads the laser scanner model.sensors[c.sensors[0]]; `motion` never nullptr.

@@ -20,75 +20,6 @@ SimTime Periodic::next(SimTime now) {
   return next_;
 }
 
-namespace {
-
-/// A plug-in controller's party behind a guard: every call into the plug-in (make, first,
-/// onGrant, finish, failure) is caught, and so is an index out of range it gave World
-/// (World::misuse); either fails the run with an error naming the plug-in and its type, where
-/// the controller is defined (exit 1, the trajectory so far kept), instead of a crash.
-class PluginGuard : public Party {
- public:
-  explicit PluginGuard(const ControllerDef& c)
-      : who_("plug-in '" + c.plugin + "', type '" + c.type + "'"), loc_(c.loc), key_(c.key) {
-    call("make()", [&] { inner_ = c.make(c); });
-    if (!inner_) fail("make() returned no party");
-  }
-  SimTime first() override {
-    SimTime t = 0;
-    if (inner_ && error_.message.empty()) {
-      passAccessTo(*inner_);
-      call("first()", [&] { t = inner_->first(); });
-    }
-    return error_.message.empty() ? t : 0;  // granted at once, so the run stops at t = 0
-  }
-  SimTime onGrant(SimTime now, World& world) override {
-    SimTime next = kNever;
-    if (!error_.message.empty()) return kNever;
-    passAccessTo(*inner_);
-    call("onGrant()", [&] { next = inner_->onGrant(now, world); });
-    if (error_.message.empty() && !world.misuse().empty()) fail(world.misuse());
-    return error_.message.empty() ? next : kNever;
-  }
-  void finish(SimTime end, World& world) override {
-    if (error_.message.empty()) call("finish()", [&] { inner_->finish(end, world); });
-  }
-  const Error* failure() const override {
-    if (error_.message.empty() && inner_) {
-      const Error* e = nullptr;
-      call("failure()", [&] { e = inner_->failure(); });
-      if (e && error_.message.empty()) return e;
-    }
-    return error_.message.empty() ? nullptr : &error_;
-  }
-  void abandon(const Error& why) override {
-    if (inner_) call("abandon()", [&] { inner_->abandon(why); });
-  }
-
- private:
-  template <class F>
-  void call(const char* what, F&& f) const {
-    try {
-      f();
-    } catch (const std::exception& e) {
-      fail(std::string(what) + " threw: " + e.what());
-    } catch (...) {
-      fail(std::string(what) + " threw an exception that is not a std::exception");
-    }
-  }
-  void fail(const std::string& what) const {
-    if (error_.message.empty())
-      error_ = {ErrorKind::Diverged, loc_, "controller '" + key_ + "' (" + who_ + "): " + what};
-  }
-
-  std::string who_;
-  SourceLoc loc_;
-  std::string key_;
-  std::unique_ptr<Party> inner_;
-  mutable Error error_;  ///< the first failure; set from const failure() too
-};
-
-}  // namespace
-
 }  // namespace robot
 
 namespace {
@@ -104,6 +35,7 @@ class ClampNotices : public Party {
       const uint64_t n = world.clampedCommands(i, &asked);
       if (n == 0) continue;
       const ActuatorDef& d = model_.actuators[static_cast<size_t>(i)];
+      if (d.kind == ActuatorDef::Plugin) continue;  // never clamped
       const bool hinge = model_.joints[static_cast<size_t>(d.joint)].kind == JointKind::Hinge;
       std::string what;
       switch (d.kind) {
@@ -122,6 +54,8 @@ class ClampNotices : public Party {
                  unit;
           break;
         }
+        case ActuatorDef::Plugin:
+          break;
       }
       warn_({ErrorKind::InvalidInput, d.loc,
              "actuator '" + d.key + "': command " + what + ", clamped (" + countOf(n, "command", "commands") +
@@ -162,7 +96,7 @@ std::vector<std::unique_ptr<Party>> robotParties(const Model& model) {
       case ControllerDef::TwoWheel:
         break;  // made above
       case ControllerDef::Plugin:
-        out[i] = std::make_unique<robot::PluginGuard>(c);
+        out[i] = robot::makePluginController(c);
         break;
       case ControllerDef::CommandSchedule:
         out[i] = robot::makeCommandSchedule(c, c.target >= 0 ? motion[static_cast<size_t>(c.target)] : nullptr);

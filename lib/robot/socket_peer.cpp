@@ -50,6 +50,8 @@ const char* actuatorKind(ActuatorDef::Kind k) {
       return "position";
     case ActuatorDef::VelDrive:
       return "velocity";
+    case ActuatorDef::Plugin:
+      return "command";
   }
   return "?";
 }
@@ -143,6 +145,8 @@ const char* sensorKind(const SensorDef& d) {
       return "imu";
     case SensorKind::Encoder:
       return "encoder";
+    case SensorKind::Plugin:
+      return "plugin";
   }
   return "proximity";
 }

@@ -366,8 +366,9 @@ class Builder {
     const TypeSpec* t = reg_.find(l.type);
     if (!t && l.body && l.body->ignoresCase()) t = reg_.findIgnoreCase(l.type);
     if (!t || t->family == Family::Struct) {
-      const bool plugin_family =
-          std::find(p.families.begin(), p.families.end(), Family::Controller) != p.families.end();
+      const bool plugin_family =  // the families plug-ins add to: controllers, sensors and actuators
+          std::find(p.families.begin(), p.families.end(), Family::Controller) != p.families.end() ||
+          std::find(p.families.begin(), p.families.end(), Family::Periphery) != p.families.end();
       diag_.error(link.loc, prefix(what) + reg_.unknownTypeMessage(l.type, plugin_family));
       return link;
     }

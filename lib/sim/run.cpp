@@ -108,6 +108,10 @@ void Runner::stop(RunStatus status, Error e) {
 
 bool Runner::grantDue() {
   if (stopped_) return false;
+  if (const Error* e = world_ ? world_->failure() : nullptr) {  // a plug-in sensor or actuator failed
+    stop(RunStatus::Failed, *e);
+    return false;
+  }
   // Grant every due request, earliest first, ties in list order; nothing else runs meanwhile.
   bool granted = false;
   int id = -1;

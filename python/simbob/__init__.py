@@ -18,6 +18,7 @@ from ._simbob import (  # noqa: F401
     UnavailableError,
     UsageError,
     __version__,
+    load_plugin,
 )
 from .batch import Batch  # noqa: E402,F401
 from .env import Box, SimbobEnv  # noqa: E402,F401
@@ -44,4 +45,5 @@ __all__ = [
     "Simulation",
     "UnavailableError",
     "UsageError",
+    "load_plugin",
 ]

@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
-# Plug-ins (docs/plugins.md): the example square_driver.so adds the controller type
-# SquareDriver to the registry (types, check, run), given by --plugin or found in the global
-# setting ExtensionFolder; examples/plugins/square_robot.xml moves as its law says, the same
-# bytes twice. A wrong ABI version, a type name that is taken, a library without the entry point
-# and a missing file are one-line errors naming the file (65, 65, 65, 66).
+# Plug-ins (docs/plugins.md): the example square_driver.so (C++ through simbob/plugin.hpp over
+# the C ABI) adds the controller type SquareDriver to the registry (types, check, run), given by
+# --plugin or found in the global setting ExtensionFolder; examples/plugins/square_robot.xml
+# moves as its law says, the same bytes twice. A wrong ABI version, a plug-in of the old C++ ABI
+# (simbob_plugin_v1), a type name that is taken, a library without the entry point, an
+# incomplete type and a missing file are one-line errors naming the file (65, 65, 65, 65, 65,
+# 66); plug-in code that fails (create, act, a ref out of range, a sensor's read, a C++
+# exception) stops the run with one line at the scene element (1, the partial kept).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 cli_setup "$@"
@@ -83,13 +86,23 @@ expect_eq "built-in duplicate message" "$(cat "$LAST_ERR")" \
 check "a wrong ABI version (65)"
 expect_status 65 "$SIMBOB" run "$SCENE" --duration 1 --plugin "$PLUGINS/bad_bad_abi.so" --out x.csv
 expect_eq "ABI message" "$(cat "$LAST_ERR")" \
-  "$PLUGINS/bad_bad_abi.so: error: plug-in ABI version 999, but this simbob loads version 2 (rebuild it against this simbob's headers)"
+  "$PLUGINS/bad_bad_abi.so: error: plug-in ABI version 999, but this simbob loads version 3 (rebuild it against this simbob's simbob/plugin_c.h)"
 expect_no_file x.csv
+
+check "a plug-in of the old C++ ABI, entry point simbob_plugin_v1 (65)"
+expect_status 65 "$SIMBOB" check "$SCENE" --plugin "$PLUGINS/bad_v1.so"
+expect_eq "v1 message" "$(cat "$LAST_ERR")" \
+  "$PLUGINS/bad_v1.so: error: built for plug-in ABI 1 (the C++ ABI, entry point simbob_plugin_v1), which this simbob no longer loads: rebuild it against simbob/plugin_c.h or simbob/plugin.hpp (docs/plugins.md)"
 
 check "a library without the entry point (65)"
 expect_status 65 "$SIMBOB" check "$SCENE" --plugin "$PLUGINS/bad_no_entry.so"
 expect_eq "no entry message" "$(cat "$LAST_ERR")" \
-  "$PLUGINS/bad_no_entry.so: error: not a simbob plug-in: it has no entry point simbob_plugin_v1 (see simbob/plugin.h)"
+  "$PLUGINS/bad_no_entry.so: error: not a simbob plug-in: it has no entry point simbob_plugin_v2 (see simbob/plugin_c.h)"
+
+check "an incomplete type: a sensor without read (65)"
+expect_status 65 "$SIMBOB" types --plugin "$PLUGINS/bad_no_read.so"
+expect_eq "no read message" "$(cat "$LAST_ERR")" \
+  "$PLUGINS/bad_no_read.so: error: plug-in 'bad' could not register its types: type 'BadSensor': a sensor needs read"
 
 check "a file that is not there or not a library (66)"
 expect_status 66 "$SIMBOB" check "$SCENE" --plugin nowhere.so
@@ -97,13 +110,11 @@ expect_match "dlopen message" "$LAST_ERR" "^nowhere.so: error: cannot load the p
 printf 'not an ELF file\n' >fake.so
 expect_status 66 "$SIMBOB" check "$SCENE" --plugin fake.so
 expect_match "not ELF message" "$LAST_ERR" "^fake.so: error: cannot load the plug-in: "
-check "plug-in code that fails: an error naming the plug-in, never a crash (65 while loading, 1 during a run with the partial kept)"
+check "plug-in code that fails: an error naming the plug-in, never a crash (1 during a run with the partial kept)"
 sed '/<SquareDriver/,/<\/SquareDriver>/c\        <BadController Key="Bad"/>' "$SCENE" >bad_robot.xml
 grep -q BadController bad_robot.xml || fail "the controller was not replaced"
 BLINE=$(grep -n '<BadController' bad_robot.xml | cut -d: -f1)
-expect_status 65 "$SIMBOB" check bad_robot.xml --plugin "$PLUGINS/bad_throw_register.so"
-expect_eq "register_types message" "$(cat "$LAST_ERR")" \
-  "$PLUGINS/bad_throw_register.so: error: plug-in 'bad': register_types threw: register_types failed on purpose"
+WHO="bad_robot.xml:$BLINE: error: controller 'Bot.Bad' (plug-in 'bad', type 'BadController')"
 # bad_run NAME STATUS: runs bad_robot.xml for 1 s with bad_NAME.so into NAME.csv.
 bad_run() {
   expect_status "$2" "$SIMBOB" run bad_robot.xml --duration 1 --plugin "$PLUGINS/bad_$1.so" --out "$1.csv" -q
@@ -111,28 +122,43 @@ bad_run() {
   expect_no_file "$1.json"
   expect_eq "no temporary files after $1" "$(ls -a | grep -c '\.tmp\.' || true)" 0
 }
-bad_run throw_make 1
-expect_eq "constructor message" "$(cat "$LAST_ERR")" \
-  "bad_robot.xml:$BLINE: error: controller 'Bot.Bad' (plug-in 'bad', type 'BadController'): make() threw: constructor failed on purpose"
-expect_file throw_make.partial.csv
-bad_run null_make 1
-expect_eq "null make message" "$(cat "$LAST_ERR")" \
-  "bad_robot.xml:$BLINE: error: controller 'Bot.Bad' (plug-in 'bad', type 'BadController'): make() returned no party"
-bad_run throw_first 1
-expect_eq "first message" "$(cat "$LAST_ERR")" \
-  "bad_robot.xml:$BLINE: error: controller 'Bot.Bad' (plug-in 'bad', type 'BadController'): first() threw: first failed on purpose"
-for name in throw_grant bad_index neg_index; do
+bad_run create_fails 1
+expect_eq "create message" "$(cat "$LAST_ERR")" "$WHO: create() failed: create failed on purpose"
+expect_file create_fails.partial.csv
+bad_run throw_create 1
+expect_eq "C++ constructor message" "$(cat "$LAST_ERR")" "$WHO: create() failed: constructor failed on purpose"
+for name in act_fails throw_act bad_index neg_index; do
   bad_run $name 1
   expect_file $name.partial.csv
   last=$(tail -n 1 $name.partial.csv | cut -d, -f1)
   expect_eq "$name: the partial ends at the failure" "$last" "0.5"
 done
-expect_eq "setCommand(-1) message" "$(cat "$LAST_ERR")" \
-  "bad_robot.xml:$BLINE: error: controller 'Bot.Bad' (plug-in 'bad', type 'BadController'): World::setCommand(-1): there is no actuator -1 (the world has 2)"
+expect_eq "set_command(-1) message" "$(cat "$LAST_ERR")" \
+  "$WHO: set_command(-1): there is no ref -1 (the type has 0)"
 bad_run bad_index 1
-expect_eq "setCommand(99999) message" "$(cat "$LAST_ERR")" \
-  "bad_robot.xml:$BLINE: error: controller 'Bot.Bad' (plug-in 'bad', type 'BadController'): World::setCommand(99999): there is no actuator 99999 (the world has 2)"
-bad_run throw_grant 1
-expect_eq "onGrant message" "$(cat "$LAST_ERR")" \
-  "bad_robot.xml:$BLINE: error: controller 'Bot.Bad' (plug-in 'bad', type 'BadController'): onGrant() threw: onGrant failed on purpose"
+expect_eq "set_command(99999) message" "$(cat "$LAST_ERR")" \
+  "$WHO: set_command(99999): there is no ref 99999 (the type has 0)"
+bad_run act_fails 1
+expect_eq "act message" "$(cat "$LAST_ERR")" "$WHO: act() failed: act failed on purpose at t=0.5"
+bad_run throw_act 1
+expect_eq "C++ act message" "$(cat "$LAST_ERR")" "$WHO: act() failed: act failed on purpose"
+bad_run controller_ray 1
+expect_eq "cast_ray from a controller" "$(cat "$LAST_ERR")" \
+  "$WHO: cast_ray() is for sensors and actuators, not controllers"
+
+check "a plug-in sensor whose read fails stops the run at its scene element (1)"
+sed 's|<RCGenericVelControlledDrive Key="LeftDrive">|<BadSensor Key="Bad"><Period Value="0.1"/></BadSensor>\n&|' "$SCENE" >bad_sensor.xml
+SLINE=$(grep -n '<BadSensor' bad_sensor.xml | cut -d: -f1)
+expect_status 1 "$SIMBOB" run bad_sensor.xml --duration 1 --plugin "$SQUARE" --plugin "$PLUGINS/bad_sensor_fails.so" --out s.csv -q
+expect_eq "read message" "$(cat "$LAST_ERR")" \
+  "bad_sensor.xml:$SLINE: error: sensor 'Bot.Cart.Bad' (plug-in 'bad', type 'BadSensor'): read() failed: read failed on purpose at t=0.5"
+# Nothing acts on the failed reading: the run stops before the instant's grants (and samples).
+expect_eq "the partial ends before the failure" "$(tail -n 1 s.partial.csv | cut -d, -f1)" "0.49"
+
+check "a plug-in actuator whose force is not finite stops the run at its scene element (1)"
+sed 's|<RCGenericVelControlledDrive Key="LeftDrive">|<BadActuator Key="Bad"/>\n&|' "$SCENE" >bad_actuator.xml
+ALINE=$(grep -n '<BadActuator' bad_actuator.xml | cut -d: -f1)
+expect_status 1 "$SIMBOB" run bad_actuator.xml --duration 1 --plugin "$SQUARE" --plugin "$PLUGINS/bad_actuator_nan.so" --out a.csv -q
+expect_eq "apply message" "$(cat "$LAST_ERR")" \
+  "bad_actuator.xml:$ALINE: error: actuator 'Bot.Cart.Bad' (plug-in 'bad', type 'BadActuator'): apply() gave a force or torque that is not finite"
 say "ok: plugins"

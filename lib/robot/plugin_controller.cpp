@@ -1,0 +1,134 @@
+// A plug-in's controller (simbob/plugin_c.h, docs/plugins.md): its instance is made from its
+// numbers when the run's parties are, and its act() runs at 0, Period, 2 Period, ... with a
+// SimbobHost that reads the sensors and commands the actuators its refs name
+// (ControllerDef::refs). A failure -- create() returning NULL, act() returning nonzero, a host
+// call with a ref out of range or of the wrong kind, or a World index out of range
+// (World::misuse) -- stops the run with an error naming the controller, the plug-in and the
+// type, where the controller is defined (exit 1, the trajectory so far kept).
+#include <array>
+#include <cstring>
+
+#include "robot/controllers.h"
+#include "simbob/physics.h"
+#include "simbob/plugin_c.h"
+
+namespace simbob::robot {
+
+namespace {
+
+class PluginController : public Party {
+ public:
+  explicit PluginController(const ControllerDef& c)
+      : def_(c), type_(*c.plugin_type), tick_(c.period), who_("plug-in '" + c.plugin + "', type '" + c.type + "'") {
+    if (!type_.create) return;
+    std::array<char, SIMBOB_MESSAGE_SIZE> msg{};
+    user_ = type_.create(def_.numbers.data(), msg.data());
+    if (!user_) fail("create() failed: " + messageOf(msg.data()));
+  }
+  ~PluginController() override {
+    if (user_ && type_.destroy) type_.destroy(user_);
+  }
+  PluginController(const PluginController&) = delete;
+  PluginController& operator=(const PluginController&) = delete;
+
+  SimTime first() override { return 0; }  // a failed create() stops the run at t = 0
+  SimTime onGrant(SimTime now, World& world) override {
+    if (!error_.message.empty()) return kNever;
+    world_ = &world;
+    time_ = toSeconds(now);
+    SimbobHost h{};
+    h.size = sizeof(SimbobHost);
+    h.context = this;
+    h.time = [](const SimbobHost* host) { return self(host).time_; };
+    h.read_sensor = [](const SimbobHost* host, int ref, double* out, int n) { return self(host).read(ref, out, n); };
+    h.set_command = [](const SimbobHost* host, int ref, double v) { return self(host).command(ref, v); };
+    h.mount_pose = [](const SimbobHost* host, double*, double*) { return self(host).misuse("mount_pose()"); };
+    h.body_velocity = [](const SimbobHost* host, double*, double*) { return self(host).misuse("body_velocity()"); };
+    h.body_state = [](const SimbobHost* host, int ref, double* p, double* q, double* v, double* w) {
+      return self(host).bodyState(ref, p, q, v, w);
+    };
+    h.cast_ray = [](const SimbobHost* host, const double*, const double*, double) {
+      return static_cast<double>(self(host).misuse("cast_ray()"));
+    };
+    std::array<char, SIMBOB_MESSAGE_SIZE> msg{};
+    const int rc = type_.act(user_, &h, time_, msg.data());
+    world_ = nullptr;
+    if (rc != 0) fail("act() failed: " + messageOf(msg.data()));
+    if (!world.misuse().empty()) fail(world.misuse());
+    return error_.message.empty() ? tick_.next(now) : kNever;
+  }
+  const Error* failure() const override { return error_.message.empty() ? nullptr : &error_; }
+
+ private:
+  static PluginController& self(const SimbobHost* h) { return *static_cast<PluginController*>(h->context); }
+  static std::string messageOf(const char* buf) {
+    const size_t n = strnlen(buf, SIMBOB_MESSAGE_SIZE);
+    return n ? std::string(buf, n) : std::string("(no message)");
+  }
+  /// The Model index behind ref `ref` if it is of the wanted kind (ControllerDef::ref_kind); -1
+  /// after recording the misuse.
+  int refIndex(const char* call, int ref, uint8_t kind) {
+    const int count = static_cast<int>(def_.refs.size());
+    if (ref < 0 || ref >= count) {
+      fail(std::string(call) + "(" + std::to_string(ref) + "): there is no ref " + std::to_string(ref) +
+           " (the type has " + std::to_string(count) + ")");
+      return -1;
+    }
+    static const char* const kKinds[] = {"an actuator", "a sensor", "a body"};
+    const uint8_t is = def_.ref_kind[static_cast<size_t>(ref)];
+    if (is != kind) {
+      fail(std::string(call) + "(" + std::to_string(ref) + "): ref " + std::to_string(ref) + " is " + kKinds[is] +
+           ", not " + kKinds[kind]);
+      return -1;
+    }
+    return def_.refs[static_cast<size_t>(ref)];
+  }
+  int read(int ref, double* out, int n) {
+    const int i = refIndex("read_sensor", ref, 1);
+    if (i < 0) return -1;
+    const std::vector<double>& r = world_->sensorReading(i);
+    for (int k = 0; k < n && k < static_cast<int>(r.size()); ++k) out[k] = r[static_cast<size_t>(k)];
+    return static_cast<int>(r.size());
+  }
+  int command(int ref, double value) {
+    const int i = refIndex("set_command", ref, 0);
+    if (i < 0) return -1;
+    world_->setCommand(i, value);
+    return 0;
+  }
+  int bodyState(int ref, double* p, double* q, double* v, double* w) {
+    const int i = refIndex("body_state", ref, 2);
+    if (i < 0) return -1;
+    const BodyState s = world_->body(i);
+    for (size_t k = 0; k < 3; ++k) {
+      if (p) p[k] = s.pose.p[k];
+      if (v) v[k] = s.lin_vel[k];
+      if (w) w[k] = s.ang_vel[k];
+    }
+    for (size_t k = 0; k < 4 && q; ++k) q[k] = s.pose.q[k];
+    return 0;
+  }
+  int misuse(const char* call) {
+    fail(std::string(call) + " is for sensors and actuators, not controllers");
+    return -1;
+  }
+  void fail(const std::string& what) {
+    if (error_.message.empty())
+      error_ = {ErrorKind::Diverged, def_.loc, "controller '" + def_.key + "' (" + who_ + "): " + what};
+  }
+
+  const ControllerDef def_;  // a copy, so the party points into nothing of the Model
+  const SimbobType& type_;
+  Periodic tick_;
+  std::string who_;
+  void* user_ = nullptr;
+  World* world_ = nullptr;
+  double time_ = 0;
+  Error error_;
+};
+
+}  // namespace
+
+std::unique_ptr<Party> makePluginController(const ControllerDef& c) { return std::make_unique<PluginController>(c); }
+
+}  // namespace simbob::robot

@@ -91,7 +91,8 @@ double hostCastRay(const SimbobHost* h, const double origin[3], const double dir
   const Vec3 o = add(f.p, rotate(f.q, Vec3{origin[0], origin[1], origin[2]}));
   const Vec3 dir = rotate(f.q, Vec3{d[0] / len, d[1] / len, d[2] / len});
   dBodyID own = m.body >= 0 ? m.im->bodies[static_cast<size_t>(m.body)] : nullptr;
-  const double hit = castRay(*m.im, own, o, dir, max_length);
+  gatherRayCandidates(*m.im, own, o, max_length);
+  const double hit = castRay(*m.im, o, dir, max_length);
   return std::isfinite(hit) ? hit : -1;
 }
 

@@ -36,7 +36,7 @@ namespace {
 using batch::Job;
 namespace fs = std::filesystem;
 
-pid_t startWorker(const Job& j, const BatchArgs& a) {
+pid_t startWorker(const Job& j, const BatchArgs& a, const Common& common) {
   std::vector<std::string> args = {"simbob", "run", j.scene, "--quiet", "--out", j.out};
   args.emplace_back("--duration");
   args.push_back(formatNumber(a.duration));
@@ -49,6 +49,7 @@ pid_t startWorker(const Job& j, const BatchArgs& a) {
   args.emplace_back("--batch-child");
   args.emplace_back("--refusal-summary");
   if (a.html) args.insert(args.end(), {"--html", fs::path(j.out).replace_extension(".html").string()});
+  for (std::string& o : workerOptions(common)) args.push_back(std::move(o));
   // Manifest options come last: CLI11 keeps the last value of a repeated option.
   args.insert(args.end(), j.args.begin(), j.args.end());
   return spawnSelf(args, j.log);
@@ -183,7 +184,7 @@ int cmdBatch(const BatchArgs& a, const Common& common) {
         Job& j = jobs[i];
         j.started = std::chrono::steady_clock::now();
         j.since = fs::file_time_type::clock::now();
-        j.pid = startWorker(j, a);
+        j.pid = startWorker(j, a, common);
         if (j.pid < 0) {
           j.status = "failed";
           j.error = std::string("cannot fork: ") + std::strerror(errno);

@@ -55,25 +55,6 @@ bool readManifest(const std::string& path, std::string* text, std::vector<SweepC
   return true;
 }
 
-std::string absolutePath(const std::string& p) {
-  std::error_code ec;
-  fs::path a = fs::absolute(p, ec);
-  return (ec ? fs::path(p) : a).lexically_normal().string();
-}
-
-std::vector<std::string> caseOptions(const Common& common) {
-  std::vector<std::string> args;
-  for (const std::string& p : common.plugins) {
-    args.emplace_back("--plugin");
-    args.push_back(absolutePath(p));
-  }
-  if (!common.settings.empty()) {
-    args.emplace_back("--settings");
-    args.push_back(absolutePath(common.settings));
-  }
-  return args;
-}
-
 }  // namespace sweep
 
 namespace {

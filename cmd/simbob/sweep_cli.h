@@ -18,11 +18,6 @@ inline constexpr size_t kMaxManifestBytes = size_t{1} << 30;
 bool readInput(const std::string& path, const char* what, std::string* text, int* code);
 /// Reads and parses a case manifest; reports and sets *code on failure.
 bool readManifest(const std::string& path, std::string* text, std::vector<SweepCase>* cases, int* code);
-/// `p` absolute and normal (a Slurm task may start elsewhere).
-std::string absolutePath(const std::string& p);
-/// The options every case of a sweep runs with: the plug-ins and global settings the sweep
-/// command was given, as absolute paths.
-std::vector<std::string> caseOptions(const Common& common);
 
 /// OUT/manifest.jsonl is the manifest the cases in OUT came from: written by the first task,
 /// checked by every other, so two sweeps never mix in one folder. 0, or the exit status.

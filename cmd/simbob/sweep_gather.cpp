@@ -116,7 +116,7 @@ int sweepSbatch(const SweepArgs& a, const Common& common) {
   const std::string out = absolutePath(a.out);
   const std::string manifest = absolutePath(a.input);
   // Checked before anything is written: every value the scripts will hold.
-  const std::vector<std::string> options = caseOptions(common);
+  const std::vector<std::string> options = workerOptions(common);
   if (!scriptValue("--partition", a.partition) || !scriptValue("-o", out) || !scriptValue("the manifest", manifest) ||
       !scriptValue("the simbob binary", binary))
     return kExitUsage;

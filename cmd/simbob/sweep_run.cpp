@@ -88,7 +88,7 @@ std::vector<std::string> caseRunArgs(const SweepCase& c, const std::string& mani
     args.emplace_back("--set");
     args.push_back(set);
   }
-  for (std::string& o : caseOptions(common)) args.push_back(std::move(o));
+  for (std::string& o : workerOptions(common)) args.push_back(std::move(o));
   return args;
 }
 
@@ -187,7 +187,7 @@ int runAllCases(const SweepArgs& a, const std::vector<SweepCase>& cases, const C
                                          "-o",     a.out,   "--quiet"};
         if (a.force) args.emplace_back("--force");
         if (a.case_pages) args.emplace_back("--html");
-        for (std::string& o : caseOptions(common)) args.push_back(std::move(o));
+        for (std::string& o : workerOptions(common)) args.push_back(std::move(o));
         const pid_t pid = spawnSelf(args, "/dev/null");
         if (pid < 0) {
           ++done;

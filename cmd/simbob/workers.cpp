@@ -72,6 +72,25 @@ WorkerOutcome workerOutcome(int wstatus) {
   return o;
 }
 
+std::string absolutePath(const std::string& p) {
+  std::error_code ec;
+  std::filesystem::path a = std::filesystem::absolute(p, ec);
+  return (ec ? std::filesystem::path(p) : a).lexically_normal().string();
+}
+
+std::vector<std::string> workerOptions(const Common& common) {
+  std::vector<std::string> args;
+  for (const std::string& p : common.plugins) {
+    args.emplace_back("--plugin");
+    args.push_back(absolutePath(p));
+  }
+  if (!common.settings.empty()) {
+    args.emplace_back("--settings");
+    args.push_back(absolutePath(common.settings));
+  }
+  return args;
+}
+
 std::string firstErrorLine(const std::string& log_path) {
   std::ifstream in(log_path);
   std::string line, last;

@@ -12,6 +12,8 @@
 
 namespace simbob::cli {
 
+struct Common;
+
 /// Starts this binary with `args` (argv[0] included), its stdout and stderr to `log`. The child
 /// gets SIGTERM when its parent dies, so workers never outlive a killed batch or sweep. -1 if
 /// fork failed.
@@ -25,6 +27,13 @@ struct WorkerOutcome {
   std::string error;   ///< for "crashed": the signal, in words
 };
 WorkerOutcome workerOutcome(int wstatus);
+
+/// `p` absolute and normal (a worker or a Slurm task may start elsewhere).
+std::string absolutePath(const std::string& p);
+
+/// The options every worker of batch and sweep runs with: the plug-ins and global settings the
+/// command was given (--plugin, --settings), as absolute paths.
+std::vector<std::string> workerOptions(const Common& common);
 
 /// The first "file:line: error: ..." line of a worker's log (its last line when there is none).
 std::string firstErrorLine(const std::string& log_path);

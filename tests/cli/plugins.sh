@@ -31,6 +31,10 @@ check "the square robot moves as SquareDriver's law says, the same bytes twice"
 expect_status 0 "$SIMBOB" run "$SCENE" --duration 6 --plugin "$SQUARE" --out sq1.csv -q
 expect_status 0 "$SIMBOB" run "$SCENE" --duration 6 --plugin "$SQUARE" --out sq2.csv -q
 expect_same_file sq1.csv sq2.csv
+
+check "batch hands its --plugin to its workers: the same bytes as run"
+expect_status 0 "$SIMBOB" batch "$SCENE" --duration 6 --plugin "$SQUARE" --out-dir sqb -q
+expect_same_file sq1.csv sqb/square_robot.csv
 python3 - sq1.csv <<'PY' || fail "square robot motion"
 import csv, math, sys
 rows = {}

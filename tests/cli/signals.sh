@@ -136,11 +136,24 @@ with open("big.xml", "w") as f:
     f.write('<Simulation><ComponentList>\n' + "".join(body % (i, i) for i in range(40000)) +
             '</ComponentList></Simulation>\n')
 PY
+# The signal goes as soon as simbob catches SIGTERM (its mask in /proc/PID/status), which it
+# starts to do as it starts loading: loading these 40,000 bodies takes a few tenths of a second,
+# a fixed delay could land after it on a fast machine (it did: check had printed "ok").
+caught_term() {
+  local mask
+  # simbob itself, not the shell that forks it (which catches SIGTERM too until it execs)
+  [ "$(cat "/proc/$1/comm" 2>/dev/null)" = simbob ] || return 1
+  mask=$(awk '/^SigCgt:/ {print $2}' "/proc/$1/status" 2>/dev/null) || return 1
+  [ -n "$mask" ] && (((16#$mask >> 14) & 1))  # SIGTERM is signal 15: bit 14
+}
 for cmd in "run big.xml --duration 1 --out big.csv" "check big.xml"; do
   # shellcheck disable=SC2086
   "$SIMBOB" $cmd >load.out 2>load.err &
   pid=$!
-  sleep 0.3
+  for _ in $(seq 1 2000); do
+    caught_term $pid && break
+    sleep 0.002
+  done
   kill -TERM $pid
   status=0
   wait $pid || status=$?

@@ -57,16 +57,17 @@ bool wraps(int level, int x, int y, int z0) {
 
 /// The axis along which the boxes overlap least: the sum of their extents over the spread of
 /// their lower bounds, smallest.
-int sweepAxis(const std::vector<const dReal*>& boxes) {
+template <typename Box>
+int sweepAxis(const std::vector<Box>& boxes) {
   int best = 0;
   double bestRatio = INFINITY;
   for (int a = 0; a < 3; ++a) {
     double sum = 0, lo = INFINITY, hi = -INFINITY;
     const size_t i = 2 * static_cast<size_t>(a);
-    for (const dReal* b : boxes) {
-      sum += b[i + 1] - b[i];
-      lo = std::min(lo, b[i]);
-      hi = std::max(hi, b[i]);
+    for (const Box& b : boxes) {
+      sum += b.aabb[i + 1] - b.aabb[i];
+      lo = std::min(lo, b.aabb[i]);
+      hi = std::max(hi, b.aabb[i]);
     }
     const double ratio = hi > lo ? sum / (hi - lo) : INFINITY;
     if (ratio < bestRatio) {
@@ -180,9 +181,7 @@ bool HashSpacePairs::gather(dSpaceID space) {
 void HashSpacePairs::findPairs() {
   pairs_.clear();
   const size_t n = hash_.size();
-  boxes_.clear();
-  for (const Box& b : hash_) boxes_.push_back(b.aabb);
-  const size_t axis = 2 * static_cast<size_t>(sweepAxis(boxes_));  // the axis's lower bound in aabb
+  const size_t axis = 2 * static_cast<size_t>(sweepAxis(hash_));  // the axis's lower bound in aabb
   sorted_.resize(n);
   for (size_t i = 0; i < n; ++i) sorted_[i] = static_cast<int>(i);
   std::sort(sorted_.begin(), sorted_.end(), [&](int x, int y) {

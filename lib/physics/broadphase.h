@@ -73,7 +73,6 @@ class HashSpacePairs {
   dGeomID cleaner_ = nullptr;  ///< a geom in no space that collides with nothing (see collide)
   std::vector<Box> hash_;
   std::vector<Box> big_;
-  std::vector<const dReal*> boxes_;
   std::vector<int> sorted_;
   std::vector<Pair> pairs_;
 };

@@ -1,0 +1,505 @@
+// Reading a URDF robot: urdfdom parses the values; pugixml reads the same text again for the line
+// of every element (urdfdom keeps none) and for what urdfdom drops without a word (unknown
+// elements and attributes, <transmission>, <gazebo>, <calibration>, <safety_controller>), which
+// become UrdfRobot::ignored, named once each.
+#include <console_bridge/console.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <mutex>
+#include <pugixml.hpp>
+#include <set>
+
+#include "simbob/values.h"
+#include "urdf/paths.h"
+#include "urdf/urdf.h"
+
+namespace simbob {
+
+namespace {
+
+/// urdfdom reports through console_bridge, process-wide: its messages are collected here while
+/// one parse runs (under a lock) instead of going to stderr.
+class Collect : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR && first.empty()) first = text;
+  }
+  std::string first;
+};
+
+urdf::ModelInterfaceSharedPtr parseWithUrdfdom(const std::string& text, std::string* message) {
+  static std::mutex mutex;
+  std::lock_guard<std::mutex> lock(mutex);
+  Collect collect;
+  console_bridge::useOutputHandler(&collect);
+  const console_bridge::LogLevel level = console_bridge::getLogLevel();
+  console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_ERROR);
+  urdf::ModelInterfaceSharedPtr model;
+  try {
+    model = urdf::parseURDF(text);
+  } catch (const std::exception& e) {
+    collect.first = e.what();
+    model.reset();
+  }
+  console_bridge::setLogLevel(level);
+  console_bridge::restorePreviousOutputHandler();
+  *message = collect.first;
+  return model;
+}
+
+class Reader {
+ public:
+  Reader(const std::string& text, const std::string& file, const UrdfPackages& packages, Diagnostics& diag)
+      : text_(text), file_(file), packages_(packages), diag_(diag) {
+    for (size_t i = 0; i < text.size(); ++i)
+      if (text[i] == '\n') newlines_.push_back(i);
+  }
+
+  std::shared_ptr<const UrdfRobot> read();
+
+ private:
+  int lineOf(const pugi::xml_node& n) const {
+    const auto off = static_cast<size_t>(std::max<ptrdiff_t>(0, n.offset_debug()));
+    return static_cast<int>(std::upper_bound(newlines_.begin(), newlines_.end(), off) - newlines_.begin()) + 1;
+  }
+  void error(int line, const std::string& msg, ErrorKind kind = ErrorKind::InvalidInput) {
+    diag_.error({file_, line}, msg, kind);
+  }
+  void ignore(int line, const std::string& what) {
+    for (UrdfNote& n : robot_->ignored)
+      if (n.text == what) {
+        ++n.count;
+        return;
+      }
+    robot_->ignored.push_back({line, what, 1});
+  }
+  int urdfdomLine(const std::string& message) const;
+  void walk(const pugi::xml_node& n, const std::string& path);
+  bool readLink(const pugi::xml_node& x, const urdf::Link& u);
+  bool readShape(const pugi::xml_node& x, const urdf::Geometry& g, const urdf::Pose& origin, UrdfShape* out);
+  int readVisualMaterial(const pugi::xml_node& visual, const urdf::Visual& v);
+  bool readJoint(const pugi::xml_node& x, const urdf::Joint& u, const std::map<std::string, int>& links);
+  bool resolveFile(const std::string& name, int line, const char* what, std::string* path);
+
+  const std::string& text_;
+  std::string file_;
+  const UrdfPackages& packages_;
+  Diagnostics& diag_;
+  std::vector<size_t> newlines_;
+  pugi::xml_document doc_;
+  std::shared_ptr<UrdfRobot> robot_ = std::make_shared<UrdfRobot>();
+  std::map<std::string, int> materials_;                 // robot-level material name -> index
+  std::vector<std::pair<int, std::string>> mimics_;      // joint index, the joint it follows
+};
+
+Transform toTransform(const urdf::Pose& p) {
+  Transform t;
+  t.p = {p.position.x, p.position.y, p.position.z};
+  t.q = {p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z};
+  return t;
+}
+
+// The URDF elements simbob reads, with their attributes; anything else is named as ignored.
+struct Known {
+  const char* path;   // element path below <robot>, '/' separated
+  const char* attrs;  // space-separated attribute names
+};
+constexpr Known kKnown[] = {
+    {"robot", "name version"},
+    {"robot/link", "name"},
+    {"robot/link/inertial", ""},
+    {"robot/link/inertial/origin", "xyz rpy"},
+    {"robot/link/inertial/mass", "value"},
+    {"robot/link/inertial/inertia", "ixx ixy ixz iyy iyz izz"},
+    {"robot/link/visual", "name"},
+    {"robot/link/visual/origin", "xyz rpy"},
+    {"robot/link/visual/geometry", ""},
+    {"robot/link/visual/geometry/box", "size"},
+    {"robot/link/visual/geometry/sphere", "radius"},
+    {"robot/link/visual/geometry/cylinder", "radius length"},
+    {"robot/link/visual/geometry/mesh", "filename scale"},
+    {"robot/link/visual/material", "name"},
+    {"robot/link/visual/material/color", "rgba"},
+    {"robot/link/visual/material/texture", "filename"},
+    {"robot/link/collision", "name"},
+    {"robot/link/collision/origin", "xyz rpy"},
+    {"robot/link/collision/geometry", ""},
+    {"robot/link/collision/geometry/box", "size"},
+    {"robot/link/collision/geometry/sphere", "radius"},
+    {"robot/link/collision/geometry/cylinder", "radius length"},
+    {"robot/link/collision/geometry/mesh", "filename scale"},
+    {"robot/material", "name"},
+    {"robot/material/color", "rgba"},
+    {"robot/material/texture", "filename"},
+    {"robot/joint", "name type"},
+    {"robot/joint/origin", "xyz rpy"},
+    {"robot/joint/parent", "link"},
+    {"robot/joint/child", "link"},
+    {"robot/joint/axis", "xyz"},
+    {"robot/joint/limit", "lower upper effort velocity"},
+    {"robot/joint/dynamics", "damping friction"},
+    {"robot/joint/mimic", "joint multiplier offset"},
+};
+
+// Elements URDF defines that simbob does not model, with the reason given once.
+struct Unmodelled {
+  const char* name;
+  const char* why;
+};
+constexpr Unmodelled kUnmodelled[] = {
+    {"transmission", "simbob models no transmissions; RCImportURDF's Drives puts a drive on every movable joint"},
+    {"gazebo", "Gazebo's extensions are not read"},
+    {"calibration", "joint positions are zero at the URDF's zero configuration"},
+    {"safety_controller", "simbob has no safety controllers; the <limit> is what stops a joint"},
+};
+
+bool hasWord(const char* words, const char* w) {
+  const size_t n = std::strlen(w);
+  for (const char* p = words; *p;) {
+    const char* e = std::strchr(p, ' ');
+    const size_t len = e ? static_cast<size_t>(e - p) : std::strlen(p);
+    if (len == n && std::strncmp(p, w, n) == 0) return true;
+    if (!e) break;
+    p = e + 1;
+  }
+  return false;
+}
+
+void Reader::walk(const pugi::xml_node& n, const std::string& path) {
+  const Known* known = nullptr;
+  for (const Known& k : kKnown)
+    if (path == k.path) known = &k;
+  if (!known) {
+    for (const Unmodelled& u : kUnmodelled)
+      if (std::strcmp(n.name(), u.name) == 0) {
+        ignore(lineOf(n), "<" + std::string(u.name) + "> ignored: " + u.why);
+        return;
+      }
+    ignore(lineOf(n), "<" + quoteInput(n.name()) + "> ignored: not an element of URDF" +
+                          (path.find('/') == std::string::npos ? "" : " inside <" + path.substr(0, path.rfind('/')) + ">"));
+    return;
+  }
+  for (pugi::xml_attribute a = n.first_attribute(); a; a = a.next_attribute()) {
+    const std::string name = a.name();
+    if (hasWord(known->attrs, a.name()) || name.rfind("xmlns", 0) == 0) continue;
+    ignore(lineOf(n), "attribute '" + quoteInput(name) + "' of <" + n.name() + "> ignored");
+  }
+  int shapes = 0;
+  for (pugi::xml_node c : n.children()) {
+    if (c.type() != pugi::node_element) continue;
+    if (std::strcmp(n.name(), "geometry") == 0 && ++shapes == 2)
+      ignore(lineOf(c), "<geometry> with more than one shape: only the first is used");
+    walk(c, path + "/" + c.name());
+  }
+}
+
+int Reader::urdfdomLine(const std::string& message) const {
+  // urdfdom names the link or joint it stopped at ("Joint [j1] ...", "link 'l' ..."): find it.
+  int best = 0;
+  for (pugi::xml_node c : doc_.document_element().children()) {
+    const char* name = c.attribute("name").value();
+    if (!*name) continue;
+    const std::string n(name);
+    if (message.find("[" + n + "]") != std::string::npos || message.find("'" + n + "'") != std::string::npos ||
+        message.find("\"" + n + "\"") != std::string::npos)
+      return lineOf(c);
+    if (!best && message.find(n) != std::string::npos && n.size() > 2) best = lineOf(c);
+  }
+  return best ? best : lineOf(doc_.document_element());
+}
+
+bool Reader::resolveFile(const std::string& name, int line, const char* what, std::string* path) {
+  std::string problem;
+  if (!resolveUrdfPath(name, file_, packages_, path, &problem)) {
+    error(line, std::string(what) + " '" + quoteInput(name, 400) + "': " + problem, ErrorKind::MissingInput);
+    return false;
+  }
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(*path, ec)) {
+    error(line,
+          std::string(what) + " '" + quoteInput(name, 400) + "' not found" +
+              (*path == name ? std::string() : " (looked for '" + quoteInput(*path, 400) + "')"),
+          ErrorKind::MissingInput);
+    return false;
+  }
+  if (std::find(robot_->files.begin(), robot_->files.end(), *path) == robot_->files.end())
+    robot_->files.push_back(*path);
+  return true;
+}
+
+bool Reader::readShape(const pugi::xml_node& x, const urdf::Geometry& g, const urdf::Pose& origin, UrdfShape* out) {
+  out->line = lineOf(x);
+  out->origin = toTransform(origin);
+  pugi::xml_node shape;
+  for (pugi::xml_node c : x.child("geometry").children())
+    if (c.type() == pugi::node_element) {
+      shape = c;
+      break;
+    }
+  out->shape_line = shape ? lineOf(shape) : out->line;
+  switch (g.type) {
+    case urdf::Geometry::BOX: {
+      const auto& b = static_cast<const urdf::Box&>(g);
+      out->kind = UrdfShape::Box;
+      out->size = {b.dim.x, b.dim.y, b.dim.z};
+      break;
+    }
+    case urdf::Geometry::SPHERE:
+      out->kind = UrdfShape::Sphere;
+      out->size = {static_cast<const urdf::Sphere&>(g).radius, 0, 0};
+      break;
+    case urdf::Geometry::CYLINDER: {
+      const auto& c = static_cast<const urdf::Cylinder&>(g);
+      out->kind = UrdfShape::Cylinder;
+      out->size = {c.radius, c.length, 0};
+      break;
+    }
+    case urdf::Geometry::MESH: {
+      const auto& m = static_cast<const urdf::Mesh&>(g);
+      out->kind = UrdfShape::Mesh;
+      out->filename = m.filename;
+      out->scale = {m.scale.x, m.scale.y, m.scale.z};
+      return resolveFile(m.filename, out->shape_line, "mesh", &out->path);
+    }
+  }
+  for (double s : out->size)
+    if (!std::isfinite(s) || s < 0) {
+      error(out->shape_line, "<" + std::string(shape.name()) + ">: sizes must be finite and >= 0");
+      return false;
+    }
+  return true;
+}
+
+int Reader::readVisualMaterial(const pugi::xml_node& visual, const urdf::Visual& v) {
+  pugi::xml_node m = visual.child("material");
+  if (!m || !v.material) return -1;
+  const bool inline_def = m.child("color") || m.child("texture");
+  auto it = materials_.find(m.attribute("name").value());
+  if (!inline_def && it != materials_.end()) return it->second;
+  UrdfMaterial out;
+  out.name = v.material->name;
+  out.line = lineOf(m);
+  out.has_color = static_cast<bool>(m.child("color")) || it != materials_.end();
+  out.color = {v.material->color.r, v.material->color.g, v.material->color.b, v.material->color.a};
+  out.texture = v.material->texture_filename;
+  if (!out.texture.empty() &&
+      !resolveFile(out.texture, lineOf(m.child("texture") ? m.child("texture") : m), "texture", &out.texture_path))
+    return -2;
+  robot_->materials.push_back(out);
+  return static_cast<int>(robot_->materials.size()) - 1;
+}
+
+bool Reader::readLink(const pugi::xml_node& x, const urdf::Link& u) {
+  UrdfLink l;
+  l.name = u.name;
+  l.line = lineOf(x);
+  bool ok = true;
+  if (u.inertial) {
+    pugi::xml_node in = x.child("inertial");
+    l.has_inertial = true;
+    UrdfInertial& i = l.inertial;
+    i.line = lineOf(in);
+    i.mass_line = in.child("mass") ? lineOf(in.child("mass")) : i.line;
+    i.inertia_line = in.child("inertia") ? lineOf(in.child("inertia")) : i.line;
+    i.origin = toTransform(u.inertial->origin);
+    i.mass = u.inertial->mass;
+    const urdf::Inertial& t = *u.inertial;
+    i.inertia = {t.ixx, t.ixy, t.ixz, t.ixy, t.iyy, t.iyz, t.ixz, t.iyz, t.izz};
+  }
+  size_t vi = 0, ci = 0;
+  for (pugi::xml_node c : x.children()) {
+    if (std::strcmp(c.name(), "visual") == 0 && vi < u.visual_array.size()) {
+      const urdf::Visual& v = *u.visual_array[vi++];
+      UrdfShape s;
+      if (!v.geometry || !readShape(c, *v.geometry, v.origin, &s)) {
+        ok = ok && v.geometry;
+        continue;
+      }
+      s.material = readVisualMaterial(c, v);
+      if (s.material == -2) ok = false;
+      l.visuals.push_back(s);
+    } else if (std::strcmp(c.name(), "collision") == 0 && ci < u.collision_array.size()) {
+      const urdf::Collision& k = *u.collision_array[ci++];
+      UrdfShape s;
+      if (!k.geometry || !readShape(c, *k.geometry, k.origin, &s)) {
+        ok = ok && k.geometry;
+        continue;
+      }
+      l.collisions.push_back(s);
+    }
+  }
+  robot_->links.push_back(std::move(l));
+  return ok;
+}
+
+bool Reader::readJoint(const pugi::xml_node& x, const urdf::Joint& u, const std::map<std::string, int>& links) {
+  UrdfJoint j;
+  j.name = u.name;
+  j.line = lineOf(x);
+  switch (u.type) {
+    case urdf::Joint::REVOLUTE:
+      j.type = UrdfJoint::Revolute;
+      break;
+    case urdf::Joint::CONTINUOUS:
+      j.type = UrdfJoint::Continuous;
+      break;
+    case urdf::Joint::PRISMATIC:
+      j.type = UrdfJoint::Prismatic;
+      break;
+    case urdf::Joint::FLOATING:
+      j.type = UrdfJoint::Floating;
+      break;
+    case urdf::Joint::PLANAR:
+      j.type = UrdfJoint::Planar;
+      break;
+    case urdf::Joint::FIXED:
+      j.type = UrdfJoint::Fixed;
+      break;
+    default:
+      error(j.line, "joint '" + quoteInput(u.name) + "': unknown type");
+      return false;
+  }
+  j.parent = links.at(u.parent_link_name);
+  j.child = links.at(u.child_link_name);
+  j.origin = toTransform(u.parent_to_joint_origin_transform);
+  j.axis = {u.axis.x, u.axis.y, u.axis.z};
+  const double n = std::sqrt(j.axis[0] * j.axis[0] + j.axis[1] * j.axis[1] + j.axis[2] * j.axis[2]);
+  j.axis_line = x.child("axis") ? lineOf(x.child("axis")) : j.line;
+  const bool moves = j.type == UrdfJoint::Revolute || j.type == UrdfJoint::Continuous || j.type == UrdfJoint::Prismatic;
+  if (moves && !(n > 1e-9 && std::isfinite(n))) {
+    error(j.axis_line, "joint '" + quoteInput(u.name) + "': <axis> must be a non-zero direction");
+    return false;
+  }
+  if (moves && n != 1.0) j.axis = {j.axis[0] / n, j.axis[1] / n, j.axis[2] / n};
+  if (u.limits) {
+    j.has_limit = true;
+    j.limit_line = x.child("limit") ? lineOf(x.child("limit")) : j.line;
+    j.lower = u.limits->lower;
+    j.upper = u.limits->upper;
+    j.effort = u.limits->effort;
+    j.velocity = u.limits->velocity;
+  }
+  if (u.dynamics) {
+    j.dynamics_line = x.child("dynamics") ? lineOf(x.child("dynamics")) : j.line;
+    j.damping = u.dynamics->damping;
+    j.friction = u.dynamics->friction;
+  }
+  robot_->joints.push_back(j);
+  return true;
+}
+
+std::shared_ptr<const UrdfRobot> Reader::read() {
+  robot_->file = file_;
+  pugi::xml_parse_result res = doc_.load_buffer(text_.data(), text_.size(), pugi::parse_default, pugi::encoding_utf8);
+  if (!res) {
+    auto off = static_cast<size_t>(std::max<ptrdiff_t>(0, res.offset));
+    error(static_cast<int>(std::upper_bound(newlines_.begin(), newlines_.end(), off) - newlines_.begin()) + 1,
+          std::string("malformed XML: ") + res.description());
+    return nullptr;
+  }
+  pugi::xml_node root = doc_.document_element();
+  if (!root) {
+    error(1, "not a URDF file: no <robot> element");
+    return nullptr;
+  }
+  robot_->line = lineOf(root);
+  if (std::strcmp(root.name(), "robot") != 0) {
+    error(robot_->line, "root element is <" + quoteInput(root.name()) + ">, expected <robot>" +
+                            (std::strcmp(root.name(), "world") == 0
+                                 ? " (a URDF <world> is not read: import each robot with an RCImportURDF)"
+                                 : ""));
+    return nullptr;
+  }
+  std::string message;
+  urdf::ModelInterfaceSharedPtr model = parseWithUrdfdom(text_, &message);
+  if (!model) {
+    error(urdfdomLine(message), "not a valid URDF: " + (message.empty() ? "urdfdom refused it" : message));
+    return nullptr;
+  }
+  robot_->name = model->getName();
+  walk(root, "robot");
+  for (pugi::xml_node m : root.children("material")) {
+    auto it = model->materials_.find(m.attribute("name").value());
+    if (it == model->materials_.end() || materials_.count(it->first)) continue;
+    UrdfMaterial out;
+    out.name = it->first;
+    out.line = lineOf(m);
+    out.has_color = static_cast<bool>(m.child("color"));
+    const urdf::Color& c = it->second->color;
+    out.color = {c.r, c.g, c.b, c.a};
+    out.texture = it->second->texture_filename;
+    if (!out.texture.empty() && !resolveFile(out.texture, lineOf(m), "texture", &out.texture_path)) return nullptr;
+    materials_[out.name] = static_cast<int>(robot_->materials.size());
+    robot_->materials.push_back(out);
+  }
+  std::map<std::string, int> links;
+  bool ok = true;
+  for (pugi::xml_node x : root.children("link")) {
+    urdf::LinkConstSharedPtr u = model->getLink(x.attribute("name").value());
+    if (!u || links.count(u->name)) continue;
+    links[u->name] = static_cast<int>(robot_->links.size());
+    ok = readLink(x, *u) && ok;
+  }
+  std::map<std::string, int> joints;
+  for (pugi::xml_node x : root.children("joint")) {
+    urdf::JointConstSharedPtr u = model->getJoint(x.attribute("name").value());
+    if (!u || joints.count(u->name)) continue;
+    joints[u->name] = static_cast<int>(robot_->joints.size());
+    ok = readJoint(x, *u, links) && ok;
+    if (u->mimic) {
+      UrdfJoint& j = robot_->joints.back();
+      j.mimic_line = x.child("mimic") ? lineOf(x.child("mimic")) : j.line;
+      j.multiplier = u->mimic->multiplier;
+      j.offset = u->mimic->offset;
+      mimics_.push_back({static_cast<int>(robot_->joints.size()) - 1, u->mimic->joint_name});
+    }
+  }
+  for (const auto& [ji, leader] : mimics_) {
+    auto it = joints.find(leader);
+    UrdfJoint& j = robot_->joints[static_cast<size_t>(ji)];
+    if (it == joints.end()) {
+      error(j.mimic_line, "joint '" + quoteInput(j.name) + "': <mimic> names no joint '" + quoteInput(leader) + "'");
+      ok = false;
+    } else {
+      j.mimic = it->second;
+    }
+  }
+  if (model->getRoot()) robot_->root = links.count(model->getRoot()->name) ? links[model->getRoot()->name] : -1;
+  if (!ok) return nullptr;
+  return robot_;
+}
+
+}  // namespace
+
+std::shared_ptr<const UrdfRobot> readUrdf(const std::string& text, const std::string& file,
+                                          const UrdfPackages& packages, Diagnostics& diag) {
+  Reader r(text, file, packages, diag);
+  return r.read();
+}
+
+bool looksLikeUrdf(const std::string& name, const std::string& text) {
+  const size_t n = name.size();
+  if (n >= 5 && equalsIgnoreCase(std::string_view(name).substr(n - 5), ".urdf")) return true;
+  // The first element: skip the declaration, comments and a DOCTYPE.
+  size_t i = 0;
+  while ((i = text.find('<', i)) != std::string::npos) {
+    if (text.compare(i, 4, "<!--") == 0) {
+      i = text.find("-->", i);
+      if (i == std::string::npos) return false;
+      continue;
+    }
+    if (text.compare(i, 2, "<?") == 0 || text.compare(i, 2, "<!") == 0) {
+      ++i;
+      continue;
+    }
+    const size_t e = text.find_first_of(" \t\r\n/>", i + 1);
+    return text.compare(i + 1, e == std::string::npos ? std::string::npos : e - i - 1, "robot") == 0;
+  }
+  return false;
+}
+
+}  // namespace simbob

@@ -68,6 +68,31 @@ struct JointDef {
   int body2 = -1;        ///< child body index, -1 = the static world (not both -1)
   Vec3 anchor{0, 0, 0};  ///< global, m (BallSocket, Hinge)
   Vec3 axis{0, 0, 1};    ///< global unit vector (Hinge, Slider)
+  // What a URDF joint adds (docs/urdf.md); the defaults leave a joint as the scene format makes it.
+  double lo_stop = -std::numeric_limits<double>::infinity();  ///< Hinge, Slider: m or rad (JointState); -inf: none
+  double hi_stop = std::numeric_limits<double>::infinity();   ///< Hinge, Slider: m or rad; inf: none
+  double damping = 0.0;   ///< Hinge, Slider: N s/m or N m s/rad, a force against the joint's velocity
+  double friction = 0.0;  ///< Hinge, Slider: N or N m, Coulomb friction (the most it resists with)
+  int mimic = -1;         ///< Model::joints index this joint follows: q = multiplier q_leader + offset
+  double mimic_multiplier = 1.0;  ///< dimensionless (m/rad or rad/m across kinds)
+  double mimic_offset = 0.0;      ///< m or rad
+  double mimic_max_force = std::numeric_limits<double>::infinity();  ///< N or N m that holds the mimic
+};
+
+/// An extra trajectory row: a frame fixed to a body (a URDF link lumped into another link's
+/// body keeps a row of its own, docs/urdf.md). Rows of frames follow the bodies' rows.
+struct FrameDef {
+  std::string key;  ///< fully qualified key, written to the trajectory
+  int body = -1;    ///< Model::bodies index; -1 = fixed in the world
+  Transform offset; ///< relative to the body frame (global when body == -1)
+};
+
+/// What an importer (RCImportURDF) built, for `simbob check` to report (docs/urdf.md).
+struct ImportReport {
+  std::string key;   ///< the import's fully qualified key
+  SourceLoc loc;     ///< the imported file
+  std::string text;  ///< the summary, one line ("8 links, 6 revolute joints, ...")
+  std::vector<Error> notes;  ///< what it ignored, lumped or approximated, once each, at its line
 };
 
 /// A drive on a hinge or slider joint (guide 6.11.1-6.11.3). Positions and velocities are the
@@ -80,6 +105,7 @@ struct ActuatorDef {
     Servo,     ///< RCGenericServo: command = target position, m or rad (RCPosControl)
     VelDrive,  ///< RCGenericVelControlledDrive: command = target velocity, m/s or rad/s (RCVelControl)
     Plugin,    ///< a plug-in's actuator type: command = whatever it says; a force and torque on `body`
+    Effort,    ///< a URDF effort drive: command = force or torque (N or N m), clamped to +-max_power (RCDriver)
   } kind = Drive;
   int joint = -1;             ///< index into Model::joints (hinge or slider); -1 for Plugin
   double max_power = 10.0;    ///< N or N m, largest force or torque
@@ -282,6 +308,8 @@ struct Model {
   std::vector<CameraSensorDef> camera_sensors;  ///< document order; drawn by the Simulation, never by the physics
   std::vector<ControllerDef> controllers;       ///< document order; a schedule's TwoWheel target may come first
   std::vector<SocketDef> sockets;               ///< document order
+  std::vector<FrameDef> frames;                 ///< trajectory rows after the bodies' (lumped URDF links)
+  std::vector<ImportReport> imports;            ///< what each URDF import built (simbob check)
   // What the renderer draws (simbob/visuals.h); the physics never reads these.
   std::vector<VisualDef> visuals;  ///< document order
   std::vector<SkinDef> skins;      ///< [0] is the default skin

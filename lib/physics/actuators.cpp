@@ -67,6 +67,16 @@ void act(WorldImpl& im, size_t i, double h) {
       setParam(j, kind, dParamVel, a.motor_sign * a.command);
       setParam(j, kind, dParamFMax, a.commanded ? d.max_power : 0.0);
       break;
+    case ActuatorDef::Effort: {
+      // URDF's velocity limit: no push along the motion at or beyond it (braking always works).
+      const bool along = a.command * s.velocity > 0;
+      a.effort = along && std::fabs(s.velocity) >= d.max_velocity ? 0.0 : a.command;
+      if (kind == JointKind::Hinge)
+        dJointAddHingeTorque(j, -a.effort);
+      else
+        dJointAddSliderForce(j, -a.effort);
+      break;
+    }
     case ActuatorDef::Plugin:
       break;  // above
   }
@@ -118,6 +128,9 @@ void commandActuator(WorldImpl& im, int i, double value) {
       break;
     case ActuatorDef::VelDrive:
       a.command = std::clamp(value, -d.max_velocity, d.max_velocity);
+      break;
+    case ActuatorDef::Effort:
+      a.command = std::clamp(value, -d.max_power, d.max_power);
       break;
     case ActuatorDef::Plugin:
       a.command = value;  // the plug-in's apply() makes of it what it says

@@ -82,7 +82,66 @@ void createJoints(WorldImpl& im, const Model& model) {
     im.joints.push_back(j);
     // A pure read (changes no ODE state): the start pose is zero exactly, not up to rounding.
     im.jointInfo.push_back({jd.kind, odePosition(j, jd.kind)});
+    if (jd.kind == JointKind::Hinge && jd.body1 < 0 && jd.body2 >= 0) im.jointInfo.back().motor_sign = 1.0;
   }
+  createJointDynamics(im, model);
+}
+
+namespace {
+
+void setJointParam(dJointID j, JointKind kind, int param, double value) {
+  if (kind == JointKind::Hinge)
+    dJointSetHingeParam(j, param, value);
+  else
+    dJointSetSliderParam(j, param, value);
+}
+
+/// Damping (explicit: a force against the velocity of the step before) and mimic joints (the
+/// joint's motor drives it to multiplier q_leader + offset, closing the gap within kMimicSteps
+/// steps, with the leader's velocity fed forward). Copies of the JointDefs: the World may outlive
+/// the Model it was made from.
+void jointDynamics(WorldImpl& im, const std::vector<std::pair<size_t, JointDef>>& damped,
+                   const std::vector<std::pair<size_t, JointDef>>& mimics, double h) {
+  constexpr double kMimicSteps = 5;
+  for (const auto& [i, jd] : damped) {
+    const double f = -jd.damping * wrappedJointState(im, static_cast<int>(i)).velocity;
+    if (jd.kind == JointKind::Hinge)
+      dJointAddHingeTorque(im.joints[i], -f);
+    else
+      dJointAddSliderForce(im.joints[i], -f);
+  }
+  for (const auto& [i, jd] : mimics) {
+    const JointState me = jointState(im, static_cast<int>(i));
+    const JointState leader = jointState(im, jd.mimic);
+    const double target = jd.mimic_multiplier * leader.position + jd.mimic_offset;
+    const double v = jd.mimic_multiplier * leader.velocity + (target - me.position) / (kMimicSteps * h);
+    setJointParam(im.joints[i], jd.kind, dParamVel, im.jointInfo[i].motor_sign * v);
+    setJointParam(im.joints[i], jd.kind, dParamFMax, jd.mimic_max_force);
+  }
+}
+
+}  // namespace
+
+void createJointDynamics(WorldImpl& im, const Model& model) {
+  std::vector<std::pair<size_t, JointDef>> damped, mimics;
+  for (size_t i = 0; i < model.joints.size(); ++i) {
+    const JointDef& jd = model.joints[i];
+    if (jd.kind != JointKind::Hinge && jd.kind != JointKind::Slider) continue;
+    const JointInfo& info = im.jointInfo[i];
+    // Stops in ODE's frame, as createActuators sets a drive's (ODE's hinge stops work within +-pi).
+    const double lo = info.motor_sign < 0 ? info.zero - jd.hi_stop : jd.lo_stop - info.zero;
+    const double hi = info.motor_sign < 0 ? info.zero - jd.lo_stop : jd.hi_stop - info.zero;
+    if (std::isfinite(lo)) setJointParam(im.joints[i], jd.kind, dParamLoStop, lo);
+    if (std::isfinite(hi)) setJointParam(im.joints[i], jd.kind, dParamHiStop, hi);
+    if (jd.friction > 0) {  // Coulomb friction: a motor holding velocity 0 with at most that force
+      setJointParam(im.joints[i], jd.kind, dParamVel, 0.0);
+      setJointParam(im.joints[i], jd.kind, dParamFMax, jd.friction);
+    }
+    if (jd.damping > 0) damped.emplace_back(i, jd);
+    if (jd.mimic >= 0) mimics.emplace_back(i, jd);
+  }
+  if (damped.empty() && mimics.empty()) return;
+  im.beforeStep.push_back([damped, mimics](WorldImpl& w, double h) { jointDynamics(w, damped, mimics, h); });
 }
 
 double jointSeparation(const WorldImpl& im, int i) {

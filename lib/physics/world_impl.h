@@ -48,6 +48,8 @@ struct JointInfo {
   double zero;         ///< ODE's position (rad or m) at creation, subtracted so that the start pose reads 0
   double total = 0.0;  ///< Hinge: the angle unwrapped (rad): the sum of the per-step changes
   double last = 0.0;   ///< Hinge: the wrapped angle (rad) when total was last updated
+  /// The sense of ODE's motor and stops against simbob's (ActuatorState::motor_sign).
+  double motor_sign = -1.0;
 };
 
 /// A sensor: its definition, its reading and what computing the next one needs (World::sensorReading).
@@ -146,6 +148,8 @@ void createGeoms(WorldImpl& im, const Model& model);
 // joints.cpp
 /// Creates one ODE joint per Model joint, in Model order, and records its zero position.
 void createJoints(WorldImpl& im, const Model& model);
+/// joints.cpp: stops, friction, damping and mimics of the joints that have them (URDF joints).
+void createJointDynamics(WorldImpl& im, const Model& model);
 /// Joint i's state in simbob's convention (see World::joint): a hinge's total angle, unwrapped.
 JointState jointState(const WorldImpl& im, int i);
 /// The same with a hinge's angle wrapped into [-pi, pi], as ODE reads it (the actuators' input:

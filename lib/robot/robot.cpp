@@ -54,6 +54,11 @@ class ClampNotices : public Party {
                  unit;
           break;
         }
+        case ActuatorDef::Effort: {
+          const std::string unit = hinge ? " N m" : " N";
+          what = "effort " + formatReadable(asked) + unit + " is beyond +-" + formatNumber(d.max_power) + unit;
+          break;
+        }
         case ActuatorDef::Plugin:
           break;
       }

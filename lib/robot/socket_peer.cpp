@@ -52,6 +52,8 @@ const char* actuatorKind(ActuatorDef::Kind k) {
       return "velocity";
     case ActuatorDef::Plugin:
       return "command";
+    case ActuatorDef::Effort:
+      return "effort";
   }
   return "?";
 }

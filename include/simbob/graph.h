@@ -14,6 +14,8 @@
 
 namespace simbob {
 
+struct UrdfRobot;  // lib/urdf/urdf.h: a robot read from a URDF file
+
 /// Text that is usually empty (a Link's Ref or Macro): one pointer, on the heap only when set,
 /// so that the Link in every slot stays small. Reads as a `const std::string&`.
 class RareText {
@@ -126,6 +128,8 @@ struct Scene {
   std::vector<std::string> files;                   ///< every file read (scene first, then imports)
   std::set<int> load_failed;  ///< components with a load error in them (compile stays quiet on them)
   std::string content_hash;   ///< FNV-1a 64 of all files' bytes, hex
+  /// RCImportURDF component -> the robot read from its File (lib/urdf), shared by copies.
+  std::map<int, std::shared_ptr<const UrdfRobot>> urdf;
 
   const Component& at(int i) const { return comps[static_cast<size_t>(i)]; }
   Component& at(int i) { return comps[static_cast<size_t>(i)]; }

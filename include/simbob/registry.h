@@ -175,7 +175,14 @@ class Registry {
   /// controllers or peripheries, the families plug-ins add), also how to load a plug-in that would define it.
   std::string unknownTypeMessage(std::string_view name, bool plugin_family) const;
 
+  /// Folders of URDF packages given on the command line (`--package NAME=DIR`): package://NAME/...
+  /// is looked for there after a package.xml above the URDF, ROS_PACKAGE_PATH and the import's
+  /// own Packages (docs/urdf.md). Not types, but the registry is what reaches every loader.
+  void addPackage(std::string name, std::string dir) { packages_.emplace_back(std::move(name), std::move(dir)); }
+  const std::vector<std::pair<std::string, std::string>>& packages() const { return packages_; }
+
  private:
+  std::vector<std::pair<std::string, std::string>> packages_;
   std::deque<TypeSpec> types_;
   std::vector<MacroSpec> macros_;
   std::vector<std::string> problems_;

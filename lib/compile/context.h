@@ -184,6 +184,10 @@ Built lowerBody(CompileContext& ctx, int ci, const Transform* parent);
 /// clones.cpp: RCImportBody and RigidBodyClone (a rigid copy of another body's subtree).
 Built lowerImportBody(CompileContext& ctx, const Component& c, const Transform* parent);
 Built lowerClone(CompileContext& ctx, const Component& c, const Transform* parent);
+/// urdf_import.cpp: RCImportURDF (a URDF robot, docs/urdf.md) and one of its links (URDFLink, a
+/// placeholder the loader makes so that Refs reach a link: the body it is part of).
+Built lowerUrdfImport(CompileContext& ctx, const Component& c, const Transform* parent);
+Built lowerUrdfLink(CompileContext& ctx, const Component& c);
 bool isClone(const Component& c);
 /// joints.cpp: a joint of a construction whose root is `parent`; the overrides come from an
 /// RCImportJoint's own Pose and Body.

@@ -142,6 +142,10 @@ Built lowerUncached(CompileContext& ctx, int ci, const Transform* parent) {
       return lowerImportBody(ctx, c, parent);
     case BodyKind::Clone:
       return lowerClone(ctx, c, parent);
+    case BodyKind::Urdf:
+      return lowerUrdfImport(ctx, c, parent);
+    case BodyKind::UrdfLink:
+      return lowerUrdfLink(ctx, c);
   }
   return out;
 }

@@ -15,6 +15,7 @@ bool registerBuiltins(Registry& r) {
   registerModels(r);
   registerBodies(r);
   registerClones(r);
+  registerUrdfImport(r);
   registerJoints(r);
   registerGlobals(r);
   registerPeripheries(r);

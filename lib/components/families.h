@@ -10,6 +10,7 @@ namespace simbob {
 
 void registerBodies(Registry& r);
 void registerClones(Registry& r);
+void registerUrdfImport(Registry& r);
 void registerGlobals(Registry& r);
 void registerModels(Registry& r);
 void registerSkins(Registry& r);
@@ -58,6 +59,7 @@ enum class PeripheryKind {
   CameraSensor,
   PluginSensor,    ///< a plug-in's sensor type (plugin_types.cpp)
   PluginActuator,  ///< a plug-in's actuator type (plugin_types.cpp)
+  UrdfDrive,       ///< a drive an RCImportURDF makes (urdf_import.cpp)
 };
 
 // Parameter names read outside their family file: the loader reads the scene root and the

@@ -272,6 +272,9 @@ void lowerPeriphery(CompileContext& ctx, const Component& c, const Built& parent
     case PeripheryKind::PluginActuator:
       lowerPluginPeriphery(ctx, c, parent);
       break;
+    case PeripheryKind::UrdfDrive:
+      ctx.error(c, "made by an RCImportURDF for each movable joint (Drives); it cannot be written in a scene");
+      break;
     case PeripheryKind::LocalSocketCommunicator: {
       if (c.get(kPort) > kMaxPort) {
         ctx.errorAt(c.slotOf(kPort), c, "parameter 'Port' must be at most 65535, got " + std::to_string(c.get(kPort)));

@@ -10,9 +10,12 @@
 #include <map>
 #include <set>
 
+#include <pugixml.hpp>
+
 #include "scene/source.h"
 #include "simbob/files.h"
 #include "simbob/graph.h"
+#include "urdf/urdf.h"
 
 namespace simbob {
 
@@ -213,6 +216,10 @@ class Builder {
       diag_.error(at, prefix(what) + "imports nested deeper than " + std::to_string(kMaxImportDepth) + " files");
       return;
     }
+    if (t->import_root == "robot") {
+      readUrdf(index, path, at, what);
+      return;
+    }
     std::error_code ec;
     std::string canon = std::filesystem::weakly_canonical(path, ec).string();
     if (ec) canon = path;
@@ -270,6 +277,54 @@ class Builder {
     import_stack_.pop_back();
     scene_.at(index).imported = roots;
   }
+
+  /// RCImportURDF (docs/urdf.md): the robot is read now (its meshes and textures found, every
+  /// problem at its line in the URDF) and kept in Scene::urdf for the compile step; its links,
+  /// and its drives when Drives asks for them, become placeholder components keyed
+  /// IMPORTKEY.link and IMPORTKEY.joint, so that Refs (cameras, sensors, schedules) reach them.
+  void readUrdf(int index, const std::string& path, const SourceLoc& at, const std::string& what) {
+    std::string text, err;
+    bool too_large = false;
+    auto pre = preloaded_.find(path);
+    if (pre != preloaded_.end()) {
+      text = pre->second;
+    } else if (!readFile(path, kMaxSceneFileBytes, &text, &err, true, &too_large)) {
+      diag_.error(at, prefix(what) + "cannot read URDF '" + quoteInput(path, 400) + "': " + err,
+                  too_large ? ErrorKind::InvalidInput : ErrorKind::MissingInput);
+      return;
+    }
+    addFile(path, text);
+    const Component& c = scene_.at(index);
+    UrdfPackages packages;
+    const Slot& ps = c.slot("Packages");
+    std::string problem;
+    if (!parseUrdfPackages(std::get<std::string>(ps.value), &packages, &problem)) {
+      diag_.error(ps.loc, prefix(what) + "parameter 'Packages': " + problem);
+      return;
+    }
+    for (auto& [name, dir] : packages)  // relative to the scene file that says it
+      if (std::filesystem::path(dir).is_relative())
+        dir = (std::filesystem::path(ps.loc.file.str()).parent_path() / dir).lexically_normal().string();
+    packages.insert(packages.end(), reg_.packages().begin(), reg_.packages().end());
+    std::shared_ptr<const UrdfRobot> robot = simbob::readUrdf(text, path, packages, diag_);
+    if (!robot) return;
+    for (const std::string& f : robot->files) scene_.files.push_back(f);
+    scene_.urdf[index] = robot;
+    const std::string qkey = c.qkey;
+    const TypeSpec* drive = reg_.find(urdfDriveType(std::get<EnumValue>(c.slot("Drives").value).value));
+    std::vector<int> made;
+    std::set<std::string> names;
+    for (const UrdfLink& l : robot->links) {
+      names.insert(urdfKey(l.name));
+      made.push_back(build(reg_.find("URDFLink"), nullptr, urdfKey(l.name), true, index, qkey, {path, l.line}));
+    }
+    for (const UrdfJoint& j : robot->joints)
+      if (drive && urdfJointDriven(j) && !names.count(urdfKey(j.name)))
+        made.push_back(build(drive, nullptr, urdfKey(j.name), true, index, qkey, {path, j.line}));
+    scene_.at(index).imported = made;
+  }
+
+  void preload(const std::string& path, std::string text) { preloaded_[path] = std::move(text); }
 
   void addFile(const std::string& path, const std::string& text) {
     text_bytes_ += text.size();
@@ -407,6 +462,7 @@ class Builder {
   bool too_big_ = false;                        // a size limit was crossed: stop building (one error, not thousands)
   std::set<int> duplicates_;                    // components whose qualified key was taken already
   std::map<std::string, int> shared_defaults_;  // default component of each type
+  std::map<std::string, std::string> preloaded_;  // file -> text already in hand (a bare URDF)
 };
 
 // Refs that connect rather than contain (a joint's Body, a drive's Joint, a camera's Body...):
@@ -508,12 +564,54 @@ void checkCycles(const Scene& scene, Diagnostics& diag) {
   }
 }
 
+/// XML text with its special characters escaped (a key or a file name inside an attribute).
+std::string xmlEscape(const std::string& s) {
+  std::string out;
+  for (char ch : s) {
+    switch (ch) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += ch;
+    }
+  }
+  return out;
+}
+
+/// A bare URDF is a scene of its own (docs/urdf.md): a ground plane at the robot's z = 0 and one
+/// RCImportURDF keyed by the robot's name, so that both ways share one path.
+std::string urdfScene(const std::string& name, const std::string& text) {
+  pugi::xml_document doc;
+  std::string robot;
+  if (doc.load_buffer(text.data(), text.size())) robot = doc.document_element().attribute("name").value();
+  robot = urdfKey(robot.empty() ? "robot" : robot);
+  const std::string ground = robot == "Ground" ? "Floor" : "Ground";
+  return "<Simulation><ComponentList><RCGround Key=\"" + ground + "\"/><RCImportURDF Key=\"" + xmlEscape(robot) +
+         "\"><File Value=\"" + xmlEscape(std::filesystem::path(name).filename().string()) +
+         "\"/></RCImportURDF></ComponentList></Simulation>";
+}
+
 bool loadFromText(std::string text, const std::string& name, Format format, const Registry& reg, Scene* scene,
                   Diagnostics& diag) {
   *scene = Scene{};
   scene->path = name;
   Builder b(reg, *scene, diag);
-  b.addFile(name, text);
+  if (format == Format::Xml && looksLikeUrdf(name, text)) {
+    b.preload(std::filesystem::path(name).lexically_normal().string(), text);
+    text = urdfScene(name, text);
+  } else {
+    b.addFile(name, text);
+  }
   std::error_code ec;
   std::string canon = std::filesystem::weakly_canonical(name, ec).string();
   b.pushFile(ec ? name : canon);

@@ -1,0 +1,515 @@
+// RCImportURDF (issue 28, docs/urdf.md): a robot read from a URDF file becomes bodies, geoms,
+// visuals, skins, joints, drives and trajectory frames of the Model. The loader has read the
+// robot (Scene::urdf) and made a placeholder component per link (URDFLink) and per drive, so that
+// Refs reach them; this file lowers what lib/urdf planned: one body per link and the links fixed
+// to it (lumped), URDF's Z-up turned into the scene's Y-up, the file's inertia kept as written.
+#include <cmath>
+#include <filesystem>
+
+#include "compile/context.h"
+#include "compile/mass.h"
+#include "components/bodies.h"
+#include "components/families.h"
+#include "simbob/transform.h"
+#include "urdf/urdf.h"
+
+namespace simbob {
+
+namespace {
+
+constexpr LinkParam kPose{"Pose"};
+constexpr LinkParam kMaterial{"Material"};
+constexpr ValueParam<bool> kFixedBase{"FixedBase"};
+constexpr EnumParam kDrives{"Drives"};
+const EnumTable kDrivesTable{"Drives", {{"none", 0}, {"position", 1}, {"velocity", 2}, {"effort", 3}}};
+constexpr ValueParam<double> kMaxForce{"MaxForce"};
+constexpr ValueParam<double> kMaxVelocity{"MaxVelocity"};
+constexpr ValueParam<double> kSmooth{"Smooth"};
+constexpr ValueParam<std::string> kPackages{"Packages"};
+
+const char* typeName(UrdfJoint::Type t) {
+  switch (t) {
+    case UrdfJoint::Revolute:
+      return "revolute";
+    case UrdfJoint::Continuous:
+      return "continuous";
+    case UrdfJoint::Prismatic:
+      return "prismatic";
+    case UrdfJoint::Fixed:
+      return "fixed";
+    case UrdfJoint::Floating:
+      return "floating";
+    case UrdfJoint::Planar:
+      return "planar";
+  }
+  return "?";
+}
+
+/// The lowering of one import: what it has made so far and what it says.
+class Import {
+ public:
+  Import(CompileContext& ctx, const Component& c, const UrdfRobot& robot)
+      : ctx_(ctx), c_(c), robot_(robot), key_(ctx.modelKey(c)) {}
+
+  Built lower(const Transform* parent);
+
+ private:
+  SourceLoc at(int line) const { return {robot_.file, line}; }
+  void error(int line, const std::string& msg) {
+    ctx_.diag.error(at(line), msg);
+    ok_ = false;
+  }
+  void note(int line, const std::string& msg) { report_.notes.push_back({ErrorKind::InvalidInput, at(line), msg}); }
+  const UrdfLink& link(int i) const { return robot_.links[static_cast<size_t>(i)]; }
+  /// The placeholder component of a link or a drive (the loader made it), or null.
+  const Component* placeholder(const std::string& name) const {
+    auto it = ctx_.scene.by_qkey.find(c_.qkey + "." + urdfKey(name));
+    return it == ctx_.scene.by_qkey.end() || ctx_.at(it->second).parent != ctx_.indexOf(c_) ? nullptr
+                                                                                             : &ctx_.at(it->second);
+  }
+  std::string keyOf(const std::string& name) const {
+    const Component* p = placeholder(name);
+    return p ? ctx_.modelKey(*p) : key_ + "." + urdfKey(name);
+  }
+  void checkInertia();
+  void addBodies();
+  void addShapes(int li);
+  void addVisual(int li, const UrdfShape& s);
+  int skinOf(int material);
+  void addJoints();
+  void addJoint(size_t ji);
+  void addDrives();
+  void remember();
+  void summarise();
+
+  CompileContext& ctx_;
+  const Component& c_;
+  const UrdfRobot& robot_;
+  std::string key_;
+  UrdfPlan plan_;
+  Transform place_;
+  std::vector<int> body_index_;   // per plan body: Model::bodies index (-1: fixed to the world)
+  std::vector<int> joint_index_;  // per URDF joint: Model::joints index (-1: none)
+  std::vector<int> skin_index_;   // per URDF material: Model::skins index (-1: not made yet)
+  int material_ = 0;
+  int drives_ = 0;
+  ImportReport report_;
+  bool ok_ = true;
+};
+
+Built Import::lower(const Transform* parent) {
+  if (!lowerPose(ctx_, c_.get(kPose), c_, parent, &place_)) return Built{};
+  material_ = lowerMaterial(ctx_, c_.get(kMaterial));
+  plan_ = planUrdf(robot_, c_.get(kFixedBase));
+  skin_index_.assign(robot_.materials.size(), -1);
+  for (const UrdfNote& n : robot_.ignored)
+    note(n.line, n.text + (n.count > 1 ? " (" + std::to_string(n.count) + " times)" : ""));
+  checkInertia();
+  if (!ok_) return Built{};
+  addBodies();
+  for (size_t li = 0; li < robot_.links.size(); ++li) addShapes(static_cast<int>(li));
+  addJoints();
+  if (!ok_) return Built{};
+  addDrives();
+  remember();
+  summarise();
+  ctx_.model.imports.push_back(report_);
+  const int root_body = plan_.link_body[static_cast<size_t>(robot_.root)];
+  Built out;
+  out.index = body_index_[static_cast<size_t>(root_body)];
+  out.frame = urdfToScene(place_, plan_.link_global[static_cast<size_t>(robot_.root)]);
+  out.ok = ok_;
+  return out;
+}
+
+/// The file's inertia, never replaced: what ODE cannot step is refused at its line, what no
+/// body can have (the triangle inequality broken) is a warning at its line.
+void Import::checkInertia() {
+  bool fixed_mass = false;
+  for (size_t li = 0; li < robot_.links.size(); ++li) {
+    const UrdfLink& l = robot_.links[li];
+    const int bi = plan_.link_body[li];
+    if (bi < 0) continue;
+    const bool moves = !plan_.bodies[static_cast<size_t>(bi)].fixed;
+    if (!l.has_inertial) {
+      if (moves && !l.collisions.empty())
+        ctx_.diag.warning(at(l.line), "link '" + l.name + "' has <collision> but no <inertial>: it adds no mass");
+      continue;
+    }
+    if (!moves) {
+      fixed_mass = fixed_mass || l.inertial.mass != 0;
+      continue;
+    }
+    const UrdfInertial& in = l.inertial;
+    if (!(in.mass > 0) || !std::isfinite(in.mass))
+      error(in.mass_line, "link '" + l.name + "': mass " + formatNumber(in.mass) +
+                              " kg; a moving link needs a mass > 0 (ODE cannot step it)");
+    const Mat3& I = in.inertia;
+    if (!isPositiveDefinite(I)) {
+      error(in.inertia_line, "link '" + l.name + "': the inertia tensor is not positive definite (ODE cannot step it)");
+      continue;
+    }
+    // Ixx + Iyy >= Izz (and the like) holds for every body, in any axes: 2 int z^2 dm >= 0.
+    const double tol = 1e-9 * (I[0] + I[4] + I[8]);
+    if (I[0] + I[4] < I[8] - tol || I[4] + I[8] < I[0] - tol || I[0] + I[8] < I[4] - tol)
+      ctx_.diag.warning(at(in.inertia_line), "link '" + l.name +
+                                                 "': the inertia breaks the triangle inequality (Ixx + Iyy >= Izz "
+                                                 "and the like): no rigid body has it; used as written");
+  }
+  if (fixed_mass) note(robot_.line, "the <inertial> of links fixed to the world are not used (they never move)");
+  // Massless moving links: one line for all of them (a file without any <inertial> has many).
+  std::vector<int> massless;
+  for (const UrdfBody& b : plan_.bodies)
+    if (!b.fixed && !(b.mass > 0) && b.massive_links == 0) massless.push_back(b.root);
+  if (massless.empty()) return;
+  const UrdfLink& l = link(massless[0]);
+  std::string more;
+  for (size_t i = 1; i < massless.size(); ++i) more += (i > 1 ? ", '" : "'") + link(massless[i]).name + "'";
+  error(l.line, "link '" + l.name + "' moves but has no mass (no <inertial> on it or the links fixed to it): " +
+                    "ODE cannot step a body without mass; give it an <inertial>" +
+                    (massless[0] == robot_.root ? " or import it with FixedBase" : "") +
+                    (more.empty() ? "" : " (so do " + more + ")"));
+}
+
+void Import::addBodies() {
+  body_index_.assign(plan_.bodies.size(), -1);
+  for (size_t bi = 0; bi < plan_.bodies.size(); ++bi) {
+    const UrdfBody& b = plan_.bodies[bi];
+    if (b.fixed) continue;
+    const UrdfLink& l = link(b.root);
+    BodyDef d;
+    d.key = keyOf(l.name);
+    d.loc = at(l.line);
+    d.pose = urdfToScene(place_, plan_.link_global[static_cast<size_t>(b.root)]);
+    d.mass = b.mass;
+    d.com = b.com;  // body-frame quantities stay in the link's own (URDF) axes
+    d.inertia = b.inertia;
+    body_index_[bi] = static_cast<int>(ctx_.model.bodies.size());
+    ctx_.model.bodies.push_back(d);
+    ctx_.recordBody(d.key, body_index_[bi]);
+  }
+}
+
+/// A link's collisions (geoms), visuals and, unless it is its body's root, its trajectory frame.
+void Import::addShapes(int li) {
+  const size_t l = static_cast<size_t>(li);
+  const int pb = plan_.link_body[l];
+  if (pb < 0) return;
+  const int body = body_index_[static_cast<size_t>(pb)];
+  const UrdfLink& ul = link(li);
+  const std::string key = keyOf(ul.name);
+  // Where a shape at `origin` in the link frame goes: body-relative, or global when fixed.
+  auto where = [&](const Transform& origin) {
+    return body >= 0 ? compose(plan_.link_in_body[l], origin)
+                     : urdfToScene(place_, compose(plan_.link_global[l], origin));
+  };
+  for (const UrdfShape& s : ul.collisions) {
+    if (s.kind == UrdfShape::Mesh) {
+      note(s.shape_line, "link '" + ul.name + "': mesh collision '" + s.filename +
+                             "' not used yet (meshes wait for the mesh loader, issue 28 point 5)");
+      continue;
+    }
+    GeomDef g;
+    g.key = body >= 0 ? ctx_.model.bodies[static_cast<size_t>(body)].key : key;
+    g.body = body;
+    g.offset = where(s.origin);
+    g.material = material_;
+    g.shape = s.kind == UrdfShape::Box ? GeomShape::Box
+                                       : (s.kind == UrdfShape::Sphere ? GeomShape::Sphere : GeomShape::Cylinder);
+    g.size = s.size;
+    ctx_.model.geoms.push_back(g);
+  }
+  for (const UrdfShape& s : ul.visuals) addVisual(li, s);
+  const bool body_root = plan_.bodies[static_cast<size_t>(pb)].root == li;
+  if (body_root && (body >= 0 || (li == robot_.root && ul.name == "world"))) return;  // the body's row, or the world
+  FrameDef f;
+  f.key = key;
+  f.body = body;
+  f.offset = body >= 0 ? plan_.link_in_body[l] : urdfToScene(place_, plan_.link_global[l]);
+  ctx_.model.frames.push_back(f);
+}
+
+void Import::addVisual(int li, const UrdfShape& s) {
+  const size_t l = static_cast<size_t>(li);
+  const int body = body_index_[static_cast<size_t>(plan_.link_body[l])];
+  if (s.kind == UrdfShape::Mesh) {
+    note(s.shape_line, "link '" + link(li).name + "': mesh visual '" + s.filename +
+                           "' not drawn yet (meshes wait for the mesh loader, issue 28 point 5)");
+    return;
+  }
+  VisualDef v;
+  v.body = body;
+  v.pose = body >= 0 ? compose(plan_.link_in_body[l], s.origin)
+                     : urdfToScene(place_, compose(plan_.link_global[l], s.origin));
+  switch (s.kind) {
+    case UrdfShape::Box:
+      v.shape = VisualDef::Cuboid;
+      v.a = {-s.size[0] / 2, -s.size[1] / 2, -s.size[2] / 2};
+      v.b = {s.size[0] / 2, s.size[1] / 2, s.size[2] / 2};
+      break;
+    case UrdfShape::Sphere:
+      v.shape = VisualDef::Ellipsoid;
+      v.size = {s.size[0], s.size[0], s.size[0]};
+      break;
+    case UrdfShape::Cylinder:
+      v.shape = VisualDef::Cylinder;
+      v.size = {s.size[0], s.size[1], 0};
+      v.mask = 7;  // the jacket and both flat ends
+      break;
+    case UrdfShape::Mesh:
+      return;
+  }
+  v.skin = skinOf(s.material);
+  v.key = keyOf(link(li).name);
+  ctx_.model.visuals.push_back(v);
+}
+
+/// A URDF material as a skin, once each: its colour as RCColoredSkin's Color (guide 6.4.1:
+/// ambient and diffuse half of it), its texture as RCTexturedSkin's.
+int Import::skinOf(int material) {
+  if (material < 0) return 0;
+  const size_t m = static_cast<size_t>(material);
+  if (skin_index_[m] >= 0) return skin_index_[m];
+  const UrdfMaterial& u = robot_.materials[m];
+  SkinDef d;
+  d.key = key_ + ".material." + (u.name.empty() ? std::to_string(m) : urdfKey(u.name));
+  const Rgba base = u.has_color ? u.color : Rgba{0.8, 0.8, 0.8, 1};
+  auto times = [&](double k) { return Rgba{base[0] * k, base[1] * k, base[2] * k, base[3]}; };
+  d.color = base;
+  d.ambient = times(0.5);
+  d.diffuse = times(0.5);
+  d.specular = times(2.0);
+  d.emission = {0, 0, 0, base[3]};
+  if (!u.texture_path.empty()) {
+    std::error_code ec;
+    d.texture = std::filesystem::absolute(u.texture_path, ec).string();
+    d.base_dir = ".";
+  }
+  skin_index_[m] = static_cast<int>(ctx_.model.skins.size());
+  ctx_.model.skins.push_back(d);
+  return skin_index_[m];
+}
+
+void Import::addJoints() {
+  joint_index_.assign(robot_.joints.size(), -1);
+  for (size_t ji = 0; ji < robot_.joints.size(); ++ji) addJoint(ji);
+  for (size_t ji = 0; ji < robot_.joints.size(); ++ji) {  // mimics: after every joint they may follow
+    const UrdfJoint& j = robot_.joints[ji];
+    if (j.mimic < 0 || joint_index_[ji] < 0) continue;
+    const int leader = joint_index_[static_cast<size_t>(j.mimic)];
+    JointDef& jd = ctx_.model.joints[static_cast<size_t>(joint_index_[ji])];
+    if (leader < 0) {
+      error(j.mimic_line, "joint '" + j.name + "': <mimic> follows joint '" +
+                              robot_.joints[static_cast<size_t>(j.mimic)].name + "', which does not move");
+      continue;
+    }
+    jd.mimic = leader;
+    jd.mimic_multiplier = j.multiplier;
+    jd.mimic_offset = j.offset;
+    jd.mimic_max_force = j.effort > 0 ? j.effort : c_.get(kMaxForce);
+    note(j.mimic_line, "joint '" + j.name + "' follows '" + robot_.joints[static_cast<size_t>(j.mimic)].name +
+                           "' (q = " + formatNumber(j.multiplier) + " q_leader + " + formatNumber(j.offset) +
+                           "), held by its motor with at most " + formatNumber(jd.mimic_max_force) +
+                           (jd.kind == JointKind::Hinge ? " N m" : " N"));
+  }
+}
+
+void Import::addJoint(size_t ji) {
+  const UrdfJoint& j = robot_.joints[ji];
+  const int parent_body = body_index_[static_cast<size_t>(plan_.link_body[static_cast<size_t>(j.parent)])];
+  const int child_body = body_index_[static_cast<size_t>(plan_.link_body[static_cast<size_t>(j.child)])];
+  switch (j.type) {
+    case UrdfJoint::Fixed:
+      if (j.child != robot_.root)
+        note(j.line, "link '" + link(j.child).name + "' is fixed to '" + link(j.parent).name + "' (joint '" + j.name +
+                         "'): lumped into " +
+                         (child_body >= 0 ? "body '" + ctx_.model.bodies[static_cast<size_t>(child_body)].key + "'"
+                                          : std::string("the world")) +
+                         ", its trajectory row kept");
+      return;
+    case UrdfJoint::Floating:
+      note(j.line, "joint '" + j.name + "' is floating: link '" + link(j.child).name + "' is a free body");
+      return;
+    case UrdfJoint::Planar:
+      error(j.line, "joint '" + j.name + "': planar joints are not supported (use two prismatic joints and a "
+                                        "continuous one through massive links)");
+      return;
+    case UrdfJoint::Revolute:
+    case UrdfJoint::Continuous:
+    case UrdfJoint::Prismatic:
+      break;
+  }
+  JointDef d;
+  d.key = key_ + "." + urdfKey(j.name);
+  d.loc = at(j.line);
+  d.kind = j.type == UrdfJoint::Prismatic ? JointKind::Slider : JointKind::Hinge;
+  d.body1 = parent_body;
+  d.body2 = child_body;
+  const Transform& child = plan_.link_global[static_cast<size_t>(j.child)];
+  d.anchor = urdfToScene(place_, child).p;
+  d.axis = urdfDirToScene(place_, rotate(child.q, j.axis));
+  if (j.type != UrdfJoint::Continuous && j.has_limit) {
+    if (!(j.lower <= j.upper)) {
+      error(j.limit_line, "joint '" + j.name + "': lower limit " + formatNumber(j.lower) + " is above upper " +
+                              formatNumber(j.upper));
+      return;
+    }
+    d.lo_stop = j.lower;
+    d.hi_stop = j.upper;
+    if (d.kind == JointKind::Hinge && (j.lower < -kPi || j.upper > kPi))
+      note(j.limit_line, "joint '" + j.name + "': limits beyond +-180 degrees are not stops (ODE's hinge stops " +
+                             "work within +-pi); the joint turns freely past them");
+  }
+  if (j.damping < 0 || j.friction < 0) {
+    error(j.dynamics_line, "joint '" + j.name + "': damping and friction must be >= 0");
+    return;
+  }
+  d.damping = j.damping;
+  d.friction = j.friction;
+  joint_index_[ji] = static_cast<int>(ctx_.model.joints.size());
+  ctx_.recordJoint(d.key, joint_index_[ji]);
+  ctx_.model.joints.push_back(d);
+}
+
+void Import::addDrives() {
+  const auto drives = static_cast<UrdfDrives>(c_.get(kDrives));
+  if (drives == UrdfDrives::None) return;
+  for (size_t ji = 0; ji < robot_.joints.size(); ++ji) {
+    const UrdfJoint& j = robot_.joints[ji];
+    if (!urdfJointDriven(j) || joint_index_[ji] < 0) continue;
+    const bool hinge = j.type != UrdfJoint::Prismatic;
+    ActuatorDef a;
+    a.key = keyOf(j.name);
+    a.loc = at(j.line);
+    a.kind = drives == UrdfDrives::Position   ? ActuatorDef::Servo
+             : drives == UrdfDrives::Velocity ? ActuatorDef::VelDrive
+                                              : ActuatorDef::Effort;
+    a.joint = joint_index_[ji];
+    const int line = j.limit_line ? j.limit_line : j.line;
+    a.max_power = j.effort > 0 ? j.effort : c_.get(kMaxForce);
+    if (!(j.effort > 0))
+      note(line, "joint '" + j.name + "': " + (j.has_limit ? "effort=\"0\"" : "no <limit effort>") +
+                     " (what exporters write when nobody set it): its drive takes MaxForce " +
+                     formatNumber(a.max_power) + (hinge ? " N m" : " N"));
+    a.max_velocity = j.velocity > 0 ? j.velocity : c_.get(kMaxVelocity);
+    if (!(j.velocity > 0))
+      note(line, "joint '" + j.name + "': no velocity limit: its drive takes MaxVelocity " +
+                     formatNumber(a.max_velocity) + (hinge ? " rad/s" : " m/s"));
+    const JointDef& jd = ctx_.model.joints[static_cast<size_t>(a.joint)];
+    a.min_pos = jd.lo_stop;
+    a.max_pos = jd.hi_stop;
+    a.smooth = c_.get(kSmooth);
+    ctx_.recordActuator(a.key, static_cast<int>(ctx_.model.actuators.size()));
+    ctx_.model.actuators.push_back(a);
+    ++drives_;
+  }
+}
+
+/// Every link's key leads to its body (Refs of cameras, constructions and sensors).
+void Import::remember() {
+  std::map<int, Built>& memo = ctx_.clone.active && ctx_.clone.inside.count(ctx_.indexOf(c_)) ? ctx_.clone.memo
+                                                                                                : ctx_.memo;
+  for (size_t li = 0; li < robot_.links.size(); ++li) {
+    const int pb = plan_.link_body[li];
+    if (pb < 0) continue;
+    const UrdfBody& b = plan_.bodies[static_cast<size_t>(pb)];
+    Built built;
+    built.index = body_index_[static_cast<size_t>(pb)];
+    built.frame = urdfToScene(place_, plan_.link_global[static_cast<size_t>(b.root)]);
+    built.ok = true;
+    if (built.index >= 0) ctx_.recordBody(keyOf(robot_.links[li].name), built.index);
+    if (const Component* p = placeholder(robot_.links[li].name)) memo[ctx_.indexOf(*p)] = built;
+  }
+}
+
+void Import::summarise() {
+  report_.key = key_;
+  report_.loc = at(robot_.line);
+  std::map<std::string, int> by_type;
+  for (const UrdfJoint& j : robot_.joints) ++by_type[typeName(j.type)];
+  int lumped = 0, meshes = 0, moving = 0;
+  double mass = 0;
+  for (const UrdfBody& b : plan_.bodies) {
+    lumped += static_cast<int>(b.links.size()) - 1;
+    if (!b.fixed) {
+      ++moving;
+      mass += b.mass;
+    }
+  }
+  for (const UrdfLink& l : robot_.links)
+    for (const auto* shapes : {&l.visuals, &l.collisions})
+      for (const UrdfShape& s : *shapes) meshes += s.kind == UrdfShape::Mesh;
+  std::string joints;
+  for (const auto& [type, n] : by_type) joints += (joints.empty() ? "" : ", ") + std::to_string(n) + " " + type;
+  report_.text = "robot '" + robot_.name + "': " + std::to_string(robot_.links.size()) + " links (" +
+                 std::to_string(moving) + " moving bodies, " + std::to_string(lumped) + " lumped), " +
+                 std::to_string(robot_.joints.size()) + " joints" + (joints.empty() ? "" : " (" + joints + ")") +
+                 ", " + std::to_string(drives_) + " drives, " + std::to_string(meshes) + " mesh shapes, total mass " +
+                 formatNumber(mass) + " kg";
+}
+
+}  // namespace
+
+void registerUrdfImport(Registry& r) {
+  r.add({"RCImportURDF",
+         Family::Body,
+         int(BodyKind::Urdf),
+         {componentParam(kPose, {Family::Pose}, "",
+                         "where the robot's root link goes (default: the origin; URDF's +Z becomes the scene's +Y)"),
+          text(kFileParam, "", "URDF file; relative to this file"),
+          flag(kFixedBase, false, "fix the root link to the world (a root link named 'world' always is)"),
+          enumParam(kDrives, ValueType::Enum, &kDrivesTable, 0,
+                    "a drive on every movable joint, keyed IMPORTKEY.joint: none (passive), position (RCPosControl), "
+                    "velocity (RCVelControl) or effort (RCDriver; its command is the force or torque)"),
+          number(kMaxForce, 100.0, "N or N m", "a drive's largest force or torque where the URDF gives no effort (or 0)",
+                 Range::Positive),
+          number(kMaxVelocity, 1.0, "m/s or rad/s", "a drive's largest velocity where the URDF gives none (or 0)",
+                 Range::Positive),
+          number(kSmooth, 0.05, "s", "position drives: time constant of the final approach (RCGenericServo's Smooth)",
+                 Range::Positive),
+          text(kPackages, "",
+               "'NAME=DIR;NAME=DIR' (relative to this file): where package://NAME/... is, after a package.xml above "
+               "the URDF and ROS_PACKAGE_PATH"),
+          componentParam(kMaterial, {Family::Material}, "RCGenericMaterial", "contact properties of every collision")},
+         {},
+         "A robot read from a URDF file (docs/urdf.md): a body per link and the links fixed to it, keyed "
+         "IMPORTKEY.link; passive joints unless Drives says otherwise.",
+         false,
+         "robot"});
+  r.add({"URDFLink",
+         Family::Body,
+         int(BodyKind::UrdfLink),
+         {},
+         {},
+         "A link of an RCImportURDF, keyed IMPORTKEY.link: made by the import (never written), for Refs."});
+  const char* names[] = {"URDFPositionDrive", "URDFVelocityDrive", "URDFEffortDrive"};
+  const char* interfaces[] = {"RCPosControl", "RCVelControl", "RCDriver"};
+  for (int i = 0; i < 3; ++i) {
+    TypeSpec t{names[i], Family::Periphery, int(PeripheryKind::UrdfDrive), {}, {},
+               "A drive of an RCImportURDF (Drives), keyed IMPORTKEY.joint: made by the import, for Refs."};
+    t.interfaces = {interfaces[i]};
+    r.add(t);
+  }
+}
+
+Built lowerUrdfImport(CompileContext& ctx, const Component& c, const Transform* parent) {
+  auto it = ctx.scene.urdf.find(ctx.indexOf(c));
+  if (it == ctx.scene.urdf.end() || !it->second) return Built{};  // reading it failed and was reported
+  Import im(ctx, c, *it->second);
+  return im.lower(parent);
+}
+
+Built lowerUrdfLink(CompileContext& ctx, const Component& c) {
+  const Component* owner = c.parent >= 0 ? &ctx.at(c.parent) : nullptr;
+  if (!owner || owner->type->family != Family::Body || static_cast<BodyKind>(owner->type->kind) != BodyKind::Urdf) {
+    ctx.error(c, "made by an RCImportURDF for each link; it cannot be written in a scene");
+    return Built{};
+  }
+  lowerBody(ctx, c.parent, nullptr);  // remembers every link
+  const int ci = ctx.indexOf(c);
+  const std::map<int, Built>& memo = ctx.clone.active && ctx.clone.inside.count(ci) ? ctx.clone.memo : ctx.memo;
+  auto it = memo.find(ci);
+  return it == memo.end() ? Built{} : it->second;
+}
+
+}  // namespace simbob

@@ -179,9 +179,10 @@ RunResult runParties(const Model& model, const RunOptions& opts, const std::vect
 class TrajectorySampler : public Party {
  public:
   /// `interval` >= 1 ns, `min_step` the scene's MinTimeStep in ns. Samples go to `writer`
-  /// (may be null) and `on_sample` (may be empty).
+  /// (may be null) and `on_sample` (may be empty). The rows of `frames` (Model::frames: lumped
+  /// URDF links) follow the bodies' rows.
   TrajectorySampler(int body_count, SimTime interval, SimTime min_step, TrajectoryWriter* writer,
-                    std::function<void(double, const double*)> on_sample);
+                    std::function<void(double, const double*)> on_sample, std::vector<FrameDef> frames = {});
   SimTime first() override;
   SimTime onGrant(SimTime now, World& world) override;
   void finish(SimTime end, World& world) override;
@@ -196,6 +197,7 @@ class TrajectorySampler : public Party {
   SimTime min_step_;
   TrajectoryWriter* writer_;
   std::function<void(double, const double*)> on_sample_;
+  std::vector<FrameDef> frames_;
   std::vector<double> poses_;
   SimTime next_ = 0;
   SimTime last_ = -1;  ///< time of the last sample, -1 before the first

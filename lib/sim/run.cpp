@@ -255,7 +255,7 @@ RunResult runModel(const Model& model, const RunOptions& opts, TrajectoryWriter*
     return res;
   }
   TrajectorySampler sampler(static_cast<int>(model.bodies.size()), std::max<SimTime>(interval, 1), min_step, writer,
-                            opts.on_sample);
+                            opts.on_sample, model.frames);
   sampler.name = "the trajectory sampler";
   RunResult res = runParties(model, opts, {&sampler});
   res.samples = sampler.samples();

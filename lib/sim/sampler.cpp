@@ -3,17 +3,19 @@
 
 #include "simbob/physics.h"
 #include "simbob/run.h"
+#include "simbob/transform.h"
 #include "simbob/values.h"
 
 namespace simbob {
 
 TrajectorySampler::TrajectorySampler(int body_count, SimTime interval, SimTime min_step, TrajectoryWriter* writer,
-                                     std::function<void(double, const double*)> on_sample)
+                                     std::function<void(double, const double*)> on_sample, std::vector<FrameDef> frames)
     : interval_(interval > 0 ? interval : 1),
       min_step_(min_step),
       writer_(writer),
       on_sample_(std::move(on_sample)),
-      poses_(static_cast<size_t>(body_count) * kPoseSize) {}
+      frames_(std::move(frames)),
+      poses_((static_cast<size_t>(body_count) + frames_.size()) * kPoseSize) {}
 
 SimTime TrajectorySampler::first() { return next_; }
 
@@ -38,7 +40,7 @@ void TrajectorySampler::finish(SimTime end, World& world) {
 const Error* TrajectorySampler::failure() const { return error_.message.empty() ? nullptr : &error_; }
 
 void TrajectorySampler::sample(SimTime now, const World& world) {
-  const int n = static_cast<int>(poses_.size() / kPoseSize);
+  const int n = static_cast<int>(poses_.size() / kPoseSize - frames_.size());
   // The velocity block (run --columns pose,velocity): linear then angular, world frame.
   std::vector<double> velocities(writer_ && writer_->withVelocity() ? poses_.size() / kPoseSize * kVelocitySize : 0);
   for (int i = 0; i < n; ++i) {
@@ -58,6 +60,24 @@ void TrajectorySampler::sample(SimTime now, const World& world) {
     p[4] = s.pose.q[1];
     p[5] = s.pose.q[2];
     p[6] = s.pose.q[3];
+  }
+  for (size_t f = 0; f < frames_.size(); ++f) {
+    const FrameDef& fd = frames_[f];
+    const Transform t = fd.body < 0 ? fd.offset : compose(world.body(fd.body).pose, fd.offset);
+    const size_t row = static_cast<size_t>(n) + f;
+    if (!velocities.empty()) {
+      const BodyState s = fd.body < 0 ? BodyState{} : world.body(fd.body);
+      const Vec3 r = sub(t.p, s.pose.p);  // the frame's point moves with the body: v + w x r
+      const Vec3 v = add(s.lin_vel, cross(s.ang_vel, r));
+      double* out = &velocities[row * kVelocitySize];
+      for (size_t k = 0; k < 3; ++k) {
+        out[k] = v[k];
+        out[3 + k] = s.ang_vel[k];
+      }
+    }
+    double* p = &poses_[row * kPoseSize];
+    for (size_t k = 0; k < 3; ++k) p[k] = t.p[k];
+    for (size_t k = 0; k < 4; ++k) p[3 + k] = t.q[k];
   }
   const double t = toSeconds(now);
   if (writer_) writer_->addSample(t, poses_.data(), velocities.empty() ? nullptr : velocities.data());

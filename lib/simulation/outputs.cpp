@@ -61,6 +61,7 @@ std::unique_ptr<RunOutputs> RunOutputs::open(const Model& model, const RunOutput
   std::vector<std::string> keys;
   keys.reserve(model.bodies.size());
   for (const BodyDef& b : model.bodies) keys.push_back(b.key);
+  for (const FrameDef& f : model.frames) keys.push_back(f.key);  // lumped URDF links: rows of their own
   o->trajectory_ = TrajectoryWriter::open(paths.trajectory, keys, err, paths.velocity_columns);
   if (!o->trajectory_) return nullptr;
   auto openFile = [err](const std::string& path, std::unique_ptr<OutputFile>* f) {

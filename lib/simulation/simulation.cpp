@@ -146,7 +146,7 @@ bool Simulation::start() {
     const SimTime interval = std::max<SimTime>(toSimTime(sample_interval_).value_or(1), 1);
     const SimTime min_step = toSimTime(model_.settings.min_time_step).value_or(0);
     sampler_ = std::make_unique<TrajectorySampler>(static_cast<int>(model_.bodies.size()), interval, min_step, writer_,
-                                                   on_sample_);
+                                                   on_sample_, model_.frames);
     sampler_->name = "the trajectory sampler";
     parties.push_back(sampler_.get());
   }

@@ -48,6 +48,8 @@ struct Log {
 
   void error(const Error& e);
   void warning(const Error& e);
+  /// "file:line: note: message" (what an import did: simbob check).
+  void note(const Error& e);
   void info(const std::string& s);
   void debug(const std::string& s);
   /// Closes the log file; 74 (after saying so on stderr) if a write to it failed, else 0.
@@ -67,6 +69,7 @@ struct Common {
   std::string log_file;
   std::string settings;
   std::vector<std::string> plugins;  ///< --plugin FILE, in order
+  std::vector<std::string> packages;  ///< --package NAME=DIR, in order (URDF package:// folders)
   std::string extension_folder;      ///< the global setting ExtensionFolder (--settings)
   std::string texture_folder;        ///< TextureFolder of the global settings (relative to the settings file)
   bool document_ini = false;         ///< DocumentIni of the global settings: read <scene>.ini's cameras

@@ -14,6 +14,7 @@ void addCommon(CLI::App* app, Common& c) {
   app->add_option("--log-file", c.log_file, "Also append log messages to this file");
   app->add_option("--settings", c.settings, "Global settings INI (LogFile, ExtensionFolder, TextureFolder)");
   app->add_option("--plugin", c.plugins, "Load component types from this shared library (repeatable)");
+  app->add_option("--package", c.packages, "A URDF's package://NAME/... is in DIR: NAME=DIR (repeatable)");
 }
 
 void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
@@ -61,7 +62,8 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
   // A batch manifest appends per-scene options after the batch-wide ones: the last one wins
   // (every --set and --plugin counts).
   for (CLI::Option* o : run->get_options())
-    if (o->get_name() != "--set" && o->get_name() != "--plugin" && o->get_name() != "--controller")
+    if (o->get_name() != "--set" && o->get_name() != "--plugin" && o->get_name() != "--controller" &&
+        o->get_name() != "--package")
       o->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
 }
 

@@ -75,6 +75,14 @@ int emptyOutputOption(const Invocation& in) {
 int prepare(Invocation& in, simbob::Registry& registry) {
   if (int c = readSettings(in.common)) return c;
   if (int c = loadPlugins(registry, in.common.plugins, in.common.extension_folder)) return c;
+  for (const std::string& p : in.common.packages) {  // URDF package folders (docs/urdf.md)
+    const size_t eq = p.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == p.size()) {
+      g_log.error({simbob::ErrorKind::Usage, {}, "--package " + simbob::quoteInput(p) + ": expected NAME=DIR"});
+      return kExitUsage;
+    }
+    registry.addPackage(p.substr(0, eq), p.substr(eq + 1));
+  }
   if (!in.common.log_file.empty()) {
     std::vector<NamedPath> outputs = commandOutputs(in);
     outputs.push_back({"--log-file", in.common.log_file});

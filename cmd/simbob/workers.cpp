@@ -84,6 +84,11 @@ std::vector<std::string> workerOptions(const Common& common) {
     args.emplace_back("--plugin");
     args.push_back(absolutePath(p));
   }
+  for (const std::string& p : common.packages) {
+    const size_t eq = p.find('=');
+    args.emplace_back("--package");
+    args.push_back(eq == std::string::npos ? p : p.substr(0, eq + 1) + absolutePath(p.substr(eq + 1)));
+  }
   if (!common.settings.empty()) {
     args.emplace_back("--settings");
     args.push_back(absolutePath(common.settings));

@@ -186,6 +186,7 @@ void Log::error(const Error& e) {
   write(e.errorLine(), true);
 }
 void Log::warning(const Error& e) { write(place(e) + ": warning: " + e.message, level != Level::Quiet); }
+void Log::note(const Error& e) { write(place(e) + ": note: " + e.message, level != Level::Quiet); }
 void Log::info(const std::string& s) { write("simbob: " + s, level != Level::Quiet); }
 void Log::debug(const std::string& s) { write("simbob: " + s, level == Level::Verbose); }
 

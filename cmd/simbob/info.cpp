@@ -22,6 +22,10 @@ int cmdCheck(const std::string& path, const Common& common, const std::vector<st
   Diagnostics lint;
   lintModel(model, lint, dt);
   if (int c = report(lint, true)) return c;
+  for (const ImportReport& r : model.imports) {  // what each URDF import built, ignored or approximated
+    g_log.note({ErrorKind::InvalidInput, r.loc, r.text});
+    for (const Error& n : r.notes) g_log.note(n);
+  }
   g_log.info(path + ": ok (" + countOf(model.bodies.size(), "mobile body", "mobile bodies") + ", " +
              countOf(model.geoms.size(), "geom", "geoms") + ", " + countOf(model.joints.size(), "joint", "joints") +
              ")");

@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# URDF robots through the real binary (issue 28, docs/urdf.md): a bare robot.urdf is a scene of
+# its own (check, run), check says what the import built and ignored at its lines, refusals name
+# the URDF and the line with the right exit status (66 for a missing file or package), --package
+# finds a package, and a lumped link keeps its trajectory row.
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+cli_setup "$@"
+
+DART=/usr/share/doc/dart/data/urdf
+[[ -d "$DART" ]] || fail "Debian's dart-doc is needed (scripts/deps.sh test installs it)"
+
+cat >lump.urdf <<'EOF'
+<?xml version="1.0"?>
+<robot name="lump">
+  <link name="base">
+    <inertial><mass value="2"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>
+    <collision><geometry><box size="0.4 0.4 0.2"/></geometry></collision>
+  </link>
+  <joint name="weld" type="fixed"><parent link="base"/><child link="mast"/><origin xyz="0 0 0.3"/></joint>
+  <link name="mast">
+    <inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+  </link>
+  <transmission name="t1"><type>x</type></transmission>
+</robot>
+EOF
+
+check "check lump.urdf: the summary and what it lumped and ignored, at their lines"
+expect_status 0 "$SIMBOB" check lump.urdf
+expect_match "summary" "$LAST_ERR" \
+  "^lump.urdf:2: note: robot 'lump': 2 links \(1 moving bodies, 1 lumped\), 1 joints \(1 fixed\), 0 drives, 0 mesh shapes, total mass 3 kg$"
+expect_match "lumped" "$LAST_ERR" "^lump.urdf:7: note: link 'mast' is fixed to 'base' \(joint 'weld'\): lumped into body 'lump.base', its trajectory row kept$"
+expect_match "ignored" "$LAST_ERR" "^lump.urdf:11: note: <transmission> ignored: simbob models no transmissions"
+expect_match "ok" "$LAST_ERR" "^simbob: lump.urdf: ok \(1 mobile body"
+
+check "run lump.urdf: the box lands on the ground plane at z = 0; the lumped link keeps its own row"
+expect_status 0 "$SIMBOB" run lump.urdf --duration 1 --out lump.csv -q
+read -r samples bodies rest <<<"$(csv_summary lump.csv)"
+expect_eq "rows per sample" "$bodies" 2
+python3 - lump.csv <<'PY'
+import csv, sys
+rows = [r for r in csv.DictReader(open(sys.argv[1]))]
+last = {r["body"]: r for r in rows if float(r["time"]) == float(rows[-1]["time"])}
+base, mast = last["lump.base"], last["lump.mast"]
+# The box (0.2 m high in URDF z, scene y) rests on y = 0: its link frame at y = 0.1.
+assert abs(float(base["y"]) - 0.1) < 2e-3, base
+# The mast frame rides 0.3 m above the base frame (URDF z = scene y).
+assert abs(float(mast["y"]) - float(base["y"]) - 0.3) < 1e-9, (base, mast)
+PY
+
+check "refusals: one line naming the URDF and its line, 66 for what is missing"
+expect_status 66 "$SIMBOB" check "$DART/test/missing_mesh.urdf"
+expect_lines "missing mesh" "$LAST_ERR" 1
+expect_match "missing mesh" "$LAST_ERR" "^$DART/test/missing_mesh.urdf:6: error: mesh 'this_file_does_not_exist.stl' not found"
+expect_status 66 "$SIMBOB" check "$DART/wam/wam.urdf"
+expect_match "missing package" "$LAST_ERR" "^$DART/wam/wam.urdf:16: error: mesh 'package://herb_description/meshes/wam/wam_base.dae': no package 'herb_description'"
+expect_status 65 "$SIMBOB" check "$DART/test/testWorld.urdf"
+expect_lines "world" "$LAST_ERR" 1
+expect_match "world" "$LAST_ERR" "^$DART/test/testWorld.urdf:1: error: root element is <world>, expected <robot>"
+expect_status 65 "$SIMBOB" check "$DART/test/invalid.urdf"
+expect_lines "invalid" "$LAST_ERR" 1
+expect_match "invalid" "$LAST_ERR" "^$DART/test/invalid.urdf:1: error: not a URDF file: no <robot> element$"
+
+check "--package herb_description=DIR finds WAM's meshes"
+expect_status 0 "$SIMBOB" check "$DART/wam/wam.urdf" --package "herb_description=$DART/wam"
+expect_match "wam" "$LAST_ERR" "note: robot 'wam': 9 links"
+expect_status 64 "$SIMBOB" check "$DART/wam/wam.urdf" --package herb_description
+expect_match "usage" "$LAST_ERR" "error: --package herb_description: expected NAME=DIR"
+
+check "KR5 (a space in the file name): effort=\"0\" named at each <limit> line"
+expect_status 0 "$SIMBOB" check "$DART/KR5/KR5 sixx R650.urdf"
+expect_match "kr5" "$LAST_ERR" "note: robot 'KR5sixxR650WP_description': 8 links \(6 moving bodies, 1 lumped\), 7 joints \(1 fixed, 6 revolute\)"
+
+check "an RCImportURDF in a scene, twice, with drives a schedule commands by Ref"
+cat >two.xml <<'EOF'
+<Simulation><ComponentList>
+  <RCGround Key="Ground"/>
+  <RCImportURDF Key="A"><File Value="lump.urdf"/></RCImportURDF>
+  <RCImportURDF Key="B"><File Value="lump.urdf"/>
+    <Pose><RCGlobalCoordinates><Pose Value="2 0 0 0 0 0"/></RCGlobalCoordinates></Pose></RCImportURDF>
+</ComponentList></Simulation>
+EOF
+expect_status 0 "$SIMBOB" run two.xml --duration 0.5 --out two.csv -q
+read -r samples bodies rest <<<"$(csv_summary two.csv)"
+expect_eq "rows per sample" "$bodies" 4
+expect_match "B.mast" two.csv "^0,B.mast,2,"
+say "ok"

@@ -1,0 +1,336 @@
+// Reading URDF files (lib/urdf/read.cpp, paths.cpp): the values urdfdom gives with the line of
+// every element, what urdfdom drops named once each, package:// paths, and every URDF of
+// Debian's dart-doc: each loads or is refused with one line naming its file and line.
+#include <cstdlib>
+
+#include "urdf/urdf.h"
+#include "urdf/urdf_test_util.h"
+
+using namespace urdftest;
+
+namespace {
+
+std::shared_ptr<const UrdfRobot> read(const std::string& text, Diagnostics& d, const std::string& file = "r.urdf",
+                                      const UrdfPackages& packages = {}) {
+  return readUrdf(text, file, packages, d);
+}
+
+/// Loads a dart-doc URDF as `simbob check` does (a bare robot over a ground plane).
+bool loadDart(const std::string& rel, Model* m, Diagnostics& d) { return compileFile(kDart + "/" + rel, m, d); }
+
+bool hasNote(const Model& m, int line, const std::string& part) {
+  for (const ImportReport& r : m.imports)
+    for (const Error& n : r.notes)
+      if (n.loc.line == line && n.message.find(part) != std::string::npos) return true;
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("urdf read: values with the line of each element", "[urdf]") {
+  Diagnostics d;
+  auto r = read(R"(<?xml version="1.0"?>
+<robot name="two">
+  <material name="red"><color rgba="1 0 0 1"/></material>
+  <link name="a">
+    <inertial>
+      <origin xyz="0 0 0.1" rpy="0 0 0"/>
+      <mass value="2"/>
+      <inertia ixx="1" ixy="0.1" ixz="0.2" iyy="2" iyz="0.3" izz="3"/>
+    </inertial>
+    <visual><geometry><box size="1 2 3"/></geometry><material name="red"/></visual>
+    <collision><origin xyz="1 0 0"/><geometry><cylinder radius="0.5" length="2"/></geometry></collision>
+  </link>
+  <joint name="j" type="revolute">
+    <parent link="a"/><child link="b"/>
+    <axis xyz="0 0 2"/>
+    <limit lower="-1" upper="1" effort="5" velocity="2"/>
+    <dynamics damping="0.5" friction="0.25"/>
+  </joint>
+  <link name="b"/>
+</robot>)",
+                d);
+  INFO(errorText(d));
+  REQUIRE(r);
+  CHECK(r->name == "two");
+  CHECK(r->line == 2);
+  REQUIRE(r->links.size() == 2);
+  const UrdfLink& a = r->links[0];
+  CHECK(a.line == 4);
+  REQUIRE(a.has_inertial);
+  CHECK(a.inertial.mass == 2);
+  CHECK(a.inertial.mass_line == 7);
+  CHECK(a.inertial.inertia_line == 8);
+  CHECK(a.inertial.inertia == Mat3{1, 0.1, 0.2, 0.1, 2, 0.3, 0.2, 0.3, 3});
+  CHECK(a.inertial.origin.p == Vec3{0, 0, 0.1});
+  REQUIRE(a.visuals.size() == 1);
+  CHECK(a.visuals[0].kind == UrdfShape::Box);
+  CHECK(a.visuals[0].size == Vec3{1, 2, 3});
+  CHECK(a.visuals[0].line == 10);
+  REQUIRE(a.visuals[0].material == 0);
+  CHECK(r->materials[0].color == Rgba{1, 0, 0, 1});
+  REQUIRE(a.collisions.size() == 1);
+  CHECK(a.collisions[0].kind == UrdfShape::Cylinder);
+  CHECK(a.collisions[0].size == Vec3{0.5, 2, 0});
+  CHECK(a.collisions[0].origin.p == Vec3{1, 0, 0});
+  REQUIRE(r->joints.size() == 1);
+  const UrdfJoint& j = r->joints[0];
+  CHECK(j.type == UrdfJoint::Revolute);
+  CHECK(j.line == 13);
+  CHECK(j.axis == Vec3{0, 0, 1});  // made unit
+  CHECK(j.limit_line == 16);
+  CHECK(j.lower == -1);
+  CHECK(j.effort == 5);
+  CHECK(j.dynamics_line == 17);
+  CHECK(j.damping == 0.5);
+  CHECK(j.friction == 0.25);
+  CHECK(r->root == 0);
+  CHECK(r->ignored.empty());
+}
+
+TEST_CASE("urdf read: what urdfdom drops is named once each, with its first line", "[urdf]") {
+  Diagnostics d;
+  auto r = read(R"(<robot name="x">
+  <link name="a">
+    <inertial><mass value="1"/><inertia ixx="1" iyx="0" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
+    <collision group="default"><geometry><sphere radius="1"/></geometry></collision>
+    <sensor name="s"/>
+  </link>
+  <joint name="j" type="continuous"><parent link="a"/><child link="b"/>
+    <calibration rising="0"/><safety_controller k_velocity="1"/></joint>
+  <link name="b"><inertial><mass value="1"/><inertia ixx="1" iyx="0" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+  <transmission name="t"/>
+  <gazebo reference="a"/>
+  <gazebo reference="b"/>
+</robot>)",
+                d);
+  INFO(errorText(d));
+  REQUIRE(r);
+  std::vector<std::string> got;
+  for (const UrdfNote& n : r->ignored)
+    got.push_back(std::to_string(n.line) + " x" + std::to_string(n.count) + " " + n.text);
+  CHECK(got == std::vector<std::string>{
+                   "3 x2 attribute 'iyx' of <inertia> ignored",
+                   "4 x1 attribute 'group' of <collision> ignored",
+                   "5 x1 <sensor> ignored: not an element of URDF inside <robot/link>",
+                   "8 x1 <calibration> ignored: joint positions are zero at the URDF's zero configuration",
+                   "8 x1 <safety_controller> ignored: simbob has no safety controllers; the <limit> is what stops a "
+                   "joint",
+                   "10 x1 <transmission> ignored: simbob models no transmissions; RCImportURDF's Drives puts a drive "
+                   "on every movable joint",
+                   "11 x2 <gazebo> ignored: Gazebo's extensions are not read",
+               });
+}
+
+TEST_CASE("urdf read: refusals name the file and the line", "[urdf]") {
+  auto refuse = [](const std::string& text) {
+    Diagnostics d;
+    auto r = read(text, d);
+    CHECK(!r);
+    REQUIRE(d.errors().size() == 1);
+    return d.errors()[0].str();
+  };
+  CHECK(refuse("<robot name=\"x\">\n  <link name=\"a\">\n</robot>") ==
+        "r.urdf:3: malformed XML: Start-end tags mismatch");
+  CHECK(refuse("<world name=\"w\"/>") ==
+        "r.urdf:1: root element is <world>, expected <robot> (a URDF <world> is not read: import each robot with an "
+        "RCImportURDF)");
+  CHECK(refuse("<robot name=\"x\">\n<link name=\"a\"/>\n<joint name=\"j\" type=\"revolute\">\n"
+               "<parent link=\"a\"/><child link=\"b\"/></joint>\n<link name=\"b\"/>\n</robot>") ==
+        "r.urdf:3: not a valid URDF: Joint [j] is of type REVOLUTE but it does not specify limits");
+  CHECK(refuse("<robot name=\"x\">\n<link name=\"a\"/>\n<joint name=\"j\" type=\"continuous\">\n"
+               "<parent link=\"a\"/><child link=\"b\"/><mimic joint=\"nope\"/></joint>\n<link name=\"b\"/>\n</robot>") ==
+        "r.urdf:4: joint 'j': <mimic> names no joint 'nope'");
+}
+
+TEST_CASE("urdf read: package:// from a package.xml above, ROS_PACKAGE_PATH, then the given folders", "[urdf]") {
+  TempDir dir;
+  dir.write("ws/src/bot/package.xml", "<package><name> bot </name></package>");
+  dir.write("ws/src/bot/meshes/a.stl", "solid a\nendsolid a\n");
+  dir.write("elsewhere/other/package.xml", "<package><name>other</name></package>");
+  dir.write("elsewhere/other/b.stl", "solid b\nendsolid b\n");
+  dir.write("given/c.stl", "solid c\nendsolid c\n");
+  const std::string urdf = (dir.path() / "ws/src/bot/urdf/bot.urdf").string();
+  auto meshPath = [&](const std::string& filename, const UrdfPackages& packages, std::string* error) {
+    Diagnostics d;
+    auto r = read("<robot name=\"x\">\n<link name=\"a\">\n<visual><geometry>\n<mesh filename=\"" + filename +
+                      "\"/></geometry></visual></link></robot>",
+                  d, urdf, packages);
+    *error = d.errors().empty() ? "" : d.errors()[0].str();
+    return r ? r->links[0].visuals[0].path : std::string();
+  };
+  std::string err;
+  CHECK(meshPath("package://bot/meshes/a.stl", {}, &err) == (dir.path() / "ws/src/bot/meshes/a.stl").string());
+  CHECK(meshPath("../meshes/a.stl", {}, &err) == (dir.path() / "ws/src/bot/meshes/a.stl").string());
+  CHECK(meshPath("package://other/b.stl", {}, &err).empty());
+  CHECK(err == urdf + ":4: mesh 'package://other/b.stl': no package 'other': no package.xml naming it in the URDF's "
+                      "folder or above, none in ROS_PACKAGE_PATH, and no --package other=DIR or Packages entry");
+  ::setenv("ROS_PACKAGE_PATH", (dir.path() / "elsewhere").c_str(), 1);
+  CHECK(meshPath("package://other/b.stl", {}, &err) == (dir.path() / "elsewhere/other/b.stl").string());
+  ::unsetenv("ROS_PACKAGE_PATH");
+  CHECK(meshPath("package://given/c.stl", {{"given", (dir.path() / "given").string()}}, &err) ==
+        (dir.path() / "given/c.stl").string());
+  CHECK(meshPath("package://given/nothing.stl", {{"given", (dir.path() / "given").string()}}, &err).empty());
+  CHECK(err == urdf + ":4: mesh 'package://given/nothing.stl' not found (looked for '" +
+                   (dir.path() / "given/nothing.stl").string() + "')");
+}
+
+// --- every URDF of Debian's dart-doc (scripts/deps.sh test installs it) ------------------------
+
+TEST_CASE("urdf dart-doc: test/invalid.urdf is refused at line 1", "[urdf][dart]") {
+  Model m;
+  Diagnostics d;
+  CHECK(!loadDart("test/invalid.urdf", &m, d));
+  CHECK(firstError(d) == kDart + "/test/invalid.urdf:1: not a URDF file: no <robot> element");
+  CHECK(d.errors().size() == 1);
+}
+
+TEST_CASE("urdf dart-doc: test/testWorld.urdf (a <world>) is refused at line 1", "[urdf][dart]") {
+  Model m;
+  Diagnostics d;
+  CHECK(!loadDart("test/testWorld.urdf", &m, d));
+  CHECK(firstError(d) == kDart +
+                             "/test/testWorld.urdf:1: root element is <world>, expected <robot> (a URDF <world> is "
+                             "not read: import each robot with an RCImportURDF)");
+  CHECK(d.errors().size() == 1);
+}
+
+TEST_CASE("urdf dart-doc: test/missing_mesh.urdf is refused (66) at its mesh's line", "[urdf][dart]") {
+  Model m;
+  Diagnostics d;
+  CHECK(!loadDart("test/missing_mesh.urdf", &m, d));
+  REQUIRE(d.errors().size() == 1);
+  CHECK(d.errors()[0].kind == ErrorKind::MissingInput);
+  CHECK(firstError(d) == kDart + "/test/missing_mesh.urdf:6: mesh 'this_file_does_not_exist.stl' not found " +
+                             "(looked for '" + kDart + "/test/this_file_does_not_exist.stl')");
+}
+
+TEST_CASE("urdf dart-doc: test/missing_package.urdf is refused (66) at its mesh's line", "[urdf][dart]") {
+  Model m;
+  Diagnostics d;
+  CHECK(!loadDart("test/missing_package.urdf", &m, d));
+  REQUIRE(d.errors().size() == 1);
+  CHECK(d.errors()[0].kind == ErrorKind::MissingInput);
+  CHECK(firstError(d) == kDart +
+                             "/test/missing_package.urdf:6: mesh 'package://missing_package/foo.stl': no package "
+                             "'missing_package': no package.xml naming it in the URDF's folder or above, none in "
+                             "ROS_PACKAGE_PATH, and no --package missing_package=DIR or Packages entry");
+}
+
+TEST_CASE("urdf dart-doc: test/primitive_geometry.urdf is refused at its massless floating link", "[urdf][dart]") {
+  Model m;
+  Diagnostics d;
+  CHECK(!loadDart("test/primitive_geometry.urdf", &m, d));
+  CHECK(d.errors().size() == 1);
+  CHECK(firstError(d) == kDart +
+                             "/test/primitive_geometry.urdf:3: link 'base_link' moves but has no mass (no <inertial> "
+                             "on it or the links fixed to it): ODE cannot step a body without mass; give it an "
+                             "<inertial> or import it with FixedBase");
+}
+
+TEST_CASE("urdf dart-doc: test/joint_properties.urdf is refused at its first massless link", "[urdf][dart]") {
+  Model m;
+  Diagnostics d;
+  CHECK(!loadDart("test/joint_properties.urdf", &m, d));
+  CHECK(d.errors().size() == 1);
+  CHECK(firstError(d) == kDart +
+                             "/test/joint_properties.urdf:3: link 'link_0' moves but has no mass (no <inertial> on it "
+                             "or the links fixed to it): ODE cannot step a body without mass; give it an <inertial> "
+                             "or import it with FixedBase (so do 'link_1', 'link_2')");
+}
+
+TEST_CASE("urdf dart-doc: test/joint_properties.urdf with masses keeps damping, friction and limits", "[urdf][dart]") {
+  // The same file with an <inertial> in every link (the original has none; see above).
+  std::string text = scenetest::readText(kDart + "/test/joint_properties.urdf");
+  const std::string inertial =
+      "<inertial><mass value=\"1\"/><inertia ixx=\"0.1\" ixy=\"0\" ixz=\"0\" iyy=\"0.1\" iyz=\"0\" izz=\"0.1\"/>"
+      "</inertial>";
+  for (size_t at = 0; (at = text.find("<visual>", at)) != std::string::npos; at = text.find("</link>", at))
+    text.insert(at, inertial);
+  Model m = mustCompile(text, "joint_properties.urdf");
+  REQUIRE(m.joints.size() == 2);
+  CHECK(m.joints[0].damping == 1.2);
+  CHECK(m.joints[0].friction == 2.3);
+  CHECK(m.joints[0].lo_stop == -3.14159265359);
+  CHECK(m.joints[1].damping == 1.2);
+  CHECK(std::isinf(m.joints[1].hi_stop));  // continuous: no stops
+}
+
+TEST_CASE("urdf dart-doc: test/issue838.urdf loads: a fixed link lumped, colours as skins", "[urdf][dart]") {
+  Model m;
+  Diagnostics d;
+  INFO(errorText(d));
+  REQUIRE(loadDart("test/issue838.urdf", &m, d));
+  REQUIRE(m.bodies.size() == 2);
+  CHECK(m.bodies[0].key == "issue838.link_0");
+  CHECK(m.bodies[0].mass == 10.0);
+  CHECK(m.bodies[1].key == "issue838.link_2");
+  REQUIRE(m.frames.size() == 1);
+  CHECK(m.frames[0].key == "issue838.link_1");
+  CHECK(m.frames[0].body == 0);
+  REQUIRE(m.joints.size() == 1);
+  CHECK(m.joints[0].key == "issue838.1_to_2");
+  CHECK(m.visuals.size() >= 6);
+  bool red = false;
+  for (const SkinDef& s : m.skins) red = red || (s.color == Rgba{1, 0, 0, 1} && s.key == "issue838.material.Red");
+  CHECK(red);
+  CHECK(hasNote(m, 36, "link 'link_1' is fixed to 'link_0' (joint '0_to_1'): lumped into body 'issue838.link_0'"));
+}
+
+TEST_CASE("urdf dart-doc: test/invalid_mesh.urdf is refused at its line", "[urdf][dart]") {
+  Model m;
+  Diagnostics d;
+  CHECK(!loadDart("test/invalid_mesh.urdf", &m, d));
+  CHECK(d.errors().size() == 1);
+  CHECK(firstError(d).rfind(kDart + "/test/invalid_mesh.urdf:", 0) == 0);
+}
+
+TEST_CASE("urdf dart-doc: wam's package://herb_description is refused at its line unless given", "[urdf][dart]") {
+  Model m;
+  Diagnostics d;
+  CHECK(!loadDart("wam/wam.urdf", &m, d));
+  REQUIRE(!d.errors().empty());
+  CHECK(firstError(d) == kDart +
+                             "/wam/wam.urdf:16: mesh 'package://herb_description/meshes/wam/wam_base.dae': no package "
+                             "'herb_description': no package.xml naming it in the URDF's folder or above, none in "
+                             "ROS_PACKAGE_PATH, and no --package herb_description=DIR or Packages entry");
+  CHECK(d.errors()[0].kind == ErrorKind::MissingInput);
+  Registry reg;
+  registerBuiltins(reg);
+  reg.addPackage("herb_description", kDart + "/wam");
+  Scene s;
+  Diagnostics d2;
+  INFO(errorText(d2));
+  REQUIRE(loadScene(kDart + "/wam/wam.urdf", reg, &s, d2));
+  REQUIRE(compileScene(s, &m, d2));
+  CHECK(m.joints.size() == 7);
+}
+
+TEST_CASE("urdf dart-doc: KR5 (a space in its name, root link 'world') loads fixed to the world", "[urdf][dart]") {
+  Model m;
+  Diagnostics d;
+  INFO(errorText(d));
+  REQUIRE(loadDart("KR5/KR5 sixx R650.urdf", &m, d));
+  CHECK(m.bodies.size() == 6);  // base_link is fixed to 'world'
+  CHECK(m.joints.size() == 6);
+  REQUIRE(m.frames.size() == 1);
+  CHECK(m.frames[0].key == "KR5sixxR650WP_description.base_link");
+  CHECK(m.frames[0].body == -1);
+}
+
+TEST_CASE("urdf dart-doc: drchubo (51 joints, package.xml) loads", "[urdf][dart]") {
+  Model m;
+  Diagnostics d;
+  INFO(errorText(d));
+  REQUIRE(loadDart("drchubo/drchubo.urdf", &m, d));
+  CHECK(m.bodies.size() == 52);
+  CHECK(m.joints.size() == 51);
+}
+
+TEST_CASE("urdf dart-doc: KR5/ground.urdf loads", "[urdf][dart]") {
+  Model m;
+  Diagnostics d;
+  INFO(errorText(d));
+  REQUIRE(loadDart("KR5/ground.urdf", &m, d));
+  CHECK(m.bodies.empty());  // the ground link is fixed to 'world'
+}

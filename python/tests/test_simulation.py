@@ -655,3 +655,34 @@ def test_sensor_readings_by_key():
     with pytest.raises(simbob.UsageError) as info:
         sim.sensor("Bot.Back")
     assert "Bot.Front" in info.value.message  # names the sensors there are
+
+
+PENDULUM_URDF = """<robot name="pend">
+  <link name="world"/>
+  <joint name="pivot" type="continuous">
+    <parent link="world"/><child link="bob"/><origin xyz="0 0 2"/><axis xyz="0 1 0"/>
+  </joint>
+  <link name="bob">
+    <inertial><origin xyz="1 0 0"/><mass value="1"/>
+      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial>
+  </link>
+</robot>
+"""
+
+
+def test_a_urdf_file_is_a_scene_of_its_own(tmp_path):
+    """simbob.Simulation("robot.urdf") reads a URDF as simbob run does (docs/urdf.md)."""
+    path = tmp_path / "pend.urdf"
+    path.write_text(PENDULUM_URDF)
+    sim = simbob.Simulation(path)
+    assert sim.body_keys == ["pend.bob"]
+    assert sim.joint_keys == ["pend.pivot"]
+    # The row is the link frame, at the pivot (URDF z = 2 is the scene's y = 2), while the mass
+    # 1 m away along URDF x starts to fall: after 0.1 s it has turned by about g t^2 / 2 / 1 m.
+    sim.run_until(0.1)
+    p = sim.poses()[0]
+    assert abs(p[0]) < 1e-3 and abs(p[1] - 2) < 1e-3 and abs(p[2]) < 1e-3
+    assert abs(abs(sim.joint_positions()[0]) - G * 0.01 / 2) < 2e-3
+    with pytest.raises(simbob.SceneError) as info:
+        simbob.Simulation.from_text(PENDULUM_URDF.replace('<mass value="1"/>', '<mass value="0"/>'), "bad.urdf")
+    assert info.value.line == 7

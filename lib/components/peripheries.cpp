@@ -236,6 +236,7 @@ bool peripheryLimits(const Component& c, double* lo, double* hi) {
     case PeripheryKind::CameraSensor:
     case PeripheryKind::PluginSensor:
     case PeripheryKind::PluginActuator:
+    case PeripheryKind::UrdfDrive:  // its limits are the URDF's, in the Model (ActuatorDef)
       return false;
   }
   return false;

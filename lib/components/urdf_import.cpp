@@ -298,6 +298,10 @@ void Import::addJoints() {
     if (j.mimic < 0 || joint_index_[ji] < 0) continue;
     const int leader = joint_index_[static_cast<size_t>(j.mimic)];
     JointDef& jd = ctx_.model.joints[static_cast<size_t>(joint_index_[ji])];
+    if (!std::isfinite(j.multiplier) || !std::isfinite(j.offset)) {
+      error(j.mimic_line, "joint '" + j.name + "': <mimic> multiplier and offset must be finite");
+      continue;
+    }
     if (leader < 0) {
       error(j.mimic_line, "joint '" + j.name + "': <mimic> follows joint '" +
                               robot_.joints[static_cast<size_t>(j.mimic)].name + "', which does not move");
@@ -349,7 +353,7 @@ void Import::addJoint(size_t ji) {
   d.anchor = urdfToScene(place_, child).p;
   d.axis = urdfDirToScene(place_, rotate(child.q, j.axis));
   if (j.type != UrdfJoint::Continuous && j.has_limit) {
-    if (!(j.lower <= j.upper)) {
+    if (!(j.lower <= j.upper) || std::isnan(j.lower) || std::isnan(j.upper)) {
       error(j.limit_line, "joint '" + j.name + "': lower limit " + formatNumber(j.lower) + " is above upper " +
                               formatNumber(j.upper));
       return;
@@ -360,8 +364,8 @@ void Import::addJoint(size_t ji) {
       note(j.limit_line, "joint '" + j.name + "': limits beyond +-180 degrees are not stops (ODE's hinge stops " +
                              "work within +-pi); the joint turns freely past them");
   }
-  if (j.damping < 0 || j.friction < 0) {
-    error(j.dynamics_line, "joint '" + j.name + "': damping and friction must be >= 0");
+  if (!(j.damping >= 0 && j.friction >= 0 && std::isfinite(j.damping) && std::isfinite(j.friction))) {
+    error(j.dynamics_line, "joint '" + j.name + "': damping and friction must be finite and >= 0");
     return;
   }
   d.damping = j.damping;

@@ -96,6 +96,14 @@ class Reader {
   std::vector<std::pair<int, std::string>> mimics_;      // joint index, the joint it follows
 };
 
+bool finite(const Transform& t) {
+  for (double v : t.p)
+    if (!std::isfinite(v)) return false;
+  for (double v : t.q)
+    if (!std::isfinite(v)) return false;
+  return true;
+}
+
 Transform toTransform(const urdf::Pose& p) {
   Transform t;
   t.p = {p.position.x, p.position.y, p.position.z};
@@ -198,6 +206,21 @@ void Reader::walk(const pugi::xml_node& n, const std::string& path) {
 }
 
 int Reader::urdfdomLine(const std::string& message) const {
+  // A value urdfdom cannot read ("Unable to parse component [abc] to a double"): the element
+  // whose attribute holds it.
+  const size_t open = message.find('['), close = message.find(']', open == std::string::npos ? 0 : open);
+  if (message.find("parse") != std::string::npos && open != std::string::npos && close != std::string::npos) {
+    const std::string token = message.substr(open + 1, close - open - 1);
+    std::vector<pugi::xml_node> todo{doc_.document_element()};
+    while (!token.empty() && !todo.empty()) {
+      pugi::xml_node n = todo.back();
+      todo.pop_back();
+      for (pugi::xml_attribute a = n.first_attribute(); a; a = a.next_attribute())
+        if (std::string(a.value()).find(token) != std::string::npos) return lineOf(n);
+      for (pugi::xml_node c = n.last_child(); c; c = c.previous_sibling())
+        if (c.type() == pugi::node_element) todo.push_back(c);
+    }
+  }
   // urdfdom names the link or joint it stopped at ("Joint [j1] ...", "link 'l' ..."): find it.
   int best = 0;
   for (pugi::xml_node c : doc_.document_element().children()) {
@@ -234,6 +257,10 @@ bool Reader::resolveFile(const std::string& name, int line, const char* what, st
 bool Reader::readShape(const pugi::xml_node& x, const urdf::Geometry& g, const urdf::Pose& origin, UrdfShape* out) {
   out->line = lineOf(x);
   out->origin = toTransform(origin);
+  if (!finite(out->origin)) {
+    error(x.child("origin") ? lineOf(x.child("origin")) : out->line, "<origin> must be finite");
+    return false;
+  }
   pugi::xml_node shape;
   for (pugi::xml_node c : x.child("geometry").children())
     if (c.type() == pugi::node_element) {
@@ -306,6 +333,10 @@ bool Reader::readLink(const pugi::xml_node& x, const urdf::Link& u) {
     i.mass_line = in.child("mass") ? lineOf(in.child("mass")) : i.line;
     i.inertia_line = in.child("inertia") ? lineOf(in.child("inertia")) : i.line;
     i.origin = toTransform(u.inertial->origin);
+    if (!finite(i.origin)) {
+      error(in.child("origin") ? lineOf(in.child("origin")) : i.line, "<origin> must be finite");
+      ok = false;
+    }
     i.mass = u.inertial->mass;
     const urdf::Inertial& t = *u.inertial;
     i.inertia = {t.ixx, t.ixy, t.ixz, t.ixy, t.iyy, t.iyz, t.ixz, t.iyz, t.izz};
@@ -366,6 +397,10 @@ bool Reader::readJoint(const pugi::xml_node& x, const urdf::Joint& u, const std:
   j.parent = links.at(u.parent_link_name);
   j.child = links.at(u.child_link_name);
   j.origin = toTransform(u.parent_to_joint_origin_transform);
+  if (!finite(j.origin)) {
+    error(x.child("origin") ? lineOf(x.child("origin")) : j.line, "<origin> must be finite");
+    return false;
+  }
   j.axis = {u.axis.x, u.axis.y, u.axis.z};
   const double n = std::sqrt(j.axis[0] * j.axis[0] + j.axis[1] * j.axis[1] + j.axis[2] * j.axis[2]);
   j.axis_line = x.child("axis") ? lineOf(x.child("axis")) : j.line;

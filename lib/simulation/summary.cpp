@@ -62,6 +62,7 @@ nlohmann::ordered_json runSummary(const Model& model, const RunResult& r, const 
   for (const std::string& o : in.overrides) summary["overrides"].push_back(o);
   summary["units"] = {{"time", "s"}, {"position", "m"}, {"orientation", "unit quaternion w x y z"}};
   summary["bodies"] = model.bodies.size();
+  if (!model.frames.empty()) summary["frames"] = model.frames.size();  // rows of lumped URDF links
   summary["steps"] = r.steps;
   summary["samples"] = r.samples;
   summary["wall_seconds"] = r.wall_seconds;

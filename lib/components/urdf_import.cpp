@@ -360,9 +360,6 @@ void Import::addJoint(size_t ji) {
     }
     d.lo_stop = j.lower;
     d.hi_stop = j.upper;
-    if (d.kind == JointKind::Hinge && (j.lower < -kPi || j.upper > kPi))
-      note(j.limit_line, "joint '" + j.name + "': limits beyond +-180 degrees are not stops (ODE's hinge stops " +
-                             "work within +-pi); the joint turns freely past them");
   }
   if (!(j.damping >= 0 && j.friction >= 0 && std::isfinite(j.damping) && std::isfinite(j.friction))) {
     error(j.dynamics_line, "joint '" + j.name + "': damping and friction must be finite and >= 0");

@@ -96,13 +96,35 @@ void setJointParam(dJointID j, JointKind kind, int param, double value) {
     dJointSetSliderParam(j, param, value);
 }
 
+/// A hinge stop beyond +-pi (URDF limits such as +-6.25 rad): ODE compares its stops with the
+/// angle wrapped into [-pi, pi], so each step the stops are set in the turn the unwrapped angle
+/// is in -- a stop outside that turn is left open until the angle reaches its turn.
+struct WideStops {
+  size_t joint;
+  double lo, hi;  ///< rad, in ODE's motor frame, unwrapped (-inf, inf: none)
+};
+
+void setWideStops(WorldImpl& im, const WideStops& w) {
+  const JointInfo& info = im.jointInfo[w.joint];
+  // The unwrapped angle in ODE's motor frame (the frame of the stops, see createJointDynamics).
+  const double a = info.motor_sign < 0 ? info.zero - info.total : info.total - info.zero;
+  const double turn = 2 * kPi * std::floor((a + kPi) / (2 * kPi));
+  const double lo = w.lo - turn, hi = w.hi - turn;
+  dJointID j = im.joints[w.joint];
+  // Open first, so that lo <= hi holds at every moment.
+  dJointSetHingeParam(j, dParamLoStop, -dInfinity);
+  dJointSetHingeParam(j, dParamHiStop, hi <= kPi ? hi : dInfinity);
+  dJointSetHingeParam(j, dParamLoStop, lo >= -kPi ? lo : -dInfinity);
+}
+
 /// Damping (explicit: a force against the velocity of the step before) and mimic joints (the
 /// joint's motor drives it to multiplier q_leader + offset, closing the gap within kMimicSteps
 /// steps, with the leader's velocity fed forward). Copies of the JointDefs: the World may outlive
 /// the Model it was made from.
-void jointDynamics(WorldImpl& im, const std::vector<std::pair<size_t, JointDef>>& damped,
+void jointDynamics(WorldImpl& im, const std::vector<WideStops>& wide, const std::vector<std::pair<size_t, JointDef>>& damped,
                    const std::vector<std::pair<size_t, JointDef>>& mimics, double h) {
   constexpr double kMimicSteps = 5;
+  for (const WideStops& w : wide) setWideStops(im, w);
   for (const auto& [i, jd] : damped) {
     const double f = -jd.damping * wrappedJointState(im, static_cast<int>(i)).velocity;
     if (jd.kind == JointKind::Hinge)
@@ -124,6 +146,7 @@ void jointDynamics(WorldImpl& im, const std::vector<std::pair<size_t, JointDef>>
 
 void createJointDynamics(WorldImpl& im, const Model& model) {
   std::vector<std::pair<size_t, JointDef>> damped, mimics;
+  std::vector<WideStops> wide;
   for (size_t i = 0; i < model.joints.size(); ++i) {
     const JointDef& jd = model.joints[i];
     if (jd.kind != JointKind::Hinge && jd.kind != JointKind::Slider) continue;
@@ -131,8 +154,13 @@ void createJointDynamics(WorldImpl& im, const Model& model) {
     // Stops in ODE's frame, as createActuators sets a drive's (ODE's hinge stops work within +-pi).
     const double lo = info.motor_sign < 0 ? info.zero - jd.hi_stop : jd.lo_stop - info.zero;
     const double hi = info.motor_sign < 0 ? info.zero - jd.lo_stop : jd.hi_stop - info.zero;
-    if (std::isfinite(lo)) setJointParam(im.joints[i], jd.kind, dParamLoStop, lo);
-    if (std::isfinite(hi)) setJointParam(im.joints[i], jd.kind, dParamHiStop, hi);
+    if (jd.kind == JointKind::Hinge && (lo < -kPi || hi > kPi)) {
+      wide.push_back({i, lo, hi});
+      setWideStops(im, wide.back());
+    } else {
+      if (std::isfinite(lo)) setJointParam(im.joints[i], jd.kind, dParamLoStop, lo);
+      if (std::isfinite(hi)) setJointParam(im.joints[i], jd.kind, dParamHiStop, hi);
+    }
     if (jd.friction > 0) {  // Coulomb friction: a motor holding velocity 0 with at most that force
       setJointParam(im.joints[i], jd.kind, dParamVel, 0.0);
       setJointParam(im.joints[i], jd.kind, dParamFMax, jd.friction);
@@ -140,8 +168,9 @@ void createJointDynamics(WorldImpl& im, const Model& model) {
     if (jd.damping > 0) damped.emplace_back(i, jd);
     if (jd.mimic >= 0) mimics.emplace_back(i, jd);
   }
-  if (damped.empty() && mimics.empty()) return;
-  im.beforeStep.push_back([damped, mimics](WorldImpl& w, double h) { jointDynamics(w, damped, mimics, h); });
+  if (wide.empty() && damped.empty() && mimics.empty()) return;
+  im.beforeStep.push_back(
+      [wide, damped, mimics](WorldImpl& w, double h) { jointDynamics(w, wide, damped, mimics, h); });
 }
 
 double jointSeparation(const WorldImpl& im, int i) {

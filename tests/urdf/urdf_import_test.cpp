@@ -353,3 +353,32 @@ TEST_CASE("urdf dart-doc: KR5 with position drives holds every joint at 0 and re
   }
   CHECK(sim->world().joint(j).position == Approx(0.5).margin(1e-4));
 }
+
+TEST_CASE("urdf import: a revolute stop beyond 180 degrees holds (ODE's stops see wrapped angles)", "[urdf]") {
+  TempDir dir;
+  dir.write("turn.urdf", R"(<robot name="turn">
+  <link name="world"/>
+  <joint name="spin" type="revolute">
+    <parent link="world"/><child link="wheel"/><origin xyz="0 0 1"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="4" effort="0.5" velocity="100"/>
+  </joint>
+  <link name="wheel"><inertial><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+</robot>)");
+  const std::string scene = dir.write("turn.xml", R"(<Simulation><ComponentList>
+  <RCImportURDF Key="turn"><File Value="turn.urdf"/><Drives Value="effort"/></RCImportURDF>
+</ComponentList></Simulation>)");
+  Model model;
+  Diagnostics d;
+  INFO(errorText(d));
+  REQUIRE(compileFile(scene, &model, d));
+  auto sim = simulate(model);
+  const int j = sim->joint("turn.spin");
+  // 0.5 N m on 0.01 kg m^2: 50 rad/s^2, 4 rad in 0.4 s; without the stop 25 rad after 1 s.
+  REQUIRE(!sim->setCommand(sim->actuator("turn.spin"), 0.5).message.size());
+  sim->runUntil(1.0);
+  CHECK(sim->world().joint(j).position == Approx(4.0).margin(5e-3));
+  REQUIRE(!sim->setCommand(sim->actuator("turn.spin"), -0.5).message.size());
+  sim->runUntil(3.0);  // back through the wrap at -pi .. pi and on to the lower stop
+  CHECK(sim->world().joint(j).position == Approx(-1.0).margin(5e-3));
+}

@@ -3,6 +3,7 @@
 // robot (Scene::urdf) and made a placeholder component per link (URDFLink) and per drive, so that
 // Refs reach them; this file lowers what lib/urdf planned: one body per link and the links fixed
 // to it (lumped), URDF's Z-up turned into the scene's Y-up, the file's inertia kept as written.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -446,7 +447,9 @@ void Import::summarise() {
                  std::to_string(moving) + " moving bodies, " + std::to_string(lumped) + " lumped), " +
                  std::to_string(robot_.joints.size()) + " joints" + (joints.empty() ? "" : " (" + joints + ")") +
                  ", " + std::to_string(drives_) + " drives, " + std::to_string(meshes) + " mesh shapes, total mass " +
-                 formatNumber(mass) + " kg";
+                 formatApprox(mass) + " kg";
+  std::stable_sort(report_.notes.begin(), report_.notes.end(),
+                   [](const Error& a, const Error& b) { return a.loc.line < b.loc.line; });
 }
 
 }  // namespace

@@ -94,6 +94,12 @@ class Reader {
   std::shared_ptr<UrdfRobot> robot_ = std::make_shared<UrdfRobot>();
   std::map<std::string, int> materials_;                 // robot-level material name -> index
   std::vector<std::pair<int, std::string>> mimics_;      // joint index, the joint it follows
+  struct Missing {
+    int line;
+    std::string message;
+    int count;
+  };
+  std::map<std::string, Missing> missing_;  // package:// prefix -> its first name
 };
 
 bool finite(const Transform& t) {
@@ -238,7 +244,10 @@ int Reader::urdfdomLine(const std::string& message) const {
 bool Reader::resolveFile(const std::string& name, int line, const char* what, std::string* path) {
   std::string problem;
   if (!resolveUrdfPath(name, file_, packages_, path, &problem)) {
-    error(line, std::string(what) + " '" + quoteInput(name, 400) + "': " + problem, ErrorKind::MissingInput);
+    // A package found nowhere is said once, at its first name (WAM names it 16 times).
+    const std::string package = name.substr(0, name.find('/', name.find("://") + 3));
+    auto [it, first] = missing_.emplace(package, Missing{line, std::string(what) + " '" + quoteInput(name, 400) + "': " + problem, 0});
+    ++it->second.count;
     return false;
   }
   std::error_code ec;
@@ -430,6 +439,10 @@ bool Reader::readJoint(const pugi::xml_node& x, const urdf::Joint& u, const std:
 std::shared_ptr<const UrdfRobot> Reader::read() {
   robot_->file = file_;
   pugi::xml_parse_result res = doc_.load_buffer(text_.data(), text_.size(), pugi::parse_default, pugi::encoding_utf8);
+  if (!res && res.status == pugi::status_no_document_element) {
+    error(1, "not a URDF file: no <robot> element");
+    return nullptr;
+  }
   if (!res) {
     auto off = static_cast<size_t>(std::max<ptrdiff_t>(0, res.offset));
     error(static_cast<int>(std::upper_bound(newlines_.begin(), newlines_.end(), off) - newlines_.begin()) + 1,
@@ -504,7 +517,13 @@ std::shared_ptr<const UrdfRobot> Reader::read() {
     }
   }
   if (model->getRoot()) robot_->root = links.count(model->getRoot()->name) ? links[model->getRoot()->name] : -1;
-  if (!ok) return nullptr;
+  std::vector<Missing> missing;
+  for (const auto& [package, m] : missing_) missing.push_back(m);
+  std::sort(missing.begin(), missing.end(), [](const Missing& a, const Missing& b) { return a.line < b.line; });
+  for (const Missing& m : missing)
+    error(m.line, m.message + (m.count > 1 ? " (" + std::to_string(m.count) + " names in this package)" : ""),
+          ErrorKind::MissingInput);
+  if (!ok || !missing.empty()) return nullptr;
   return robot_;
 }
 

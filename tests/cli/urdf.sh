@@ -53,7 +53,7 @@ expect_status 66 "$SIMBOB" check "$DART/test/missing_mesh.urdf"
 expect_lines "missing mesh" "$LAST_ERR" 1
 expect_match "missing mesh" "$LAST_ERR" "^$DART/test/missing_mesh.urdf:6: error: mesh 'this_file_does_not_exist.stl' not found"
 expect_status 66 "$SIMBOB" check "$DART/wam/wam.urdf"
-expect_match "missing package" "$LAST_ERR" "^$DART/wam/wam.urdf:16: error: mesh 'package://herb_description/meshes/wam/wam_base.dae': no package 'herb_description'"
+expect_match "missing package" "$LAST_ERR" "^$DART/wam/wam.urdf:17: error: mesh 'package://herb_description/meshes/wam/wam_base.dae': no package 'herb_description'"
 expect_status 65 "$SIMBOB" check "$DART/test/testWorld.urdf"
 expect_lines "world" "$LAST_ERR" 1
 expect_match "world" "$LAST_ERR" "^$DART/test/testWorld.urdf:1: error: root element is <world>, expected <robot>"

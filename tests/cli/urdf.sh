@@ -71,17 +71,39 @@ check "KR5 (a space in the file name): effort=\"0\" named at each <limit> line"
 expect_status 0 "$SIMBOB" check "$DART/KR5/KR5 sixx R650.urdf"
 expect_match "kr5" "$LAST_ERR" "note: robot 'KR5sixxR650WP_description': 8 links \(6 moving bodies, 1 lumped\), 7 joints \(1 fixed, 6 revolute\)"
 
-check "an RCImportURDF in a scene, twice, with drives a schedule commands by Ref"
+check "an RCImportURDF in a scene, twice; a schedule commands a drive by its Ref IMPORTKEY.joint"
+cat >arm.urdf <<'EOF'
+<robot name="arm">
+  <link name="world"/>
+  <joint name="turn" type="revolute"><parent link="world"/><child link="disc"/>
+    <origin xyz="0 0 1"/><axis xyz="0 0 1"/><limit lower="-2" upper="2" effort="50" velocity="1"/></joint>
+  <link name="disc"><inertial><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+</robot>
+EOF
 cat >two.xml <<'EOF'
 <Simulation><ComponentList>
   <RCGround Key="Ground"/>
-  <RCImportURDF Key="A"><File Value="lump.urdf"/></RCImportURDF>
-  <RCImportURDF Key="B"><File Value="lump.urdf"/>
+  <RCImportURDF Key="A"><File Value="lump.urdf"/><AboveGround Value="true"/></RCImportURDF>
+  <RCImportURDF Key="B"><File Value="lump.urdf"/><AboveGround Value="true"/>
     <Pose><RCGlobalCoordinates><Pose Value="2 0 0 0 0 0"/></RCGlobalCoordinates></Pose></RCImportURDF>
+  <RCRobot Key="Bot">
+    <Construction><RCImportURDF Key="arm"><File Value="arm.urdf"/><Drives Value="position"/></RCImportURDF></Construction>
+    <ControllerList><RCCommandSchedule Key="Go"><Target Ref="Bot.arm.turn"/><Commands Value="0 1"/></RCCommandSchedule></ControllerList>
+  </RCRobot>
 </ComponentList></Simulation>
 EOF
-expect_status 0 "$SIMBOB" run two.xml --duration 0.5 --out two.csv -q
+expect_status 0 "$SIMBOB" run two.xml --duration 2 --out two.csv -q
 read -r samples bodies rest <<<"$(csv_summary two.csv)"
-expect_eq "rows per sample" "$bodies" 4
+expect_eq "rows per sample" "$bodies" 5
 expect_match "B.mast" two.csv "^0,B.mast,2,"
+python3 - two.csv <<'PY'
+import csv, math, sys
+rows = [r for r in csv.DictReader(open(sys.argv[1])) if r["body"] == "Bot.arm.disc"]
+q0 = [float(rows[0][k]) for k in ("qw", "qx", "qy", "qz")]
+q1 = [float(rows[-1][k]) for k in ("qw", "qx", "qy", "qz")]
+turned = 2 * math.acos(min(1.0, abs(sum(a * b for a, b in zip(q0, q1)))))
+# The drive turns at the URDF's 1 rad/s to within 50 ms of the target and settles on it by 2 s.
+assert abs(turned - 1.0) < 1e-3, turned
+PY
 say "ok"

@@ -154,7 +154,7 @@ void createJointDynamics(WorldImpl& im, const Model& model) {
     // Stops in ODE's frame, as createActuators sets a drive's (ODE's hinge stops work within +-pi).
     const double lo = info.motor_sign < 0 ? info.zero - jd.hi_stop : jd.lo_stop - info.zero;
     const double hi = info.motor_sign < 0 ? info.zero - jd.lo_stop : jd.hi_stop - info.zero;
-    if (jd.kind == JointKind::Hinge && (lo < -kPi || hi > kPi)) {
+    if (jd.kind == JointKind::Hinge && ((std::isfinite(lo) && lo < -kPi) || (std::isfinite(hi) && hi > kPi))) {
       wide.push_back({i, lo, hi});
       setWideStops(im, wide.back());
     } else {

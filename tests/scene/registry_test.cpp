@@ -350,12 +350,14 @@ TEST_CASE("registry: parameter names are unique per type and every table is cons
     }
     if (!t.import_root.empty()) {
       CHECK(t.paramIndex("File") >= 0);
-      CHECK((t.import_root == "Body" || t.import_root == "Joint" || t.import_root == "RefList"));
+      CHECK((t.import_root == "Body" || t.import_root == "Joint" || t.import_root == "RefList" ||
+             t.import_root == "robot"));  // RCImportURDF: a URDF robot (docs/urdf.md)
     }
   }
   CHECK(reg.find("RCImportBody")->import_root == "Body");
   CHECK(reg.find("RCImportJoint")->import_root == "Joint");
   CHECK(reg.find("RCImportRefList")->import_root == "RefList");
+  CHECK(reg.find("RCImportURDF")->import_root == "robot");
   CHECK(reg.find("RCMobileRigidBody")->import_root.empty());
 }
 

@@ -35,9 +35,11 @@ void markInside(CompileContext& ctx, int ci) {
   }
 }
 
-/// Moves everything created since (b0, g0, j0) rigidly by t.
-void moveRigidly(CompileContext& ctx, const Transform& t, size_t b0, size_t g0, size_t j0) {
+/// Moves everything created since (b0, g0, j0, f0) rigidly by t.
+void moveRigidly(CompileContext& ctx, const Transform& t, size_t b0, size_t g0, size_t j0, size_t f0) {
   Model& m = ctx.model;
+  for (size_t i = f0; i < m.frames.size(); ++i)  // a URDF link fixed to the world
+    if (m.frames[i].body < 0) m.frames[i].offset = compose(t, m.frames[i].offset);
   for (size_t i = b0; i < m.bodies.size(); ++i) {
     BodyDef& b = m.bodies[i];
     b.pose = compose(t, b.pose);
@@ -68,6 +70,7 @@ Built rigidCopy(CompileContext& ctx, const Component& c, int source, const Trans
                 const Link& motion_link, bool is_clone) {
   Built out;
   size_t b0 = ctx.model.bodies.size(), g0 = ctx.model.geoms.size(), j0 = ctx.model.joints.size();
+  const size_t f0 = ctx.model.frames.size();
   CompileContext::CloneScope saved = ctx.clone;
   const Transform* source_parent = parent;
   if (is_clone) {
@@ -95,7 +98,7 @@ Built rigidCopy(CompileContext& ctx, const Component& c, int source, const Trans
   if (pose_link.comp >= 0) {
     Transform target;
     if (!lowerPose(ctx, pose_link, c, parent, &target)) return Built{};
-    moveRigidly(ctx, compose(target, inverse(inner.frame)), b0, g0, j0);
+    moveRigidly(ctx, compose(target, inverse(inner.frame)), b0, g0, j0, f0);
     out.frame = target;
   } else if (is_clone) {
     ctx.diag.warning(c.loc, CompileContext::describe(c) + ": no Pose given; the copy overlaps the original");

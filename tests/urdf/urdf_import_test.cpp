@@ -388,3 +388,36 @@ TEST_CASE("urdf import: a revolute stop beyond 180 degrees holds (ODE's stops se
   sim->runUntil(3.0);  // back through the wrap at -pi .. pi and on to the lower stop
   CHECK(sim->world().joint(j).position == Approx(-1.0).margin(5e-3));
 }
+
+TEST_CASE("urdf import: a RigidBodyClone of an import copies its bodies, joints, drives and rows", "[urdf]") {
+  TempDir dir;
+  dir.write("arm.urdf", R"(<robot name="arm">
+  <link name="base"/>
+  <joint name="turn" type="revolute"><parent link="base"/><child link="disc"/>
+    <origin xyz="0 0 1"/><axis xyz="0 0 1"/><limit lower="-2" upper="2" effort="5" velocity="1"/></joint>
+  <link name="disc"><inertial><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+</robot>)");
+  const std::string scene = dir.write("two.xml", R"(<Simulation><ComponentList>
+  <RCImportURDF Key="A"><File Value="arm.urdf"/><FixedBase Value="true"/><Drives Value="velocity"/></RCImportURDF>
+  <RigidBodyClone Key="B"><Original Value="A"/>
+    <Pose><RCGlobalCoordinates><Pose Value="3 0 0 0 0 0"/></RCGlobalCoordinates></Pose></RigidBodyClone>
+</ComponentList></Simulation>)");
+  Model m;
+  Diagnostics d;
+  INFO(errorText(d));
+  REQUIRE(compileFile(scene, &m, d));
+  REQUIRE(m.bodies.size() == 2);
+  CHECK(m.bodies[1].key == "B.disc");
+  CHECK(m.bodies[1].pose.p[0] == Approx(3.0));
+  REQUIRE(m.joints.size() == 2);
+  CHECK(m.joints[1].key == "B.turn");
+  CHECK(m.joints[1].anchor[0] == Approx(3.0));
+  REQUIRE(m.actuators.size() == 2);
+  CHECK(m.actuators[1].key == "B.turn");
+  CHECK(m.actuators[1].kind == ActuatorDef::VelDrive);
+  REQUIRE(m.frames.size() == 2);  // each base is fixed to the world and keeps its row, moved with its copy
+  CHECK(m.frames[0].key == "A.base");
+  CHECK(m.frames[1].key == "B.base");
+  CHECK(m.frames[1].offset.p[0] == Approx(3.0));
+}

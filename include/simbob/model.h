@@ -71,9 +71,9 @@ struct JointDef {
   // What a URDF joint adds (docs/urdf.md); the defaults leave a joint as the scene format makes it.
   double lo_stop = -std::numeric_limits<double>::infinity();  ///< Hinge, Slider: m or rad (JointState); -inf: none
   double hi_stop = std::numeric_limits<double>::infinity();   ///< Hinge, Slider: m or rad; inf: none
-  double damping = 0.0;   ///< Hinge, Slider: N s/m or N m s/rad, a force against the joint's velocity
-  double friction = 0.0;  ///< Hinge, Slider: N or N m, Coulomb friction (the most it resists with)
-  int mimic = -1;         ///< Model::joints index this joint follows: q = multiplier q_leader + offset
+  double damping = 0.0;           ///< Hinge, Slider: N s/m or N m s/rad, a force against the joint's velocity
+  double friction = 0.0;          ///< Hinge, Slider: N or N m, Coulomb friction (the most it resists with)
+  int mimic = -1;                 ///< Model::joints index this joint follows: q = multiplier q_leader + offset
   double mimic_multiplier = 1.0;  ///< dimensionless (m/rad or rad/m across kinds)
   double mimic_offset = 0.0;      ///< m or rad
   double mimic_max_force = std::numeric_limits<double>::infinity();  ///< N or N m that holds the mimic
@@ -82,16 +82,16 @@ struct JointDef {
 /// An extra trajectory row: a frame fixed to a body (a URDF link lumped into another link's
 /// body keeps a row of its own, docs/urdf.md). Rows of frames follow the bodies' rows.
 struct FrameDef {
-  std::string key;  ///< fully qualified key, written to the trajectory
-  int body = -1;    ///< Model::bodies index; -1 = fixed in the world
-  Transform offset; ///< relative to the body frame (global when body == -1)
+  std::string key;   ///< fully qualified key, written to the trajectory
+  int body = -1;     ///< Model::bodies index; -1 = fixed in the world
+  Transform offset;  ///< relative to the body frame (global when body == -1)
 };
 
 /// What an importer (RCImportURDF) built, for `simbob check` to report (docs/urdf.md).
 struct ImportReport {
-  std::string key;   ///< the import's fully qualified key
-  SourceLoc loc;     ///< the imported file
-  std::string text;  ///< the summary, one line ("8 links, 6 revolute joints, ...")
+  std::string key;           ///< the import's fully qualified key
+  SourceLoc loc;             ///< the imported file
+  std::string text;          ///< the summary, one line ("8 links, 6 revolute joints, ...")
   std::vector<Error> notes;  ///< what it ignored, lumped or approximated, once each, at its line
 };
 

@@ -68,7 +68,7 @@ class Import {
   const Component* placeholder(const std::string& name) const {
     auto it = ctx_.scene.by_qkey.find(c_.qkey + "." + urdfKey(name));
     return it == ctx_.scene.by_qkey.end() || ctx_.at(it->second).parent != ctx_.indexOf(c_) ? nullptr
-                                                                                             : &ctx_.at(it->second);
+                                                                                            : &ctx_.at(it->second);
   }
   std::string keyOf(const std::string& name) const {
     const Component* p = placeholder(name);
@@ -364,8 +364,9 @@ void Import::addJoint(size_t ji) {
       note(j.line, "joint '" + j.name + "' is floating: link '" + link(j.child).name + "' is a free body");
       return;
     case UrdfJoint::Planar:
-      error(j.line, "joint '" + j.name + "': planar joints are not supported (use two prismatic joints and a "
-                                        "continuous one through massive links)");
+      error(j.line, "joint '" + j.name +
+                        "': planar joints are not supported (use two prismatic joints and a "
+                        "continuous one through massive links)");
       return;
     case UrdfJoint::Revolute:
     case UrdfJoint::Continuous:
@@ -437,8 +438,8 @@ void Import::addDrives() {
 
 /// Every link's key leads to its body (Refs of cameras, constructions and sensors).
 void Import::remember() {
-  std::map<int, Built>& memo = ctx_.clone.active && ctx_.clone.inside.count(ctx_.indexOf(c_)) ? ctx_.clone.memo
-                                                                                                : ctx_.memo;
+  std::map<int, Built>& memo =
+      ctx_.clone.active && ctx_.clone.inside.count(ctx_.indexOf(c_)) ? ctx_.clone.memo : ctx_.memo;
   for (size_t li = 0; li < robot_.links.size(); ++li) {
     const int pb = plan_.link_body[li];
     if (pb < 0) continue;
@@ -473,8 +474,8 @@ void Import::summarise() {
   for (const auto& [type, n] : by_type) joints += (joints.empty() ? "" : ", ") + std::to_string(n) + " " + type;
   report_.text = "robot '" + robot_.name + "': " + std::to_string(robot_.links.size()) + " links (" +
                  std::to_string(moving) + " moving bodies, " + std::to_string(lumped) + " lumped), " +
-                 std::to_string(robot_.joints.size()) + " joints" + (joints.empty() ? "" : " (" + joints + ")") +
-                 ", " + std::to_string(drives_) + " drives, " + std::to_string(meshes) + " mesh shapes, total mass " +
+                 std::to_string(robot_.joints.size()) + " joints" + (joints.empty() ? "" : " (" + joints + ")") + ", " +
+                 std::to_string(drives_) + " drives, " + std::to_string(meshes) + " mesh shapes, total mass " +
                  formatApprox(mass) + " kg";
   std::stable_sort(report_.notes.begin(), report_.notes.end(),
                    [](const Error& a, const Error& b) { return a.loc.line < b.loc.line; });
@@ -493,8 +494,8 @@ void registerUrdfImport(Registry& r) {
           enumParam(kDrives, ValueType::Enum, &kDrivesTable, 0,
                     "a drive on every movable joint, keyed IMPORTKEY.joint: none (passive), position (RCPosControl), "
                     "velocity (RCVelControl) or effort (RCDriver; its command is the force or torque)"),
-          number(kMaxForce, 100.0, "N or N m", "a drive's largest force or torque where the URDF gives no effort (or 0)",
-                 Range::Positive),
+          number(kMaxForce, 100.0, "N or N m",
+                 "a drive's largest force or torque where the URDF gives no effort (or 0)", Range::Positive),
           number(kMaxVelocity, 1.0, "m/s or rad/s", "a drive's largest velocity where the URDF gives none (or 0)",
                  Range::Positive),
           number(kSmooth, 0.05, "s", "position drives: time constant of the final approach (RCGenericServo's Smooth)",
@@ -520,7 +521,11 @@ void registerUrdfImport(Registry& r) {
   const char* names[] = {"URDFPositionDrive", "URDFVelocityDrive", "URDFEffortDrive"};
   const char* interfaces[] = {"RCPosControl", "RCVelControl", "RCDriver"};
   for (int i = 0; i < 3; ++i) {
-    TypeSpec t{names[i], Family::Periphery, int(PeripheryKind::UrdfDrive), {}, {},
+    TypeSpec t{names[i],
+               Family::Periphery,
+               int(PeripheryKind::UrdfDrive),
+               {},
+               {},
                "A drive of an RCImportURDF (Drives), keyed IMPORTKEY.joint: made by the import, for Refs."};
     t.interfaces = {interfaces[i]};
     r.add(t);

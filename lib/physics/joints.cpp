@@ -121,7 +121,8 @@ void setWideStops(WorldImpl& im, const WideStops& w) {
 /// joint's motor drives it to multiplier q_leader + offset, closing the gap within kMimicSteps
 /// steps, with the leader's velocity fed forward). Copies of the JointDefs: the World may outlive
 /// the Model it was made from.
-void jointDynamics(WorldImpl& im, const std::vector<WideStops>& wide, const std::vector<std::pair<size_t, JointDef>>& damped,
+void jointDynamics(WorldImpl& im, const std::vector<WideStops>& wide,
+                   const std::vector<std::pair<size_t, JointDef>>& damped,
                    const std::vector<std::pair<size_t, JointDef>>& mimics, double h) {
   constexpr double kMimicSteps = 5;
   for (const WideStops& w : wide) setWideStops(im, w);

@@ -459,9 +459,9 @@ class Builder {
   int depth_ = 0;
   int imports_ = 0;
   bool nesting_reported_ = false;
-  bool too_big_ = false;                        // a size limit was crossed: stop building (one error, not thousands)
-  std::set<int> duplicates_;                    // components whose qualified key was taken already
-  std::map<std::string, int> shared_defaults_;  // default component of each type
+  bool too_big_ = false;                          // a size limit was crossed: stop building (one error, not thousands)
+  std::set<int> duplicates_;                      // components whose qualified key was taken already
+  std::map<std::string, int> shared_defaults_;    // default component of each type
   std::map<std::string, std::string> preloaded_;  // file -> text already in hand (a bare URDF)
 };
 

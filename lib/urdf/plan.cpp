@@ -60,8 +60,7 @@ void combineMass(const UrdfRobot& robot, const UrdfPlan& plan, UrdfBody* b) {
     const Vec3 d = sub(p.c, b->com);
     const double dd = dot(d, d);
     for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c)
-        I[r * 3 + c] += p.I[r * 3 + c] + p.m * ((r == c ? dd : 0.0) - d[r] * d[c]);
+      for (int c = 0; c < 3; ++c) I[r * 3 + c] += p.I[r * 3 + c] + p.m * ((r == c ? dd : 0.0) - d[r] * d[c]);
   }
   b->inertia = I;
 }

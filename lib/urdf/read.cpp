@@ -92,8 +92,8 @@ class Reader {
   std::vector<size_t> newlines_;
   pugi::xml_document doc_;
   std::shared_ptr<UrdfRobot> robot_ = std::make_shared<UrdfRobot>();
-  std::map<std::string, int> materials_;                 // robot-level material name -> index
-  std::vector<std::pair<int, std::string>> mimics_;      // joint index, the joint it follows
+  std::map<std::string, int> materials_;             // robot-level material name -> index
+  std::vector<std::pair<int, std::string>> mimics_;  // joint index, the joint it follows
   struct Missing {
     int line;
     std::string message;
@@ -193,8 +193,9 @@ void Reader::walk(const pugi::xml_node& n, const std::string& path) {
         ignore(lineOf(n), "<" + std::string(u.name) + "> ignored: " + u.why);
         return;
       }
-    ignore(lineOf(n), "<" + quoteInput(n.name()) + "> ignored: not an element of URDF" +
-                          (path.find('/') == std::string::npos ? "" : " inside <" + path.substr(0, path.rfind('/')) + ">"));
+    ignore(lineOf(n),
+           "<" + quoteInput(n.name()) + "> ignored: not an element of URDF" +
+               (path.find('/') == std::string::npos ? "" : " inside <" + path.substr(0, path.rfind('/')) + ">"));
     return;
   }
   for (pugi::xml_attribute a = n.first_attribute(); a; a = a.next_attribute()) {
@@ -246,7 +247,8 @@ bool Reader::resolveFile(const std::string& name, int line, const char* what, st
   if (!resolveUrdfPath(name, file_, packages_, path, &problem)) {
     // A package found nowhere is said once, at its first name (WAM names it 16 times).
     const std::string package = name.substr(0, name.find('/', name.find("://") + 3));
-    auto [it, first] = missing_.emplace(package, Missing{line, std::string(what) + " '" + quoteInput(name, 400) + "': " + problem, 0});
+    auto [it, first] =
+        missing_.emplace(package, Missing{line, std::string(what) + " '" + quoteInput(name, 400) + "': " + problem, 0});
     ++it->second.count;
     return false;
   }

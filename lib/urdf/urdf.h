@@ -22,14 +22,14 @@ namespace simbob {
 /// A <visual> or <collision> of a link: one shape at an origin in the link frame (URDF axes).
 struct UrdfShape {
   enum Kind : uint8_t { Box, Sphere, Cylinder, Mesh } kind = Box;
-  int line = 0;           ///< the <visual> or <collision> element
-  int shape_line = 0;     ///< the shape element (<box>, <mesh>, ...)
-  Transform origin;       ///< in the link frame (m, unit quaternion)
-  Vec3 size{0, 0, 0};     ///< Box: extents (m); Sphere: radius; Cylinder: radius, length along local Z
-  std::string filename;   ///< Mesh: as written
-  std::string path;       ///< Mesh: the file it names (package:// and relative names resolved)
-  Vec3 scale{1, 1, 1};    ///< Mesh: scale per axis
-  int material = -1;      ///< visual: index into UrdfRobot::materials (-1: none)
+  int line = 0;          ///< the <visual> or <collision> element
+  int shape_line = 0;    ///< the shape element (<box>, <mesh>, ...)
+  Transform origin;      ///< in the link frame (m, unit quaternion)
+  Vec3 size{0, 0, 0};    ///< Box: extents (m); Sphere: radius; Cylinder: radius, length along local Z
+  std::string filename;  ///< Mesh: as written
+  std::string path;      ///< Mesh: the file it names (package:// and relative names resolved)
+  Vec3 scale{1, 1, 1};   ///< Mesh: scale per axis
+  int material = -1;     ///< visual: index into UrdfRobot::materials (-1: none)
 };
 
 /// A material: robot-level (<robot><material>) or written inside a visual.
@@ -43,11 +43,11 @@ struct UrdfMaterial {
 };
 
 struct UrdfInertial {
-  int line = 0;          ///< <inertial>
-  int mass_line = 0;     ///< <mass>
-  int inertia_line = 0;  ///< <inertia>
-  Transform origin;      ///< the centre of mass and the inertia's axes, in the link frame
-  double mass = 0;       ///< kg
+  int line = 0;                             ///< <inertial>
+  int mass_line = 0;                        ///< <mass>
+  int inertia_line = 0;                     ///< <inertia>
+  Transform origin;                         ///< the centre of mass and the inertia's axes, in the link frame
+  double mass = 0;                          ///< kg
   Mat3 inertia{0, 0, 0, 0, 0, 0, 0, 0, 0};  ///< kg m^2 about the centre of mass, origin's axes
 };
 
@@ -64,9 +64,9 @@ struct UrdfJoint {
   enum Type : uint8_t { Revolute, Continuous, Prismatic, Fixed, Floating, Planar } type = Fixed;
   std::string name;
   int line = 0;
-  int parent = -1;   ///< UrdfRobot::links index
-  int child = -1;    ///< UrdfRobot::links index
-  Transform origin;  ///< the child link's frame in the parent link's frame
+  int parent = -1;     ///< UrdfRobot::links index
+  int child = -1;      ///< UrdfRobot::links index
+  Transform origin;    ///< the child link's frame in the parent link's frame
   Vec3 axis{1, 0, 0};  ///< unit, in the child link's frame
   int axis_line = 0;
   bool has_limit = false;
@@ -132,20 +132,20 @@ bool looksLikeUrdf(const std::string& name, const std::string& text);
 /// One rigid body of the scene: a link and the links fixed to it (lumped), or the links fixed to
 /// the world (`fixed`).
 struct UrdfBody {
-  int root = -1;           ///< the link whose frame is the body's frame
-  std::vector<int> links;  ///< every link in it, document order (root included)
-  bool fixed = false;      ///< part of the world (root link 'world', FixedBase)
-  double mass = 0;         ///< kg, of every link's <inertial>
-  Vec3 com{0, 0, 0};       ///< centre of mass in the root link's frame (m)
+  int root = -1;                            ///< the link whose frame is the body's frame
+  std::vector<int> links;                   ///< every link in it, document order (root included)
+  bool fixed = false;                       ///< part of the world (root link 'world', FixedBase)
+  double mass = 0;                          ///< kg, of every link's <inertial>
+  Vec3 com{0, 0, 0};                        ///< centre of mass in the root link's frame (m)
   Mat3 inertia{0, 0, 0, 0, 0, 0, 0, 0, 0};  ///< kg m^2 about com, root link axes
   int massive_links = 0;                    ///< links with an <inertial> in it
 };
 
 struct UrdfPlan {
-  std::vector<UrdfBody> bodies;        ///< document order of their root links
-  std::vector<int> link_body;          ///< per link: its UrdfPlan::bodies index
-  std::vector<Transform> link_global;  ///< per link: its frame at the zero configuration, robot frame (Z up)
-  std::vector<Transform> link_in_body; ///< per link: its frame in its body's root link frame
+  std::vector<UrdfBody> bodies;         ///< document order of their root links
+  std::vector<int> link_body;           ///< per link: its UrdfPlan::bodies index
+  std::vector<Transform> link_global;   ///< per link: its frame at the zero configuration, robot frame (Z up)
+  std::vector<Transform> link_in_body;  ///< per link: its frame in its body's root link frame
 };
 
 /// Lumps the robot's fixed joints and combines mass properties (parallel-axis theorem, rotated

@@ -221,8 +221,7 @@ TEST_CASE("families: every registered type is lowered without an internal error"
     // scene: one written there is refused with a message, not an internal error.
     const bool placeholder = t.name.rfind("URDF", 0) == 0;
     CHECK(compiled != placeholder);
-    if (placeholder)
-      CHECK(errorText(d).find("made by an RCImportURDF") != std::string::npos);
+    if (placeholder) CHECK(errorText(d).find("made by an RCImportURDF") != std::string::npos);
     ++walked;
   }
   CHECK(walked + 1 == testRegistry().types().size());

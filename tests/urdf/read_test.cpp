@@ -138,9 +138,10 @@ TEST_CASE("urdf read: refusals name the file and the line", "[urdf]") {
   CHECK(refuse("<robot name=\"x\">\n<link name=\"a\"/>\n<joint name=\"j\" type=\"revolute\">\n"
                "<parent link=\"a\"/><child link=\"b\"/></joint>\n<link name=\"b\"/>\n</robot>") ==
         "r.urdf:3: not a valid URDF: Joint [j] is of type REVOLUTE but it does not specify limits");
-  CHECK(refuse("<robot name=\"x\">\n<link name=\"a\"/>\n<joint name=\"j\" type=\"continuous\">\n"
-               "<parent link=\"a\"/><child link=\"b\"/><mimic joint=\"nope\"/></joint>\n<link name=\"b\"/>\n</robot>") ==
-        "r.urdf:4: joint 'j': <mimic> names no joint 'nope'");
+  CHECK(
+      refuse("<robot name=\"x\">\n<link name=\"a\"/>\n<joint name=\"j\" type=\"continuous\">\n"
+             "<parent link=\"a\"/><child link=\"b\"/><mimic joint=\"nope\"/></joint>\n<link name=\"b\"/>\n</robot>") ==
+      "r.urdf:4: joint 'j': <mimic> names no joint 'nope'");
 }
 
 TEST_CASE("urdf read: package:// from a package.xml above, ROS_PACKAGE_PATH, then the given folders", "[urdf]") {
@@ -163,8 +164,9 @@ TEST_CASE("urdf read: package:// from a package.xml above, ROS_PACKAGE_PATH, the
   CHECK(meshPath("package://bot/meshes/a.stl", {}, &err) == (dir.path() / "ws/src/bot/meshes/a.stl").string());
   CHECK(meshPath("../meshes/a.stl", {}, &err) == (dir.path() / "ws/src/bot/meshes/a.stl").string());
   CHECK(meshPath("package://other/b.stl", {}, &err).empty());
-  CHECK(err == urdf + ":4: mesh 'package://other/b.stl': no package 'other': no package.xml naming it in the URDF's "
-                      "folder or above, none in ROS_PACKAGE_PATH, and no --package other=DIR or Packages entry");
+  CHECK(err == urdf +
+                   ":4: mesh 'package://other/b.stl': no package 'other': no package.xml naming it in the URDF's "
+                   "folder or above, none in ROS_PACKAGE_PATH, and no --package other=DIR or Packages entry");
   ::setenv("ROS_PACKAGE_PATH", (dir.path() / "elsewhere").c_str(), 1);
   CHECK(meshPath("package://other/b.stl", {}, &err) == (dir.path() / "elsewhere/other/b.stl").string());
   ::unsetenv("ROS_PACKAGE_PATH");

@@ -38,8 +38,7 @@ std::unique_ptr<Simulation> simulate(const Model& m) {
 
 }  // namespace
 
-TEST_CASE("urdf import: a pendulum with its mass away from the link origin swings with the elliptic period",
-          "[urdf]") {
+TEST_CASE("urdf import: a pendulum with its mass away from the link origin swings with the elliptic period", "[urdf]") {
   // The bob's <inertial> sits 1 m from the pivot (the link origin), 60 degrees from the vertical.
   const double L = 1.0, m = 2.0, Ic = 0.01, theta0 = kPi / 3;
   char origin[128];
@@ -51,7 +50,8 @@ TEST_CASE("urdf import: a pendulum with its mass away from the link origin swing
     <origin xyz="0 0 2"/><axis xyz="0 1 0"/>
   </joint>
   <link name="bob">
-    <inertial><origin xyz=")") + origin + R"("/><mass value="2"/>
+    <inertial><origin xyz=")") +
+                           origin + R"("/><mass value="2"/>
       <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
   </link>
 </robot>)";
@@ -141,9 +141,9 @@ TEST_CASE("urdf import: a fixed child with an offset inertia moves as the single
 
   // The equivalent body, computed here with Eigen's own rotations (URDF rpy: Rz(y) Ry(p) Rx(r)).
   auto rpy = [](double r, double p, double y) {
-    return Eigen::Matrix3d((Eigen::AngleAxisd(y, Eigen::Vector3d::UnitZ()) *
-                            Eigen::AngleAxisd(p, Eigen::Vector3d::UnitY()) *
-                            Eigen::AngleAxisd(r, Eigen::Vector3d::UnitX())));
+    return Eigen::Matrix3d(
+        (Eigen::AngleAxisd(y, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(p, Eigen::Vector3d::UnitY()) *
+         Eigen::AngleAxisd(r, Eigen::Vector3d::UnitX())));
   };
   const Eigen::Matrix3d Rw = rpy(0.3, -0.2, 0.5), Ri = rpy(0.1, 0.4, -0.3);
   const Eigen::Vector3d c_base(0.2, 0, 0);
@@ -276,7 +276,8 @@ TEST_CASE("urdf import: a two-link arm gives the same trajectory bytes as the ar
                   b.inertia[5], b.inertia[8]);
     return std::string(s);
   };
-  const std::string box = R"(<collision><origin xyz="0.5 0 0"/><geometry><box size="1 0.1 0.1"/></geometry></collision>)";
+  const std::string box =
+      R"(<collision><origin xyz="0.5 0 0"/><geometry><box size="1 0.1 0.1"/></geometry></collision>)";
   TempDir dir;
   dir.write("arm.urdf", R"(<robot name="arm">
   <link name="world"/>
@@ -284,8 +285,10 @@ TEST_CASE("urdf import: a two-link arm gives the same trajectory bytes as the ar
     <origin xyz="1 0 0"/><axis xyz="0 -1 0"/></joint>
   <joint name="shoulder" type="continuous"><parent link="world"/><child link="upper"/>
     <origin xyz="0 0 2"/><axis xyz="0 -1 0"/></joint>
-  <link name="upper">)" + inertial(hand.bodies[0]) + box + R"(</link>
-  <link name="lower">)" + inertial(hand.bodies[1]) + box + R"(</link>
+  <link name="upper">)" + inertial(hand.bodies[0]) +
+                            box + R"(</link>
+  <link name="lower">)" + inertial(hand.bodies[1]) +
+                            box + R"(</link>
 </robot>)");
   const std::string scene = dir.write("arm.xml", R"(<Simulation><ComponentList>
   <RCImportURDF Key="arm"><File Value="arm.urdf"/></RCImportURDF></ComponentList></Simulation>)");

@@ -17,6 +17,7 @@ RUN_PACKAGES=(
   libegl-mesa0 libgl1-mesa-dri libosmesa6  # the back ends themselves: Mesa's llvmpipe without a GPU
   libjs-three           # three.js, inlined into `simbob view` pages at run time (lib/view)
   liburdfdom-dev        # URDF robots (lib/urdf; brings liburdfdom-headers-dev, libtinyxml-dev, libconsole-bridge-dev)
+  libassimp-dev libqhull-dev  # mesh files (STL, OBJ, DAE) and their convex hulls (lib/mesh)
 )
 TEST_PACKAGES=(
   catch2                # unit tests
@@ -31,7 +32,7 @@ TEST_PACKAGES=(
   git                   # cluster.version builds throwaway repositories (tests/cluster/version.sh)
   pybind11-dev python3-dev python3-numpy python3-pytest  # the optional Python module (python/) and its tests
   chromium chromium-driver python3-selenium  # view pages driven in headless Chromium (tests/view/)
-  dart-doc              # real URDF robots with meshes: KR5, WAM, drchubo, test/*.urdf (tests/urdf/)
+  dart-doc              # real URDF robots with STL and DAE meshes (/usr/share/doc/dart/data/urdf; tests/urdf, tests/mesh)
 )
 
 case "${1:-}" in

@@ -63,7 +63,8 @@ bool lowerInertia(CompileContext& ctx, const Link& l, const Component& owner, si
     case InertiaKind::ByGeom: {
       MassProps total;
       for (size_t gi = first_geom; gi < ctx.model.geoms.size(); ++gi) {
-        MassProps p = geomMassProps(ctx.model.geoms[gi]);
+        const GeomDef& g = ctx.model.geoms[gi];
+        MassProps p = geomMassProps(g, g.mesh >= 0 ? ctx.model.meshes[static_cast<size_t>(g.mesh)].data.get() : nullptr);
         total.volume += p.volume;
         total.moment = add(total.moment, p.moment);
         for (int k = 0; k < 9; ++k) total.inertia[k] += p.inertia[k];

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <set>
 #include <limits>
 
 #include "compile/context.h"
@@ -28,6 +29,8 @@ constexpr ValueParam<double> kMaxForce{"MaxForce"};
 constexpr ValueParam<double> kMaxVelocity{"MaxVelocity"};
 constexpr ValueParam<double> kSmooth{"Smooth"};
 constexpr ValueParam<std::string> kPackages{"Packages"};
+constexpr EnumParam kCollisions{"Collisions"};
+const EnumTable kCollisionsTable{"Collisions", {{"hull", 0}, {"mesh", 1}}};
 constexpr ValueParam<bool> kAboveGround{"AboveGround"};
 
 const char* typeName(UrdfJoint::Type t) {
@@ -78,6 +81,7 @@ class Import {
   void raiseAboveGround();
   void addBodies();
   void addShapes(int li);
+  int meshOf(const UrdfShape& s);
   void addVisual(int li, const UrdfShape& s);
   int skinOf(int material);
   void addJoints();
@@ -97,6 +101,7 @@ class Import {
   std::vector<int> skin_index_;   // per URDF material: Model::skins index (-1: not made yet)
   int material_ = 0;
   int drives_ = 0;
+  int hulls_ = 0, trimeshes_ = 0;
   ImportReport report_;
   bool ok_ = true;
 };
@@ -108,6 +113,12 @@ Built Import::lower(const Transform* parent) {
   skin_index_.assign(robot_.materials.size(), -1);
   for (const UrdfNote& n : robot_.ignored)
     note(n.line, n.text + (n.count > 1 ? " (" + std::to_string(n.count) + " times)" : ""));
+  // Every mesh first: one that cannot be read is the reason to name, before what follows from it.
+  for (const UrdfLink& l : robot_.links)
+    for (const auto* shapes : {&l.visuals, &l.collisions})
+      for (const UrdfShape& s : *shapes)
+        if (s.kind == UrdfShape::Mesh) meshOf(s);
+  if (!ok_) return Built{};
   checkInertia();
   if (!ok_) return Built{};
   if (c_.get(kAboveGround)) raiseAboveGround();
@@ -164,8 +175,14 @@ void Import::checkInertia() {
   if (fixed_mass) note(robot_.line, "the <inertial> of links fixed to the world are not used (they never move)");
   // Massless moving links: one line for all of them (a file without any <inertial> has many).
   std::vector<int> massless;
-  for (const UrdfBody& b : plan_.bodies)
+  for (const UrdfBody& b : plan_.bodies) {
     if (!b.fixed && !(b.mass > 0) && b.massive_links == 0) massless.push_back(b.root);
+    // Each link's tensor was checked; what the lumping adds up must be steppable too.
+    if (!b.fixed && b.mass > 0 && b.massive_links > 1 && !isPositiveDefinite(b.inertia))
+      error(link(b.root).line, "link '" + link(b.root).name +
+                                   "' and the links fixed to it add up to an inertia that is not positive definite "
+                                   "(ODE cannot step it)");
+  }
   if (massless.empty()) return;
   const UrdfLink& l = link(massless[0]);
   std::string more;
@@ -185,10 +202,17 @@ void Import::raiseAboveGround() {
   for (size_t li = 0; li < robot_.links.size(); ++li)
     for (const UrdfShape& s : robot_.links[li].collisions) {
       Vec3 half = scale(s.size, 0.5);  // the shape's bounding box about its origin
+      Transform box;
       if (s.kind == UrdfShape::Sphere) half = {s.size[0], s.size[0], s.size[0]};
       if (s.kind == UrdfShape::Cylinder) half = {s.size[0], s.size[0], s.size[1] / 2};
-      if (s.kind == UrdfShape::Mesh) continue;  // meshes: their bounds once the mesh loader is in
-      const Transform t = urdfToScene(place_, compose(plan_.link_global[li], s.origin));
+      if (s.kind == UrdfShape::Mesh) {  // the bounds of its vertices
+        const int mi = meshOf(s);
+        if (mi < 0) continue;
+        const MeshData& m = *ctx_.model.meshes[static_cast<size_t>(mi)].data;
+        half = scale(sub(m.hi, m.lo), 0.5);
+        box.p = scale(add(m.hi, m.lo), 0.5);
+      }
+      const Transform t = urdfToScene(place_, compose(compose(plan_.link_global[li], s.origin), box));
       for (int k = 0; k < 8; ++k) {
         const Vec3 corner{k & 1 ? half[0] : -half[0], k & 2 ? half[1] : -half[1], k & 4 ? half[2] : -half[2]};
         lowest = std::min(lowest, add(t.p, rotate(t.q, corner))[1]);
@@ -233,12 +257,28 @@ void Import::addShapes(int li) {
                      : urdfToScene(place_, compose(plan_.link_global[l], origin));
   };
   for (const UrdfShape& s : ul.collisions) {
+    GeomDef g;
+    g.loc = at(s.line);
     if (s.kind == UrdfShape::Mesh) {
-      note(s.shape_line, "link '" + ul.name + "': mesh collision '" + s.filename +
-                             "' not used yet (meshes wait for the mesh loader, issue 28 point 5)");
+      g.mesh = meshOf(s);
+      if (g.mesh < 0) continue;
+      const MeshData& m = *ctx_.model.meshes[static_cast<size_t>(g.mesh)].data;
+      // Moving links collide with the mesh's convex hull unless asked; fixed ones with its triangles.
+      const bool hull = body >= 0 && c_.get(kCollisions) == 0;
+      if (hull && m.hull.empty()) {
+        error(s.shape_line, "link '" + ul.name + "': mesh '" + s.filename + "' has no convex hull (" +
+                                m.hull_problem + "); give the link a primitive <collision>, or Collisions mesh");
+        continue;
+      }
+      ++(hull ? hulls_ : trimeshes_);
+      g.key = body >= 0 ? ctx_.model.bodies[static_cast<size_t>(body)].key : key;
+      g.body = body;
+      g.offset = where(s.origin);
+      g.material = material_;
+      g.shape = hull ? GeomShape::ConvexHull : GeomShape::TriMesh;
+      ctx_.model.geoms.push_back(g);
       continue;
     }
-    GeomDef g;
     g.key = body >= 0 ? ctx_.model.bodies[static_cast<size_t>(body)].key : key;
     g.body = body;
     g.offset = where(s.origin);
@@ -261,11 +301,6 @@ void Import::addShapes(int li) {
 void Import::addVisual(int li, const UrdfShape& s) {
   const size_t l = static_cast<size_t>(li);
   const int body = body_index_[static_cast<size_t>(plan_.link_body[l])];
-  if (s.kind == UrdfShape::Mesh) {
-    note(s.shape_line, "link '" + link(li).name + "': mesh visual '" + s.filename +
-                           "' not drawn yet (meshes wait for the mesh loader, issue 28 point 5)");
-    return;
-  }
   VisualDef v;
   v.body = body;
   v.pose = body >= 0 ? compose(plan_.link_in_body[l], s.origin)
@@ -286,11 +321,26 @@ void Import::addVisual(int li, const UrdfShape& s) {
       v.mask = 7;  // the jacket and both flat ends
       break;
     case UrdfShape::Mesh:
-      return;
+      v.shape = VisualDef::Mesh;
+      v.mesh = meshOf(s);
+      if (v.mesh < 0) return;
+      break;
   }
   v.skin = skinOf(s.material);
   v.key = keyOf(link(li).name);
   ctx_.model.visuals.push_back(v);
+}
+
+/// The Model::meshes index of a mesh shape (read once per file and scale, URDF's Z up), or -1
+/// after an error at its line (66 for a file that cannot be read, 65 for one that cannot be parsed).
+int Import::meshOf(const UrdfShape& s) {
+  const MeshLoad ml = ctx_.mesh_cache.load(s.path, s.scale, UpAxis::Z);
+  if (!ml.ok()) {
+    ctx_.diag.error(at(s.shape_line), "mesh '" + s.filename + "': " + ml.error.message, ml.error.kind);
+    ok_ = false;
+    return -1;
+  }
+  return ctx_.meshIndex(ml.mesh, at(s.shape_line));
 }
 
 /// A URDF material as a skin, once each: its colour as RCColoredSkin's Color (guide 6.4.1:
@@ -467,6 +517,10 @@ void Import::summarise() {
       mass += b.mass;
     }
   }
+  size_t vertices = 0;
+  std::set<const MeshData*> seen;
+  for (const MeshDef& m : ctx_.model.meshes)
+    if (m.loc.file == robot_.file && seen.insert(m.data.get()).second) vertices += m.data->vertices.size();
   for (const UrdfLink& l : robot_.links)
     for (const auto* shapes : {&l.visuals, &l.collisions})
       for (const UrdfShape& s : *shapes) meshes += s.kind == UrdfShape::Mesh;
@@ -475,8 +529,12 @@ void Import::summarise() {
   report_.text = "robot '" + robot_.name + "': " + std::to_string(robot_.links.size()) + " links (" +
                  std::to_string(moving) + " moving bodies, " + std::to_string(lumped) + " lumped), " +
                  std::to_string(robot_.joints.size()) + " joints" + (joints.empty() ? "" : " (" + joints + ")") + ", " +
-                 std::to_string(drives_) + " drives, " + std::to_string(meshes) + " mesh shapes, total mass " +
-                 formatApprox(mass) + " kg";
+                 std::to_string(drives_) + " drives, " + std::to_string(meshes) + " mesh shapes" +
+                 (meshes == 0 ? std::string()
+                              : " (" + std::to_string(seen.size()) + " meshes, " + std::to_string(vertices) +
+                                    " vertices; collisions: " + std::to_string(hulls_) + " convex hulls, " +
+                                    std::to_string(trimeshes_) + " triangle meshes)") +
+                 ", total mass " + formatApprox(mass) + " kg";
   std::stable_sort(report_.notes.begin(), report_.notes.end(),
                    [](const Error& a, const Error& b) { return a.loc.line < b.loc.line; });
 }
@@ -504,6 +562,9 @@ void registerUrdfImport(Registry& r) {
                "'NAME=DIR;NAME=DIR' (relative to this file): where package://NAME/... is, after a package.xml above "
                "the URDF and ROS_PACKAGE_PATH"),
           componentParam(kMaterial, {Family::Material}, "RCGenericMaterial", "contact properties of every collision"),
+          enumParam(kCollisions, ValueType::Enum, &kCollisionsTable, 0,
+                    "mesh collisions of moving links: their convex hull (hull) or their triangles (mesh); links fixed "
+                    "to the world always collide with the triangles"),
           flag(kAboveGround, false,
                "raise a floating robot whose collision shapes reach below y = 0 until the lowest touches it (a bare "
                ".urdf file sets it)")},

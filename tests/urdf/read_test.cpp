@@ -279,12 +279,13 @@ TEST_CASE("urdf dart-doc: test/issue838.urdf loads: a fixed link lumped, colours
   CHECK(hasNote(m, 36, "link 'link_1' is fixed to 'link_0' (joint '0_to_1'): lumped into body 'issue838.link_0'"));
 }
 
-TEST_CASE("urdf dart-doc: test/invalid_mesh.urdf is refused at its line", "[urdf][dart]") {
+TEST_CASE("urdf dart-doc: test/invalid_mesh.urdf is refused (65) at its mesh's line", "[urdf][dart]") {
   Model m;
   Diagnostics d;
   CHECK(!loadDart("test/invalid_mesh.urdf", &m, d));
-  CHECK(d.errors().size() == 1);
-  CHECK(firstError(d).rfind(kDart + "/test/invalid_mesh.urdf:", 0) == 0);
+  REQUIRE(d.errors().size() == 1);
+  CHECK(d.errors()[0].kind == ErrorKind::InvalidInput);
+  CHECK(firstError(d).rfind(kDart + "/test/invalid_mesh.urdf:6: mesh 'invalid_mesh.stl': ", 0) == 0);
 }
 
 TEST_CASE("urdf dart-doc: wam's package://herb_description is refused at its line unless given", "[urdf][dart]") {

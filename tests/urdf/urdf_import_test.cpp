@@ -424,3 +424,34 @@ TEST_CASE("urdf import: a RigidBodyClone of an import copies its bodies, joints,
   CHECK(m.frames[1].key == "B.base");
   CHECK(m.frames[1].offset.p[0] == Approx(3.0));
 }
+
+TEST_CASE("urdf import: a free STL cube modelled in millimetres, scale 0.001, comes to rest at half its size",
+          "[urdf][mesh]") {
+  TempDir dir;
+  const std::string stl = std::string(SIMBOB_SOURCE_DIR) + "/tests/data/meshes/cube_100mm.stl";  // 100 mm, centred
+  dir.write("cube.urdf", R"(<robot name="cube"><link name="cube">
+  <inertial><mass value="1"/><inertia ixx="0.0016667" ixy="0" ixz="0" iyy="0.0016667" iyz="0" izz="0.0016667"/></inertial>
+  <visual><geometry><mesh filename=")" + stl + R"(" scale="0.001 0.001 0.001"/></geometry></visual>
+  <collision><geometry><mesh filename=")" + stl + R"(" scale="0.001 0.001 0.001"/></geometry></collision>
+</link></robot>)");
+  const std::string scene = dir.write("cube.xml", R"(<Simulation><ComponentList><RCGround Key="Ground"/>
+  <RCImportURDF Key="cube"><File Value="cube.urdf"/>
+    <Pose><RCGlobalCoordinates><Pose Value="0 0.3 0 0 0 0"/></RCGlobalCoordinates></Pose></RCImportURDF>
+</ComponentList></Simulation>)");
+  Model m;
+  Diagnostics d;
+  INFO(errorText(d));
+  REQUIRE(compileFile(scene, &m, d));
+  REQUIRE(m.meshes.size() == 1);  // the visual and the collision share one read
+  CHECK(m.meshes[0].data->hi[0] == Approx(0.05));
+  int hulls = 0;
+  for (const GeomDef& g : m.geoms) hulls += g.shape == GeomShape::ConvexHull && g.body == 0;
+  CHECK(hulls == 1);
+  auto sim = simulate(m);
+  sim->runUntil(2.0);
+  const BodyState s = sim->world().body(0);
+  // Resting on its face: the link frame (the cube's centre) half the 0.1 m size above the ground,
+  // to ODE's contact softness (a fraction of a mm at ERP 0.2, CFM 1e-10).
+  CHECK(s.pose.p[1] == Approx(0.05).margin(1e-3));
+  CHECK(std::fabs(s.lin_vel[1]) < 1e-3);
+}

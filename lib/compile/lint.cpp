@@ -398,6 +398,7 @@ class Linter {
       for (size_t j = i + 1; j < meshes.size(); ++j) {
         const GeomDef &a = *meshes[i], &b = *meshes[j];
         if (a.body == b.body || (a.body < 0 && b.body < 0)) continue;
+        if (a.group >= 0 && a.group == b.group) continue;  // one URDF robot's links never meet
         auto where = [&](const GeomDef& g) {
           const SourceLoc l = loc(g);
           const std::string file = g.mesh >= 0 ? m_.meshes[static_cast<size_t>(g.mesh)].data->file : "";
@@ -444,6 +445,7 @@ class Linter {
         if (b.lo[0] > a.hi[0] - kOverlap) break;
         if (a.g->body == b.g->body || (a.g->body < 0 && b.g->body < 0)) continue;
         if (a.g->body >= 0 && b.g->body >= 0 && joined(a.g->body, b.g->body)) continue;
+        if (a.g->group >= 0 && a.g->group == b.g->group) continue;  // one URDF robot's links never collide
         double depth;
         if (a.g->shape == GeomShape::Sphere && b.g->shape == GeomShape::Sphere) {
           depth = a.g->size[0] + b.g->size[0] - norm(sub(a.t.p, b.t.p));

@@ -32,6 +32,7 @@ constexpr ValueParam<std::string> kPackages{"Packages"};
 constexpr EnumParam kCollisions{"Collisions"};
 const EnumTable kCollisionsTable{"Collisions", {{"hull", 0}, {"mesh", 1}}};
 constexpr ValueParam<bool> kAboveGround{"AboveGround"};
+constexpr ValueParam<bool> kSelfCollision{"SelfCollision"};
 
 const char* typeName(UrdfJoint::Type t) {
   switch (t) {
@@ -102,6 +103,7 @@ class Import {
   int material_ = 0;
   int drives_ = 0;
   int hulls_ = 0, trimeshes_ = 0;
+  int group_ = 0;  // GeomDef::group of its geoms: the first geom index it makes (a copy gets its own)
   ImportReport report_;
   bool ok_ = true;
 };
@@ -109,6 +111,7 @@ class Import {
 Built Import::lower(const Transform* parent) {
   if (!lowerPose(ctx_, c_.get(kPose), c_, parent, &place_)) return Built{};
   material_ = lowerMaterial(ctx_, c_.get(kMaterial));
+  group_ = static_cast<int>(ctx_.model.geoms.size());
   plan_ = planUrdf(robot_, c_.get(kFixedBase));
   skin_index_.assign(robot_.materials.size(), -1);
   for (const UrdfNote& n : robot_.ignored)
@@ -259,6 +262,9 @@ void Import::addShapes(int li) {
   for (const UrdfShape& s : ul.collisions) {
     GeomDef g;
     g.loc = at(s.line);
+    // Its links collide with everything else but not with each other, unless asked (Gazebo's
+    // self_collide, PyBullet's URDF_USE_SELF_COLLISION): CAD shapes of neighbours often overlap.
+    g.group = c_.get(kSelfCollision) ? -1 : group_;
     if (s.kind == UrdfShape::Mesh) {
       g.mesh = meshOf(s);
       if (g.mesh < 0) continue;
@@ -565,6 +571,9 @@ void registerUrdfImport(Registry& r) {
           enumParam(kCollisions, ValueType::Enum, &kCollisionsTable, 0,
                     "mesh collisions of moving links: their convex hull (hull) or their triangles (mesh); links fixed "
                     "to the world always collide with the triangles"),
+          flag(kSelfCollision, false,
+               "its links collide with each other (those a joint connects never do); off: only with the rest of "
+               "the scene"),
           flag(kAboveGround, false,
                "raise a floating robot whose collision shapes reach below y = 0 until the lowest touches it (a bare "
                ".urdf file sets it)")},

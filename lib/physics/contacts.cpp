@@ -24,6 +24,8 @@ void collidePair(WorldImpl& im, dGeomID g1, dGeomID g2) {
   const GeomInfo& i2 = infoOf(im, g2);
   // Sensors create no contact joints (their geoms are in a space of their own: never reached).
   if (i1.sensor || i2.sensor) return;
+  // The links of one URDF robot (without SelfCollision) do not collide with each other.
+  if (i1.group >= 0 && i1.group == i2.group) return;
 
   const int maxContacts = static_cast<int>(im.contactBuffer.size());
   const int n = dCollide(g1, g2, maxContacts, &im.contactBuffer[0].geom, sizeof(dContact));

@@ -40,6 +40,7 @@ struct GeomInfo {
   double bounceness;    ///< restitution in [0,1]
   double minBounceVel;  ///< m/s
   bool sensor;          ///< creates no contact joints
+  int group;            ///< GeomDef::group: >= 0, no contacts within it
 };
 
 /// What joint state needs beyond the ODE joint: its kind and ODE's reading at the start pose.

@@ -335,9 +335,42 @@ def go_to_point_robot(c):
             math.hypot(c.at("Bot.Cart.Chassis", 2)[1][0] - 1, c.at("Bot.Cart.Chassis", 2)[1][2] + 1), 1.0)
 
 
+KR5 = "Bot.kr5."
+KR5_LINKS = ("shoulder", "bicep", "elbow", "forearm", "wrist", "palm")
+
+
+def kr5(c):
+    # Position drives hold every joint at 0 for 5 s: no link frame moves more than 1 mm.
+    for link in KR5_LINKS:
+        rows = c.body(KR5 + link)
+        c.below(f"{link} frame's largest displacement over 0-5 s (m)",
+                max(math.dist(p, rows[0][1]) for t, p, _ in rows if t <= 5.0), 1e-3)
+    c.below("base_link frame (fixed to the world) displacement (m)",
+            max(math.dist(p, c.body(KR5 + "base_link")[0][1]) for _, p, _ in c.body(KR5 + "base_link")), 0.0)
+    # At 5 s shoulder_yaw is commanded 0.8 rad about the arm's vertical axis (the scene's +Y):
+    # at 6.545 rad/s to within 0.33 rad, then as exp(-t / 0.05 s): there by 6 s, held to 10 s.
+    q0 = c.body(KR5 + "shoulder")[0][2]
+    for t in (6.0, 8.0, 10.0):
+        c.near(f"shoulder turned about Y at t = {t} s (rad)", turned(q0, c.at(KR5 + "shoulder", t)[2], 1), 0.8, 2e-3)
+    # Halfway through the fast phase it is still on its way: the law, not a jump.
+    c.near("shoulder turned about Y at t = 5.05 s (rad)", turned(q0, c.at(KR5 + "shoulder", 5.05)[2], 1),
+           6.545 * 0.05, 0.03)
+
+
+def drchubo(c):
+    # Dropped with passive joints: it lands and collapses; nothing sinks into the ground and,
+    # by the end, everything has come to rest (the CSV check already refused NaN; a joint
+    # coming apart would have failed the run).
+    lowest = min(p[1] for rows in c.rows.values() for _, p, _ in rows)
+    c.above("lowest link frame over the run (m)", lowest, -0.05)
+    torso = c.body("drchubo.Body_Torso")
+    c.below("torso height at the end, collapsed (m)", torso[-1][1][1], 0.6)
+    c.below("torso motion over the last second (m)", math.dist(c.at("drchubo.Body_Torso", 9)[1], torso[-1][1]), 0.05)
+
+
 SCENES = {f.__name__: f for f in (pendulum, box_stack, chain, imported_bodies, mechanisms, bounce, robot, flywheel,
                                   servo_arm, two_wheel_robot, wall_stop_robot, sliding_box, socket_robot, gallery,
-                                  go_to_point_robot)}
+                                  go_to_point_robot, kr5, drchubo)}
 
 if __name__ == "__main__":
     name, path = sys.argv[1], sys.argv[2]

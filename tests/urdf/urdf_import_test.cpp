@@ -455,3 +455,34 @@ TEST_CASE("urdf import: a free STL cube modelled in millimetres, scale 0.001, co
   CHECK(s.pose.p[1] == Approx(0.05).margin(1e-3));
   CHECK(std::fabs(s.lin_vel[1]) < 1e-3);
 }
+
+TEST_CASE("urdf import: the links of one robot do not collide with each other unless SelfCollision", "[urdf]") {
+  // 'tip' hangs on 'mid' on 'base' and its box overlaps the base's: CAD shapes of neighbours do.
+  TempDir dir;
+  const std::string box = R"(<inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>)";
+  dir.write("fold.urdf", R"(<robot name="fold">
+  <link name="world"/>
+  <joint name="fix" type="fixed"><parent link="world"/><child link="base"/><origin xyz="0 0 1"/></joint>
+  <link name="base">)" + box + R"(</link>
+  <joint name="j1" type="continuous"><parent link="base"/><child link="mid"/><origin xyz="0.5 0 0"/><axis xyz="0 0 1"/></joint>
+  <link name="mid">)" + box + R"(</link>
+  <joint name="j2" type="continuous"><parent link="mid"/><child link="tip"/><origin xyz="-0.4 0 0"/><axis xyz="0 0 1"/></joint>
+  <link name="tip">)" + box + R"(</link>
+</robot>)");
+  for (bool self : {false, true}) {
+    CAPTURE(self);
+    const std::string scene =
+        dir.write("fold.xml", std::string("<Simulation><ComponentList><RCImportURDF Key=\"fold\"><File Value=\"fold.urdf\"/>") +
+                                  "<SelfCollision Value=\"" + (self ? "true" : "false") +
+                                  "\"/></RCImportURDF></ComponentList></Simulation>");
+    Model m;
+    Diagnostics d;
+    INFO(errorText(d));
+    REQUIRE(compileFile(scene, &m, d));
+    auto sim = simulate(m);
+    sim->step();
+    // The tip overlaps the (static) base by 0.1 m: contacts only when the robot may touch itself.
+    CHECK((sim->world().lastContactCount() > 0) == self);
+  }
+}

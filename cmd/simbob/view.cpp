@@ -32,15 +32,15 @@ CLI::App* addViewCommand(CLI::App& app, ViewPageArgs& v, Common& common) {
 int viewPage(const ViewPageArgs& a, const Common& common, const Trajectory* actual, const Trajectory* golden) {
   std::vector<Override> overrides;
   if (int c = sceneOverrides(common, a.scene, a.sets, &overrides)) return c;
-  Scene scene;
+  LoadReport loaded;
   Model model;
   int code = 0;
-  if (!loadAndCompile(a.scene, *common.registry, &scene, &model, &code, false, false, {{"--settings", common.settings}},
-                      overrides))
+  if (!loadAndCompile(a.scene, *common.registry, &model, &loaded, &code, false, false,
+                      {{"--settings", common.settings}}, overrides))
     return code;
   std::vector<NamedPath> inputs = {
       {"the trajectory", a.trajectory}, {"the golden file", a.golden}, {"--settings", common.settings}};
-  appendSceneInputs(scene, a.scene, overrides, &inputs);
+  appendSceneInputs(loaded, a.scene, overrides, &inputs);
   appendModelInputs(model, common, a.scene, &inputs);
   if (int c = checkOutputs({{"--out", a.out}, {"--log-file", g_log.path}}, inputs)) return c;
   ViewPageInput in;
@@ -72,19 +72,6 @@ int cmdView(const ViewPageArgs& a, const Common& common) {
     return exitCodeFor(err.kind);
   }
   return viewPage(a, common, &actual, a.golden.empty() ? nullptr : &golden);
-}
-
-int viewAfterRun(const RunArgs& a, const Common& common) {
-  if (isStreamOutput(a.out)) {
-    g_log.error({ErrorKind::InvalidInput, {}, "--html reads the trajectory back: --out must be a file, not a stream"});
-    return kExitUsage;
-  }
-  ViewPageArgs v;
-  v.trajectory = a.out;
-  v.scene = a.scene;
-  v.out = a.html;
-  v.sets = a.sets;
-  return cmdView(v, common);
 }
 
 namespace {

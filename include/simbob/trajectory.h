@@ -92,7 +92,6 @@ class TrajectoryWriter {
 
   const std::string& finalPath() const { return final_path_; }
   const std::string& tempPath() const;
-  const std::vector<std::string>& bodyKeys() const { return keys_; }
 
  private:
   TrajectoryWriter() = default;

@@ -26,14 +26,6 @@ namespace simbob {
 
 namespace {
 
-Error makeError(ErrorKind kind, const std::string& file, std::string message) {
-  Error e;
-  e.kind = kind;
-  e.loc.file = file;
-  e.message = std::move(message);
-  return e;
-}
-
 std::string avError(int code) {
   char buf[AV_ERROR_MAX_STRING_SIZE] = {0};
   av_strerror(code, buf, sizeof buf);
@@ -107,7 +99,7 @@ class VideoSink : public FrameSink {
 
   static std::unique_ptr<FrameSink> open(const std::string& path, double fps, Error* err, const std::string& write_to) {
     auto fail = [&](ErrorKind kind, const std::string& what) {
-      if (err) *err = makeError(kind, path, what);
+      if (err) *err = fileError(kind, path, what);
       return nullptr;
     };
     Choice c = choose(path);
@@ -186,7 +178,7 @@ class VideoSink : public FrameSink {
   VideoSink() = default;
 
   const Error* fail(ErrorKind kind, std::string message) {
-    if (!failed_) error_ = makeError(kind, path_, std::move(message));
+    if (!failed_) error_ = fileError(kind, path_, std::move(message));
     failed_ = true;
     release();
     if (!temp_.empty()) ::unlink(temp_.c_str());

@@ -13,6 +13,7 @@
 
 #include "simbob/physics.h"
 #include "simbob/render.h"
+#include "simbob/robot.h"
 #include "simbob/run.h"
 #include "simbob/simulation.h"
 

@@ -4,7 +4,8 @@
 #include "simbob/clock.h"
 #include "simbob/model.h"
 #include "simbob/run.h"
-#include "simbob/run_outputs.h"
+#include "simulation/outputs.h"
+#include "sim/run_log.h"
 #include "simbob/simulation.h"
 
 namespace simbob {

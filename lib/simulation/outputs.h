@@ -5,8 +5,8 @@
 // outputs, never over them: the trajectory and run log so far as .partial files, and its summary
 // (status and error) as the summary's .partial.json.
 //
-// `simbob run`, `sweep run --case` and the Python module attach these to a Simulation; the
-// Simulation itself knows nothing of files.
+// The Run (simbob/scene_run.h) attaches these to its Simulation; the Simulation itself knows
+// nothing of files.
 #pragma once
 
 #include <functional>
@@ -16,7 +16,7 @@
 
 #include "simbob/error.h"
 #include "simbob/files.h"
-#include "simbob/run_log.h"
+#include "simbob/run.h"
 #include "simbob/trajectory.h"
 
 namespace simbob {

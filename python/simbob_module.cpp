@@ -28,8 +28,8 @@
 #include "simbob/physics.h"
 #include "simbob/plugin.h"
 #include "simbob/registry.h"
-#include "simbob/render.h"
-#include "simbob/run.h"
+#include "simbob/renderer.h"
+#include "simbob/loop.h"
 #include "simbob/scene_run.h"
 #include "simbob/simulation.h"
 

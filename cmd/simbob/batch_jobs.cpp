@@ -11,7 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "batch.h"
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 #include "simbob/values.h"
 
 namespace simbob::cli::batch {

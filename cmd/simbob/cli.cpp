@@ -7,8 +7,8 @@
 #include <cstring>
 #include <filesystem>
 
-#include "simbob/document_ini.h"
-#include "simbob/frame_sinks.h"
+#include "simbob/tool/document_ini.h"
+#include "simbob/tool/frame_sinks.h"
 #include "simbob/registry.h"
 #include "simbob/values.h"
 

@@ -11,7 +11,7 @@
 
 #include "simbob/compile.h"
 #include "simbob/error.h"
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 #include "simbob/graph.h"
 #include "simbob/options.h"
 #include "simbob/overrides.h"

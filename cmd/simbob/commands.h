@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "simbob/compare.h"
+#include "simbob/tool/comparison.h"
 #include "simbob/scene_run.h"
 
 namespace CLI {

@@ -7,10 +7,10 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "simbob/compare.h"
-#include "simbob/files.h"
-#include "simbob/plot.h"
-#include "simbob/sweep.h"
+#include "simbob/tool/comparison.h"
+#include "simbob/tool/files.h"
+#include "simbob/tool/plot.h"
+#include "simbob/tool/sweep_plan.h"
 #include "simbob/trajectory.h"
 
 namespace simbob::cli {

@@ -9,13 +9,13 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "simbob/render.h"
+#include "simbob/renderer.h"
 #include "simbob/physics.h"
-#include "simbob/png.h"
+#include "simbob/tool/png.h"
 #include "simbob/robot.h"
-#include "simbob/run.h"
+#include "simbob/loop.h"
 #include "simbob/scene_run.h"
-#include "simbob/document_ini.h"
+#include "simbob/tool/document_ini.h"
 #include "simbob/values.h"
 #include "version.h"
 

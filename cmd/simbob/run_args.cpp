@@ -5,8 +5,8 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "simbob/document_ini.h"
-#include "simbob/files.h"
+#include "simbob/tool/document_ini.h"
+#include "simbob/tool/files.h"
 #include "simbob/overrides.h"
 
 namespace simbob::cli {

@@ -5,8 +5,8 @@
 #include <filesystem>
 
 #include "cli.h"
-#include "simbob/document_ini.h"
-#include "simbob/render.h"
+#include "simbob/tool/document_ini.h"
+#include "simbob/renderer.h"
 #include "simbob/registry.h"
 #include "simbob/values.h"
 

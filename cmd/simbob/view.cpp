@@ -1,16 +1,16 @@
 // simbob view TRAJ.csv --scene SCENE -o PAGE.html [--golden GOLDEN.csv] [--title T] (issue #23):
 // parses the options and hands the scene, the trajectories and the output to the library
-// (simbob/view.h); `compare --html` goes through viewPage too.
+// (simbob/tool/replay_page.h); `compare --html` goes through viewPage too.
 #include <CLI/CLI.hpp>
 #include <filesystem>
 
 #include "cli.h"
 #include "commands.h"
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 #include "simbob/overrides.h"
-#include "simbob/sweep.h"
+#include "simbob/tool/sweep_plan.h"
 #include "simbob/trajectory.h"
-#include "simbob/view.h"
+#include "simbob/tool/replay_page.h"
 
 namespace simbob::cli {
 

@@ -87,6 +87,12 @@ inline Error fileError(ErrorKind kind, const std::string& file, std::string mess
 /// anything beyond max_bytes cut, saying how long it was: "abc... (52428800 bytes)".
 std::string quoteInput(std::string_view text, size_t max_bytes = 80);
 
+/// A file a command reads or writes, and what it is ("the scene", "--out"), for messages.
+struct NamedPath {
+  std::string what;
+  std::string path;
+};
+
 /// Collects errors and warnings so one pass can report every problem.
 class Diagnostics {
  public:

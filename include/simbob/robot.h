@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "simbob/model.h"
-#include "simbob/run.h"
+#include "simbob/loop.h"
 
 namespace simbob {
 

@@ -23,11 +23,10 @@
 
 #include "simbob/compile.h"
 #include "simbob/error.h"
-#include "simbob/files.h"
 #include "simbob/options.h"
 #include "simbob/registry.h"
-#include "simbob/render.h"
-#include "simbob/run.h"
+#include "simbob/renderer.h"
+#include "simbob/loop.h"
 #include "simbob/simulation.h"
 
 namespace simbob {

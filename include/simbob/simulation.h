@@ -20,13 +20,13 @@
 
 #include "simbob/error.h"
 #include "simbob/graph.h"
-#include "simbob/render.h"
+#include "simbob/renderer.h"
 #include "simbob/model.h"
 #include "simbob/options.h"
 #include "simbob/overrides.h"
 #include "simbob/physics.h"
 #include "simbob/registry.h"
-#include "simbob/run.h"
+#include "simbob/loop.h"
 #include "simbob/trajectory.h"
 
 namespace simbob {

@@ -1,4 +1,4 @@
-#include "simbob/png.h"
+#include "simbob/tool/png.h"
 
 #include <png.h>
 
@@ -7,7 +7,7 @@
 #include <limits>
 #include <memory>
 
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 
 namespace simbob {
 

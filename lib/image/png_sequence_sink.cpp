@@ -7,8 +7,8 @@
 #include <cstring>
 #include <filesystem>
 
-#include "simbob/frame_sinks.h"
-#include "simbob/png.h"
+#include "simbob/tool/frame_sinks.h"
+#include "simbob/tool/png.h"
 
 namespace simbob {
 

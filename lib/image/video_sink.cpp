@@ -20,7 +20,7 @@ extern "C" {
 #include <mutex>
 
 #include "image/video_module.h"
-#include "simbob/frame_sinks.h"
+#include "simbob/tool/frame_sinks.h"
 
 namespace simbob {
 
@@ -33,7 +33,7 @@ std::string avError(int code) {
 }
 
 // The output named by its own folder, not by the temporary name it is written under (as
-// simbob/files.h cannotCreateReason says it; this module links no simbob library).
+// simbob/tool/files.h cannotCreateReason says it; this module links no simbob library).
 std::string missingFolder(const std::string& path) {
   const size_t slash = path.find_last_of('/');
   const std::string folder = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);

@@ -1,4 +1,4 @@
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>

@@ -1,6 +1,6 @@
-#include "simbob/plot.h"
+#include "simbob/tool/plot.h"
 
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 #include "simbob/values.h"
 
 #include <cairo-svg.h>

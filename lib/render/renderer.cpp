@@ -8,7 +8,7 @@
 #include "render/gl_context.h"
 #include "render/shapes.h"
 #include "render/texture_file.h"
-#include "simbob/render.h"
+#include "simbob/renderer.h"
 #include "simbob/transform.h"
 
 namespace simbob {

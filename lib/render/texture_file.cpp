@@ -1,8 +1,8 @@
 // BMP and PNG readers for textures.
-#include "simbob/render.h"
+#include "simbob/renderer.h"
 #include "render/texture_file.h"
 
-#include "simbob/png.h"
+#include "simbob/tool/png.h"
 
 #include <algorithm>
 #include <array>

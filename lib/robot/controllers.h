@@ -9,7 +9,7 @@
 #include "simbob/clock.h"
 #include "simbob/model.h"
 #include "simbob/robot.h"
-#include "simbob/run.h"
+#include "simbob/loop.h"
 
 namespace simbob::robot {
 

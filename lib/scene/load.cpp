@@ -11,7 +11,7 @@
 #include <set>
 
 #include "scene/source.h"
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 #include "simbob/graph.h"
 
 namespace simbob {

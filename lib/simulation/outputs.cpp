@@ -3,9 +3,9 @@
 
 #include "simbob/clock.h"
 #include "simbob/model.h"
-#include "simbob/run.h"
+#include "simbob/loop.h"
 #include "simulation/outputs.h"
-#include "sim/run_log.h"
+#include "loop/run_log.h"
 #include "simbob/simulation.h"
 
 namespace simbob {

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "simbob/error.h"
-#include "simbob/files.h"
-#include "simbob/run.h"
+#include "simbob/tool/files.h"
+#include "simbob/loop.h"
 #include "simbob/trajectory.h"
 
 namespace simbob {

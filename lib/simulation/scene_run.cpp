@@ -5,12 +5,12 @@
 #include <cmath>
 #include <filesystem>
 
-#include "simbob/frame_sinks.h"
+#include "simbob/tool/frame_sinks.h"
 #include "simbob/robot.h"
 #include "simbob/transform.h"
 #include "simbob/trajectory.h"
 #include "simbob/values.h"
-#include "simbob/view.h"
+#include "simbob/tool/replay_page.h"
 #include "simulation/determinism.h"
 #include "simulation/outputs.h"
 

@@ -1,5 +1,5 @@
 // The Simulation API (include/simbob/simulation.h): loading, the parties of a run in their
-// order, and stepping through the Runner of lib/sim.
+// order, and stepping through the Runner of lib/loop.
 #include "simbob/simulation.h"
 
 #include <algorithm>

@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "simbob/options.h"
-#include "simbob/sweep.h"
+#include "simbob/tool/sweep_plan.h"
 #include "simbob/values.h"
 
 namespace simbob {

@@ -9,7 +9,7 @@
 
 #include "render/reference_frames.h"
 #include "simbob/physics.h"
-#include "simbob/render.h"
+#include "simbob/renderer.h"
 #include "simbob/simulation.h"
 #include "test_registry.h"
 

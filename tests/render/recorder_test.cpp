@@ -9,8 +9,8 @@
 
 #include "simbob/compile.h"
 #include "simbob/graph.h"
-#include "simbob/render.h"
-#include "simbob/run.h"
+#include "simbob/renderer.h"
+#include "simbob/loop.h"
 #include "render/reference_frames.h"
 #include "test_registry.h"
 #include "sim/loop_helpers.h"

@@ -17,9 +17,9 @@
 
 #include "simbob/compile.h"
 #include "simbob/graph.h"
-#include "simbob/image_compare.h"
-#include "simbob/png.h"
-#include "simbob/render.h"
+#include "simbob/tool/image_compare.h"
+#include "simbob/tool/png.h"
+#include "simbob/renderer.h"
 #include "simbob/transform.h"
 #include "simbob/values.h"
 #include "render/reference_frames.h"

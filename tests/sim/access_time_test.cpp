@@ -8,7 +8,7 @@
 
 #include "physics/model_builder.h"
 #include "simbob/physics.h"
-#include "simbob/run.h"
+#include "simbob/loop.h"
 #include "sim/loop_helpers.h"
 
 using namespace simbob;

@@ -1,4 +1,4 @@
-// The run loop driven directly, for the tests of lib/sim: a Runner with the given parties, or
+// The run loop driven directly, for the tests of lib/loop: a Runner with the given parties, or
 // with a trajectory sampler only. (simbob itself runs through the Simulation API and the Run.)
 #pragma once
 
@@ -6,7 +6,7 @@
 #include <functional>
 #include <vector>
 
-#include "simbob/run.h"
+#include "simbob/loop.h"
 
 namespace simbob::test {
 

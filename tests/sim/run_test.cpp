@@ -10,7 +10,7 @@
 
 #include "physics/model_builder.h"
 #include "simbob/physics.h"
-#include "simbob/run.h"
+#include "simbob/loop.h"
 #include "sim/loop_helpers.h"
 #include "simbob/scene_run.h"
 

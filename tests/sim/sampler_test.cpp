@@ -12,8 +12,8 @@
 #include <string>
 
 #include "physics/model_builder.h"
-#include "simbob/compare.h"
-#include "simbob/run.h"
+#include "simbob/tool/comparison.h"
+#include "simbob/loop.h"
 #include "simbob/trajectory.h"
 #include "sim/loop_helpers.h"
 

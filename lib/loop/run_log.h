@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "simbob/error.h"
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 #include "simbob/model.h"
-#include "simbob/run.h"
+#include "simbob/loop.h"
 
 namespace simbob {
 

@@ -1,5 +1,5 @@
-// The run loop: see simbob/run.h.
-#include "simbob/run.h"
+// The run loop: see simbob/loop.h.
+#include "simbob/loop.h"
 
 #include <algorithm>
 #include <chrono>

@@ -12,7 +12,7 @@
 #include "simbob/error.h"
 #include "simbob/image.h"
 #include "simbob/model.h"
-#include "simbob/run.h"
+#include "simbob/loop.h"
 
 namespace simbob {
 

@@ -114,12 +114,6 @@ bool sameOutputPlace(const std::string& a, const std::string& b);
 /// character device, FIFO or socket (after symlinks).
 bool isStreamOutput(const std::string& path);
 
-/// A file a command reads or writes, and what it is ("the scene", "--out"), for messages.
-struct NamedPath {
-  std::string what;
-  std::string path;
-};
-
 /// An output that would replace an input (by any spelling) or another output, as a usage error
 /// naming both ("--out 'a.csv' is the scene 'a.csv': an output must not overwrite an input");
 /// an empty Error (no message) when none does. Empty paths and streams never collide.

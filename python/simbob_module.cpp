@@ -589,10 +589,35 @@ void recordingView(const py::object& size, const std::string& camera, const std:
                "transparency, fog)");
 }
 
-// Ctrl-C during a long run: Python sees the signal only when it runs, so the progress callback
-// (about every 1% of the run) asks; a stop request then ends the run at the next step, as
-// SIGINT does for `simbob run`, and the run keeps its partial outputs.
+// Ctrl-C during a long run: Python would see the signal only once the run returned, so while
+// simbob.run() runs on the main thread SIGINT sets a stop flag instead, as `simbob run`'s
+// handler does: the run ends at the next step and keeps its partial outputs, and Python's own
+// handler is back before RunInterrupted (a KeyboardInterrupt) is raised.
 volatile std::sig_atomic_t g_py_stop = 0;
+
+class StopOnSigint {
+ public:
+  StopOnSigint() {
+    g_py_stop = 0;
+    const bool main_thread = py::module_::import("threading")
+                                 .attr("current_thread")()
+                                 .is(py::module_::import("threading").attr("main_thread")());
+    if (!main_thread) return;  // signals reach the main thread's Python only
+    struct sigaction sa {};
+    sa.sa_handler = [](int) { g_py_stop = 1; };
+    sigemptyset(&sa.sa_mask);
+    installed_ = ::sigaction(SIGINT, &sa, &old_) == 0;
+  }
+  ~StopOnSigint() {
+    if (installed_) ::sigaction(SIGINT, &old_, nullptr);
+  }
+  StopOnSigint(const StopOnSigint&) = delete;
+  StopOnSigint& operator=(const StopOnSigint&) = delete;
+
+ private:
+  struct sigaction old_ {};
+  bool installed_ = false;
+};
 
 py::dict pyRun(const py::object& scene, double duration, const py::object& out, const py::object& overrides,
                uint32_t seed, const py::object& dt, double sample_interval, const std::string& log,
@@ -631,14 +656,7 @@ py::dict pyRun(const py::object& scene, double duration, const py::object& out, 
           (kv.second.is_none() ? std::string() : py::str(kv.second).cast<std::string>()));
   o.simulation.peer_timeout = peer_timeout;
   o.simulation.port_offset = port_offset;
-  g_py_stop = 0;
   o.simulation.stop = &g_py_stop;
-  o.simulation.progress = [](double) {
-    if (PyErr_CheckSignals() != 0) {
-      PyErr_Clear();
-      g_py_stop = 1;
-    }
-  };
   std::vector<std::string> errors, warnings;
   simbob::RunListener listener;
   listener.note = [&](const simbob::RunNote& n) {
@@ -646,13 +664,19 @@ py::dict pyRun(const py::object& scene, double duration, const py::object& out, 
     if (n.level == simbob::RunNote::Error) errors.push_back(n.what.errorLine());
   };
   Error refusal;
-  std::unique_ptr<simbob::Run> run = simbob::Run::open(o, registry(), listener, &refusal);
-  py::list all;
+  std::unique_ptr<simbob::Run> run;
+  simbob::RunOutcome outcome;
+  {
+    StopOnSigint sigint;  // Python's handler is back before any Python code runs again
+    py::gil_scoped_release nogil;
+    run = simbob::Run::open(o, registry(), listener, &refusal);
+    if (run) outcome = run->finish();
+  }
   if (!run) {
+    py::list all;
     for (const std::string& e : errors) all.append(e);
     raiseError(refusal, all);
   }
-  const simbob::RunOutcome& outcome = run->finish();
   py::object warn = py::module_::import("warnings").attr("warn");
   for (const std::string& w : warnings) warn(w, py::module_::import("builtins").attr("RuntimeWarning"), 2);
   if (outcome.output_error) raiseError(*outcome.output_error);

@@ -87,3 +87,34 @@ def test_run_keeps_a_diverged_runs_partials(tmp_path, monkeypatch):
     assert kept["status"] == "diverged"
     assert kept["partial_trajectory"] == "fast.partial.csv"
     assert (tmp_path / "fast.partial.csv").exists() and not (tmp_path / "fast.csv").exists()
+
+
+def test_ctrl_c_stops_a_long_run_and_keeps_its_partials(tmp_path):
+    """SIGINT during simbob.run(): the run stops at the next step, raises RunInterrupted -- a
+    KeyboardInterrupt -- and keeps the trajectory so far, as `simbob run` does on Ctrl-C."""
+    import signal
+    import sys
+    import time
+    script = tmp_path / "long.py"
+    script.write_text(
+        "import sys, simbob\n"
+        "try:\n"
+        f"    simbob.run({str(ROOT / 'scenes' / 'pendulum.xml')!r}, duration=1e6, out='long.csv')\n"
+        "except simbob.RunInterrupted as e:\n"
+        "    assert isinstance(e, KeyboardInterrupt)\n"
+        "    print('interrupted:', e.message, flush=True)\n"
+        "    sys.exit(3)\n")
+    child = subprocess.Popen([sys.executable, str(script)], cwd=tmp_path, env=child_env(), stdout=subprocess.PIPE,
+                             text=True)
+    deadline = time.monotonic() + 30
+    while not list(tmp_path.glob("long.csv.tmp*")) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    time.sleep(1.0)  # a second of running: the progress callback has been asked a few times
+    child.send_signal(signal.SIGINT)
+    out, _ = child.communicate(timeout=30)
+    assert child.returncode == 3, out
+    assert out.startswith("interrupted: interrupted at t=")
+    kept = json.loads((tmp_path / "long.partial.json").read_text())
+    assert kept["status"] == "interrupted"
+    assert (tmp_path / "long.partial.csv").read_text().startswith("time,body,x,y,z,qw,qx,qy,qz\n")
+    assert not (tmp_path / "long.csv").exists()

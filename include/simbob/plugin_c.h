@@ -66,7 +66,9 @@ typedef struct SimbobHost SimbobHost;
 
 /** simbob's side of one instance: call its functions with the host itself as first argument.
  * Valid only during the callback that received it. Every function returns 0 (or a count) on
- * success and -1 for an argument out of range, which also stops the run with an error. */
+ * success and -1 for an argument out of range, which also stops the run with an error: a ref out
+ * of range, a NULL host or one from another callback, a NULL pointer (body_state alone takes
+ * NULL for what it need not write), a negative n, a command that is not finite. */
 struct SimbobHost {
   uint32_t size; /**< sizeof(SimbobHost) as simbob built it */
   void* context; /**< simbob's; do not touch */
@@ -126,7 +128,8 @@ typedef struct SimbobType {
   void (*destroy)(void* user);
   /** Controllers: acts at simulated time t (s). */
   int (*act)(void* user, const SimbobHost* host, double t, char* message);
-  /** Sensors: writes the reading at time t (s) into out[0..n-1], n = quantity_count. */
+  /** Sensors: writes the reading at time t (s) into out[0..n-1], n = quantity_count, every entry
+   * finite (a NaN or infinite entry, or a write past out[n-1], stops the run with an error). */
   int (*read)(void* user, const SimbobHost* host, double t, double* out, int n, char* message);
   /** Actuators: the force (N) and torque (N m), in the mount frame, to apply at the mount's origin
    * during the next step of dt s, given the latest command (0 before the first). */

@@ -94,7 +94,7 @@ struct SimbobHost {
                     double angular[3]);
   /** Sensors and actuators: casts a ray from `origin` along `direction` (both in the mount frame;
    * the direction need not be unit) against every geom of another body (its own body and bodies
-   * joined to it are not seen; static geoms are, except from a static mount). Returns the
+   * joined to it are not seen, also on a static mount; every other geom is). Returns the
    * distance (m) to the first hit, or -1 when nothing is hit within max_length (in (0, 1e6] m).
    * The same world gives the same answer. */
   double (*cast_ray)(const SimbobHost* host, const double origin[3], const double direction[3], double max_length);

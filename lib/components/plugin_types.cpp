@@ -234,6 +234,7 @@ void lowerPluginPeriphery(CompileContext& ctx, const Component& c, const Built& 
     s.loc = c.loc;
     s.kind = SensorKind::Plugin;
     s.body = parent.index;
+    s.static_body = parent.static_id;
     s.pose = pose;
     s.period = c.get(kPeriod);
     if (!checkSensorPeriod(ctx, c, c.slotOf(kPeriod), s.period)) return;
@@ -254,6 +255,7 @@ void lowerPluginPeriphery(CompileContext& ctx, const Component& c, const Built& 
   a.loc = c.loc;
   a.kind = ActuatorDef::Plugin;
   a.body = parent.index;
+  a.static_body = parent.static_id;
   a.pose = pose;
   a.plugin = t.c;
   a.numbers = numbersOf(c, t);

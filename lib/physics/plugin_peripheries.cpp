@@ -24,9 +24,10 @@ namespace {
 /// What a SimbobHost of a sensor or actuator points at.
 struct MountContext {
   WorldImpl* im;
-  int body;        ///< Model::bodies index, -1 = static
-  Transform pose;  ///< the mount relative to the body
-  double time;     ///< s
+  int body;         ///< Model::bodies index, -1 = static
+  int static_body;  ///< body -1: the static body it is mounted on (GeomDef::static_body)
+  Transform pose;   ///< the mount relative to the body
+  double time;      ///< s
   std::string* misuse;
 };
 
@@ -150,8 +151,7 @@ double hostCastRay(const SimbobHost* h, const double origin[3], const double dir
   const Transform f = mountFrame(m);
   const Vec3 o = add(f.p, rotate(f.q, Vec3{origin[0], origin[1], origin[2]}));
   const Vec3 dir = rotate(f.q, Vec3{d[0] / len, d[1] / len, d[2] / len});
-  dBodyID own = m.body >= 0 ? m.im->bodies[static_cast<size_t>(m.body)] : nullptr;
-  gatherRayCandidates(*m.im, own, o, max_length);
+  gatherRayCandidates(*m.im, m.body, m.static_body, o, max_length);
   const double hit = castRay(*m.im, o, dir, max_length);
   return std::isfinite(hit) ? hit : -1;
 }
@@ -301,7 +301,7 @@ void createPluginSensor(WorldImpl& im, SensorState& s) {
 void readPluginSensor(WorldImpl& im, SensorState& s) {
   if (s.broken) return;
   std::string misuse;
-  MountContext m{&im, s.def.body, s.def.pose, static_cast<double>(im.time_ns) * 1e-9, &misuse};
+  MountContext m{&im, s.def.body, s.def.static_body, s.def.pose, static_cast<double>(im.time_ns) * 1e-9, &misuse};
   const SimbobHost h = hostFor(&m);
   MessageBuffer msg;
   const size_t n = s.reading.size();
@@ -343,7 +343,7 @@ void createPluginActuator(WorldImpl& im, ActuatorState& a) {
 void applyPluginActuator(WorldImpl& im, ActuatorState& a, double h) {
   if (a.broken) return;
   std::string misuse;
-  MountContext m{&im, a.def.body, a.def.pose, static_cast<double>(im.time_ns) * 1e-9, &misuse};
+  MountContext m{&im, a.def.body, a.def.static_body, a.def.pose, static_cast<double>(im.time_ns) * 1e-9, &misuse};
   const SimbobHost host = hostFor(&m);
   MessageBuffer msg;
   // force[3] and torque[3] with the guard after them, as a sensor's out (a plug-in writing past

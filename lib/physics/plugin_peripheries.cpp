@@ -187,7 +187,7 @@ std::string messageOf(const char* buf) {
 struct MessageBuffer {
   MessageBuffer() { std::fill_n(bytes.data(), SIMBOB_MESSAGE_SIZE, '\0'); }
   char* data() { return bytes.data(); }
-  std::array<char, 16 * SIMBOB_MESSAGE_SIZE> bytes;
+  std::array<char, size_t{16} * SIMBOB_MESSAGE_SIZE> bytes;
 };
 
 /// Where a plug-in callback writes its output (a sensor's `out`, an actuator's force and torque):

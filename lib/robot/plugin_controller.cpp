@@ -23,7 +23,7 @@ class PluginController : public Party {
   explicit PluginController(const ControllerDef& c)
       : def_(c), type_(*c.plugin_type), tick_(c.period), who_("plug-in '" + c.plugin + "', type '" + c.type + "'") {
     if (!type_.create) return;
-    std::array<char, 16 * SIMBOB_MESSAGE_SIZE> msg{};  // room to spare, as in onGrant
+    std::array<char, size_t{16} * SIMBOB_MESSAGE_SIZE> msg{};  // room to spare, as in onGrant
     user_ = type_.create(def_.numbers.data(), msg.data());
     if (!user_) fail("create() failed: " + messageOf(msg.data()));
   }
@@ -64,7 +64,7 @@ class PluginController : public Party {
     };
     // Room to spare: a message written past SIMBOB_MESSAGE_SIZE is cut there, not written into
     // the stack. Only what messageOf reads is cleared.
-    std::array<char, 16 * SIMBOB_MESSAGE_SIZE> msg;  // NOLINT(cppcoreguidelines-pro-type-member-init)
+    std::array<char, size_t{16} * SIMBOB_MESSAGE_SIZE> msg;  // NOLINT(cppcoreguidelines-pro-type-member-init)
     std::fill_n(msg.data(), SIMBOB_MESSAGE_SIZE, '\0');
     PluginController* const outer = tCurrent;
     tCurrent = this;

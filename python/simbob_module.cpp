@@ -9,7 +9,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <thread>
 #include <cmath>
 #include <csignal>
@@ -40,6 +42,11 @@ namespace {
 using simbob::Error;
 using simbob::ErrorKind;
 using simbob::SimTime;
+
+// The last instant of simbob's clock (SimTime counts nanoseconds in an int64; kNever, 2**63 - 1
+// ns, means never): a step or run_until beyond it is refused, never wrapped to a negative time.
+constexpr SimTime kClockEnd = simbob::kNever - 1;
+const char* const kClockEndText = "9.223372036854775807e9";
 
 // The one registry of component types, built at import (as `main` builds the CLI's); plug-ins
 // add to it (load_plugin). Never destroyed: compiled models may point at its types until the
@@ -240,6 +247,16 @@ const char* className(ErrorKind k) {
   raiseError(*chosen, all);
 }
 
+/// A path argument (str, bytes or os.PathLike) as a string. A NUL in it is refused: the C calls
+/// underneath would read the path only up to it, and open another file without a word.
+std::string pathArg(const py::object& path, const char* what) {
+  const std::string p = py::module_::import("os").attr("fspath")(path).cast<std::string>();
+  if (p.find('\0') != std::string::npos)
+    raiseUsage(std::string(what) + " " + py::repr(path).cast<std::string>() +
+               " holds a NUL character, which no file name can hold");
+  return p;
+}
+
 // ---- overrides: a dict {"KEY.PARAM": value} or a list of "KEY.PARAM=VALUE" ----
 
 std::string valueText(const py::handle& v) {
@@ -302,7 +319,7 @@ class PyController : public simbob::Party {
       fn_(sim_);
     } catch (py::error_already_set& e) {
       pending_ = std::make_unique<py::error_already_set>(std::move(e));
-      failure_ = Error{ErrorKind::ControllerFailed, loc, name + " raised " + std::string(pending_->what())};
+      failure_ = Error{ErrorKind::ControllerFailed, loc, name + " raised " + oneLine(*pending_)};
       return simbob::kNever;
     } catch (const std::exception& e) {
       failure_ = Error{ErrorKind::ControllerFailed, loc, name + " failed: " + e.what()};
@@ -315,6 +332,20 @@ class PyController : public simbob::Party {
   std::unique_ptr<py::error_already_set> takePending() { return std::move(pending_); }
 
  private:
+  /// "ValueError: the first line of its message", or the class alone ("KeyboardInterrupt"): the
+  /// run's error says it again at every later call, in one line (no traceback).
+  static std::string oneLine(const py::error_already_set& e) {
+    std::string out = "an exception";
+    try {
+      out = py::str(e.type().attr("__name__")).cast<std::string>();
+      std::string text = e.value() && !e.value().is_none() ? py::str(e.value()).cast<std::string>() : "";
+      text = text.substr(0, text.find('\n'));
+      if (!text.empty()) out += ": " + text;
+    } catch (...) {  // NOLINT(bugprone-empty-catch): a class or message that cannot be read leaves the default
+    }
+    return out;
+  }
+
   SimTime nextAfter(SimTime now) const {
     const SimTime k = now / period_ + 1;
     return k > simbob::kNever / period_ ? simbob::kNever : k * period_;
@@ -336,9 +367,16 @@ class PySimulation {
     opts.overrides = parseOverrides(overrides);
     opts.seed = seed;
     if (!dt.is_none()) {
-      const double h = dt.cast<double>();
+      const py::object real = py::module_::import("numbers").attr("Real");
+      double h = std::nan("");
+      if (!py::isinstance<py::bool_>(dt) && py::isinstance(dt, real)) {
+        try {
+          h = py::float_(dt).cast<double>();
+        } catch (py::error_already_set&) {  // OverflowError of an int beyond a double: out of range below
+        }
+      }
       if (!(h >= 1e-9 && h <= 1e9))
-        raiseUsage("dt must be between 1e-9 and 1e9 s, got " + py::repr(dt).cast<std::string>());
+        raiseUsage("dt must be a number of seconds from 1e-9 to 1e9, got " + py::repr(dt).cast<std::string>());
       opts.dt = h;
     }
     simbob::Diagnostics diag;
@@ -389,27 +427,24 @@ class PySimulation {
 
   void step(uint64_t n) {
     Busy b(*this, false);
-    bool ok;
-    if (controllers_.empty()) {
-      py::gil_scoped_release nogil;
-      ok = sim_->step(n);
-    } else {
-      ok = sim_->step(n);
-    }
-    check(ok);
+    // The clock counts nanoseconds in 63 bits: refuse what would pass its end (the time would
+    // wrap to a negative one), before anything moves.
+    const SimTime now = sim_->now(), h = stepNs();
+    const uint64_t room = static_cast<uint64_t>((kClockEnd - now) / h);
+    if (n > room)
+      raiseUsage("step(" + std::to_string(n) + "): the time would pass " + kClockEndText +
+                 " s (2**63 ns), the end of simbob's clock: at most " + std::to_string(room) + " more steps of " +
+                 simbob::formatNumber(sim_->stepSize()) + " s from t=" + simbob::formatNumber(sim_->time()) + " s");
+    check(stepSliced(n));
   }
 
   void runUntil(double t) {
-    if (!std::isfinite(t)) raiseUsage("run_until: the time must be finite, got " + std::to_string(t));
+    if (!std::isfinite(t)) raiseUsage("run_until: the time must be finite, got " + simbob::formatNumber(t));
+    if (!simbob::toSimTime(t) || *simbob::toSimTime(t) > kClockEnd)
+      raiseUsage("run_until: t=" + simbob::formatNumber(t) + " s is beyond the end of simbob's clock (" +
+                 kClockEndText + " s: 2**63 ns)");
     Busy b(*this, false);
-    bool ok;
-    if (controllers_.empty()) {
-      py::gil_scoped_release nogil;
-      ok = sim_->runUntil(t);
-    } else {
-      ok = sim_->runUntil(t);
-    }
-    check(ok);
+    check(runUntilSliced(t));
   }
 
   // The parties due at the current instant are served first (step(0), as step() would), so the
@@ -466,7 +501,9 @@ class PySimulation {
   void addController(py::handle self, double period, py::function fn) {
     Busy b(*this, false);
     const std::optional<SimTime> p = std::isfinite(period) && period > 0 ? simbob::toSimTime(period) : std::nullopt;
-    if (!p || *p < 1) raiseUsage("add_controller: the period must be at least 1e-9 s, got " + std::to_string(period));
+    if (!p || *p < 1 || *p > kClockEnd)
+      raiseUsage("add_controller: the period must be from 1e-9 s to " + std::string(kClockEndText) +
+                 " s (the clock's range), got " + simbob::formatNumber(period));
     // Named after fn and placed where add_controller was called, for the run's messages.
     std::string what = "Python controller";
     if (py::hasattr(fn, "__qualname__")) what += " '" + py::str(fn.attr("__qualname__")).cast<std::string>() + "'";
@@ -481,6 +518,58 @@ class PySimulation {
 
   const std::vector<std::string>& warnings() const { return warnings_; }
   const std::string& scene() const { return scene_; }
+
+  /// The run's step in ns (whole: the clock's grid).
+  SimTime stepNs() const { return std::max<SimTime>(1, *simbob::toSimTime(sim_->stepSize())); }
+
+  // A long call runs in slices of about 10 ms of wall-clock time, so that Ctrl-C (SIGINT,
+  // Python's KeyboardInterrupt) stops it at a grid instant with the run usable from there:
+  // between slices the GIL is taken back (when it was released) and Python's signal handlers run;
+  // an exception from them is raised from the call. Slicing does not change the run: step(a)
+  // then step(b) is step(a + b), and runUntil through earlier instants reaches the instant
+  // runUntil alone does (docs/python.md).
+  using Wall = std::chrono::steady_clock;
+  /// Steps in the first slice: a short call (step(37)) is one slice, as it was one call.
+  static constexpr uint64_t kFirstSlice = 32;
+
+  /// f() with the GIL released unless a Python controller needs it.
+  template <class F>
+  bool unlocked(F f) {
+    if (!controllers_.empty()) return f();
+    py::gil_scoped_release nogil;
+    return f();
+  }
+
+  /// Between two slices: the next slice aims at about 10 ms; Python's signal handlers run.
+  static void betweenSlices(Wall::time_point start, uint64_t* slice) {
+    const double took = std::chrono::duration<double>(Wall::now() - start).count();
+    if (took < 0.005 && *slice < (uint64_t{1} << 40)) *slice *= 2;
+    if (took > 0.02 && *slice > 1) *slice /= 2;
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  }
+
+  bool stepSliced(uint64_t n) {
+    uint64_t slice = kFirstSlice;
+    while (true) {
+      const uint64_t k = std::min(n, slice);
+      const Wall::time_point start = Wall::now();
+      if (!unlocked([&] { return sim_->step(k); })) return false;
+      n -= k;
+      if (n == 0) return true;
+      betweenSlices(start, &slice);
+    }
+  }
+
+  bool runUntilSliced(double t) {
+    uint64_t slice = kFirstSlice;
+    while (true) {
+      const double next = sim_->time() + static_cast<double>(slice) * sim_->stepSize();
+      if (!(next < t)) return unlocked([&] { return sim_->runUntil(t); });
+      const Wall::time_point start = Wall::now();
+      if (!unlocked([&] { return sim_->runUntil(next); })) return false;
+      betweenSlices(start, &slice);
+    }
+  }
 
   // Raises the run's stop: a Python controller's exception as it was, else the run's error.
   void check(bool ok) {
@@ -540,9 +629,11 @@ int actuatorIndex(PySimulation& s, const py::object& key) {
                (list.empty() ? " (it has none)" : " (its actuators: " + list + ")"));
   }
   if (py::isinstance<py::int_>(key) && !py::isinstance<py::bool_>(key)) {
-    const long long i = key.cast<long long>();
-    if (i < 0 || i >= static_cast<long long>(acts.size()))
-      raiseUsage("no actuator " + std::to_string(i) + " (the scene has " + std::to_string(acts.size()) + ")");
+    int overflow = 0;  // an int beyond 64 bits (2**70) is out of range too, not a bare RuntimeError
+    const long long i = PyLong_AsLongLongAndOverflow(key.ptr(), &overflow);
+    if (overflow != 0 || i < 0 || i >= static_cast<long long>(acts.size()))
+      raiseUsage("no actuator " + py::str(key).cast<std::string>() + " (the scene has " + std::to_string(acts.size()) +
+                 ")");
     return static_cast<int>(i);
   }
   raiseUsage("set_command: an actuator is a key (str) or an index (int), got " + py::repr(key).cast<std::string>());
@@ -710,7 +801,7 @@ Errors are simbob.Error subclasses carrying kind, file, line and message.)";
   m.def(
       "load_plugin",
       [](const py::object& path) {
-        const std::string p = py::module_::import("os").attr("fspath")(path).cast<std::string>();
+        const std::string p = pathArg(path, "load_plugin: the path");
         Error e;
         if (!simbob::loadPluginLibrary(registry(), p, &e)) raiseError(e);
       },
@@ -764,7 +855,7 @@ UsageError). Any number of Simulations may live in one process; each gives the s
 numbers as it would alone.)");
 
   cls.def(py::init([](const py::object& scene, const py::object& overrides, uint32_t seed, const py::object& dt) {
-            const std::string path = py::module_::import("os").attr("fspath")(scene).cast<std::string>();
+            const std::string path = pathArg(scene, "the scene path");
             return std::make_unique<PySimulation>(path, overrides, seed, dt, nullptr);
           }),
           py::arg("scene"), py::arg("overrides") = py::none(), py::arg("seed") = 0, py::arg("dt") = py::none(),
@@ -789,8 +880,10 @@ Raises:
 The scene's warnings (`simbob check`'s) are in `warnings`.)");
   cls.def_static(
       "from_text",
-      [](const std::string& text, const std::string& name, const py::object& overrides, uint32_t seed,
-         const py::object& dt) { return std::make_unique<PySimulation>(name, overrides, seed, dt, &text); },
+      [](const std::string& text, const py::object& name, const py::object& overrides, uint32_t seed,
+         const py::object& dt) {
+        return std::make_unique<PySimulation>(pathArg(name, "from_text: the name"), overrides, seed, dt, &text);
+      },
       py::arg("text"), py::arg("name") = "scene.xml", py::arg("overrides") = py::none(), py::arg("seed") = 0,
       py::arg("dt") = py::none(),
       R"(The same as Simulation(...) from scene text in memory. `name` stands for the file
@@ -857,6 +950,16 @@ keep the GIL. An exception from fn stops the run; step() re-raises it.)");
   cls.def_property_readonly(
       "sensor_keys", [](PySimulation& s) { return keysOf(s.sim().model().sensors); },
       "Fully qualified keys of the sensors (every kind), in the order of touching().");
+  cls.def_property_readonly(
+      "programs",
+      [](PySimulation& s) {
+        std::vector<std::string> out;
+        for (const simbob::SocketDef& d : s.sim().model().sockets)
+          if (!d.controller.empty()) out.push_back(d.key);
+        return out;
+      },
+      R"(Keys of the RCLocalSocketCommunicators whose Controller program this Simulation started
+(a child process, ended with the run or at reset()): the programs a scene runs.)");
 
   cls.def(
       "poses",

@@ -52,6 +52,7 @@ struct GeomDef {
   std::string key;  ///< qualified key of the owning body (for messages)
   GeomShape shape = GeomShape::Box;
   int body = -1;                            ///< index into Model::bodies; -1 = static (world) geom
+  int static_body = -1;                     ///< body == -1: the static body it belongs to (its number)
   Transform offset;                         ///< relative to the body frame, or global when body == -1
   Vec3 size{0, 0, 0};                       ///< see GeomShape
   std::array<double, 4> plane{0, 1, 0, 0};  ///< Plane only, global
@@ -67,6 +68,7 @@ struct JointDef {
   JointKind kind = JointKind::BallSocket;
   int body1 = -1;        ///< parent body index, -1 = the static world
   int body2 = -1;        ///< child body index, -1 = the static world (not both -1)
+  int static_body = -1;  ///< body1 or body2 == -1: the static body it joins (GeomDef::static_body), if known
   Vec3 anchor{0, 0, 0};  ///< global, m (BallSocket, Hinge)
   Vec3 axis{0, 0, 1};    ///< global unit vector (Hinge, Slider)
 };
@@ -91,6 +93,7 @@ struct ActuatorDef {
   double smooth = 1.0;                                        ///< Servo: s, time constant of the final approach
   // Plugin only:
   int body = -1;                       ///< index into Model::bodies it pushes; -1 = static (pushes nothing)
+  int static_body = -1;                ///< body == -1: the static body it is mounted on (GeomDef::static_body)
   Transform pose;                      ///< its mount relative to the body's frame (global if body == -1)
   const SimbobType* plugin = nullptr;  ///< the plug-in's type (simbob/plugin_c.h)
   std::vector<double> numbers;         ///< its number parameters, in the order the type declares them
@@ -119,15 +122,16 @@ struct SensorDef {
   std::string key;  ///< fully qualified key of the periphery
   SourceLoc loc;
   SensorKind kind = SensorKind::Proximity;
-  int body = -1;            ///< index into Model::bodies it is attached to; -1 = static (fixed in the world)
-  std::vector<int> geoms;   ///< Proximity: indices into Model::geoms, each with sensor = true
-  Transform pose;           ///< Range, Scanner, Imu: sensor frame relative to the body's frame (global if body == -1)
-  double period = 0.0;      ///< s; > 0: the reading updates only at the grid instants at or after multiples of it
-  double min_range = 0.0;   ///< m (Range, Scanner): hits closer than this read min_range
-  double max_range = 5.0;   ///< m (Range, Scanner): the reading when nothing is hit
-  double noise = 0.0;       ///< standard deviation: m (Range, Scanner), m/s^2 (Imu accelerometer)
-  double resolution = 0.0;  ///< Range, Scanner: quantisation step (m, 0 = none); Encoder: ticks per turn
-  int rays = 1;             ///< Scanner: number of rays (>= 1)
+  int body = -1;           ///< index into Model::bodies it is attached to; -1 = static (fixed in the world)
+  int static_body = -1;    ///< body == -1: the static body it is mounted on (GeomDef::static_body): rays skip its geoms
+  std::vector<int> geoms;  ///< Proximity: indices into Model::geoms, each with sensor = true
+  Transform pose;          ///< Range, Scanner, Imu: sensor frame relative to the body's frame (global if body == -1)
+  double period = 0.0;     ///< s; > 0: the reading updates only at the grid instants at or after multiples of it
+  double min_range = 0.0;  ///< m (Range, Scanner): hits closer than this read min_range
+  double max_range = 5.0;  ///< m (Range, Scanner): the reading when nothing is hit
+  double noise = 0.0;      ///< standard deviation: m (Range, Scanner), m/s^2 (Imu accelerometer)
+  double resolution = 0.0;              ///< Range, Scanner: quantisation step (m, 0 = none); Encoder: ticks per turn
+  int rays = 1;                         ///< Scanner: number of rays (>= 1)
   double field_of_view = 180.0;         ///< Scanner: degrees, (0, 360]
   double gyro_noise = 0.0;              ///< Imu: standard deviation of the gyro (rad/s)
   Vec3 accel_bias{0, 0, 0};             ///< Imu: constant accelerometer bias (m/s^2, sensor frame)

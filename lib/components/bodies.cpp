@@ -96,7 +96,8 @@ Built lowerUncached(CompileContext& ctx, int ci, const Transform* parent) {
     case BodyKind::StaticRigid: {
       if (!lowerPose(ctx, c.get(kPose), c, parent, &out.frame)) return out;
       checkModelTree(ctx, c.get(kModel));
-      GeomTarget t{&c, -1, out.frame, lowerMaterial(ctx, c.get(kMaterial)), &c.get(kModel)};
+      out.static_id = ctx.static_bodies++;
+      GeomTarget t{&c, -1, out.frame, lowerMaterial(ctx, c.get(kMaterial)), &c.get(kModel), out.static_id};
       lowerGeom(ctx, c.get(kGeom), t, Transform{});
       lowerVisuals(ctx, c.get(kModel), -1, out.frame, c.qkey);
       out.ok = true;

@@ -88,6 +88,7 @@ void lowerGeom(CompileContext& ctx, const Link& l, const GeomTarget& t, const Tr
   GeomDef g;
   g.key = ctx.modelKey(*t.owner);
   g.body = t.body;
+  g.static_body = t.static_body;
   g.material = t.material;
   g.offset = offset;
   switch (static_cast<GeomKind>(c.type->kind)) {

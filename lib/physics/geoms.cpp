@@ -91,7 +91,7 @@ void createGeoms(WorldImpl& im, const Model& model) {
     // ODE's user data is a pointer; the geom's index travels in it (read back in contacts.cpp).
     dGeomSetData(g, reinterpret_cast<void*>(static_cast<intptr_t>(gi)));  // NOLINT(performance-no-int-to-ptr)
     const MaterialDef& mat = model.materials[static_cast<size_t>(gd.material)];
-    im.geomInfo.push_back({mat.friction, mat.bounceness, mat.min_bounce_vel, gd.sensor});
+    im.geomInfo.push_back({mat.friction, mat.bounceness, mat.min_bounce_vel, gd.sensor, gd.static_body});
     im.geoms.push_back(g);
   }
 }

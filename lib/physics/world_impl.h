@@ -43,6 +43,7 @@ struct GeomInfo {
   double bounceness;    ///< restitution in [0,1]
   double minBounceVel;  ///< m/s
   bool sensor;          ///< creates no contact joints
+  int staticBody;       ///< a static geom: the static body it belongs to (GeomDef::static_body), else -1
 };
 
 /// What joint state needs beyond the ODE joint: its kind and ODE's reading at the start pose.
@@ -100,10 +101,13 @@ struct WorldImpl {
   std::vector<JointInfo> jointInfo;
   std::vector<ActuatorState> actuators;
   std::vector<SensorState> sensors;
-  HashSpacePairs hashPairs;             ///< broadphase.h: the default space's pairs, faster
-  dGeomID ray = nullptr;                ///< rays.cpp: the one ray of range sensors and scanners, in no space
-  dGeomID rayReach = nullptr;           ///< rays.cpp: a box about a sensor's reach, in no space
-  std::vector<dGeomID> rayCandidates;   ///< rays.cpp: the geoms within a sensor's reach
+  HashSpacePairs hashPairs;            ///< broadphase.h: the default space's pairs, faster
+  dGeomID ray = nullptr;               ///< rays.cpp: the one ray of range sensors and scanners, in no space
+  dGeomID rayReach = nullptr;          ///< rays.cpp: a box about a sensor's reach, in no space
+  std::vector<dGeomID> rayCandidates;  ///< rays.cpp: the geoms within a sensor's reach
+  /// Per static body (GeomDef::static_body): the mobile bodies joined to it, which the rays of a
+  /// sensor mounted on it do not see (joints.cpp).
+  std::vector<std::vector<dBodyID>> staticJoined;
   Vec3 gravity{0, 0, 0};                ///< m/s^2 (imu.cpp: specific force = acceleration - gravity)
   int64_t time_ns = 0;                  ///< simulated time: the sum of the steps taken (ns)
   std::vector<dContact> contactBuffer;  ///< sized max_contacts once; reused by every collision
@@ -177,10 +181,11 @@ Transform sensorFrame(const WorldImpl& im, const SensorDef& d);
 
 // rays.cpp
 /// Collects in im.rayCandidates the geoms of the collision space whose bounding boxes meet the
-/// cube of half side `reach` about `origin` and that belong to neither `own` nor a body joined
-/// to it (null `own`: static geoms are skipped): every geom a ray of length <= reach from
-/// `origin` can hit.
-void gatherRayCandidates(WorldImpl& im, dBodyID own, const Vec3& origin, double reach);
+/// cube of half side `reach` about `origin` and that belong neither to the sensor's own body nor
+/// to a body joined to it -- mobile body `body`, or for a static mount (body -1) static body
+/// `static_body` (GeomDef::static_body) -- : every geom a ray of length <= reach from `origin`
+/// can hit.
+void gatherRayCandidates(WorldImpl& im, int body, int static_body, const Vec3& origin, double reach);
 /// Distance (m) along the ray from `origin` in unit direction `dir` to the nearest of
 /// im.rayCandidates (gathered for this origin and a reach >= `length`), or +infinity when
 /// nothing is hit within `length`.

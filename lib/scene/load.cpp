@@ -516,6 +516,11 @@ bool loadFromText(std::string text, const std::string& name, Format format, cons
                   Diagnostics& diag) {
   *scene = Scene{};
   scene->path = name;
+  if (text.size() > kMaxSceneFileBytes) {  // scene text from memory (Python's from_text) has a file's limit
+    diag.error({name, 0}, "cannot read scene: larger than " + std::to_string(kMaxSceneFileBytes >> 20) + " MiB",
+               ErrorKind::InvalidInput);
+    return false;
+  }
   Builder b(reg, *scene, diag);
   b.addFile(name, text);
   std::error_code ec;

@@ -25,8 +25,8 @@
   // A trajectory: times, and per body 7 floats per sample (x y z qw qx qy qz, NaN = no row),
   // positions relative to the body's origin.
   function decodeTrajectory(t) {
-    const out = { bodies: t.bodies, times: f64(t.times), origins: t.origins, poses: f32(t.poses), index: {} };
-    t.bodies.forEach((key, i) => { out.index[key] = i; });
+    const out = { bodies: t.bodies, times: f64(t.times), origins: t.origins, poses: f32(t.poses), index: new Map() };
+    t.bodies.forEach((key, i) => { out.index.set(key, i); });
     out.count = out.times.length;
     // The pose of body b at sample s as [x, y z, qw, qx, qy, qz] in doubles, or null.
     out.pose = function (b, s) {
@@ -63,6 +63,7 @@
   const actual = decodeTrajectory(data.actual);
   const golden = data.golden ? decodeTrajectory(data.golden) : null;
   const compare = data.compare || null;
+  const compareErrors = new Map(compare ? Object.entries(compare.errors) : []);  // body -> its error series
   timings.decoded = performance.now();
 
   // ---- three.js scene: renderer, light, background, fog ----
@@ -116,7 +117,8 @@
       pendingTextures++;
       img.onload = () => { pendingTextures--; for (const t of users) t.needsUpdate = true; };
       img.onerror = () => { pendingTextures--; console.error('simbob view: texture of skin ' + s.key + ' did not load'); };
-      img.src = s.texture;
+      // Only the data: URL page.cpp embeds: a page never fetches, nor runs, what a link names.
+      if (/^data:image\/(png|bmp|jpeg|gif);base64,/.test(s.texture)) img.src = s.texture; else img.onerror();
       m.map = new THREE.Texture(img);
       m.map.wrapS = m.map.wrapT = THREE.RepeatWrapping;
       imageUsers.set(img, users);
@@ -218,8 +220,10 @@
 
   // ---- Bodies: one group per trajectory body, holding its models; its collision shapes in a
   // second group that moves with it. Model bodies are matched to trajectory bodies by key. ----
-  const modelBodyIndex = {};
-  model.bodies.forEach((b, i) => { modelBodyIndex[b.key] = i; });
+  // Keys are the scene's and the CSV's text: every lookup by key goes through a Map (or an object
+  // without a prototype), so that 'constructor' or '__proto__' is a name like any other.
+  const modelBodyIndex = new Map();
+  model.bodies.forEach((b, i) => { modelBodyIndex.set(b.key, i); });
   const visualsOf = model.bodies.map(() => []);
   const geomsOf = model.bodies.map(() => []);
   const staticVisuals = [], staticGeoms = [];
@@ -235,7 +239,7 @@
     }
 
   const bodies = actual.bodies.map((key, i) => {
-    const mi = modelBodyIndex[key];
+    const mi = modelBodyIndex.get(key);
     const group = new THREE.Group();
     group.name = key;
     group.userData.body = i;
@@ -333,7 +337,7 @@
   // Golden ghosts: the golden run's bodies, translucent, with the same models (or shapes).
   const ghostMaterial = new THREE.MeshBasicMaterial({ color: 0x88aaff, transparent: true, opacity: 0.35, depthWrite: false });
   const ghosts = golden ? golden.bodies.map((key, i) => {
-    const mi = modelBodyIndex[key];
+    const mi = modelBodyIndex.get(key);
     const group = new THREE.Group();
     group.name = 'golden:' + key;
     const vis = mi === undefined ? [] : visualsOf[mi];
@@ -378,7 +382,7 @@
   // ---- Cameras: the orbit camera, and the scene's (static, mounted, spotlight, tracking) ----
   const camera = new THREE.PerspectiveCamera(60, 1, 0.05, 5000);
   const controls = new THREE.OrbitControls(camera, renderer.domElement);
-  const cameraState = {};  // per scene camera: tracking position, spotlight's first distance
+  const cameraState = new Map();  // per scene camera: tracking position, spotlight's first distance
   function frameAll() {
     // The default view of the renderer: from +Z and a little above, far enough to see everything.
     const box = new THREE.Box3();
@@ -408,7 +412,7 @@
   }
   function bodyPoseOf(modelIndex, sample = state.sample) {
     const key = modelIndex >= 0 ? model.bodies[modelIndex].key : null;
-    const i = key === null ? undefined : actual.index[key];
+    const i = key === null ? undefined : actual.index.get(key);
     return i === undefined ? null : actual.pose(i, sample);
   }
   // Where a camera looks (its body's position at a sample, else its fixed target).
@@ -440,7 +444,8 @@
     return due === 0 ? st.frames[0] : pull(st.frames[due - 1], targetAt(c, state.sample));
   }
   function placeSceneCamera(c, aspect) {
-    const st = cameraState[c.key] || (cameraState[c.key] = {});
+    if (!cameraState.has(c.key)) cameraState.set(c.key, {});
+    const st = cameraState.get(c.key);
     let va = c.view_angle;
     const bp = bodyPoseOf(c.body);
     const target = bp ? new THREE.Vector3(bp[0], bp[1], bp[2]) : new THREE.Vector3(c.target[0], c.target[1], c.target[2]);
@@ -500,7 +505,7 @@
     highlight.visible = b.group.visible;
     const p = actual.pose(i, state.sample);
     let text = b.key + '\n' + (p ? 'position  ' + p.slice(0, 3).map(fmt).join(' ') + ' m\nrotation  ' + p.slice(3).map(fmt).join(' ') + ' (w x y z)' : 'no row at this time');
-    if (compare && compare.errors[b.key]) {
+    if (compareErrors.has(b.key)) {
       const e = errorSeries(b.key);
       const k = seriesIndexAt(state.time);
       if (k >= 0) text += '\nvs golden  ' + fmt(e.pos[k]) + ' m, ' + fmt(e.rot[k]) + ' rad';
@@ -508,10 +513,13 @@
     $('pose').textContent = text;
     $('pose').classList.remove('muted');
   }
-  const errorCache = {};
+  const errorCache = new Map();
   function errorSeries(key) {
-    if (!errorCache[key]) errorCache[key] = { pos: f32(compare.errors[key].pos), rot: f32(compare.errors[key].rot) };
-    return errorCache[key];
+    if (!errorCache.has(key)) {
+      const e = compareErrors.get(key);
+      errorCache.set(key, { pos: f32(e.pos), rot: f32(e.rot) });
+    }
+    return errorCache.get(key);
   }
   const compareTimes = compare ? f64(compare.times) : new Float64Array(0);
   function seriesIndexAt(t) {
@@ -530,7 +538,7 @@
     const key = i >= 0 ? bodies[i].key : null;
     g.fillStyle = '#555';
     g.font = '11px sans-serif';
-    if (!key || !compare.errors[key]) { g.fillText(key ? 'not in the golden run' : 'select a body', 8, 16); return; }
+    if (!key || !compareErrors.has(key)) { g.fillText(key ? 'not in the golden run' : 'select a body', 8, 16); return; }
     const e = errorSeries(key);
     const n = compareTimes.length;
     if (n === 0) return;
@@ -582,7 +590,7 @@
     const f = new URLSearchParams(location.hash.replace(/^#/, ''));
     if (f.has('camera')) setCamera(f.get('camera'));
     if (f.has('body')) {
-      const i = actual.index[f.get('body')];
+      const i = actual.index.get(f.get('body'));
       if (i === undefined) console.warn('simbob view: no body ' + f.get('body') + ' in the trajectory'); else select(i);
     }
     if (f.has('t')) {
@@ -602,7 +610,9 @@
 
   // ---- Controls of the page ----
   $('title').textContent = data.title;
-  $('scene').textContent = (data.scene ? data.scene + ' \u2014 ' : '') + actual.bodies.length + ' bodies, ' + actual.count + ' samples';
+  const count = (n, one, many) => n + ' ' + (n === 1 ? one : many);
+  $('scene').textContent = (data.scene ? data.scene + ' \u2014 ' : '') + count(actual.bodies.length, 'body', 'bodies') + ', ' +
+    count(actual.count, 'sample', 'samples');
   const camSelect = $('camera');
   camSelect.add(new Option('orbit (drag to turn)', 'orbit'));
   for (const c of model.cameras) camSelect.add(new Option(c.key + ' (' + c.kind + ')', c.key));
@@ -733,7 +743,7 @@
 
   // ---- The test hook (tests/view/): seek, read back the poses shown, render now ----
   const posesOf = (list) => {
-    const out = {};
+    const out = Object.create(null);
     for (const b of list) {
       const o = b.group;
       out[b.key] = o.visible ? [o.position.x, o.position.y, o.position.z, o.quaternion.w, o.quaternion.x, o.quaternion.y, o.quaternion.z] : null;
@@ -743,7 +753,7 @@
   // The poses the instanced meshes draw: each instanced body's matrix in its batch's first mesh,
   // back through the mesh's place in the body (float32 matrices: not bit-equal to poses()).
   const instancedPoses = () => {
-    const out = {};
+    const out = Object.create(null);
     const m = new THREE.Matrix4(), p = new THREE.Vector3(), q = new THREE.Quaternion(), s = new THREE.Vector3();
     for (const b of bodies) {
       if (!b.batch) continue;
@@ -766,7 +776,7 @@
     goldenPoses: () => posesOf(ghosts),
     camera: () => state.camera,
     setCamera(name) { setCamera(name); draw(); },
-    select(key) { select(actual.index[key]); },
+    select(key) { if (actual.index.has(key)) select(actual.index.get(key)); },
     selected: () => (state.selected >= 0 ? bodies[state.selected].key : null),
     play() { if (!state.playing) $('play').onclick(); },
     playing: () => state.playing,

@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <utility>
 
 #include "simbob/compile.h"
+#include "simbob/files.h"
 #include "simbob/robot.h"
 #include "simbob/values.h"
 #include "simulation/camera_sensors.h"
@@ -23,6 +25,37 @@ std::unique_ptr<Simulation> compiled(bool loaded, Scene& scene, const Simulation
   if (!loaded || !applyOverrides(scene, opts.overrides, diag) || !compileScene(scene, &model, diag)) return nullptr;
   lintModel(model, diag, opts.dt);
   return Simulation::fromModel(std::move(model), opts, diag);
+}
+
+/// Where the controller's log would overwrite one of its inputs -- the program (words[0], found
+/// on PATH as execvp does) or a file named on its command line, both as seen from the folder it
+/// runs in -- what that input is; else "".
+std::string controllerLogClash(const SocketDef& d) {
+  std::vector<std::string> words;
+  std::string problem;
+  if (d.controller_log.empty() || !splitCommandLine(d.controller, &words, &problem)) return "";
+  auto inFolder = [&](const std::string& w) {
+    return w.empty() || w[0] == '/' || d.controller_dir.empty() ? w : d.controller_dir + "/" + w;
+  };
+  const char* env_path = std::getenv("PATH");
+  const std::string path = env_path ? env_path : "";
+  for (size_t i = 0; i < words.size(); ++i) {
+    std::vector<std::string> places = {inFolder(words[i])};
+    if (i == 0 && words[0].find('/') == std::string::npos && env_path) {
+      places.clear();
+      for (size_t at = 0;;) {
+        const size_t colon = path.find(':', at);
+        const std::string dir = path.substr(at, colon == std::string::npos ? std::string::npos : colon - at);
+        places.push_back(inFolder((dir.empty() ? "." : dir) + "/" + words[0]));
+        if (colon == std::string::npos) break;
+        at = colon + 1;
+      }
+    }
+    for (const std::string& p : places)
+      if (sameExistingFile(p, d.controller_log))
+        return (i == 0 ? "the controller program " : "a file on the controller's command line ") + quoteInput(p, 400);
+  }
+  return "";
 }
 
 }  // namespace
@@ -99,6 +132,16 @@ std::unique_ptr<Simulation> Simulation::fromModel(Model model, const SimulationO
   for (SocketDef& d : model.sockets)
     if (!d.controller.empty() && !opts.controller_log.empty())
       d.controller_log = started > 1 ? opts.controller_log + "." + d.key : opts.controller_log;
+  for (const SocketDef& d : model.sockets) {
+    const std::string input = controllerLogClash(d);
+    if (input.empty()) continue;
+    // Controller programs and their files are inputs: the log is never opened over one.
+    diag.error(d.loc,
+               "RCLocalSocketCommunicator '" + d.key + "': its controller's log " + quoteInput(d.controller_log, 400) +
+                   " is " + input + ": an output must not overwrite an input",
+               ErrorKind::Usage);
+    return nullptr;
+  }
   std::unique_ptr<Simulation> sim(new Simulation(std::move(model), opts));
   if (!sim->model_.camera_sensors.empty()) {
     Error err;

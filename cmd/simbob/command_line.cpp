@@ -14,6 +14,8 @@ void addCommon(CLI::App* app, Common& c) {
   app->add_option("--log-file", c.log_file, "Also append log messages to this file");
   app->add_option("--settings", c.settings, "Global settings INI (LogFile, ExtensionFolder, TextureFolder)");
   app->add_option("--plugin", c.plugins, "Load component types from this shared library (repeatable)");
+  app->add_flag("--no-controllers", c.no_controllers,
+                "Refuse a scene that would start a program (a communicator's Controller); check lists them");
 }
 
 void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {

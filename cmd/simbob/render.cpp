@@ -188,8 +188,8 @@ int renderArgsProblem(const RenderArgs& a) {
 // Simulates up to --at with the controllers acting, as `run` would: a Simulation whose parties
 // (after the scene's) are the frames a recording would follow, then the still. 0, or the exit
 // status (reported).
-int simulateTo(const RenderArgs& a, const Model& model, const RenderOptions& ro, Renderer& renderer,
-               std::vector<Transform>* poses) {
+int simulateTo(const RenderArgs& a, const Common& common, const Model& model, const RenderOptions& ro,
+               Renderer& renderer, std::vector<Transform>* poses) {
   // Simulate up to T with the controllers acting, as `run` would: a Simulation whose
   // parties (after the scene's) are the frames a recording would follow, then the still.
   catchStopSignals();
@@ -198,6 +198,7 @@ int simulateTo(const RenderArgs& a, const Model& model, const RenderOptions& ro,
   so.dt = a.dt;
   so.seed = a.seed;
   so.stop = &g_stop;
+  so.no_controllers = common.no_controllers;
   Diagnostics sd;
   std::unique_ptr<Simulation> sim = Simulation::fromModel(model, so, sd);
   if (!sim) return report(sd, false);
@@ -249,7 +250,7 @@ int cmdRender(const RenderArgs& a, const Common& common) {
   }
   std::vector<Transform> poses = initialPoses(model);
   if (a.at > 0 || ro.draw_sensors)  // the rays need the readings: a world at T
-    if (int c = simulateTo(a, model, ro, *renderer, &poses)) return c;
+    if (int c = simulateTo(a, common, model, ro, *renderer, &poses)) return c;
   Image img;
   if (const Error* e = renderer->render(poses, a.at, &img)) {
     g_log.error(*e);

@@ -209,6 +209,7 @@ int cmdRun(RunArgs& a, const Common& common) {
   if (int c = loadForRun(a, common, &overrides, &scene, &model)) return refused(a, c);
   Progress progress(a.duration, g_log.level != Level::Quiet);
   SimulationOptions so = simulationOptions(a);
+  so.no_controllers = common.no_controllers;
   so.progress = [&](double t) { progress.update(t); };
   std::unique_ptr<Simulation> sim;
   {  // built now, so that options it refuses fail before any output exists

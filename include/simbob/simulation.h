@@ -44,6 +44,9 @@ struct SimulationOptions {
   /// The file that takes the stdout and stderr of the controllers simbob starts ("" = simbob's
   /// stderr); with several, ".KEY" is added to the name of each.
   std::string controller_log;
+  /// Refuse a scene whose communicators would start a program (--no-controllers): for scenes
+  /// from others; a peer of one's own connects with controllers = {"KEY="}.
+  bool no_controllers = false;
   double runaway_limit = 1e6;      ///< m or m/s beyond which a run diverged
   double joint_apart_limit = 0.1;  ///< m between a joint's anchors beyond which it came apart
   /// Set asynchronously (SIGINT/SIGTERM) to stop at the next step.
@@ -67,6 +70,10 @@ struct RunSummaryInput {
 
 /// "completed", "diverged", "interrupted" or "failed".
 const char* runStatusName(RunStatus s);
+
+/// The folder communicator `d`'s Controller runs in, absolute (the scene's folder, or the
+/// current one for --controller).
+std::string controllerFolder(const SocketDef& d);
 
 /// The run summary JSON (docs/formats.md): version, scene, status, step, times, settings,
 /// counts, speed (waiting for peers excluded) and what reproducibility depends on. Clients

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <utility>
 
 #include "simbob/compile.h"
@@ -59,6 +60,13 @@ std::string controllerLogClash(const SocketDef& d) {
 }
 
 }  // namespace
+
+std::string controllerFolder(const SocketDef& d) {
+  std::error_code ec;
+  const std::filesystem::path dir =
+      d.controller_dir.empty() ? std::filesystem::current_path(ec) : std::filesystem::absolute(d.controller_dir, ec);
+  return ec ? d.controller_dir : dir.lexically_normal().string();
+}
 
 Simulation::Simulation(Model model, SimulationOptions opts) : model_(std::move(model)), opts_(std::move(opts)) {}
 
@@ -127,6 +135,15 @@ std::unique_ptr<Simulation> Simulation::fromModel(Model model, const SimulationO
     it->controller = command;
     it->controller_dir.clear();  // relative to where simbob runs, as any path on its command line
   }
+  for (const SocketDef& d : model.sockets)
+    if (opts.no_controllers && !d.controller.empty()) {
+      diag.error(d.loc,
+                 "RCLocalSocketCommunicator '" + d.key + "' would start the program '" + quoteInput(d.controller, 400) +
+                     "' in " + quoteInput(controllerFolder(d), 400) + ": --no-controllers refuses it (--controller " +
+                     d.key + "= runs the scene with a peer of your own)",
+                 ErrorKind::Usage);
+      return nullptr;
+    }
   const long started = std::count_if(model.sockets.begin(), model.sockets.end(),
                                      [](const SocketDef& d) { return !d.controller.empty(); });
   for (SocketDef& d : model.sockets)

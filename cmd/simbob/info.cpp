@@ -7,6 +7,7 @@
 #include "simbob/registry.h"
 #include "simbob/simulation.h"
 #include "simbob/values.h"
+#include "simbob/view.h"
 
 namespace simbob::cli {
 
@@ -22,6 +23,7 @@ int cmdCheck(const std::string& path, const Common& common, const std::vector<st
     return code;
   Diagnostics lint;
   lintModel(model, lint, dt);
+  checkTextureBudgets(model, common.texture_folder, lint);
   size_t programs = 0;
   for (const SocketDef& d : model.sockets) {
     if (d.controller.empty()) continue;

@@ -7,7 +7,7 @@
 
 #include "render/gl_context.h"
 #include "render/shapes.h"
-#include "render/texture_file.h"
+#include "image/texture_file.h"
 #include "simbob/render.h"
 #include "simbob/transform.h"
 
@@ -594,7 +594,7 @@ class GlRenderer : public Renderer {
     textures_.assign(skins_.size(), Texture{});
     if (opts_.quality < Quality::Textures) return true;
     // Each file is read and uploaded once, however many skins name it (one GL texture each).
-    render::TextureFiles files;
+    TextureFiles files;
     for (size_t i = 0; i < skins_.size(); ++i) {
       const SkinDef& s = skins_[i];
       if (s.texture.empty()) continue;

@@ -91,8 +91,20 @@
     : view.fog === 'off' ? null : new THREE.FogExp2(rgb(view.fog_color), view.fog_density);
 
   // ---- Materials of the skins (lib/render/renderer.cpp's drawVisual) ----
+  // One image element per texture file (the page holds each once, as PNG); the meshes' textures
+  // (clones with their own repeat) share it and are all updated once it has decoded.
   let pendingTextures = 0;
   const imageUsers = new Map();  // image element -> the textures drawn from it
+  const images = model.textures.map((url, i) => {
+    const img = new Image();
+    imageUsers.set(img, []);
+    pendingTextures++;
+    img.onload = () => { pendingTextures--; for (const t of imageUsers.get(img)) t.needsUpdate = true; };
+    img.onerror = () => { pendingTextures--; console.error('simbob view: texture ' + i + ' did not load'); };
+    // Only the data: URLs page.cpp embeds: a page never fetches, nor runs, what a link names.
+    if (/^data:image\/png;base64,/.test(url)) img.src = url; else img.onerror();
+    return img;
+  });
   const materials = model.skins.map(materialOf);
   function materialOf(s) {
     const alpha = s.color[3];
@@ -109,20 +121,12 @@
         shininess: Math.min(s.shininess, 128),
       }, common));
     }
-    if (s.texture) {
-      // One image element per skin; the meshes' textures (clones with their own repeat) share it
-      // and are all updated once it has decoded.
-      const img = new Image();
-      const users = [];
-      pendingTextures++;
-      img.onload = () => { pendingTextures--; for (const t of users) t.needsUpdate = true; };
-      img.onerror = () => { pendingTextures--; console.error('simbob view: texture of skin ' + s.key + ' did not load'); };
-      // Only the data: URL page.cpp embeds: a page never fetches, nor runs, what a link names.
-      if (/^data:image\/(png|bmp|jpeg|gif);base64,/.test(s.texture)) img.src = s.texture; else img.onerror();
+    if (typeof s.texture === 'number' && images[s.texture]) {
+      const img = images[s.texture];
       m.map = new THREE.Texture(img);
       m.map.wrapS = m.map.wrapT = THREE.RepeatWrapping;
-      imageUsers.set(img, users);
-      users.push(m.map);
+      imageUsers.get(img).push(m.map);
+      if (img.complete && img.naturalWidth) m.map.needsUpdate = true;
       if (!s.colored) m.color = new THREE.Color(1, 1, 1);
     }
     return m;

@@ -23,9 +23,13 @@
   const f64 = (b64) => new Float64Array(bytesOf(b64));
 
   // A trajectory: times, and per body 7 floats per sample (x y z qw qx qy qz, NaN = no row),
-  // positions relative to the body's origin.
+  // positions relative to the body's origin; pose() and poseInto() give them relative to the
+  // page's origin (see ORIGIN) once rebase() has been called.
   function decodeTrajectory(t) {
     const out = { bodies: t.bodies, times: f64(t.times), origins: t.origins, poses: f32(t.poses), index: new Map() };
+    // Per body: its origin less the page's, in doubles (exact where both are whole metres or 0).
+    out.shift = t.origins;
+    out.rebase = (o) => { out.shift = t.origins.map((g) => [g[0] - o[0], g[1] - o[1], g[2] - o[2]]); };
     t.bodies.forEach((key, i) => { out.index.set(key, i); });
     out.count = out.times.length;
     // The pose of body b at sample s as [x, y z, qw, qx, qy, qz] in doubles, or null.
@@ -33,7 +37,7 @@
       const o = (b * out.count + s) * 7;
       const p = out.poses;
       if (s < 0 || s >= out.count || Number.isNaN(p[o])) return null;
-      const g = out.origins[b];
+      const g = out.shift[b];
       return [g[0] + p[o], g[1] + p[o + 1], g[2] + p[o + 2], p[o + 3], p[o + 4], p[o + 5], p[o + 6]];
     };
     // The same into obj's position and quaternion, without allocating (the frame loop's path);
@@ -43,7 +47,7 @@
       const p = out.poses;
       if (s < 0 || s >= out.count) return false;
       for (let k = 0; k < 7; ++k) if (Number.isNaN(p[o + k])) return false;
-      const g = out.origins[b];
+      const g = out.shift[b];
       obj.position.set(g[0] + p[o], g[1] + p[o + 1], g[2] + p[o + 2]);
       obj.quaternion.set(p[o + 4], p[o + 5], p[o + 6], p[o + 3]);
       return true;
@@ -62,6 +66,31 @@
   }
   const actual = decodeTrajectory(data.actual);
   const golden = data.golden ? decodeTrajectory(data.golden) : null;
+  // The page's origin: what three.js calls (0, 0, 0). WebGL and the instance matrices hold
+  // float32, which keeps 0.1 mm only within about 1,000 m, so a run that goes farther is drawn
+  // relative to the middle of its bodies' origins (page.cpp gives a body an origin, a whole
+  // metre, only on an axis where it goes beyond 1,000 m): every position, of the run, the golden
+  // run and the scene's static parts, cameras and light, is moved by -ORIGIN in doubles; the
+  // read-outs and the test hook add it back. 0 for a run within 1,000 m: nothing moves.
+  const ORIGIN = [0, 1, 2].map((k) => {
+    const vs = actual.origins.map((g) => g[k]);
+    return vs.some((v) => v !== 0) ? Math.round((Math.min(...vs) + Math.max(...vs)) / 2) : 0;
+  });
+  actual.rebase(ORIGIN);
+  if (golden) golden.rebase(ORIGIN);
+  const shiftPoint = (p) => { for (let k = 0; k < 3; ++k) p[k] -= ORIGIN[k]; };
+  for (const v of model.visuals) if (v.body < 0) shiftPoint(v.pose.p);
+  for (const g of model.geoms) {
+    if (g.body >= 0) continue;
+    shiftPoint(g.pose.p);
+    if (g.shape === 'plane') g.plane[3] -= g.plane[0] * ORIGIN[0] + g.plane[1] * ORIGIN[1] + g.plane[2] * ORIGIN[2];
+  }
+  for (const c of model.cameras) {
+    if (c.kind !== 'mounted' || c.body < 0) shiftPoint(c.pose.p);
+    shiftPoint(c.target);
+  }
+  if (model.view.light_pos[3] !== 0) shiftPoint(model.view.light_pos);
+  const absolute = (x, k) => x + ORIGIN[k];  // a drawn coordinate as the CSV has it
   const compare = data.compare || null;
   const compareErrors = new Map(compare ? Object.entries(compare.errors) : []);  // body -> its error series
   timings.decoded = performance.now();
@@ -508,7 +537,7 @@
     highlight.setFromObject(b.group);
     highlight.visible = b.group.visible;
     const p = actual.pose(i, state.sample);
-    let text = b.key + '\n' + (p ? 'position  ' + p.slice(0, 3).map(fmt).join(' ') + ' m\nrotation  ' + p.slice(3).map(fmt).join(' ') + ' (w x y z)' : 'no row at this time');
+    let text = b.key + '\n' + (p ? 'position  ' + p.slice(0, 3).map(absolute).map(fmt).join(' ') + ' m\nrotation  ' + p.slice(3).map(fmt).join(' ') + ' (w x y z)' : 'no row at this time');
     if (compareErrors.has(b.key)) {
       const e = errorSeries(b.key);
       const k = seriesIndexAt(state.time);
@@ -750,7 +779,7 @@
     const out = Object.create(null);
     for (const b of list) {
       const o = b.group;
-      out[b.key] = o.visible ? [o.position.x, o.position.y, o.position.z, o.quaternion.w, o.quaternion.x, o.quaternion.y, o.quaternion.z] : null;
+      out[b.key] = o.visible ? [absolute(o.position.x, 0), absolute(o.position.y, 1), absolute(o.position.z, 2), o.quaternion.w, o.quaternion.x, o.quaternion.y, o.quaternion.z] : null;
     }
     return out;
   };
@@ -764,7 +793,7 @@
       const part = b.batch.parts[0];
       m.fromArray(part.mesh.instanceMatrix.array, b.batch.members.indexOf(b.group.userData.body) * 16).multiply(part.inverse);
       m.decompose(p, q, s);
-      out[b.key] = s.x === 0 ? null : [p.x, p.y, p.z, q.w, q.x, q.y, q.z];
+      out[b.key] = s.x === 0 ? null : [absolute(p.x, 0), absolute(p.y, 1), absolute(p.z, 2), q.w, q.x, q.y, q.z];
     }
     return out;
   };

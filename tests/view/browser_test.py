@@ -21,6 +21,9 @@ CASE is one of
   links       (issue 31, item 1) a gallery written outside sweep folders named like a javascript:
               URL, or holding '#', '%', '?': each "view" link is a relative path ('./' first,
               every segment percent-encoded) that opens its case page, and clicking it runs no script
+  far         (issue 31, messages) alike boxes 1,000 km out (x = 999999.0123 m) and at 1e300 m: the
+              page shows the picture it shows near the origin, and what it draws (the instance
+              matrices too) is within 0.1 mm of the CSV 1,000 km out
   names       (issue 31, item 10) JavaScript's own names as keys: #body=constructor, __proto__,
               toString, hasOwnProperty, and CSV bodies named constructor and __proto__: the page
               loads, unknown bodies are ignored, known ones are shown; "1 body, 1 sample"
@@ -529,6 +532,58 @@ def case_links(d):
     print('checked: every gallery link opens its case page and runs nothing')
 
 
+def lit_pixels(path):
+    """Pixels of the boxes' orange (the filled shapes' colour, lit): red well above blue."""
+    w, h, ch, rows = read_png(path)
+    return sum(1 for y in range(h) for x in range(0, w * ch, ch) if rows[y][x] - rows[y][x + 2] > 60)
+
+
+def case_far(d):
+    # Four alike boxes (drawn instanced) and nothing static, lit by a directional light: the same
+    # picture wherever the run is (a ground or a point light stays where the scene puts it).
+    n = 4
+    with open('boxes.xml', 'w') as f:
+        f.write('<Simulation><SceneSettings><LightPos Value="1 2 3 0"/></SceneSettings><ComponentList>\n')
+        for i in range(n):
+            f.write(f'<RCMobileRigidBody Key="Box{i}"><Geom><RCCuboidGeom><Width Value="0.2"/><Height Value="0.2"/>'
+                    '<Depth Value="0.2"/></RCCuboidGeom></Geom></RCMobileRigidBody>\n')
+        f.write('</ComponentList></Simulation>\n')
+    base = {'near': 0.0123, 'far': 999999.0123, 'huge': 1e300}
+    shots = {}
+    for name, x0 in base.items():
+        with open(name + '.csv', 'w') as f:
+            f.write('time,body,x,y,z,qw,qx,qy,qz\n')
+            for t in (0, 0.5):
+                for i in range(n):
+                    f.write(f'{t},Box{i},{x0!r},{0.1 + 0.3 * i + t!r},0.25,1,0,0,0\n')
+        run('view', name + '.csv', '--scene', 'boxes.xml', '-o', name + '.html')
+        d.get('about:blank')
+        open_page(d, name + '.html')
+        rows = read_csv(name + '.csv')
+        for t in (0.0, 0.5):
+            seek(d, t)
+            for hook in ('poses', 'instancedPoses'):
+                shown = page_js(d, name, f'return simbobView.{hook}()') or {}
+                for body, row in rows[t].items():
+                    got = shown.get(body)
+                    if got is None or any(v is None for v in got):  # null: hidden, or NaN / infinite
+                        fail(f'{name} t={t} {hook}: {body} is not drawn ({got})')
+                        continue
+                    err = max(abs(g - r) for g, r in zip(got[:3], row[:3]))
+                    if x0 < 1e10 and err > 1e-4:
+                        fail(f'{name} t={t} {hook}: {body} at {got[:3]}, {err:.2e} m from the CSV {row[:3]}')
+        shot = name + '.png'
+        d.find_element('css selector', '#view canvas').screenshot(shot)
+        shots[name] = lit_pixels(shot)
+        check_console(d, name)
+    print(f'lit pixels of the boxes: {shots}')
+    if shots['near'] < 500:
+        fail(f'the boxes near the origin show {shots["near"]} pixels: the view proves little')
+    for name in ('far', 'huge'):
+        if abs(shots[name] - shots['near']) > shots['near'] // 10:
+            fail(f'{name}: {shots[name]} pixels of boxes, {shots["near"]} near the origin: not the same picture')
+
+
 def page_js(d, what, script):
     """The value of script on the page, or None and a failure where the page throws (blank page)."""
     try:
@@ -591,7 +646,7 @@ def main():
     try:
         {'scenes': case_scenes, 'screenshot': case_screenshot, 'golden': case_golden, 'ui': case_ui,
          'gallery': case_gallery, 'instanced': case_instanced,
-         'outputs': case_outputs, 'links': case_links, 'names': case_names}[CASE](d)
+         'outputs': case_outputs, 'links': case_links, 'names': case_names, 'far': case_far}[CASE](d)
     finally:
         d.quit()
     if failures:

@@ -547,8 +547,12 @@ class SocketPeer : public Party {
         continue;
       }
       std::string key;
-      int found = -1;
-      if (unescapeKey(w[i], &key)) found = indexOfKey(kind, key);
+      if (!unescapeKey(w[i], &key)) {
+        problem_ =
+            "'subscribe " + std::string(w[1]) + " " + quoteInput(w[i]) + "': a '%' not followed by two hex digits";
+        return false;
+      }
+      const int found = indexOfKey(kind, key);
       if (found < 0) {
         static const char* kSingular[] = {"body", "joint", "sensor", "camera sensor"};
         problem_ =

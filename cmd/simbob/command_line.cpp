@@ -113,7 +113,7 @@ void defineBatchCommand(CLI::App& app, Invocation& in) {
   batch->add_option("--duration", ba.duration, "Simulated seconds per scene (default 10)");
   batch->add_option("--dt", ba.dt, "Step size in s (default: each scene's MaxTimeStep)");
   batch->add_option("--sample-interval", ba.sample_interval, "Seconds between samples (default 0.01)");
-  batch->add_option("--out-dir", ba.out_dir, "Folder for trajectories and logs (default batch-out)");
+  batch->add_option("-o,--out-dir", ba.out_dir, "Folder for trajectories and logs (default batch-out)");
   batch->add_option("--golden", ba.golden, "Compare each result with GOLDEN/<name>.csv");
   batch->add_option("--tol-pos", ba.tol_pos, "Position tolerance in m (default 1e-6)");
   batch->add_option("--tol-rot", ba.tol_rot, "Rotation tolerance in rad (default 1e-6)");

@@ -200,6 +200,7 @@ int cmdBatch(const BatchArgs& a, const Common& common) {
                            j.scene + "  " + fixedDecimals(j.wall, 2) + " s";
         if (!j.golden_status.empty()) line += "  golden: " + j.golden_status;
         if (!j.error.empty()) line += "  -- " + j.error;
+        if (g_log.level == Level::Quiet && !jobFailed(j)) return;  // -q: only the scenes that failed
         std::printf("%s\n", line.c_str());
         std::fflush(stdout);
       });

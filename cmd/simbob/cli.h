@@ -72,6 +72,7 @@ struct Common {
   std::string extension_folder;      ///< the global setting ExtensionFolder (--settings)
   std::string texture_folder;        ///< TextureFolder of the global settings (relative to the settings file)
   bool document_ini = false;         ///< DocumentIni of the global settings: read <scene>.ini's cameras
+  bool no_controllers = false;       ///< --no-controllers: refuse scenes that start programs
   /// The component types: built once by main (registerBuiltins) and passed down with the options.
   const Registry* registry = nullptr;
 };

@@ -14,6 +14,8 @@ void addCommon(CLI::App* app, Common& c) {
   app->add_option("--log-file", c.log_file, "Also append log messages to this file");
   app->add_option("--settings", c.settings, "Global settings INI (LogFile, ExtensionFolder, TextureFolder)");
   app->add_option("--plugin", c.plugins, "Load component types from this shared library (repeatable)");
+  app->add_flag("--no-controllers", c.no_controllers,
+                "Refuse a scene that would start a program (a communicator's Controller); check lists them");
 }
 
 void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
@@ -111,7 +113,7 @@ void defineBatchCommand(CLI::App& app, Invocation& in) {
   batch->add_option("--duration", ba.duration, "Simulated seconds per scene (default 10)");
   batch->add_option("--dt", ba.dt, "Step size in s (default: each scene's MaxTimeStep)");
   batch->add_option("--sample-interval", ba.sample_interval, "Seconds between samples (default 0.01)");
-  batch->add_option("--out-dir", ba.out_dir, "Folder for trajectories and logs (default batch-out)");
+  batch->add_option("-o,--out-dir", ba.out_dir, "Folder for trajectories and logs (default batch-out)");
   batch->add_option("--golden", ba.golden, "Compare each result with GOLDEN/<name>.csv");
   batch->add_option("--tol-pos", ba.tol_pos, "Position tolerance in m (default 1e-6)");
   batch->add_option("--tol-rot", ba.tol_rot, "Rotation tolerance in rad (default 1e-6)");

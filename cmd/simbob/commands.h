@@ -160,10 +160,10 @@ int cmdSweep(const SweepArgs& a, const Common& common);
 /// `sweep gather --html PAGE` after the table is written (`gathered`: gather's exit status):
 /// each ok case's replay page (OUT/case-NNNN/view.html) and the gallery linking them.
 int galleryAfterGather(const SweepArgs& a, const Common& common, int gathered);
-/// The replay page of sweep case `c` of `manifest` (its scene is relative to the manifest's
-/// folder), from DIR/trajectory.csv to DIR/view.html, titled with the case's index and varied
-/// values: `sweep run --html` and `sweep gather --html`. The exit status.
-int sweepCasePage(const SweepCase& c, const std::string& manifest, const std::string& dir, const Common& common);
+/// The replay page of sweep case `c` run in `scene`, from DIR/trajectory.csv to DIR/view.html,
+/// titled with the case's index and varied values: `sweep run --html` and `sweep gather --html`
+/// (the scene case.json names). The exit status.
+int sweepCasePage(const SweepCase& c, const std::string& scene, const std::string& dir, const Common& common);
 
 /// Every command's arguments and its CLI11 subcommand (command_line.cpp): what main parses,
 /// checks and dispatches.

@@ -49,7 +49,8 @@ int cmdCompare(const CompareArgs& a, const Common& common) {
   opts.tol_pos = a.tol_pos;
   opts.tol_rot = a.tol_rot;
   CompareResult r = compareTrajectories(actual, golden, opts);
-  std::string text = "actual: " + a.actual + "\ngolden: " + a.golden + "\n" + r.text();
+  std::string text =
+      "actual: " + quoteInput(a.actual, 4096) + "\ngolden: " + quoteInput(a.golden, 4096) + "\n" + r.text();
   std::string json = jsonText(r.json());
   std::fputs(a.json ? json.c_str() : text.c_str(), stdout);
   std::fflush(stdout);

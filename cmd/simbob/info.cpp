@@ -5,7 +5,9 @@
 #include "commands.h"
 #include "simbob/overrides.h"
 #include "simbob/registry.h"
+#include "simbob/simulation.h"
 #include "simbob/values.h"
+#include "simbob/tool/replay_page.h"
 
 namespace simbob::cli {
 
@@ -21,10 +23,26 @@ int cmdCheck(const std::string& path, const Common& common, const std::vector<st
     return code;
   Diagnostics lint;
   lintModel(model, lint, dt);
+  checkTextureBudgets(model, common.texture_folder, lint);
+  size_t programs = 0;
+  for (const SocketDef& d : model.sockets) {
+    if (d.controller.empty()) continue;
+    ++programs;
+    if (common.no_controllers) {
+      SimulationOptions so;
+      so.no_controllers = true;
+      Simulation::fromModel(model, so, lint);  // refuses it, with run's words
+      break;
+    }
+    g_log.info(d.loc.file.str() + ":" + std::to_string(d.loc.line) + ": RCLocalSocketCommunicator '" + d.key +
+               "' starts the program '" + quoteInput(d.controller, 400) + "' in " +
+               quoteInput(controllerFolder(d), 400) +
+               " when the scene runs (run, batch, sweep run, render --at, Python's Simulation)");
+  }
   if (int c = report(lint, true)) return c;
   g_log.info(path + ": ok (" + countOf(model.bodies.size(), "mobile body", "mobile bodies") + ", " +
              countOf(model.geoms.size(), "geom", "geoms") + ", " + countOf(model.joints.size(), "joint", "joints") +
-             ")");
+             (programs ? "; starts " + countOf(programs, "program", "programs") : std::string()) + ")");
   return kExitOk;
 }
 

@@ -227,6 +227,8 @@ int cmdRender(const RenderArgs& a, const Common& common) {
   RenderOptions ro;
   if (int c = renderOptions(a.view, common, &ro)) return c;
   RunOptions o = stillRun(a, common);
+  // A still at t = 0 (without sensor rays) runs nothing: --no-controllers has nothing to refuse.
+  o.simulation.no_controllers = common.no_controllers && (a.at > 0 || ro.draw_sensors);
   if (int c = sceneOverrides(common, a.scene, {}, &o.simulation.overrides)) return c;
   exitOnStopSignals(a.scene, "loading");
   Error refusal;

@@ -71,6 +71,7 @@ int completeRunOptions(RunArgs& a, const Common& common) {
     o.fps = a.view.fps;
   }
   o.simulation.texture_folder = common.texture_folder;
+  o.simulation.no_controllers = common.no_controllers;
   o.simulation.stop = &g_stop;
   o.inputs = {{"--settings", common.settings}};
   if (common.document_ini) o.inputs.push_back({"the DocumentIni", documentIniPath(o.scene)});

@@ -144,7 +144,7 @@ CLI::App* addSweepCommands(CLI::App& app, SweepArgs& s, Common& common) {
   CLI::App* run =
       sweep->add_subcommand("run", "Run one case (--case, SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX) or all (-j)");
   run->add_option("manifest", s.input, "Case manifest")->required();
-  run->add_option("-o,--out", s.out, "Output folder (case-NNNN/ per case)")->required();
+  run->add_option("-o,--out,--out-dir", s.out, "Output folder (case-NNNN/ per case)")->required();
   run->add_option("--case", s.case_index, "Case index (default: from the environment)")
       ->check(CLI::Range(0, 999999999));
   run->add_option("-j,--jobs", s.jobs, "Run every case here on N worker processes")->check(CLI::Range(1, 1024));
@@ -159,7 +159,7 @@ CLI::App* addSweepCommands(CLI::App& app, SweepArgs& s, Common& common) {
   addCommon(gather, common);
   CLI::App* sbatch = sweep->add_subcommand("sbatch", "Write Slurm scripts: a case array and a dependent gather job");
   sbatch->add_option("manifest", s.input, "Case manifest")->required();
-  sbatch->add_option("-o,--out", s.out, "Output folder of the sweep (the scripts go there too)")->required();
+  sbatch->add_option("-o,--out,--out-dir", s.out, "Output folder of the sweep (the scripts go there too)")->required();
   sbatch->add_option("--max-parallel", s.max_parallel, "At most K array tasks at once (%K)")
       ->check(CLI::Range(1, 1000000));
   sbatch->add_option("--partition", s.partition, "Slurm partition");

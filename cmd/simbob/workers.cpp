@@ -88,6 +88,7 @@ std::vector<std::string> workerOptions(const Common& common) {
     args.emplace_back("--settings");
     args.push_back(absolutePath(common.settings));
   }
+  if (common.no_controllers) args.emplace_back("--no-controllers");
   return args;
 }
 

@@ -29,6 +29,9 @@ struct SimulationOptions {
   /// The file that takes the stdout and stderr of the controllers simbob starts ("" = simbob's
   /// stderr); with several, ".KEY" is added to the name of each.
   std::string controller_log;
+  /// Refuse a scene whose communicators would start a program (--no-controllers): for scenes
+  /// from others; a peer of one's own connects with controllers = {"KEY="}.
+  bool no_controllers = false;
   double runaway_limit = 1e6;      ///< |position| in m or |velocity| in m/s, rad/s beyond which a run diverged
   double joint_apart_limit = 0.1;  ///< m between a joint's anchors on its two bodies beyond which it came apart
   /// Set asynchronously (SIGINT/SIGTERM) to stop at the next step.

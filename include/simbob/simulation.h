@@ -44,6 +44,10 @@ struct RunSummaryInput {
 /// "completed", "diverged", "interrupted" or "failed".
 const char* runStatusName(RunStatus s);
 
+/// The folder communicator `d`'s Controller runs in, absolute (the scene's folder, or the
+/// current one for --controller).
+std::string controllerFolder(const SocketDef& d);
+
 /// The run summary JSON (docs/formats.md): version, scene, status, step, times, settings,
 /// counts, speed (waiting for peers excluded) and what reproducibility depends on. Clients
 /// add what only they know (outputs written, frames, a determinism check).

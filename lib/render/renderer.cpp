@@ -1,5 +1,6 @@
 // The renderer: fixed-function GL over the compiled visuals. One light (LightPos, LightColor),
 // the skins' materials, quality levels of guide 3.3.3, planar shadows on shadow planes, fog.
+#include <filesystem>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -7,7 +8,7 @@
 
 #include "render/gl_context.h"
 #include "render/shapes.h"
-#include "render/texture_file.h"
+#include "image/texture_file.h"
 #include "simbob/renderer.h"
 #include "simbob/transform.h"
 
@@ -594,7 +595,7 @@ class GlRenderer : public Renderer {
     textures_.assign(skins_.size(), Texture{});
     if (opts_.quality < Quality::Textures) return true;
     // Each file is read and uploaded once, however many skins name it (one GL texture each).
-    render::TextureFiles files;
+    TextureFiles files;
     for (size_t i = 0; i < skins_.size(); ++i) {
       const SkinDef& s = skins_[i];
       if (s.texture.empty()) continue;
@@ -711,6 +712,22 @@ bool modelsShowNoBody(const Model& model) {
 }
 
 Renderer::~Renderer() = default;
+
+std::vector<std::string> textureFiles(const Model& model, const std::string& texture_folder) {
+  std::vector<std::string> files;
+  for (const SkinDef& s : model.skins) {
+    if (s.texture.empty()) continue;
+    for (const std::string& dir : {texture_folder, s.base_dir}) {
+      if (dir.empty()) continue;
+      for (const char* ext : {"", ".bmp", ".png"}) {
+        const std::string p = (s.texture[0] == '/' ? "" : dir + "/") + s.texture + ext;
+        std::error_code ec;
+        if (std::filesystem::is_regular_file(p, ec)) files.push_back(p);
+      }
+    }
+  }
+  return files;
+}
 
 std::string drawFallbackNote(const Model& model, const RenderOptions& options) {
   if (options.draw_chosen || !modelsShowNoBody(model)) return "";

@@ -263,8 +263,10 @@ Request Codec::subscribe(const std::vector<std::string_view>& w) {
       continue;
     }
     std::string key;
-    int found = -1;
-    if (unescapeKey(w[i], &key)) found = indexOfKey(kind, key);
+    if (!unescapeKey(w[i], &key))
+      return error("'subscribe " + std::string(w[1]) + " " + quoteInput(w[i]) +
+                   "': a '%' not followed by two hex digits");
+    const int found = indexOfKey(kind, key);
     if (found < 0) {
       static const char* kSingular[] = {"body", "joint", "sensor", "camera sensor"};
       return error("'subscribe " + std::string(w[1]) + "': no " + kSingular[kind] + " has the key '" +

@@ -4,9 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <utility>
 
 #include "simbob/compile.h"
+#include "simbob/tool/files.h"
 #include "simbob/robot.h"
 #include "simbob/values.h"
 #include "simulation/camera_sensors.h"
@@ -32,7 +35,45 @@ std::unique_ptr<Simulation> loaded(const std::string& path, const std::string* t
   return ok ? Simulation::fromModel(std::move(model), opts, diag) : nullptr;
 }
 
+/// Where the controller's log would overwrite one of its inputs -- the program (words[0], found
+/// on PATH as execvp does) or a file named on its command line, both as seen from the folder it
+/// runs in -- what that input is; else "".
+std::string controllerLogClash(const SocketDef& d) {
+  std::vector<std::string> words;
+  std::string problem;
+  if (d.controller_log.empty() || !splitCommandLine(d.controller, &words, &problem)) return "";
+  auto inFolder = [&](const std::string& w) {
+    return w.empty() || w[0] == '/' || d.controller_dir.empty() ? w : d.controller_dir + "/" + w;
+  };
+  const char* env_path = std::getenv("PATH");
+  const std::string path = env_path ? env_path : "";
+  for (size_t i = 0; i < words.size(); ++i) {
+    std::vector<std::string> places = {inFolder(words[i])};
+    if (i == 0 && words[0].find('/') == std::string::npos && env_path) {
+      places.clear();
+      for (size_t at = 0;;) {
+        const size_t colon = path.find(':', at);
+        const std::string dir = path.substr(at, colon == std::string::npos ? std::string::npos : colon - at);
+        places.push_back(inFolder((dir.empty() ? "." : dir) + "/" + words[0]));
+        if (colon == std::string::npos) break;
+        at = colon + 1;
+      }
+    }
+    for (const std::string& p : places)
+      if (sameExistingFile(p, d.controller_log))
+        return (i == 0 ? "the controller program " : "a file on the controller's command line ") + quoteInput(p, 400);
+  }
+  return "";
+}
+
 }  // namespace
+
+std::string controllerFolder(const SocketDef& d) {
+  std::error_code ec;
+  const std::filesystem::path dir =
+      d.controller_dir.empty() ? std::filesystem::current_path(ec) : std::filesystem::absolute(d.controller_dir, ec);
+  return ec ? d.controller_dir : dir.lexically_normal().string();
+}
 
 Simulation::Simulation(Model model, SimulationOptions opts) : model_(std::move(model)), opts_(std::move(opts)) {}
 
@@ -96,11 +137,30 @@ std::unique_ptr<Simulation> Simulation::fromModel(Model model, const SimulationO
     it->controller = command;
     it->controller_dir.clear();  // relative to where simbob runs, as any path on its command line
   }
+  for (const SocketDef& d : model.sockets)
+    if (opts.no_controllers && !d.controller.empty()) {
+      diag.error(d.loc,
+                 "RCLocalSocketCommunicator '" + d.key + "' would start the program '" + quoteInput(d.controller, 400) +
+                     "' in " + quoteInput(controllerFolder(d), 400) + ": --no-controllers refuses it (--controller " +
+                     d.key + "= runs the scene with a peer of your own)",
+                 ErrorKind::Usage);
+      return nullptr;
+    }
   const long started = std::count_if(model.sockets.begin(), model.sockets.end(),
                                      [](const SocketDef& d) { return !d.controller.empty(); });
   for (SocketDef& d : model.sockets)
     if (!d.controller.empty() && !opts.controller_log.empty())
       d.controller_log = started > 1 ? opts.controller_log + "." + d.key : opts.controller_log;
+  for (const SocketDef& d : model.sockets) {
+    const std::string input = controllerLogClash(d);
+    if (input.empty()) continue;
+    // Controller programs and their files are inputs: the log is never opened over one.
+    diag.error(d.loc,
+               "RCLocalSocketCommunicator '" + d.key + "': its controller's log " + quoteInput(d.controller_log, 400) +
+                   " is " + input + ": an output must not overwrite an input",
+               ErrorKind::Usage);
+    return nullptr;
+  }
   std::unique_ptr<Simulation> sim(new Simulation(std::move(model), opts));
   if (!sim->model_.camera_sensors.empty()) {
     Error err;

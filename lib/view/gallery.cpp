@@ -16,7 +16,10 @@ std::string sweepGalleryHtml(const std::string& title, const std::vector<std::st
   j["columns"] = columns;
   j["cases"] = nlohmann::json::array();
   for (const GalleryCase& c : cases)
-    j["cases"].push_back({{"index", c.index}, {"status", c.status}, {"fields", c.fields}, {"page", c.page}});
+    j["cases"].push_back({{"index", c.index},
+                          {"status", c.status},
+                          {"fields", c.fields},
+                          {"page", c.page.empty() ? "" : view::relativeLink(c.page)}});
   return view::fill(view::kGalleryHtml,
                     {{"TITLE", view::escapeHtml(title)},
                      {"DATA", view::scriptSafe(j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace))}});

@@ -4,7 +4,7 @@
 # wrong thing at t = 0.5 s. NULL pointers and negative counts given to host calls, a NULL host,
 # a non-finite command from a plug-in controller, a non-finite sensor reading, a sensor writing
 # past the entries of its `out` and a force so large that the body runs away: each stops the run
-# with one line at the scene element naming the plug-in and the call (exit 1), never a crash; the
+# with one line at the scene element naming the plug-in and the call (exit 2, a controller failed), never a crash; the
 # partial trajectory is kept, no temporary file is left, and no non-finite reading reaches
 # `--log sensors`.
 set -euo pipefail
@@ -58,7 +58,7 @@ misuse() {
   local def=$1 want=$2
   cc -std=c99 -O1 -shared -fPIC -I "$REPO/include" -D"$def" "$REPO/tests/plugins/misuse_plugins.c" -o "$def.so" -lm ||
     fail "cc -D$def"
-  expect_status 1 "$SIMBOB" run misuse.xml --duration 1 --plugin "./$def.so" --out "$def.csv" --log sensors -q
+  expect_status 2 "$SIMBOB" run misuse.xml --duration 1 --plugin "./$def.so" --out "$def.csv" --log sensors -q
   expect_eq "$def: the message" "$(cat "$LAST_ERR")" "$want"
   expect_no_file "$def.csv"
   expect_file "$def.partial.csv"

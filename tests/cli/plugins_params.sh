@@ -99,7 +99,7 @@ expect_status 0 "$SIMBOB" run many.xml --duration 0.05 --plugin ./many_10000.so 
 expect_file many.csv
 # create() fails with "number k is ..." unless number k is k: a wrong value set in the scene shows it reaches it.
 scene_with '<ManyNumbers Key="C"><N9999 Value="1"/></ManyNumbers>' "" >wrong.xml
-expect_status 1 "$SIMBOB" run wrong.xml --duration 0.05 --plugin ./many_10000.so --out wrong.csv -q
+expect_status 2 "$SIMBOB" run wrong.xml --duration 0.05 --plugin ./many_10000.so --out wrong.csv -q
 expect_match "the scene's value reached create()" "$LAST_ERR" "create\(\) failed: number 9999 is 1, not 9999$"
 
 check "more quantities than the bound (100000): refused; as many as the bound: loads"

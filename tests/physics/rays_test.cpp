@@ -108,12 +108,16 @@ TEST_CASE("rays: its own body and the bodies joined to it are ignored, other bod
     addJoint(m, JointKind::Hinge, 0, b, {0, 0, -0.3}, {1, 0, 0});
     CHECK(std::fabs(reading(m) - 2.0) < 1e-9);
   }
-  SECTION("a static sensor ignores the static world (its own body) but sees the box") {
+  SECTION("a static sensor ignores its own static body's geoms, not the other static geoms") {
     m.sensors[0].body = -1;
-    m.geoms.erase(m.geoms.begin());  // the carrier's box (not the sensor's own any more)
-    CHECK(std::fabs(reading(m) - 0.5) < 1e-9);
+    m.geoms.erase(m.geoms.begin());             // the carrier's box (not the sensor's own any more)
+    m.sensors[0].static_body = 0;               // mounted on static body 0 ...
+    m.geoms[0].static_body = 1;                 // ... the wall is static body 1
+    CHECK(std::fabs(reading(m) - 0.5) < 1e-9);  // the box in front
     m.bodies.pop_back();
     m.geoms.pop_back();
+    CHECK(std::fabs(reading(m) - 2.0) < 1e-9);  // the wall: another static body
+    m.geoms[0].static_body = 0;                 // the wall is the post it is mounted on
     CHECK(reading(m) == 5.0);
   }
 }

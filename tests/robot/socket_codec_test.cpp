@@ -145,7 +145,8 @@ TEST_CASE("socket codec: subscriptions choose what the state blocks carry (versi
   CHECK(errorOf(c, "subscribe bodies Nobody") == "'subscribe bodies': no body has the key 'Nobody'");
   CHECK(errorOf(c, "subscribe joints Bot.Base") == "'subscribe joints': no joint has the key 'Bot.Base'");
   CHECK(errorOf(c, "subscribe sensors Bot.Ray 1") == "'subscribe sensors': no sensor has the key 'Bot.Ray'");
-  CHECK(errorOf(c, "subscribe cameras Bot%2") == "'subscribe cameras': no camera sensor has the key 'Bot%2'");
+  CHECK(errorOf(c, "subscribe cameras Bot.Nose") == "'subscribe cameras': no camera sensor has the key 'Bot.Nose'");
+  CHECK(errorOf(c, "subscribe bodies Bot%2") == "'subscribe bodies Bot%2': a '%' not followed by two hex digits");
 }
 
 TEST_CASE("socket codec: requests: set, step, done, blank lines") {

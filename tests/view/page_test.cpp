@@ -122,3 +122,15 @@ TEST_CASE("view page: a missing row is NaN, times are float64") {
   std::memcpy(&t1, tb.data() + 8, 8);
   CHECK(t1 == 0.1 + 1e-12);
 }
+
+// Issue 31, item 1: the gallery's links are relative paths no browser reads as a scheme, a query,
+// a fragment or an escape.
+TEST_CASE("sweepGalleryHtml: each case's link is './' and percent-encoded segments") {
+  simbob::GalleryCase c{0, "ok", {"0"}, "javascript:self.x=1;void 0//#?%/case-0000/view.html"};
+  simbob::GalleryCase none{1, "failed", {"1"}, ""};
+  const std::string html = simbob::sweepGalleryHtml("t", {"case"}, {c, none});
+  CHECK(html.find(R"("page":"./javascript%3Aself.x%3D1%3Bvoid%200//%23%3F%25/case-0000/view.html")") !=
+        std::string::npos);
+  CHECK(html.find(R"("page":"")") != std::string::npos);  // no page, no link
+  CHECK(html.find("javascript:") == std::string::npos);
+}

@@ -29,9 +29,19 @@ struct ViewPageInput {
   std::string scene_name;              ///< shown on the page (the scene path as given)
 };
 
-/// Builds the page's HTML. Errors: MissingInput when three.js or a texture file cannot be
-/// read (naming the file and, for three.js, the package), InvalidInput when a texture's type is
-/// not known (PNG, BMP, JPEG, GIF).
+/// The decoded texture images a page embeds together (RGB, 3 bytes a pixel, each file once): a
+/// browser holds each of them decoded, and the page their PNG in base64.
+constexpr size_t kMaxPageTextureBytes = size_t{256} << 20;
+
+/// What `check` says of a scene's textures before anything reads them whole: from each file's
+/// header, a warning at the skin whose texture takes the scene's textures (each file once) past
+/// kMaxPageTextureBytes (view and --html would refuse it), or past the renderer's budget.
+void checkTextureBudgets(const Model& m, const std::string& texture_folder, Diagnostics& d);
+
+/// Builds the page's HTML. Each texture file is embedded once, as the renderer reads it
+/// (decoded, then as PNG), within kMaxPageTextureBytes. Errors: MissingInput when three.js or a
+/// texture file cannot be found (naming the file and, for three.js, the package), InvalidInput
+/// when a texture cannot be read (the reader's reason) or the textures exceed the budget.
 bool buildViewPage(const ViewPageInput& in, std::string* html, Error* err);
 
 /// buildViewPage, written to `path` as an OutputFile: an existing file is replaced only when the

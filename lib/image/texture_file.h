@@ -1,5 +1,5 @@
 // Texture images: BMP (what the original read: uncompressed 24/32-bit and 8-bit palettes) and
-// PNG (lib/image's readPng).
+// PNG (readPng), as the renderer and the replay page (lib/view) read them. No GL here.
 #pragma once
 
 #include <cstdint>
@@ -8,13 +8,21 @@
 
 #include "simbob/error.h"
 #include "simbob/image.h"
+#include "simbob/visuals.h"
 
-namespace simbob::render {
+namespace simbob {
 
 /// Reads a .bmp or .png file (chosen by its first bytes) into an RGB image, rows top first.
 /// Errors name the file: MissingInput if it cannot be opened, InvalidInput if it is not a
 /// supported image.
 bool readTextureFile(const std::string& path, Image* out, Error* err);
+/// The file a skin's texture names, looked up as the renderer does: in `texture_folder` (the
+/// global TextureFolder) first, then beside the scene; the name as written, then with .bmp,
+/// then .png. "" when none exists, with *where = the folders searched ("A or B").
+std::string findTextureFile(const SkinDef& s, const std::string& texture_folder, std::string* where);
+/// The width and height of a .bmp or .png texture file from its header alone (what
+/// readTextureFile would decode, were the rest sound). Errors as readTextureFile's.
+bool readTextureSize(const std::string& path, int* width, int* height, Error* err);
 /// Reads a BMP file (uncompressed 24 or 32 bits per pixel, or 8 bits with a palette). Only the
 /// headers and the pixel rows they describe are read; a file larger than kMaxTextureFileBytes is
 /// refused before that (InvalidInput).
@@ -46,4 +54,4 @@ class TextureFiles {
   std::map<std::string, size_t> slots_;  ///< canonical path -> slot
 };
 
-}  // namespace simbob::render
+}  // namespace simbob

@@ -1,6 +1,5 @@
 // BMP and PNG readers for textures.
-#include "simbob/renderer.h"
-#include "render/texture_file.h"
+#include "image/texture_file.h"
 
 #include "simbob/tool/png.h"
 
@@ -14,7 +13,7 @@
 #include <memory>
 #include <vector>
 
-namespace simbob::render {
+namespace simbob {
 
 namespace {
 
@@ -146,6 +145,51 @@ bool readTextureFile(const std::string& path, Image* out, Error* err) {
   return bad(err, path, "texture is neither a BMP nor a PNG file");
 }
 
+std::string findTextureFile(const SkinDef& s, const std::string& texture_folder, std::string* where) {
+  where->clear();
+  for (const std::string& dir : {texture_folder, s.base_dir}) {
+    if (dir.empty()) continue;
+    *where += (where->empty() ? "" : " or ") + dir;
+    for (const char* ext : {"", ".bmp", ".png"}) {
+      const std::string p = (s.texture[0] == '/' ? "" : dir + "/") + s.texture + ext;
+      std::error_code ec;
+      if (std::filesystem::is_regular_file(p, ec)) return p;
+    }
+  }
+  return "";
+}
+
+bool readTextureSize(const std::string& path, int* width, int* height, Error* err) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return cannotOpen(err, path);
+  std::vector<uint8_t> b;
+  readUpTo(in, 26, &b);
+  if (b.size() >= 26 && b[0] == 'B' && b[1] == 'M') {
+    const auto w = static_cast<int32_t>(le32(b, 18));
+    const auto h = static_cast<int32_t>(le32(b, 22));
+    const int64_t ah = h < 0 ? -static_cast<int64_t>(h) : h;
+    if (w <= 0 || ah <= 0 || w > kMaxTextureSide || ah > kMaxTextureSide)
+      return bad(err, path, "BMP: size must be 1 to 16384 pixels per side");
+    *width = w;
+    *height = static_cast<int>(ah);
+    return true;
+  }
+  // PNG: the signature, then IHDR's length and name, then width and height big-endian.
+  if (b.size() >= 24 && std::memcmp(b.data(), "\x89PNG", 4) == 0) {
+    auto be32 = [&](size_t at) {
+      return static_cast<uint32_t>(b[at]) << 24 | static_cast<uint32_t>(b[at + 1]) << 16 |
+             static_cast<uint32_t>(b[at + 2]) << 8 | b[at + 3];
+    };
+    const uint32_t w = be32(16), h = be32(20);
+    if (w == 0 || h == 0 || w > kMaxTextureSide || h > kMaxTextureSide)
+      return bad(err, path, "texture larger than 16384 pixels per side");
+    *width = static_cast<int>(w);
+    *height = static_cast<int>(h);
+    return true;
+  }
+  return bad(err, path, "texture is neither a BMP nor a PNG file");
+}
+
 bool TextureFiles::load(const std::string& path, size_t* slot, Image* image, bool* fresh, Error* err) {
   std::error_code ec;
   std::string key = std::filesystem::weakly_canonical(path, ec).string();
@@ -172,26 +216,6 @@ bool TextureFiles::load(const std::string& path, size_t* slot, Image* image, boo
   slots_.emplace(key, *slot);
   *fresh = true;
   return true;
-}
-
-}  // namespace simbob::render
-
-namespace simbob {
-
-std::vector<std::string> textureFiles(const Model& model, const std::string& texture_folder) {
-  std::vector<std::string> files;
-  for (const SkinDef& s : model.skins) {
-    if (s.texture.empty()) continue;
-    for (const std::string& dir : {texture_folder, s.base_dir}) {
-      if (dir.empty()) continue;
-      for (const char* ext : {"", ".bmp", ".png"}) {
-        const std::string p = (s.texture[0] == '/' ? "" : dir + "/") + s.texture + ext;
-        std::error_code ec;
-        if (std::filesystem::is_regular_file(p, ec)) files.push_back(p);
-      }
-    }
-  }
-  return files;
 }
 
 }  // namespace simbob

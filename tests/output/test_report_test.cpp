@@ -129,7 +129,7 @@ TEST_CASE("writeJUnit's file validates against the JUnit schema in tests/ci", "[
   const fs::path dir = fs::temp_directory_path() / ("simbob_junit_test_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   TestSuiteReport s = sample();
-  s.cases[1].details = std::string("odd \x01\x02 bytes \xc3\x28 and ]]> and <![CDATA[\n", 40);
+  s.cases[1].details = "odd \x01\x02 bytes \xc3\x28 and ]]> and <![CDATA[\n";
   s.properties.push_back({"cpu", "\xef\xbf\xbf"});
   Error err;
   const std::string path = (dir / "report.xml").string();

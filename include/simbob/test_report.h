@@ -60,9 +60,9 @@ struct TestSuiteReport {
 /// Bounds of a JUnit file. GitLab refuses reports over 30 MB: texts are cut to fit, the
 /// per-case details first (evenly, at line ends, saying where the rest is), then messages.
 struct JUnitLimits {
-  size_t max_bytes = 30'000'000;   ///< the whole file
-  size_t max_details = 64 * 1024;  ///< one case's details
-  size_t max_message = 2 * 1024;   ///< one message, attribute or name
+  size_t max_bytes = 30'000'000;          ///< the whole file
+  size_t max_details = size_t{64} << 10;  ///< one case's details, bytes
+  size_t max_message = size_t{2} << 10;   ///< one message, attribute or name, bytes
 };
 
 /// The suite as JUnit XML (UTF-8, one `testsuite` root). False with *err (InvalidInput) when

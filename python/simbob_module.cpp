@@ -12,6 +12,8 @@
 #include <atomic>
 #include <thread>
 #include <cmath>
+#include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <memory>
@@ -26,8 +28,9 @@
 #include "simbob/physics.h"
 #include "simbob/plugin.h"
 #include "simbob/registry.h"
-#include "simbob/render.h"
-#include "simbob/run.h"
+#include "simbob/renderer.h"
+#include "simbob/loop.h"
+#include "simbob/scene_run.h"
 #include "simbob/simulation.h"
 
 namespace py = pybind11;
@@ -60,7 +63,8 @@ class Error(Exception):
 
     Attributes:
         kind (str): the error's kind: "InvalidInput", "MissingInput", "CannotCreate",
-            "IoError", "Diverged", "Internal", "Unavailable", "Protocol" or "Usage".
+            "IoError", "Diverged", "Interrupted", "ControllerFailed", "Internal",
+            "Unavailable", "Protocol" or "Usage".
         file (str or None): the file the error is about (a scene file, or "override TEXT"
             for an override), None when it is about no file.
         line (int or None): the 1-based line in that file, None when unknown.
@@ -102,12 +106,26 @@ class UsageError(Error):
 
 
 class DivergedError(Error):
-    """The run diverged (a non-finite or runaway state, a joint that came apart) or a controller
-    failed it (kind "Diverged"; exit status 1)."""
+    """The run diverged: a non-finite or runaway state, or a joint that came apart (kind
+    "Diverged"; exit status 1)."""
     exit_status = 1
 
 
-class UnavailableError(Error):
+class ControllerError(Error):
+    """A controller failed the run: a plug-in (controller, sensor or actuator) reported an error
+    or misused the API, or a controller threw (kind "ControllerFailed"; exit status 2). The
+    failures of socket peers are its subclasses UnavailableError and ProtocolError. A Python
+    controller's own exception propagates as itself instead."""
+    exit_status = 2
+
+
+class RunInterrupted(Error, KeyboardInterrupt):
+    """The run was asked to stop (SIGINT or SIGTERM; kind "Interrupted"; exit status 130/143).
+    A KeyboardInterrupt too, so `except KeyboardInterrupt` catches it."""
+    exit_status = 130
+
+
+class UnavailableError(ControllerError):
     """A party held the simulation past MaxAccessTime, or a socket peer never connected, went
     away or fell silent (kind "Unavailable"; exit status 69)."""
     exit_status = 69
@@ -118,7 +136,7 @@ class OutputError(Error):
     exit_status = 74
 
 
-class ProtocolError(Error):
+class ProtocolError(ControllerError):
     """A socket peer sent a line the protocol does not allow (kind "Protocol"; exit status 76)."""
     exit_status = 76
 
@@ -146,6 +164,10 @@ const char* kindName(ErrorKind k) {
       return "IoError";
     case ErrorKind::Diverged:
       return "Diverged";
+    case ErrorKind::Interrupted:
+      return "Interrupted";
+    case ErrorKind::ControllerFailed:
+      return "ControllerFailed";
     case ErrorKind::Internal:
       return "Internal";
     case ErrorKind::Unavailable:
@@ -169,6 +191,10 @@ const char* className(ErrorKind k) {
       return "OutputError";
     case ErrorKind::Diverged:
       return "DivergedError";
+    case ErrorKind::Interrupted:
+      return "RunInterrupted";
+    case ErrorKind::ControllerFailed:
+      return "ControllerError";
     case ErrorKind::Internal:
       return "InternalError";
     case ErrorKind::Unavailable:
@@ -276,10 +302,10 @@ class PyController : public simbob::Party {
       fn_(sim_);
     } catch (py::error_already_set& e) {
       pending_ = std::make_unique<py::error_already_set>(std::move(e));
-      failure_ = Error{ErrorKind::Diverged, loc, name + " raised " + std::string(pending_->what())};
+      failure_ = Error{ErrorKind::ControllerFailed, loc, name + " raised " + std::string(pending_->what())};
       return simbob::kNever;
     } catch (const std::exception& e) {
-      failure_ = Error{ErrorKind::Diverged, loc, name + " failed: " + e.what()};
+      failure_ = Error{ErrorKind::ControllerFailed, loc, name + " failed: " + e.what()};
       return simbob::kNever;
     }
     return nextAfter(now);
@@ -317,9 +343,7 @@ class PySimulation {
     }
     simbob::Diagnostics diag;
     if (text) {
-      const bool ini = scene.size() >= 4 && scene.compare(scene.size() - 4, 4, ".ini") == 0;
-      sim_ = simbob::Simulation::fromText(*text, scene, ini ? simbob::Format::Ini : simbob::Format::Xml, registry(),
-                                          opts, diag);
+      sim_ = simbob::Simulation::fromText(*text, scene, registry(), opts, diag);
     } else {
       sim_ = simbob::Simulation::fromFile(scene, registry(), opts, diag);
     }
@@ -420,10 +444,6 @@ class PySimulation {
     if (width < 1 || height < 1 || width > simbob::kMaxImageSide || height > simbob::kMaxImageSide)
       raiseUsage("size must be 1 to " + std::to_string(simbob::kMaxImageSide) + " pixels a side");
     const simbob::Model& model = sim_->model();
-    if (simbob::modelsShowNoBody(model)) {  // as `simbob render` does: the collision shapes then
-      ro.draw_models = false;
-      ro.draw_geoms = true;
-    }
     const std::string key =
         camera + "\n" + std::to_string(width) + "x" + std::to_string(height) + "\n" + simbob::qualityName(ro.quality);
     auto it = renderers_.find(key);
@@ -537,6 +557,134 @@ int sensorIndex(PySimulation& s, const std::string& key) {
              (list.empty() ? " (it has none)" : " (its sensors: " + list + ")"));
 }
 
+// ---- simbob.run(): a whole run through the Run, writing exactly the files `simbob run` writes ----
+
+std::string pathText(const py::object& p) { return py::module_::import("os").attr("fspath")(p).cast<std::string>(); }
+
+// The view of a recording: size "WxH" or (w, h), camera key, quality level.
+void recordingView(const py::object& size, const std::string& camera, const std::string& quality,
+                   simbob::RenderOptions* ro) {
+  if (!size.is_none()) {
+    int w = 0, h = 0;
+    if (py::isinstance<py::str>(size)) {
+      const std::string t = size.cast<std::string>();
+      char x = 0;
+      if (std::sscanf(t.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x') w = h = 0;
+    } else {
+      const py::sequence wh = size.cast<py::sequence>();
+      if (wh.size() == 2) {
+        w = wh[0].cast<int>();
+        h = wh[1].cast<int>();
+      }
+    }
+    if (w < 1 || h < 1 || w > simbob::kMaxImageSide || h > simbob::kMaxImageSide)
+      raiseUsage("size must be \"WIDTHxHEIGHT\" or (width, height) with 1 to " + std::to_string(simbob::kMaxImageSide) +
+                 " pixels each, got " + py::repr(size).cast<std::string>());
+    ro->width = w;
+    ro->height = h;
+  }
+  ro->camera = camera;
+  if (!quality.empty() && !simbob::parseQuality(quality, &ro->quality))
+    raiseUsage("unknown quality '" + quality + "' (frame, wire, plane, flat, smooth, textures, shadows, " +
+               "transparency, fog)");
+}
+
+// Ctrl-C during a long run: Python would see the signal only once the run returned, so while
+// simbob.run() runs on the main thread SIGINT sets a stop flag instead, as `simbob run`'s
+// handler does: the run ends at the next step and keeps its partial outputs, and Python's own
+// handler is back before RunInterrupted (a KeyboardInterrupt) is raised.
+volatile std::sig_atomic_t g_py_stop = 0;
+
+class StopOnSigint {
+ public:
+  StopOnSigint() {
+    g_py_stop = 0;
+    const bool main_thread = py::module_::import("threading")
+                                 .attr("current_thread")()
+                                 .is(py::module_::import("threading").attr("main_thread")());
+    if (!main_thread) return;  // signals reach the main thread's Python only
+    struct sigaction sa {};
+    sa.sa_handler = [](int) { g_py_stop = 1; };
+    sigemptyset(&sa.sa_mask);
+    installed_ = ::sigaction(SIGINT, &sa, &old_) == 0;
+  }
+  ~StopOnSigint() {
+    if (installed_) ::sigaction(SIGINT, &old_, nullptr);
+  }
+  StopOnSigint(const StopOnSigint&) = delete;
+  StopOnSigint& operator=(const StopOnSigint&) = delete;
+
+ private:
+  struct sigaction old_ {};
+  bool installed_ = false;
+};
+
+py::dict pyRun(const py::object& scene, double duration, const py::object& out, const py::object& overrides,
+               uint32_t seed, const py::object& dt, double sample_interval, const std::string& log,
+               const py::object& log_out, const std::string& columns, const py::object& record, const py::object& video,
+               const py::object& html, const py::object& size, const std::string& camera, const std::string& quality,
+               double fps, bool check_determinism, const py::object& controllers, double peer_timeout,
+               int port_offset) {
+  simbob::RunOptions o;
+  o.scene = pathText(scene);
+  o.simulation.duration = duration;
+  o.simulation.overrides = parseOverrides(overrides);
+  o.simulation.seed = seed;
+  if (!dt.is_none()) o.simulation.dt = dt.cast<double>();
+  o.sample_interval = sample_interval;
+  if (!out.is_none()) o.out = pathText(out);
+  if (!log.empty()) {
+    std::string problem;
+    if (!simbob::parseRunLogWhat(log, &o.log, &problem)) raiseUsage("log: " + problem);
+  }
+  if (!log_out.is_none()) o.log_out = pathText(log_out);
+  if (columns != "pose" && columns != "pose,velocity")
+    raiseUsage("columns must be \"pose\" or \"pose,velocity\", got '" + columns + "'");
+  o.velocity_columns = columns == "pose,velocity";
+  if (!record.is_none()) o.record = pathText(record);
+  if (!video.is_none()) o.video = pathText(video);
+  if (!html.is_none()) o.html = pathText(html);
+  recordingView(size, camera, quality, &o.render);
+  o.fps = fps;
+  if (!(fps > 0 && fps <= 1000))
+    raiseUsage("fps must be above 0 and at most 1000, got " + py::repr(py::float_(fps)).cast<std::string>());
+  o.check_determinism = check_determinism;
+  if (!controllers.is_none())
+    for (const auto& kv : controllers.cast<py::dict>())
+      o.simulation.controllers.push_back(
+          py::str(kv.first).cast<std::string>() + "=" +
+          (kv.second.is_none() ? std::string() : py::str(kv.second).cast<std::string>()));
+  o.simulation.peer_timeout = peer_timeout;
+  o.simulation.port_offset = port_offset;
+  o.simulation.stop = &g_py_stop;
+  std::vector<std::string> errors, warnings;
+  simbob::RunListener listener;
+  listener.note = [&](const simbob::RunNote& n) {
+    if (n.level == simbob::RunNote::Warning) warnings.push_back(n.what.str());
+    if (n.level == simbob::RunNote::Error) errors.push_back(n.what.errorLine());
+  };
+  Error refusal;
+  std::unique_ptr<simbob::Run> run;
+  simbob::RunOutcome outcome;
+  {
+    StopOnSigint sigint;  // Python's handler is back before any Python code runs again
+    py::gil_scoped_release nogil;
+    run = simbob::Run::open(o, registry(), listener, &refusal);
+    if (run) outcome = run->finish();
+  }
+  if (!run) {
+    py::list all;
+    for (const std::string& e : errors) all.append(e);
+    raiseError(refusal, all);
+  }
+  py::object warn = py::module_::import("warnings").attr("warn");
+  for (const std::string& w : warnings) warn(w, py::module_::import("builtins").attr("RuntimeWarning"), 2);
+  if (outcome.output_error) raiseError(*outcome.output_error);
+  if (outcome.result.status != simbob::RunStatus::Completed) raiseError(outcome.result.error);
+  py::object json = py::module_::import("json");
+  return json.attr("loads")(outcome.summary.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_simbob, m) {
@@ -555,8 +703,8 @@ Same scene, overrides and seed give the same numbers, bit for bit, as `simbob ru
 Errors are simbob.Error subclasses carrying kind, file, line and message.)";
   m.attr("__version__") = SIMBOB_VERSION;
   py::exec(kErrorClasses, m.attr("__dict__"));
-  for (const char* name : {"Error", "SceneError", "MissingInputError", "UsageError", "DivergedError",
-                           "UnavailableError", "OutputError", "ProtocolError", "InternalError"})
+  for (const char* name : {"Error", "SceneError", "MissingInputError", "UsageError", "DivergedError", "ControllerError",
+                           "RunInterrupted", "UnavailableError", "OutputError", "ProtocolError", "InternalError"})
     m.attr(name).attr("__module__") = "simbob";
   registry();
   m.def(
@@ -571,6 +719,34 @@ Errors are simbob.Error subclasses carrying kind, file, line and message.)";
 and actuator types join the registry for every scene loaded after. Raises simbob.MissingInputError
 when the file cannot be loaded and simbob.SceneError when it is not a simbob plug-in of this ABI
 or its type names are taken (loading it twice included).)");
+
+  m.def("run", &pyRun, py::arg("scene"), py::kw_only(), py::arg("duration"), py::arg("out") = py::none(),
+        py::arg("overrides") = py::none(), py::arg("seed") = 0, py::arg("dt") = py::none(),
+        py::arg("sample_interval") = 0.01, py::arg("log") = "", py::arg("log_out") = py::none(),
+        py::arg("columns") = "pose", py::arg("record") = py::none(), py::arg("video") = py::none(),
+        py::arg("html") = py::none(), py::arg("size") = py::none(), py::arg("camera") = "", py::arg("quality") = "",
+        py::arg("fps") = 30.0, py::arg("check_determinism") = false, py::arg("controllers") = py::none(),
+        py::arg("peer_timeout") = 10.0, py::arg("port_offset") = 0,
+        R"(Runs a scene to `duration` s and writes what `simbob run` writes, byte for byte: the
+trajectory CSV (`out`, default the scene's name with .csv in the current folder), its summary
+(.json beside it), the controllers' log, and, when asked, the run log, the recording and the
+replay page. The same object runs both (the library's Run), so options, defaults, checks,
+messages and outputs are the CLI's.
+
+Args mirror `simbob run`'s options: overrides (--set, as for Simulation), seed, dt, sample_interval,
+log ("joints,sensors,commands") and log_out, columns ("pose" or "pose,velocity"), record (a
+folder of PNG frames), video (.avi or .mp4), html (the replay page), size ("640x480" or (w, h)),
+camera, quality and fps of the recording, check_determinism, controllers ({"KEY": "COMMAND"},
+as --controller), peer_timeout, port_offset.
+
+Returns the run summary as a dict. The scene's warnings go to Python's warnings (RuntimeWarning).
+
+Raises:
+    SceneError, MissingInputError, UsageError, OutputError: refused before it started
+        (e.errors lists every error line); nothing is written then.
+    DivergedError, ControllerError (UnavailableError, ProtocolError), RunInterrupted (a
+        KeyboardInterrupt): the run stopped; like `simbob run`, it kept what it computed as
+        .partial files beside its outputs, named in its .partial.json summary.)");
 
   py::class_<PySimulation> cls(m, "Simulation",
                                R"(One run of a scene: its compiled model, its world, the clock on the fixed step

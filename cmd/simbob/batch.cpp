@@ -23,9 +23,9 @@
 #include "cli.h"
 #include "commands.h"
 #include "workers.h"
-#include "simbob/compare.h"
-#include "simbob/files.h"
-#include "simbob/run.h"
+#include "simbob/tool/comparison.h"
+#include "simbob/tool/files.h"
+#include "simbob/loop.h"
 #include "simbob/trajectory.h"
 #include "simbob/values.h"
 

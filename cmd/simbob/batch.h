@@ -11,7 +11,7 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "simbob/compare.h"
+#include "simbob/tool/comparison.h"
 
 namespace simbob::cli::batch {
 

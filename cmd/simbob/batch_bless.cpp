@@ -8,7 +8,7 @@
 
 #include "batch.h"
 #include "cli.h"
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 #include "simbob/values.h"
 
 namespace simbob::cli::batch {

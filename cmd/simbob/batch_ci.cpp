@@ -11,9 +11,9 @@
 #include "ci_report.h"
 #include "cli.h"
 #include "commands.h"
-#include "simbob/files.h"
-#include "simbob/plot.h"
-#include "simbob/test_report.h"
+#include "simbob/tool/files.h"
+#include "simbob/tool/plot.h"
+#include "simbob/tool/test_report.h"
 #include "simbob/trajectory.h"
 #include "simbob/values.h"
 

@@ -11,7 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "batch.h"
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 #include "simbob/values.h"
 
 namespace simbob::cli::batch {
@@ -70,7 +70,7 @@ std::string manifestLineProblem(const std::vector<std::string>& words, const Bat
   } catch (const CLI::ParseError& e) {
     return std::string("run options: ") + e.what();
   }
-  if (app.count("--out") > 0 && ra.out.empty()) return "--out needs a file name, got \"\"";
+  if (app.count("--out") > 0 && ra.run.out.empty()) return "--out needs a file name, got \"\"";
   return runArgsProblem(ra);
 }
 

@@ -8,8 +8,8 @@
 
 #include "cli.h"
 #include "simbob/physics.h"
-#include "simbob/platform.h"
-#include "simbob/sweep.h"
+#include "simbob/tool/platform.h"
+#include "simbob/tool/sweep_plan.h"
 #include "simbob/values.h"
 #include "version.h"
 

@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
-#include "simbob/compare.h"
-#include "simbob/test_report.h"
+#include "simbob/tool/comparison.h"
+#include "simbob/tool/test_report.h"
 
 namespace simbob {
 struct SweepCase;

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "simbob/compare.h"
-#include "simbob/run_outputs.h"
+#include "simbob/tool/comparison.h"
+#include "simbob/scene_run.h"
 
 namespace CLI {
 class App;
@@ -39,52 +39,40 @@ void addViewOptions(CLI::App* app, ViewArgs& v);
 /// Checks the view options and fills `o` (the back end from $SIMBOB_GL when --gl is not given);
 /// 0, or the exit status after logging the problem.
 int renderOptions(const ViewArgs& v, const Common& common, RenderOptions* o);
-/// Without --draw, draws the collision shapes instead of models that show no body, saying so
-/// once on stderr.
-void drawFallback(const ViewArgs& v, const Model& model, RenderOptions* o);
+/// What a Run says goes to the log (and the log file stops before it writes into a file the run
+/// reads): the listener of `run` and `render`.
+RunListener runListener();
 
+/// `simbob run`: the run itself (RunOptions: most options bind straight to its fields) and what
+/// only the command line has.
 struct RunArgs {
-  std::string scene;
-  double duration = 0;
-  double dt = 0;
-  double sample_interval = 0.01;
-  std::string out;
-  uint32_t seed = 0;
+  RunOptions run;
   bool json = false;
-  bool check_determinism = false;
   bool batch_child = false;       ///< started by `simbob batch`: warnings stay out of the log
-  bool refusal_summary = false;   ///< a run refused before it starts writes its partial summary
   std::string space;              ///< overrides SceneSettings Space ("" = the scene's)
   bool auto_disable = false;      ///< turns SceneSettings AutoDisable on
   int max_contacts = 0;           ///< overrides SceneSettings MaxContacts (0 = the scene's)
-  bool out_given = false;         ///< --out was on the command line
   std::vector<std::string> sets;  ///< --set KEY.PARAM=VALUE, in order
-  int port_offset = 0;            ///< added to every socket communicator's Port
-  double peer_timeout = 10;       ///< wall-clock s for a socket peer to connect or answer
-  /// --controller KEY=COMMAND, in order (SimulationOptions::controllers)
-  std::vector<std::string> controllers;
-  std::string record;  ///< --record DIR: frames as DIR/frame_000000.png ("" = no GL context at all)
-  std::string video;   ///< --video FILE.avi|FILE.mp4: the same frames as one video
-  ViewArgs view;
-  std::string log;               ///< --log: comma list of joints, sensors, commands ("" = no run log)
-  std::string log_out;           ///< --log-out: the run log (default: --out with .csv -> .log.csv)
-  std::string columns = "pose";  ///< --columns: "pose", or "pose,velocity" for the velocity block
-  std::string html;              ///< --html PAGE: the replay page of the run (simbob view), written after it
+  ViewArgs view;                  ///< the recording's view (--size, --camera, ...): run.render
+  std::string log;                ///< --log: comma list of joints, sensors, commands (run.log)
+  std::string columns = "pose";   ///< --columns: "pose", or "pose,velocity" (run.velocity_columns)
 };
 int cmdRun(RunArgs& a, const Common& common);
 
 /// The options of `simbob run` (also used to check the lines of a batch manifest).
 void addRunOptions(CLI::App* run, RunArgs& ra, Common& common);
 void addCommon(CLI::App* app, Common& c);
-/// The files `simbob run` writes: --out, then (unless --out is a stream) the summary and the
-/// partial trajectory.
+/// The files `simbob run` writes (runOutputFiles): --out, then (unless --out is a stream) the
+/// summary, the partial files and the controllers' log, the replay page and the run log.
 std::vector<NamedPath> runOutputs(const RunArgs& a);
-/// The same as the paths a run opens (RunOutputs): --out, its summary, the run log and the video.
-RunOutputPaths runPaths(const RunArgs& a);
-/// "out.csv" -> "out.controller.log": what the controllers simbob starts print.
-std::string controllerLogPath(const std::string& out);
-/// What is wrong with run options beyond their syntax ("" if nothing): time ranges, --out.
+/// What is wrong with run options beyond their syntax ("" if nothing): runOptionsProblem, then
+/// what only the command line can get wrong (--out - with --json, --log and --log-out).
 std::string runArgsProblem(const RunArgs& a);
+/// Fills the fields of a.run that options do not bind directly: the run log's list, the
+/// columns, a batch worker's silence, the overrides (runOverrides), the recording's view, the
+/// global settings' texture folder, the stop flag, and the files the command reads and writes
+/// besides the run's own. 0, or the exit status (reported).
+int completeRunOptions(RunArgs& a, const Common& common);
 
 int cmdCheck(const std::string& path, const Common& common, const std::vector<std::string>& sets = {}, double dt = 0);
 int cmdDump(const std::string& path, const std::string& format, const Common& common,
@@ -119,8 +107,6 @@ CLI::App* addViewCommand(CLI::App& app, ViewPageArgs& v, Common& common);
 int cmdView(const ViewPageArgs& a, const Common& common);
 /// Writes the page of `actual` (and `golden`, may be null) in a.scene to a.out; the exit status.
 int viewPage(const ViewPageArgs& a, const Common& common, const Trajectory* actual, const Trajectory* golden);
-/// `run --html PAGE`: the page of the trajectory the run has just written (--out), with its --set.
-int viewAfterRun(const RunArgs& a, const Common& common);
 
 struct PlotArgs {
   std::string trajectory, golden, out, bodies, title;

@@ -13,10 +13,10 @@ int cmdCheck(const std::string& path, const Common& common, const std::vector<st
   std::vector<Override> overrides;
   if (int c = sceneOverrides(common, path, sets, &overrides)) return c;
   exitOnStopSignals(path, "loading");
-  Scene scene;
+  LoadReport loaded;
   Model model;
   int code = 0;
-  if (!loadAndCompile(path, *common.registry, &scene, &model, &code, true, true, {{"--settings", common.settings}},
+  if (!loadAndCompile(path, *common.registry, &model, &loaded, &code, true, true, {{"--settings", common.settings}},
                       overrides))
     return code;
   Diagnostics lint;
@@ -37,7 +37,9 @@ int cmdDump(const std::string& path, const std::string& format, const Common& co
   Diagnostics d;
   const bool ok = loadScene(path, *common.registry, &scene, d) && applyOverrides(scene, overrides, d);
   std::vector<NamedPath> read = {{"--settings", common.settings}};
-  appendSceneInputs(scene, path, overrides, &read);
+  LoadReport loaded;
+  loaded.files = scene.files;
+  appendSceneInputs(loaded, path, overrides, &read);
   if (int c = checkOutputs({{"--log-file", g_log.path}}, read)) return c;
   if (!ok) return report(d, true);
   std::string text = writeScene(scene, format == "ini" ? Format::Ini : Format::Xml, true);

@@ -108,8 +108,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
     return kExitUsage;
   }
   if (int c = emptyOutputOption(in)) return c;
-  in.run.out_given = in.cmd.run->count("--out") > 0;
-  // The one registry of component types: built here, passed down (plug-ins will add to it).
+  // The one registry of component types: built here, passed down (--plugin adds its types to it).
   simbob::Registry registry;
   if (!simbob::registerBuiltins(registry)) {
     for (const std::string& p : registry.problems())

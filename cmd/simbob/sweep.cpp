@@ -19,9 +19,9 @@
 #include "sweep_cli.h"
 #include "commands.h"
 #include "workers.h"
-#include "simbob/csv.h"
-#include "simbob/files.h"
-#include "simbob/sweep.h"
+#include "simbob/tool/csv.h"
+#include "simbob/tool/files.h"
+#include "simbob/tool/sweep_plan.h"
 #include "simbob/trajectory.h"
 #include "simbob/values.h"
 
@@ -88,9 +88,9 @@ int sweepPlan(const SweepArgs& a, const Common& common) {
   }
   // Every case's overrides are checked against the scene now, not in the thousandth array task.
   {
-    Scene sc;
+    LoadReport loaded;
     Model model;
-    if (!loadAndCompile(scene_path, *common.registry, &sc, &model, &code, false, false, {})) return code;
+    if (!loadAndCompile(scene_path, *common.registry, &model, &loaded, &code, false, false, {})) return code;
     std::vector<std::string> keys;
     for (const BodyDef& b : model.bodies) keys.push_back(b.key);
     for (const SweepMetric& m : cases.front().metrics)
@@ -117,9 +117,9 @@ int sweepPlan(const SweepArgs& a, const Common& common) {
       }
       o.place = a.input + ": case " + std::to_string(c.index) + ": " + s;
       ov.push_back(o);
-      Scene sc;
+      LoadReport loaded;
       Model model;
-      if (!loadAndCompile(scene_path, *common.registry, &sc, &model, &code, false, false, {}, ov)) return code;
+      if (!loadAndCompile(scene_path, *common.registry, &model, &loaded, &code, false, false, {}, ov)) return code;
     }
   std::string out;
   for (const SweepCase& c : cases) out += manifestLine(c) + "\n";

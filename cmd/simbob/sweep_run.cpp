@@ -18,9 +18,9 @@
 #include "sweep_cli.h"
 #include "commands.h"
 #include "workers.h"
-#include "simbob/csv.h"
-#include "simbob/files.h"
-#include "simbob/sweep.h"
+#include "simbob/tool/csv.h"
+#include "simbob/tool/files.h"
+#include "simbob/tool/sweep_plan.h"
 #include "simbob/trajectory.h"
 #include "simbob/values.h"
 

@@ -1,16 +1,16 @@
 // simbob view TRAJ.csv --scene SCENE -o PAGE.html [--golden GOLDEN.csv] [--title T] (issue #23):
 // parses the options and hands the scene, the trajectories and the output to the library
-// (simbob/view.h); `compare --html` goes through viewPage too.
+// (simbob/tool/replay_page.h); `compare --html` goes through viewPage too.
 #include <CLI/CLI.hpp>
 #include <filesystem>
 
 #include "cli.h"
 #include "commands.h"
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 #include "simbob/overrides.h"
-#include "simbob/sweep.h"
+#include "simbob/tool/sweep_plan.h"
 #include "simbob/trajectory.h"
-#include "simbob/view.h"
+#include "simbob/tool/replay_page.h"
 
 namespace simbob::cli {
 
@@ -32,15 +32,15 @@ CLI::App* addViewCommand(CLI::App& app, ViewPageArgs& v, Common& common) {
 int viewPage(const ViewPageArgs& a, const Common& common, const Trajectory* actual, const Trajectory* golden) {
   std::vector<Override> overrides;
   if (int c = sceneOverrides(common, a.scene, a.sets, &overrides)) return c;
-  Scene scene;
+  LoadReport loaded;
   Model model;
   int code = 0;
-  if (!loadAndCompile(a.scene, *common.registry, &scene, &model, &code, false, false, {{"--settings", common.settings}},
-                      overrides))
+  if (!loadAndCompile(a.scene, *common.registry, &model, &loaded, &code, false, false,
+                      {{"--settings", common.settings}}, overrides))
     return code;
   std::vector<NamedPath> inputs = {
       {"the trajectory", a.trajectory}, {"the golden file", a.golden}, {"--settings", common.settings}};
-  appendSceneInputs(scene, a.scene, overrides, &inputs);
+  appendSceneInputs(loaded, a.scene, overrides, &inputs);
   appendModelInputs(model, common, a.scene, &inputs);
   if (int c = checkOutputs({{"--out", a.out}, {"--log-file", g_log.path}}, inputs)) return c;
   ViewPageInput in;
@@ -72,19 +72,6 @@ int cmdView(const ViewPageArgs& a, const Common& common) {
     return exitCodeFor(err.kind);
   }
   return viewPage(a, common, &actual, a.golden.empty() ? nullptr : &golden);
-}
-
-int viewAfterRun(const RunArgs& a, const Common& common) {
-  if (isStreamOutput(a.out)) {
-    g_log.error({ErrorKind::InvalidInput, {}, "--html reads the trajectory back: --out must be a file, not a stream"});
-    return kExitUsage;
-  }
-  ViewPageArgs v;
-  v.trajectory = a.out;
-  v.scene = a.scene;
-  v.out = a.html;
-  v.sets = a.sets;
-  return cmdView(v, common);
 }
 
 namespace {

@@ -51,15 +51,6 @@ struct WorldImpl;  // ODE handles; private to lib/physics (world_impl.h)
 /// in parallel within a process; for parallel worlds use processes. One World must be used from
 /// one thread at a time: a step that overlaps another step of the same World is refused (see
 /// step), and other calls must not overlap a step.
-struct Image;
-/// Where World::cameraImage looks: the Simulation's camera sensors (lib/simulation).
-class CameraImages {
- public:
-  virtual ~CameraImages() = default;
-  /// The latest image of the RCCameraSensor with this key; null if there is none.
-  virtual const Image* image(const std::string& key) const = 0;
-};
-
 class World {
  public:
   /// Validates nothing: the Model must come from compile(). `seed` is the starting state of
@@ -127,13 +118,6 @@ class World {
   const std::vector<double>& sensorReading(int sensor) const;
   /// Names of sensor i's quantities, in reading order (sensorQuantities of its SensorDef).
   const std::vector<std::string>& sensorQuantities(int sensor) const;
-  /// The latest image of the RCCameraSensor with this key (docs/sensors.md), drawn by the
-  /// Simulation before the controllers of its Period instants: how controllers and plug-ins see
-  /// it. Null for an unknown key, or in a World that no Simulation draws images for.
-  const Image* cameraImage(const std::string& key) const;
-  /// Where cameraImage looks (it must outlive its use here); null: nowhere.
-  void setCameraImages(const CameraImages* images);
-
   /// Index of the first body whose state is non-finite or beyond `limit` (m or m/s, rad/s),
   /// or -1 when all are fine.
   int firstBadBody(double limit = 1e6) const;

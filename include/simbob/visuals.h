@@ -14,6 +14,10 @@ namespace simbob {
 
 using Rgba = std::array<double, 4>;
 
+/// Which GL implementation renders: Auto tries EGL (surfaceless, then device platform), then
+/// OSMesa.
+enum class GlBackend { Auto, Egl, OsMesa };
+
 /// A surface's appearance (RCColoredSkin, RCTexturedSkin, RCColTexSkin).
 struct SkinDef {
   std::string key;                  ///< fully qualified key of the skin ("" = the default skin)

@@ -119,10 +119,6 @@ std::string pluginWho(const std::string& plugin, const std::string& type) {
   return "plug-in '" + plugin + "', type '" + type + "'";
 }
 
-bool isActuatorInterface(const std::string& interface) {
-  return interface == "RCDriver" || interface == "RCPosControl" || interface == "RCVelControl";
-}
-
 std::string registerPlugin(Registry& reg, const SimbobPlugin& p) {
   const std::string plugin = str(p.name);
   if (p.type_count < 0 || (p.type_count > 0 && !p.types)) return "types and type_count disagree";

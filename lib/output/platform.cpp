@@ -1,4 +1,4 @@
-#include "simbob/platform.h"
+#include "simbob/tool/platform.h"
 
 #include <gnu/libc-version.h>
 

@@ -1,10 +1,10 @@
-#include "simbob/test_report.h"
+#include "simbob/tool/test_report.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <ctime>
 
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 #include "simbob/values.h"
 
 namespace simbob {

@@ -1,7 +1,7 @@
 // The human-facing forms of a TestSuiteReport: the Markdown summary and the artifacts index page.
 #include <cstdio>
 
-#include "simbob/test_report.h"
+#include "simbob/tool/test_report.h"
 #include "simbob/values.h"
 
 namespace simbob {

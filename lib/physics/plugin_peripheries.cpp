@@ -112,7 +112,7 @@ SimbobHost hostFor(MountContext* m) {
 
 /// Records the World's first failure, at the periphery's scene element.
 void fail(WorldImpl& im, const SourceLoc& loc, const std::string& what) {
-  if (im.failure.message.empty()) im.failure = {ErrorKind::Diverged, loc, what};
+  if (im.failure.message.empty()) im.failure = {ErrorKind::ControllerFailed, loc, what};
 }
 
 std::string messageOf(const char* buf) {

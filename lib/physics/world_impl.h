@@ -4,6 +4,7 @@
 //
 //   bodies.cpp    mobile bodies, centre-of-mass offset, body state
 //   geoms.cpp     the collision space, geoms and their contact data
+//   broadphase.cpp  the default hash space's candidate pairs, in dHashSpace's order (faster)
 //   joints.cpp    joints and joint state (simbob's sign convention)
 //   contacts.cpp  the near callback: contact joints per the material rules of guide 7.1
 //   actuators.cpp drives, servos and velocity drives on hinge and slider joints
@@ -11,8 +12,10 @@
 //                 space of their own, that only detect) and encoders
 //   rays.cpp      range sensors and laser scanners: ODE rays cast against the collision space
 //   imu.cpp       inertial measurement units: specific force and angular velocity
+//   sensor_noise.cpp  each sensor's own random generator (run seed and sensor key)
 //   plugin_peripheries.cpp  plug-in sensors and actuators (simbob/plugin_c.h) and World::failure
 //   world.cpp     World: create, step, accessors
+//   version.cpp   physicsVersion(): ODE's version and configuration, for run summaries
 //
 // Actuators and sensors join as files of their own: a create function called by World::create
 // after createJoints, which may append to WorldImpl::beforeStep what it must do every step.
@@ -83,7 +86,6 @@ struct ActuatorState {
 };
 
 struct WorldImpl {
-  const CameraImages* cameraImages = nullptr;  ///< World::cameraImage (the Simulation's camera sensors)
   dWorldID world = nullptr;
   dSpaceID space = nullptr;
   /// Sensor geoms live here, so the collision space (and the order in which it reports pairs)

@@ -8,7 +8,7 @@
 #include "render/gl_context.h"
 #include "render/shapes.h"
 #include "render/texture_file.h"
-#include "simbob/render.h"
+#include "simbob/renderer.h"
 #include "simbob/transform.h"
 
 namespace simbob {
@@ -712,6 +712,11 @@ bool modelsShowNoBody(const Model& model) {
 
 Renderer::~Renderer() = default;
 
+std::string drawFallbackNote(const Model& model, const RenderOptions& options) {
+  if (options.draw_chosen || !modelsShowNoBody(model)) return "";
+  return "no body has a model: drawing the collision shapes (--draw geoms; --draw models for the models alone)";
+}
+
 std::unique_ptr<Renderer> Renderer::create(const Model& model, const RenderOptions& opts, Error* err) {
   if (opts.width < 1 || opts.height < 1 || opts.width > kMaxImageSide || opts.height > kMaxImageSide) {
     err->kind = ErrorKind::InvalidInput;
@@ -720,7 +725,12 @@ std::unique_ptr<Renderer> Renderer::create(const Model& model, const RenderOptio
   }
   std::unique_ptr<render::GlContext> ctx = render::createContext(opts.backend, opts.width, opts.height, err);
   if (!ctx) return nullptr;
-  auto r = std::make_unique<GlRenderer>(model, opts, std::move(ctx));
+  RenderOptions o = opts;
+  if (!o.draw_chosen && modelsShowNoBody(model)) {
+    o.draw_models = false;
+    o.draw_geoms = true;
+  }
+  auto r = std::make_unique<GlRenderer>(model, o, std::move(ctx));
   if (!r->init(err)) return nullptr;
   return r;
 }

@@ -1,7 +1,8 @@
 // BMP and PNG readers for textures.
+#include "simbob/renderer.h"
 #include "render/texture_file.h"
 
-#include "simbob/png.h"
+#include "simbob/tool/png.h"
 
 #include <algorithm>
 #include <array>
@@ -174,3 +175,23 @@ bool TextureFiles::load(const std::string& path, size_t* slot, Image* image, boo
 }
 
 }  // namespace simbob::render
+
+namespace simbob {
+
+std::vector<std::string> textureFiles(const Model& model, const std::string& texture_folder) {
+  std::vector<std::string> files;
+  for (const SkinDef& s : model.skins) {
+    if (s.texture.empty()) continue;
+    for (const std::string& dir : {texture_folder, s.base_dir}) {
+      if (dir.empty()) continue;
+      for (const char* ext : {"", ".bmp", ".png"}) {
+        const std::string p = (s.texture[0] == '/' ? "" : dir + "/") + s.texture + ext;
+        std::error_code ec;
+        if (std::filesystem::is_regular_file(p, ec)) files.push_back(p);
+      }
+    }
+  }
+  return files;
+}
+
+}  // namespace simbob

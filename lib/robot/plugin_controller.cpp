@@ -1,7 +1,7 @@
 // A plug-in's controller (simbob/plugin_c.h, docs/plugins.md): its instance is made from its
 // numbers when the run's parties are, and its act() runs at 0, Period, 2 Period, ... with a
 // SimbobHost that reads the sensors and commands the actuators its refs name
-// (ControllerDef::refs). A failure -- create() returning NULL, act() returning nonzero, a host
+// (PluginControllerDef::refs). A failure -- create() returning NULL, act() returning nonzero, a host
 // call with a ref out of range or of the wrong kind, or a World index out of range
 // (World::misuse) -- stops the run with an error naming the controller, the plug-in and the
 // type, where the controller is defined (exit 1, the trajectory so far kept).
@@ -19,7 +19,12 @@ namespace {
 class PluginController : public Party {
  public:
   explicit PluginController(const ControllerDef& c)
-      : def_(c), type_(*c.plugin_type), tick_(c.period), who_("plug-in '" + c.plugin + "', type '" + c.type + "'") {
+      : key_(c.key),
+        loc_(c.loc),
+        def_(c.as<PluginControllerDef>()),
+        type_(*def_.plugin_type),
+        tick_(def_.period),
+        who_("plug-in '" + def_.plugin + "', type '" + def_.type + "'") {
     if (!type_.create) return;
     std::array<char, SIMBOB_MESSAGE_SIZE> msg{};
     user_ = type_.create(def_.numbers.data(), msg.data());
@@ -65,7 +70,7 @@ class PluginController : public Party {
     const size_t n = strnlen(buf, SIMBOB_MESSAGE_SIZE);
     return n ? std::string(buf, n) : std::string("(no message)");
   }
-  /// The Model index behind ref `ref` if it is of the wanted kind (ControllerDef::ref_kind); -1
+  /// The Model index behind ref `ref` if it is of the wanted kind (PluginControllerDef::ref_kind); -1
   /// after recording the misuse.
   int refIndex(const char* call, int ref, uint8_t kind) {
     const int count = static_cast<int>(def_.refs.size());
@@ -114,10 +119,12 @@ class PluginController : public Party {
   }
   void fail(const std::string& what) {
     if (error_.message.empty())
-      error_ = {ErrorKind::Diverged, def_.loc, "controller '" + def_.key + "' (" + who_ + "): " + what};
+      error_ = {ErrorKind::ControllerFailed, loc_, "controller '" + key_ + "' (" + who_ + "): " + what};
   }
 
-  const ControllerDef def_;  // a copy, so the party points into nothing of the Model
+  const std::string key_;
+  const SourceLoc loc_;
+  const PluginControllerDef def_;  // a copy, so the party points into nothing of the Model
   const SimbobType& type_;
   Periodic tick_;
   std::string who_;

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "simbob/physics.h"
-#include "simbob/platform.h"
+#include "simbob/tool/platform.h"
 #include "simbob/simulation.h"
 
 namespace simbob {

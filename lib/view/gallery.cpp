@@ -1,10 +1,10 @@
-// The gallery of a sweep (include/simbob/view.h, `sweep gather --html`): the gathered table as
+// The gallery of a sweep (include/simbob/tool/replay_page.h, `sweep gather --html`): the gathered table as
 // JSON in the page, drawn by the page's short script (lib/view/gallery.html, embedded at build
 // time) -- a sortable table with a link to each case's replay page, and an SVG plot of one column
 // against another.
 #include <nlohmann/json.hpp>
 
-#include "simbob/view.h"
+#include "simbob/tool/replay_page.h"
 #include "view/assets.h"
 
 namespace simbob {

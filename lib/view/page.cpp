@@ -1,4 +1,4 @@
-// The replay page (include/simbob/view.h): the Model's visuals, skins, cameras and collision
+// The replay page (include/simbob/tool/replay_page.h): the Model's visuals, skins, cameras and collision
 // shapes as JSON, the poses as float32 base64, three.js and the viewer (lib/view/viewer.js,
 // lib/view/page.html, embedded at build time) in one HTML file.
 #include <cmath>
@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
-#include "simbob/files.h"
-#include "simbob/view.h"
+#include "simbob/tool/files.h"
+#include "simbob/tool/replay_page.h"
 #include "view/assets.h"
 
 namespace simbob {

@@ -1,6 +1,6 @@
 // lib/output/test_report.cpp and test_report_pages.cpp: JUnit XML, the Markdown summary and the
 // artifacts index of a batch against its golden files.
-#include "simbob/test_report.h"
+#include "simbob/tool/test_report.h"
 
 #include <unistd.h>
 

@@ -17,9 +17,9 @@
 
 #include "simbob/compile.h"
 #include "simbob/graph.h"
-#include "simbob/image_compare.h"
-#include "simbob/png.h"
-#include "simbob/render.h"
+#include "simbob/tool/image_compare.h"
+#include "simbob/tool/png.h"
+#include "simbob/renderer.h"
 #include "simbob/transform.h"
 #include "simbob/values.h"
 #include "render/reference_frames.h"
@@ -550,6 +550,7 @@ TEST_CASE("collision shapes: drawn when asked, and the default view frames the b
   };
   std::vector<Transform> moved = initialPoses(pendulum);
   moved[0].p = add(moved[0].p, Vec3{3, -2, 1});
+  o.draw_chosen = true;  // exactly what is asked (--draw): models alone show nothing here
   for (bool geoms : {false, true}) {
     o.draw_geoms = geoms;
     o.draw_models = !geoms;
@@ -566,4 +567,19 @@ TEST_CASE("collision shapes: drawn when asked, and the default view frames the b
     CHECK(offBackground(at_start, 60, 45) == geoms);
     CHECK(offBackground(at_moved, 60, 45) == geoms);
   }
+  // Not chosen: a renderer whose models show no body draws the collision shapes instead (the
+  // one place that decides it, for render, recordings, camera sensors and Python alike).
+  RenderOptions unchosen = o;
+  unchosen.draw_chosen = false;
+  unchosen.draw_models = true;
+  unchosen.draw_geoms = false;
+  CHECK(drawFallbackNote(pendulum, unchosen) ==
+        "no body has a model: drawing the collision shapes (--draw geoms; --draw models for the models alone)");
+  CHECK(drawFallbackNote(pendulum, o).empty());
+  Error err;
+  std::unique_ptr<Renderer> r = Renderer::create(pendulum, unchosen, &err);
+  REQUIRE(r);
+  Image fallback;
+  REQUIRE(r->render(initialPoses(pendulum), 0, &fallback) == nullptr);
+  CHECK(offBackground(fallback, 60, 45));
 }

@@ -1,4 +1,4 @@
-#include "simbob/view.h"
+#include "simbob/tool/replay_page.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>

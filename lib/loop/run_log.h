@@ -7,25 +7,14 @@
 #include <vector>
 
 #include "simbob/error.h"
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 #include "simbob/model.h"
-#include "simbob/run.h"
+#include "simbob/loop.h"
 
 namespace simbob {
 
 /// The exact header line of a run log (without the line end).
 inline constexpr const char* kRunLogHeader = "time,component,quantity,value";
-
-/// What a run log records.
-struct RunLogWhat {
-  bool joints = false;    ///< every hinge and slider joint: pos, vel (World::joint)
-  bool sensors = false;   ///< every sensor: each quantity of its reading (World::sensorReading)
-  bool commands = false;  ///< every actuator: command (World::command)
-};
-
-/// Parses "joints,sensors,commands" (any non-empty comma list of those words, repeats allowed).
-/// On an unknown or empty word returns false and sets *problem to a one-line message.
-bool parseRunLogWhat(const std::string& list, RunLogWhat* what, std::string* problem);
 
 /// A party that writes the log rows. Put it after every controller: at each sample time it
 /// records the state after the controllers of that instant acted (the world does not move

@@ -1,7 +1,7 @@
 // The run log party: joint states, sensor readings and actuator commands at the trajectory's
 // sample times, as rows `time,component,quantity,value`.
-#include "simbob/csv.h"
-#include "simbob/run_log.h"
+#include "simbob/tool/csv.h"
+#include "loop/run_log.h"
 
 #include <string_view>
 

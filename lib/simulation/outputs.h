@@ -5,8 +5,8 @@
 // outputs, never over them: the trajectory and run log so far as .partial files, and its summary
 // (status and error) as the summary's .partial.json.
 //
-// `simbob run`, `sweep run --case` and the Python module attach these to a Simulation; the
-// Simulation itself knows nothing of files.
+// The Run (simbob/scene_run.h) attaches these to its Simulation; the Simulation itself knows
+// nothing of files.
 #pragma once
 
 #include <functional>
@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "simbob/error.h"
-#include "simbob/files.h"
-#include "simbob/run_log.h"
+#include "simbob/tool/files.h"
+#include "simbob/loop.h"
 #include "simbob/trajectory.h"
 
 namespace simbob {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "simbob/model.h"
-#include "simbob/run.h"
+#include "simbob/loop.h"
 #include "simbob/simulation.h"
 #include "simbob/trajectory.h"
 

@@ -1,4 +1,5 @@
-#include "simbob/run.h"
+// The run loop: see simbob/loop.h.
+#include "simbob/loop.h"
 
 #include <algorithm>
 #include <chrono>
@@ -53,9 +54,9 @@ std::string stepAdvice(const Model& model, SimTime step) {
 
 }  // namespace
 
-Runner::Runner(const Model& model, const RunOptions& opts, std::vector<Party*> parties)
+Runner::Runner(const Model& model, const SimulationOptions& opts, std::vector<Party*> parties)
     : model_(model), opts_(opts), parties_(std::move(parties)), wall0_(std::chrono::steady_clock::now()) {
-  const double dt = opts.dt > 0 ? opts.dt : model.settings.max_time_step;
+  const double dt = resolvedStep(opts.dt, model.settings.max_time_step);
   res_.dt = dt;
   end_ = clockTime(opts.duration, "the duration", &res_.error);
   const SimTime step = clockTime(dt, "the step", &res_.error);
@@ -146,7 +147,7 @@ bool Runner::advance() {
   if (stopped_) return false;
   if (opts_.stop && *opts_.stop) {
     stop(RunStatus::Interrupted,
-         {ErrorKind::Diverged, {}, "interrupted at t=" + formatNumber(toSeconds(clock_.now())) + " s"});
+         {ErrorKind::Interrupted, {}, "interrupted at t=" + formatNumber(toSeconds(clock_.now())) + " s"});
     return false;
   }
   world_->step(toSeconds(clock_.step()));
@@ -155,6 +156,7 @@ bool Runner::advance() {
   const int bad = world_->firstBadBody(opts_.runaway_limit);
   if (bad >= 0) {
     const BodyDef& b = model_.bodies[static_cast<size_t>(bad)];
+    res_.divergence = {bad, -1, 0.0, toSeconds(clock_.now())};
     stop(RunStatus::Diverged, {ErrorKind::Diverged, b.loc,
                                "body '" + b.key + "' diverged at t=" + formatNumber(toSeconds(clock_.now())) +
                                    " s (non-finite or beyond " + formatNumber(opts_.runaway_limit) + " m or m/s) " +
@@ -165,6 +167,7 @@ bool Runner::advance() {
   const int broken = world_->firstBrokenJoint(opts_.joint_apart_limit, &apart);
   if (broken >= 0) {
     const JointDef& j = model_.joints[static_cast<size_t>(broken)];
+    res_.divergence = {-1, broken, apart, toSeconds(clock_.now())};
     stop(RunStatus::Diverged,
          {ErrorKind::Diverged, j.loc,
           "joint '" + j.key + "' came apart at t=" + formatNumber(toSeconds(clock_.now())) +
@@ -210,12 +213,6 @@ const RunResult& Runner::complete() {
   return res_;
 }
 
-RunResult runParties(const Model& model, const RunOptions& opts, const std::vector<Party*>& parties) {
-  Runner runner(model, opts, parties);
-  runner.runUntil(runner.end());
-  return runner.complete();
-}
-
 SimTime frameTime(uint64_t n, double fps) { return toSimTime(static_cast<double>(n) / fps).value_or(kNever); }
 
 std::vector<std::string> gridNotes(double step_s, double sample_interval_s, double fps) {
@@ -242,24 +239,6 @@ std::vector<std::string> gridNotes(double step_s, double sample_interval_s, doub
                       " s (a video keeps the n/fps timestamps)");
   }
   return notes;
-}
-
-RunResult runModel(const Model& model, const RunOptions& opts, TrajectoryWriter* writer) {
-  Error err;
-  const SimTime interval = clockTime(opts.sample_interval, "the sample interval", &err);
-  const SimTime min_step = clockTime(model.settings.min_time_step, "MinTimeStep", &err);
-  if (!err.message.empty()) {
-    RunResult res;
-    res.dt = opts.dt > 0 ? opts.dt : model.settings.max_time_step;
-    res.error = err;
-    return res;
-  }
-  TrajectorySampler sampler(static_cast<int>(model.bodies.size()), std::max<SimTime>(interval, 1), min_step, writer,
-                            opts.on_sample);
-  sampler.name = "the trajectory sampler";
-  RunResult res = runParties(model, opts, {&sampler});
-  res.samples = sampler.samples();
-  return res;
 }
 
 }  // namespace simbob

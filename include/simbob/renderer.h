@@ -12,13 +12,9 @@
 #include "simbob/error.h"
 #include "simbob/image.h"
 #include "simbob/model.h"
-#include "simbob/run.h"
+#include "simbob/loop.h"
 
 namespace simbob {
-
-/// Which GL implementation renders: Auto tries EGL (surfaceless, then device platform), then
-/// OSMesa.
-enum class GlBackend { Auto, Egl, OsMesa };
 
 /// View quality levels of guide 3.3.3; each level adds to the ones before it.
 enum class Quality { Frame, Wire, Plane, Flat, Smooth, Textures, Shadows, Transparency, Fog };
@@ -38,6 +34,10 @@ struct RenderOptions {
   std::string texture_folder;               ///< global setting TextureFolder ("" = only beside the scene)
   bool draw_models = true;                  ///< the models (visuals) of the scene
   bool draw_geoms = false;                  ///< the collision shapes: filled alone, wire frames over models
+  /// draw_models and draw_geoms are the caller's choice (--draw). Otherwise, when the models show
+  /// no body (modelsShowNoBody), the renderer draws the collision shapes alone instead: a
+  /// picture of nothing helps nobody.
+  bool draw_chosen = false;
   /// Range sensors' and laser scanners' rays, from the sensor to its reading (setSensorRays),
   /// red, and the hit points (readings below MaxRange), yellow, drawn over the scene.
   bool draw_sensors = false;
@@ -51,6 +51,15 @@ std::vector<double> sensorRays(const Model& model, const World& world);
 /// True when the models show none of the bodies there are (no model on any mobile body, or no
 /// model at all while there are collision shapes): drawing them alone gives an empty picture.
 bool modelsShowNoBody(const Model& model);
+
+/// What to say when a renderer with these options draws the collision shapes instead of models
+/// that show no body (RenderOptions::draw_chosen), or "" when it draws what it was asked to.
+std::string drawFallbackNote(const Model& model, const RenderOptions& options);
+
+/// Every texture file the model's skins may be read from: each place the renderer looks
+/// (TextureFolder, then beside the scene file; as written, .bmp, .png) that holds a file. Inputs
+/// no output may replace.
+std::vector<std::string> textureFiles(const Model& model, const std::string& texture_folder);
 
 constexpr int kMaxImageSide = 8192;  ///< pixels, per side
 

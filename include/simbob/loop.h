@@ -1,7 +1,8 @@
-// One batch run: build the world from a Model and step it to the duration on the clock, serving
-// the parties that need the simulation at given times (guide 7.2): the trajectory sampler today;
-// controllers, recorders and external peers later, each a Party of its own. Every step is
-// checked for a non-finite or runaway state.
+// The run loop (guide 7.2): a world built from a Model, stepped in whole steps on the clock's
+// fixed grid, and the parties that need the simulation at given times -- the trajectory sampler,
+// controllers, socket peers, recorders, the run log, a caller's own -- each granted the world
+// alone at the first grid instant at or after its request. Every step is checked for a
+// non-finite or runaway state. The Simulation API (simbob/simulation.h) drives a Runner.
 #pragma once
 
 #include <chrono>
@@ -15,6 +16,7 @@
 #include "simbob/clock.h"
 #include "simbob/error.h"
 #include "simbob/model.h"
+#include "simbob/options.h"
 #include "simbob/trajectory.h"
 
 namespace simbob {
@@ -22,30 +24,24 @@ namespace simbob {
 class World;
 class Party;
 
-struct RunOptions {
-  double duration = 10.0;          ///< s of simulated time
-  double dt = 0.0;                 ///< s; 0 = the scene's MaxTimeStep
-  double sample_interval = 0.01;   ///< s of simulated time between trajectory samples (runModel)
-  uint32_t seed = 0;               ///< ODE's random generator (QuickStep constraint order)
-  double max_access_time = 0.0;    ///< s of wall clock one grant may take; 0 = the scene's MaxAccessTime
-  double runaway_limit = 1e6;      ///< |position| in m or |velocity| in m/s, rad/s beyond which a run diverged
-  double joint_apart_limit = 0.1;  ///< m between a joint's anchors on its two bodies beyond which it came apart
-  /// Called about every 1% of the run with the simulated time reached.
-  std::function<void(double)> progress;
-  /// Called with every sample: time and kPoseSize doubles per body (x y z qw qx qy qz) (runModel).
-  std::function<void(double, const double*)> on_sample;
-  /// Set asynchronously (SIGINT/SIGTERM) to stop at the next step.
-  const volatile std::sig_atomic_t* stop = nullptr;
-};
-
 enum class RunStatus { Completed, Diverged, Interrupted, Failed };
+
+/// What diverged, as data: the body that ran away or the joint that came apart (the error's
+/// message says it in words; explainDivergence looks for a cause with these indices).
+struct RunDivergence {
+  int body = -1;     ///< index into Model::bodies: non-finite or beyond the runaway limit (-1: none)
+  int joint = -1;    ///< index into Model::joints: came apart (-1: none)
+  double apart = 0;  ///< m between that joint's anchors on its two bodies
+  double time = 0;   ///< s of simulated time it was found at
+};
 
 struct RunResult {
   RunStatus status = RunStatus::Failed;
-  Error error;  ///< set unless Completed
+  Error error;               ///< set unless Completed: Diverged, Interrupted, ControllerFailed, Unavailable, ...
+  RunDivergence divergence;  ///< status Diverged: what diverged
   uint64_t steps = 0;
   double sim_time = 0.0;  ///< s reached
-  uint64_t samples = 0;   ///< trajectory samples (runModel; 0 from runParties)
+  uint64_t samples = 0;   ///< trajectory samples (counted by the Simulation's sampler)
   double wall_seconds = 0.0;
   /// Of wall_seconds, the part spent in the parties' first() calls: waiting for socket peers
   /// to connect (bounded by --peer-timeout, not MaxAccessTime). Not simulation work.
@@ -81,21 +77,12 @@ class Party {
   double accessLimit() const { return access_limit_; }
   /// When the current call of first() or onGrant() must have returned (steady clock).
   std::chrono::steady_clock::time_point accessDeadline() const { return access_deadline_; }
-  /// Whether the run was asked to stop (SIGINT/SIGTERM, RunOptions::stop): a party that waits
+  /// Whether the run was asked to stop (SIGINT/SIGTERM, SimulationOptions::stop): a party that waits
   /// for another program checks it while it waits and returns, so the run can end.
   bool stopRequested() const { return stop_ != nullptr && *stop_ != 0; }
   /// For messages: "controller 'Bot.Plan'", and where it is defined (empty: unknown).
   std::string name = "a party of the run";
   SourceLoc loc;
-
- protected:
-  /// For a party that wraps another (a plug-in's, behind a guard): hands the wrapped one this
-  /// call's MaxAccessTime, deadline and stop request.
-  void passAccessTo(Party& inner) const {
-    inner.access_limit_ = access_limit_;
-    inner.access_deadline_ = access_deadline_;
-    inner.stop_ = stop_;
-  }
 
  private:
   friend class Runner;
@@ -106,13 +93,13 @@ class Party {
 
 /// One run in progress: the world, the clock on its fixed grid and the parties, advanced piece
 /// by piece (create / grant / advance / complete) so that a caller can step it in pieces
-/// (Simulation, Python) or to the end (runParties). Not copyable; one thread at a time.
+/// (Simulation, Python) or to the end. Not copyable; one thread at a time.
 class Runner {
  public:
   /// Builds the world (seeded with opts.seed) and asks each party for its first request. A time
   /// that does not fit the clock or a world that cannot be built stops the run at once (see
   /// result()). The model must outlive the runner; so must the parties.
-  Runner(const Model& model, const RunOptions& opts, std::vector<Party*> parties);
+  Runner(const Model& model, const SimulationOptions& opts, std::vector<Party*> parties);
   ~Runner();
   Runner(const Runner&) = delete;
   Runner& operator=(const Runner&) = delete;
@@ -149,7 +136,7 @@ class Runner {
   void stop(RunStatus status, Error e);
 
   const Model& model_;
-  RunOptions opts_;
+  SimulationOptions opts_;
   std::vector<Party*> parties_;
   std::unique_ptr<World> world_;
   Clock clock_{1, 0};
@@ -162,15 +149,6 @@ class Runner {
   bool stopped_ = false;
   bool completed_ = false;
 };
-
-/// Runs the model to opts.duration, serving `parties` (ignores sample_interval and on_sample).
-/// The world advances only in whole steps of dt (the fixed grid of Clock): a request is granted
-/// at the first grid instant at or after it (within MinTimeStep); requests due at the same
-/// instant are served in time order, ties in the order of `parties` (document order, so the
-/// sampler first). A party is granted at most once per instant: a request it returns that is
-/// already due waits for the next step. The run ends at the first grid instant at or after the
-/// duration. Times that do not fit the clock (toSimTime) fail the run (status Failed, InvalidInput).
-RunResult runParties(const Model& model, const RunOptions& opts, const std::vector<Party*>& parties);
 
 /// The trajectory sampler: sample n asks for t = n interval and records the first grid instant
 /// at or after it (the time written is that instant); the next request is the first multiple of
@@ -203,10 +181,17 @@ class TrajectorySampler : public Party {
   Error error_;
 };
 
-/// Runs the model with the trajectory sampler as its only party (a world without controllers:
-/// the Simulation API adds the scene's). Samples go to `writer` (may be null: no trajectory)
-/// and opts.on_sample. The caller commits or keeps the writer's output according to the result.
-RunResult runModel(const Model& model, const RunOptions& opts, TrajectoryWriter* writer);
+/// What a run log records (`--log joints,sensors,commands`; docs/formats.md, "Log format").
+struct RunLogWhat {
+  bool joints = false;    ///< every hinge and slider joint: pos, vel (World::joint)
+  bool sensors = false;   ///< every sensor: each quantity of its reading (World::sensorReading)
+  bool commands = false;  ///< every actuator: command (World::command)
+  bool any() const { return joints || sensors || commands; }
+};
+
+/// Parses "joints,sensors,commands" (any non-empty comma list of those words, repeats allowed).
+/// On an unknown or empty word returns false and sets *problem to a one-line message.
+bool parseRunLogWhat(const std::string& list, RunLogWhat* what, std::string* problem);
 
 /// Frame n of a recording at `fps` asks for t = n / fps (kNever beyond the clock's range); it
 /// shows the first grid instant at or after that time, while a video keeps the nominal n / fps

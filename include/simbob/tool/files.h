@@ -78,9 +78,6 @@ class OutputFile {
   const std::string& tempPath() const { return temp_; }
   /// Bytes written so far.
   uint64_t size() const { return size_; }
-  /// Cuts the temporary file back to `bytes` (a stream cannot be cut). For keeping only
-  /// whole records after an abandoned write.
-  bool truncate(uint64_t bytes);
 
  private:
   OutputFile() = default;
@@ -116,6 +113,11 @@ bool sameOutputPlace(const std::string& a, const std::string& b);
 /// Whether `path` is written through rather than replaced (see OutputFile): "-", or an existing
 /// character device, FIFO or socket (after symlinks).
 bool isStreamOutput(const std::string& path);
+
+/// An output that would replace an input (by any spelling) or another output, as a usage error
+/// naming both ("--out 'a.csv' is the scene 'a.csv': an output must not overwrite an input");
+/// an empty Error (no message) when none does. Empty paths and streams never collide.
+Error outputCollision(const std::vector<NamedPath>& outputs, const std::vector<NamedPath>& inputs);
 
 /// Why output `path` could not be created from errno `e`, naming only `path`'s own folder, never
 /// the temporary name it is written under: "cannot create: folder 'out/run1' does not exist".

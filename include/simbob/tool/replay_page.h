@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "simbob/compare.h"
+#include "simbob/tool/comparison.h"
 #include "simbob/error.h"
 #include "simbob/model.h"
 #include "simbob/trajectory.h"

@@ -2,7 +2,7 @@
 #include <vector>
 
 #include "simbob/physics.h"
-#include "simbob/run.h"
+#include "simbob/loop.h"
 #include "simbob/values.h"
 
 namespace simbob {

@@ -99,6 +99,7 @@ void defineCompareCommand(CLI::App& app, Invocation& in) {
   compare->add_flag("--bless", ca.bless, "Show what changes, then replace the golden file with the actual one");
   compare->add_option("--html", ca.html, "Also write the replay page of the comparison (needs --scene; simbob view)");
   compare->add_option("--scene", ca.scene, "With --html: the scene both trajectories were run in");
+  compare->add_option("--junit", ca.junit, "Also write the result as a JUnit XML report (docs/ci.md)");
   addCommon(compare, in.common);
 }
 
@@ -120,6 +121,13 @@ void defineBatchCommand(CLI::App& app, Invocation& in) {
   batch->add_option("--report", ba.report, "Also write the summary to FILE (JSON if it ends in .json)");
   batch->add_flag("--json", ba.json, "Print the summary as JSON");
   batch->add_flag("--html", ba.html, "Also write each run's replay page beside its trajectory, STEM.html");
+  batch->add_option("--junit", ba.junit, "Also write a JUnit XML report, one test case per scene (docs/ci.md)");
+  batch->add_option("--artifacts", ba.artifacts,
+                    "Folder for each failed scene's replay page against its golden run and plot, and index.html");
+  batch->add_option("--summary-md", ba.summary_md, "Also write a short Markdown table of the scenes that did not pass");
+  batch->add_flag("--bless", ba.bless,
+                  "With --golden: show each change, then make the new trajectories the golden files (not after a "
+                  "failed run)");
   addCommon(batch, in.common);
 }
 
@@ -179,11 +187,12 @@ int dispatch(Invocation& in, simbob::Registry& registry) {
 std::vector<NamedPath> commandOutputs(const Invocation& in) {
   const auto& c = in.cmd;
   if (*c.run) return runOutputs(in.run);
-  if (*c.compare) return {{"--report", in.compare.report}, {"--html", in.compare.html}};
+  if (*c.compare) return {{"--report", in.compare.report}, {"--html", in.compare.html}, {"--junit", in.compare.junit}};
   if (*c.plot) return {{"--out", in.plot.out}};
   if (*c.render) return {{"--out", in.render.out}};
   if (*c.view) return {{"--out", in.view.out}};
-  if (*c.batch) return {{"--report", in.batch.report}};
+  if (*c.batch)
+    return {{"--report", in.batch.report}, {"--junit", in.batch.junit}, {"--summary-md", in.batch.summary_md}};
   return {};
 }
 

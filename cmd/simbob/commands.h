@@ -93,6 +93,7 @@ struct CompareArgs {
   double tol_rot = 1e-6;
   bool json = false;
   bool bless = false;
+  std::string junit;  ///< --junit FILE: the comparison as a JUnit report of one test case
 };
 int cmdCompare(const CompareArgs& a, const Common& common);
 
@@ -139,6 +140,11 @@ struct BatchArgs {
   std::string report;
   bool json = false;
   bool html = false;  ///< --html: each run's replay page beside its trajectory (STEM.html)
+  // CI reports (docs/ci.md, batch_ci.cpp).
+  std::string junit;       ///< --junit FILE: JUnit XML, one test case per scene
+  std::string artifacts;   ///< --artifacts DIR: each failed scene's page and plot, DIR/index.html
+  std::string summary_md;  ///< --summary-md FILE: a short Markdown table of what did not pass
+  bool bless = false;      ///< --bless: show each change, then rewrite the golden files
 };
 int cmdBatch(const BatchArgs& a, const Common& common);
 
@@ -152,7 +158,8 @@ struct SweepArgs {
   bool retry = false;
   int max_parallel = 0;
   std::string partition;
-  std::string html;  ///< gather --html PAGE: the gallery of the cases, each with its replay page
+  std::string html;   ///< gather --html PAGE: the gallery of the cases, each with its replay page
+  std::string junit;  ///< gather --junit FILE: one JUnit test case per sweep case
   CLI::App *plan = nullptr, *run = nullptr, *gather = nullptr, *sbatch = nullptr;
 };
 CLI::App* addSweepCommands(CLI::App& app, SweepArgs& s, Common& common);

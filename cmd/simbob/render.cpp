@@ -261,7 +261,7 @@ int cmdRender(const RenderArgs& a, const Common& common) {
 }
 
 int cmdInfo(const std::string& gl, const Common& /*common*/) {
-  std::printf("%s\n", versionLine().c_str());  // the line of --version, git revision included
+  std::fputs(versionText().c_str(), stdout);  // the lines of --version, git revision included
   std::vector<std::pair<const char*, GlBackend>> backends = {{"egl", GlBackend::Egl}, {"osmesa", GlBackend::OsMesa}};
   if (!gl.empty()) {
     GlBackend b;

@@ -156,6 +156,7 @@ CLI::App* addSweepCommands(CLI::App& app, SweepArgs& s, Common& common) {
   gather->add_option("-o,--out", s.out, "Table to write (default OUT/results.csv)");
   gather->add_flag("--retry", s.retry, "Print the cases to resubmit as --array=3,17,42");
   gather->add_option("--html", s.html, "Also write a gallery page: the table, a plot, each case's replay page");
+  gather->add_option("--junit", s.junit, "Also write a JUnit XML report, one test case per sweep case (docs/ci.md)");
   addCommon(gather, common);
   CLI::App* sbatch = sweep->add_subcommand("sbatch", "Write Slurm scripts: a case array and a dependent gather job");
   sbatch->add_option("manifest", s.input, "Case manifest")->required();

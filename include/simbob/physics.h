@@ -14,6 +14,10 @@ namespace simbob {
 /// "ODE <configuration>" of the linked ODE (precision and build options), for run summaries.
 std::string physicsVersion();
 
+/// The ODE release simbob was built against: "0.16.2" (CMake requires 0.16.x; the broad phase
+/// reproduces 0.16's pair order).
+std::string odeVersion();
+
 /// State of one mobile body, global frame.
 struct BodyState {
   Transform pose;

@@ -27,6 +27,10 @@ CASE is one of
   names       (issue 31, item 10) JavaScript's own names as keys: #body=constructor, __proto__,
               toString, hasOwnProperty, and CSV bodies named constructor and __proto__: the page
               loads, unknown bodies are ignored, known ones are shown; "1 body, 1 sample"
+  artifacts   `batch --golden --junit --artifacts` (issue #29), driven by tests/cli/ci_reports.sh
+              as  browser_test.py SIMBOB REPO artifacts WORKDIR ARTDIR JUNIT: ARTDIR/index.html
+              links each failed scene's replay page, which shows the golden run as ghosts at its
+              rows and the slider's marker at the time the JUnit failure message reports
 Chromium must start: a browser that cannot is a failure, never a skip.
 """
 import json
@@ -44,6 +48,7 @@ from selenium import webdriver  # noqa: E402
 from chromedriver import LocalService  # noqa: E402
 
 SIMBOB, REPO, CASE, WORK = sys.argv[1:5]
+EXTRA = [os.path.abspath(a) for a in sys.argv[5:]]  # the artifacts case's ARTDIR and JUNIT
 os.makedirs(WORK, exist_ok=True)
 os.chdir(WORK)
 failures = []
@@ -417,6 +422,69 @@ def case_outputs(d):
     print(f'ok: {len(cases)} case pages')
 
 
+def case_artifacts(d):
+    """The failed scenes of a batch's JUnit report, each through the artifacts index to its page."""
+    import re
+    import xml.etree.ElementTree as ET
+    art, junit = EXTRA
+    failed = [c for c in ET.parse(junit).getroot().iter('testcase') if c.find('failure') is not None]
+    if not failed:
+        fail(f'{junit} has no failed test case')
+    for case in failed:
+        name = case.get('name')
+        message = case.find('failure').get('message')
+        m = re.match(r"first divergence at t=(\S+) s, body '([^']+)'", message)
+        if not m:
+            fail(f'{name}: the failure message names no divergence: {message!r}')
+            continue
+        t, body = float(m.group(1)), m.group(2)
+        # From the index, by its link, as a reader would.
+        open_page_plain(d, os.path.join(art, 'index.html'))
+        links = d.find_elements('css selector', f'a[href="./{name}/view.html"]')
+        if len(links) != 1:
+            fail(f'index.html has {len(links)} links to ./{name}/view.html')
+            continue
+        links[0].click()
+        wait_ready(d, f'{name}/view.html')
+        if not d.current_url.endswith(f'/{name}/view.html'):
+            fail(f'the link led to {d.current_url}')
+        shown = d.execute_script('return simbobView.divergence()')
+        if not shown or shown['time'] != t or shown['body'] != body:
+            fail(f'{name}: page divergence {shown}, the JUnit report says t={t} body {body}')
+        marker = d.execute_script("const m = document.getElementById('marker');"
+                                  "return [getComputedStyle(m).display, Number(m.dataset.time)]")
+        if marker != ['block', t]:
+            fail(f'{name}: slider marker {marker}, expected shown at {t}')
+        if not d.execute_script("return document.getElementById('ghosts').checked"):
+            fail(f'{name}: the golden ghosts are not shown')
+        # The failure's text names the golden file, relative to where the batch ran (JUNIT's folder).
+        g = re.search(r'^golden: (.+)$', case.find('failure').text or '', re.M)
+        if not g:
+            fail(f'{name}: the failure text names no golden file')
+            continue
+        golden = read_csv(os.path.join(os.path.dirname(junit), g.group(1)))
+        check_poses(d, golden, [t, sorted(golden)[-1]], f'{name} golden ghosts', hook='goldenPoses')
+        seek(d, t)
+        d.execute_script('simbobView.select(arguments[0])', body)
+        d.save_screenshot(os.path.join(WORK, f'{name}_artifact.png'))
+        check_console(d, f'{name}/view.html')
+        print(f'ok: {name}: ghosts, divergence marked at {t} s ({body})')
+
+
+def open_page_plain(d, path):
+    """A page without the viewer (the artifacts index): loaded, no console error."""
+    d.get('file://' + os.path.abspath(path))
+    check_console(d, path)
+
+
+def wait_ready(d, what):
+    for _ in range(200):
+        if d.execute_script('return !!(window.simbobView && window.simbobView.ready)'):
+            return
+        time.sleep(0.05)
+    fail(f'{what}: the page never became ready')
+
+
 def case_instanced(d):
     n, samples = 300, 50
     scene = 'boxes.xml'
@@ -646,7 +714,8 @@ def main():
     try:
         {'scenes': case_scenes, 'screenshot': case_screenshot, 'golden': case_golden, 'ui': case_ui,
          'gallery': case_gallery, 'instanced': case_instanced,
-         'outputs': case_outputs, 'links': case_links, 'names': case_names, 'far': case_far}[CASE](d)
+         'outputs': case_outputs, 'links': case_links, 'names': case_names, 'far': case_far,
+         'artifacts': case_artifacts}[CASE](d)
     finally:
         d.quit()
     if failures:

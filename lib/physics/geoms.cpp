@@ -35,6 +35,11 @@ dGeomID createMeshGeom(WorldImpl& im, const Model& model, const GeomDef& gd, dSp
     dGeomTriMeshDataBuildDouble(im.triMeshData[mi], mesh.vertices.data(), sizeof(Vec3),
                                 static_cast<int>(mesh.vertices.size()), mesh.triangles.data(),
                                 static_cast<int>(mesh.triangles.size() * 3), sizeof(mesh.triangles[0]));
+    // Hull-trimesh contacts (libccd) abort the process without the face angles; capsules use
+    // the concave edges.
+    dGeomTriMeshDataPreprocess2(im.triMeshData[mi],
+                                (1U << dTRIDATAPREPROCESS_BUILD_CONCAVE_EDGES) | (1U << dTRIDATAPREPROCESS_BUILD_FACE_ANGLES),
+                                nullptr);
   }
   return dCreateTriMesh(space, im.triMeshData[mi], nullptr, nullptr, nullptr);
 }

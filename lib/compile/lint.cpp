@@ -444,6 +444,8 @@ class Linter {
         if (b.lo[0] > a.hi[0] - kOverlap) break;
         if (a.g->body == b.g->body || (a.g->body < 0 && b.g->body < 0)) continue;
         if (a.g->body >= 0 && b.g->body >= 0 && joined(a.g->body, b.g->body)) continue;
+        // A triangle mesh's bounds say little of its surface: a ramp's box holds what rests on it.
+        if (a.g->shape == GeomShape::TriMesh || b.g->shape == GeomShape::TriMesh) continue;
         double depth;
         if (a.g->shape == GeomShape::Sphere && b.g->shape == GeomShape::Sphere) {
           depth = a.g->size[0] + b.g->size[0] - norm(sub(a.t.p, b.t.p));

@@ -54,9 +54,9 @@ struct Collector {
       for (unsigned k = 0; k < mesh->mNumVertices; ++k) {
         const aiVector3D& v = mesh->mVertices[k];
         Vec3 p;
-        for (unsigned r = 0; r < 3; ++r)
+        for (unsigned r = 0; r < 3; ++r)  // + 0.0 turns -0 into 0, so both merge (their hashes differ)
           p[r] = static_cast<double>(m[r][0]) * v.x + static_cast<double>(m[r][1]) * v.y +
-                 static_cast<double>(m[r][2]) * v.z + static_cast<double>(m[r][3]);
+                 static_cast<double>(m[r][2]) * v.z + static_cast<double>(m[r][3]) + 0.0;
         ids[k] = vertex(p);
       }
       for (unsigned f = 0; f < mesh->mNumFaces; ++f) {

@@ -41,11 +41,11 @@ struct BodyDef {
 };
 
 enum class GeomShape : uint8_t {
-  Box,       ///< size = full extents along local x, y, z (m)
-  Sphere,    ///< size[0] = radius (m)
-  Cylinder,  ///< size[0] = radius, size[1] = length along local Z (m)
-  Capsule,   ///< size[0] = radius, size[1] = length of the cylindrical part along local Z (m)
-  Plane,     ///< static only: plane = (nx, ny, nz, d), points p with n.p = d, n unit
+  Box,         ///< size = full extents along local x, y, z (m)
+  Sphere,      ///< size[0] = radius (m)
+  Cylinder,    ///< size[0] = radius, size[1] = length along local Z (m)
+  Capsule,     ///< size[0] = radius, size[1] = length of the cylindrical part along local Z (m)
+  Plane,       ///< static only: plane = (nx, ny, nz, d), points p with n.p = d, n unit
   ConvexHull,  ///< the hull of Model::meshes[mesh] (MeshData::hull, a dGeomConvex); size unused
   TriMesh,     ///< the triangles of Model::meshes[mesh] (a dGeomTriMesh); size unused
 };

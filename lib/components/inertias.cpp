@@ -67,8 +67,9 @@ bool lowerInertia(CompileContext& ctx, const Link& l, const Component& owner, si
         const MeshData* mesh = g.mesh >= 0 ? ctx.model.meshes[static_cast<size_t>(g.mesh)].data.get() : nullptr;
         if (g.shape == GeomShape::TriMesh && !mesh->closed) {
           // An open mesh bounds no volume: its "mass" would be whatever the gaps make of it.
-          ctx.error(owner, "RCInertiaByGeom: the triangle mesh '" + mesh->file + "' of body '" + owner.qkey +
-                               "' is not closed, so it has no volume; use its hull (Hull=\"True\") or RCGenericInertia");
+          ctx.error(owner,
+                    "RCInertiaByGeom: the triangle mesh '" + mesh->file + "' of body '" + owner.qkey +
+                        "' is not closed, so it has no volume; use its hull (Hull=\"True\") or RCGenericInertia");
           return false;
         }
         MassProps p = geomMassProps(g, mesh);

@@ -26,8 +26,8 @@ dGeomID createMeshGeom(WorldImpl& im, const Model& model, const GeomDef& gd, dSp
   if (gd.shape == GeomShape::ConvexHull) {
     const ConvexHull& h = mesh.hull;
     return dCreateConvex(space, const_cast<dReal*>(h.planes.data()), static_cast<unsigned>(h.faceCount()),  // NOLINT
-                         const_cast<dReal*>(h.points.data()), static_cast<unsigned>(h.pointCount()),      // NOLINT
-                         const_cast<unsigned*>(h.polygons.data()));                                       // NOLINT
+                         const_cast<dReal*>(h.points.data()), static_cast<unsigned>(h.pointCount()),        // NOLINT
+                         const_cast<unsigned*>(h.polygons.data()));                                         // NOLINT
   }
   static_assert(sizeof(dTriIndex) == sizeof(uint32_t), "ODE's triangle indices are 32-bit");
   if (!im.triMeshData[mi]) {
@@ -37,9 +37,9 @@ dGeomID createMeshGeom(WorldImpl& im, const Model& model, const GeomDef& gd, dSp
                                 static_cast<int>(mesh.triangles.size() * 3), sizeof(mesh.triangles[0]));
     // Hull-trimesh contacts (libccd) abort the process without the face angles; capsules use
     // the concave edges.
-    dGeomTriMeshDataPreprocess2(im.triMeshData[mi],
-                                (1U << dTRIDATAPREPROCESS_BUILD_CONCAVE_EDGES) | (1U << dTRIDATAPREPROCESS_BUILD_FACE_ANGLES),
-                                nullptr);
+    dGeomTriMeshDataPreprocess2(
+        im.triMeshData[mi],
+        (1U << dTRIDATAPREPROCESS_BUILD_CONCAVE_EDGES) | (1U << dTRIDATAPREPROCESS_BUILD_FACE_ANGLES), nullptr);
   }
   return dCreateTriMesh(space, im.triMeshData[mi], nullptr, nullptr, nullptr);
 }

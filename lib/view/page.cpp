@@ -210,7 +210,8 @@ bool encodeMeshes(const Model& m, json* out, Error* err) {
     json j = {{"file", slash == std::string::npos ? d.file : d.file.substr(slash + 1)}};
     auto put = [&](const char* name, const std::vector<float>& pos, const std::vector<uint32_t>& idx) {
       json part = {{"positions", base64Le(pos)}, {"indices", base64Le(idx)}};
-      chars += part["positions"].get_ref<const std::string&>().size() + part["indices"].get_ref<const std::string&>().size();
+      chars +=
+          part["positions"].get_ref<const std::string&>().size() + part["indices"].get_ref<const std::string&>().size();
       j[name] = std::move(part);
     };
     if (use[i] & 1) {
@@ -232,7 +233,8 @@ bool encodeMeshes(const Model& m, json* out, Error* err) {
       put("hull", pos, idx);
     }
     if (chars > kMaxPageMeshChars) {
-      *err = {ErrorKind::InvalidInput, {d.file, 0},
+      *err = {ErrorKind::InvalidInput,
+              {d.file, 0},
               "the scene's meshes would put more than " + std::to_string(kMaxPageMeshChars >> 20) +
                   " MiB into the replay page (the limit; docs/meshes.md): use coarser meshes for the page"};
       return false;

@@ -16,6 +16,7 @@ RUN_PACKAGES=(
   libgl-dev libegl-dev libosmesa6-dev  # GL, EGL and OSMesa headers (lib/render; opened with dlopen)
   libegl-mesa0 libgl1-mesa-dri libosmesa6  # the back ends themselves: Mesa's llvmpipe without a GPU
   libjs-three           # three.js, inlined into `simbob view` pages at run time (lib/view)
+  libassimp-dev libqhull-dev  # mesh files (STL, OBJ, DAE) and their convex hulls (lib/mesh)
 )
 TEST_PACKAGES=(
   catch2                # unit tests
@@ -32,6 +33,7 @@ TEST_PACKAGES=(
   chromium chromium-driver python3-selenium  # view pages driven in headless Chromium (tests/view/)
   libxml2-utils         # xmllint validates the JUnit reports against tests/ci/junit.xsd (docs/ci.md)
   python3-yaml          # tests/ci/recipes.py reads the CI recipes (.github/workflows, .gitlab-ci.yml)
+  dart-doc              # real URDF robots with STL and DAE meshes (/usr/share/doc/dart/data/urdf; tests/mesh)
 )
 
 case "${1:-}" in

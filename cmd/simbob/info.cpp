@@ -3,6 +3,7 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "simbob/compile.h"
 #include "simbob/overrides.h"
 #include "simbob/registry.h"
 #include "simbob/simulation.h"
@@ -43,6 +44,7 @@ int cmdCheck(const std::string& path, const Common& common, const std::vector<st
   g_log.info(path + ": ok (" + countOf(model.bodies.size(), "mobile body", "mobile bodies") + ", " +
              countOf(model.geoms.size(), "geom", "geoms") + ", " + countOf(model.joints.size(), "joint", "joints") +
              (programs ? "; starts " + countOf(programs, "program", "programs") : std::string()) + ")");
+  for (const std::string& line : describeMeshes(model)) g_log.info(path + ": " + line);
   return kExitOk;
 }
 

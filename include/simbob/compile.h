@@ -21,6 +21,12 @@ bool compileScene(const Scene& scene, Model* model, Diagnostics& diag);
 /// to change. `dt` is the step the run takes (0: the scene's MaxTimeStep).
 void lintModel(const Model& model, Diagnostics& diag, double dt = 0);
 
+/// One line per mesh of the model (`simbob check`): its file and scale, vertices and triangles,
+/// whether it is closed, and what uses it: hulls (with their points and faces), triangle meshes,
+/// models. "mesh cube.stl (scale 0.001 0.001 0.001): 8 vertices, 12 triangles, closed; hull of
+/// 1 geom (8 points, 6 faces)".
+std::vector<std::string> describeMeshes(const Model& model);
+
 /// The largest step that lintModel accepts without a step-size or tunnelling warning, in s
 /// (infinity when nothing in the scene limits it): what a diverged run recommends.
 double recommendedStep(const Model& model);

@@ -14,6 +14,7 @@
 
 #include "simbob/error.h"
 #include "simbob/frames.h"
+#include "simbob/mesh.h"
 #include "simbob/visuals.h"
 
 struct SimbobType;  // simbob/plugin_c.h: a plug-in's type
@@ -41,11 +42,19 @@ struct BodyDef {
 };
 
 enum class GeomShape : uint8_t {
-  Box,       ///< size = full extents along local x, y, z (m)
-  Sphere,    ///< size[0] = radius (m)
-  Cylinder,  ///< size[0] = radius, size[1] = length along local Z (m)
-  Capsule,   ///< size[0] = radius, size[1] = length of the cylindrical part along local Z (m)
-  Plane,     ///< static only: plane = (nx, ny, nz, d), points p with n.p = d, n unit
+  Box,         ///< size = full extents along local x, y, z (m)
+  Sphere,      ///< size[0] = radius (m)
+  Cylinder,    ///< size[0] = radius, size[1] = length along local Z (m)
+  Capsule,     ///< size[0] = radius, size[1] = length of the cylindrical part along local Z (m)
+  Plane,       ///< static only: plane = (nx, ny, nz, d), points p with n.p = d, n unit
+  ConvexHull,  ///< the hull of Model::meshes[mesh] (MeshData::hull, a dGeomConvex); size unused
+  TriMesh,     ///< the triangles of Model::meshes[mesh] (a dGeomTriMesh); size unused
+};
+
+/// A mesh that geoms and visuals use (simbob/mesh.h), loaded once per file, scale and up axis.
+struct MeshDef {
+  std::shared_ptr<const MeshData> data;  ///< never null in a compiled Model
+  SourceLoc loc;                         ///< where it was first asked for (a scene or URDF line)
 };
 
 struct GeomDef {
@@ -58,6 +67,8 @@ struct GeomDef {
   std::array<double, 4> plane{0, 1, 0, 0};  ///< Plane only, global
   int material = 0;                         ///< index into Model::materials
   bool sensor = false;                      ///< detects contacts but creates no contact joints
+  int mesh = -1;                            ///< ConvexHull, TriMesh: index into Model::meshes
+  SourceLoc loc;                            ///< where the geom is written (line 0: not known), for messages
 };
 
 enum class JointKind : uint8_t { BallSocket, Hinge, Slider, Fixed };
@@ -351,6 +362,7 @@ struct Model {
   std::vector<MaterialDef> materials;           ///< [0] is the default material
   std::vector<BodyDef> bodies;                  ///< mobile bodies, document order
   std::vector<GeomDef> geoms;                   ///< document order
+  std::vector<MeshDef> meshes;                  ///< the meshes of geoms and visuals, each once, in order of first use
   std::vector<JointDef> joints;                 ///< document order
   std::vector<ActuatorDef> actuators;           ///< document order (after the joints they drive)
   std::vector<SensorDef> sensors;               ///< document order (peripheries, after the joints)

@@ -44,6 +44,7 @@ struct VisualDef {
     Ellipsoid,  ///< radii = size
     Cylinder,   ///< along local Z, centred (z in [-L/2, L/2]); size = radius, length
     Cone,       ///< base at z = 0, apex at z = Length; size = radius, length
+    Mesh,       ///< the triangles of Model::meshes[mesh] (m, the mesh's own frame); size unused
   } shape = Cuboid;
   int body = -1;             ///< Model::bodies index; -1 = static: `pose` is global
   Transform pose;            ///< relative to the body frame, or global when body == -1
@@ -61,6 +62,8 @@ struct VisualDef {
   double tex_scale = 1;       ///< texture repeats per metre (negative: per extension)
   double tex_scale2 = 1;      ///< Cylinder: LinTexScale (tex_scale is AngTexScale)
   double max_cell = -1;       ///< Plane: largest cell, m (negative: one cell)
+  int mesh = -1;              ///< Mesh: index into Model::meshes
+  bool hull = false;          ///< Mesh: draw the mesh's convex hull (a hull collision shape), not its triangles
   std::string key;            ///< owner's qualified key (for messages)
 };
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "simbob/graph.h"
+#include "simbob/mesh.h"
 #include "simbob/model.h"
 
 namespace simbob {
@@ -57,8 +58,8 @@ class CompileContext {
     report(owner, l.loc.line ? l.loc : owner.loc, msg);
   }
   /// An error at the line of one parameter of `c` (its slot), else the component's.
-  void errorAt(const Slot& s, const Component& c, const std::string& msg) {
-    report(c, s.loc.line ? s.loc : c.loc, msg);
+  void errorAt(const Slot& s, const Component& c, const std::string& msg, ErrorKind kind = ErrorKind::InvalidInput) {
+    report(c, s.loc.line ? s.loc : c.loc, msg, kind);
   }
   void warning(const Component& c, const std::string& msg) { diag.warning(c.loc, describe(c) + ": " + msg); }
 
@@ -119,10 +120,20 @@ class CompileContext {
   int static_bodies = 0;  ///< static bodies lowered so far (Built::static_id)
   bool too_big = false;   ///< a size bound was hit (reported once)
 
+  /// The meshes of this compile (simbob/mesh.h): each file + scale + up axis is read once.
+  MeshCache mesh_cache;
+  /// The Model::meshes index of a loaded mesh, appended (with `loc`) on its first use.
+  int meshIndex(const std::shared_ptr<const MeshData>& mesh, const SourceLoc& loc) {
+    auto [it, added] = mesh_index_.emplace(mesh.get(), static_cast<int>(model.meshes.size()));
+    if (added) model.meshes.push_back({mesh, loc});
+    return it->second;
+  }
+
  private:
-  void report(const Component& c, const SourceLoc& loc, const std::string& msg) {
+  void report(const Component& c, const SourceLoc& loc, const std::string& msg,
+              ErrorKind kind = ErrorKind::InvalidInput) {
     if (scene.load_failed.empty() || !scene.load_failed.count(indexOf(c)))
-      diag.error(loc, describe(c) + ": " + msg);
+      diag.error(loc, describe(c) + ": " + msg, kind);
     else
       failed_quietly_ = true;
   }
@@ -133,6 +144,7 @@ class CompileContext {
   std::map<std::string, int> actuator_index_;
   std::map<std::string, int> sensor_index_;
   std::map<int, Transform> parent_frame_;
+  std::map<const MeshData*, int> mesh_index_;
   std::set<int> checked_;
 };
 
@@ -171,9 +183,9 @@ bool collectModelParts(CompileContext& ctx, const Link& root, const Transform& b
 void checkModelTree(CompileContext& ctx, const Link& root);
 /// models.cpp: the primitive a model is, in its own frame: Box (size = extents, at center),
 /// Ellipsoid (size = radii), Cylinder/Capsule/Cone (size = radius, length along Z), Plane
-/// (size = extensions), None (nothing visible).
+/// (size = extensions), Mesh (an RCMeshModel: lowerModelMesh reads it), None (nothing visible).
 struct ModelShape {
-  enum Kind { None, Box, Ellipsoid, Cylinder, Capsule, Cone, Plane } kind = None;
+  enum Kind { None, Box, Ellipsoid, Cylinder, Capsule, Cone, Plane, Mesh } kind = None;
   Vec3 center{0, 0, 0};
   Vec3 size{0, 0, 0};
 };
@@ -220,6 +232,14 @@ void lowerGlobal(CompileContext& ctx, int gi);
 void lowerCamera(CompileContext& ctx, int comp);
 /// skins.cpp: Model::skins index of a skin (0, the default skin, for none); each skin once.
 int lowerSkin(CompileContext& ctx, const Link& l);
+/// meshes.cpp: the mesh a component's File parameter (`file_slot`) names, relative to the file
+/// the component is written in, read with `scale` into the scene's Y-up frame through the
+/// compile's cache: its Model::meshes index, or -1 after an error at the File line (kind
+/// MissingInput for a file that is not there).
+int lowerMeshFile(CompileContext& ctx, const Component& c, const Slot& file_slot, const std::string& file,
+                  const Vec3& scale);
+/// models.cpp: the Model::meshes index of an RCMeshModel's mesh (-1 after an error).
+int lowerModelMesh(CompileContext& ctx, const Component& model);
 /// models.cpp: appends the visuals of a body's model tree to Model::visuals: `body` the
 /// Model::bodies index (frame = identity) or -1 with `frame` the static body's global frame.
 void lowerVisuals(CompileContext& ctx, const Link& root, int body, const Transform& frame, const std::string& key);

@@ -2,6 +2,7 @@
 // (plain data), so they see exactly what the physics layer will get.
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <map>
 #include <set>
@@ -28,6 +29,8 @@ constexpr double kRunaway = 1e6;  // m and m/s: SimulationOptions::runaway_limit
 double boundingRadius(const GeomDef& g) {
   switch (g.shape) {
     case GeomShape::Box:
+    case GeomShape::ConvexHull:  // a mesh is checked as its bounding box (meshBox)
+    case GeomShape::TriMesh:
       return 0.5 * norm(g.size);
     case GeomShape::Sphere:
       return g.size[0];
@@ -44,6 +47,8 @@ double boundingRadius(const GeomDef& g) {
 double thickness(const GeomDef& g) {
   switch (g.shape) {
     case GeomShape::Box:
+    case GeomShape::ConvexHull:
+    case GeomShape::TriMesh:
       return std::min({g.size[0], g.size[1], g.size[2]});
     case GeomShape::Sphere:
     case GeomShape::Cylinder:
@@ -60,6 +65,8 @@ Vec3 halfExtents(const GeomDef& g, const Quat& q) {
   Vec3 local{0, 0, 0};  // every shape sets it; the switch has no default
   switch (g.shape) {
     case GeomShape::Box:
+    case GeomShape::ConvexHull:
+    case GeomShape::TriMesh:
       local = scale(g.size, 0.5);
       break;
     case GeomShape::Sphere:
@@ -92,6 +99,8 @@ double planeClearance(const GeomDef& g, const Transform& t, const std::array<dou
       return center - std::fabs(dot(n, axis)) * g.size[1] / 2 - g.size[0];
     }
     case GeomShape::Box:
+    case GeomShape::ConvexHull:
+    case GeomShape::TriMesh:
     case GeomShape::Cylinder: {
       Vec3 h = halfExtents(g, {1, 0, 0, 0});
       Mat3 r = toMatrix(t.q);
@@ -104,6 +113,17 @@ double planeClearance(const GeomDef& g, const Transform& t, const std::array<dou
       return 1e300;
   }
   return 1e300;
+}
+
+// What the checks see of a mesh geom: its bounding box (size = the extents, offset moved to the
+// box's centre), so every check of a geom's extent works on it as on a box.
+GeomDef meshBox(const Model& m, const GeomDef& g) {
+  GeomDef box = g;
+  if (g.mesh < 0 || static_cast<size_t>(g.mesh) >= m.meshes.size()) return box;
+  const MeshData& mesh = *m.meshes[static_cast<size_t>(g.mesh)].data;
+  box.size = sub(mesh.hi, mesh.lo);
+  box.offset = compose(g.offset, Transform{scale(add(mesh.lo, mesh.hi), 0.5), {1, 0, 0, 0}});
+  return box;
 }
 
 struct Placed {
@@ -129,6 +149,7 @@ class Linter {
     tunneling();
     overlaps();
     wheelAxles();
+    triMeshPairs();
     for (const auto& [kind, n] : suppressed_)
       if (n > 0)
         d_.warning(
@@ -177,12 +198,14 @@ class Linter {
   void place() {
     size_ = std::vector<double>(m_.bodies.size(), 0.0);
     thin_ = std::vector<double>(m_.bodies.size(), 1e300);
-    for (const GeomDef& g : m_.geoms) {
-      if (g.sensor) continue;  // sensor volumes push nothing: overlapping is what they are for
-      if (g.shape == GeomShape::Plane) {
-        planes_.push_back(&g);
+    for (const GeomDef& geom : m_.geoms) {
+      if (geom.sensor) continue;  // sensor volumes push nothing: overlapping is what they are for
+      if (geom.shape == GeomShape::Plane) {
+        planes_.push_back(&geom);
         continue;
       }
+      const bool mesh = geom.shape == GeomShape::ConvexHull || geom.shape == GeomShape::TriMesh;
+      const GeomDef& g = mesh ? mesh_boxes_.emplace_back(meshBox(m_, geom)) : geom;
       Placed p;
       p.g = &g;
       p.t = g.body >= 0 ? compose(m_.bodies[static_cast<size_t>(g.body)].pose, g.offset) : g.offset;
@@ -378,7 +401,33 @@ class Linter {
 
   std::string owner(const GeomDef& g) const { return g.key.empty() ? std::string("(static)") : g.key; }
 
-  SourceLoc loc(const GeomDef& g) const { return g.body >= 0 ? body(g.body).loc : SourceLoc{}; }
+  SourceLoc loc(const GeomDef& g) const {
+    if (g.loc.line > 0) return g.loc;
+    return g.body >= 0 ? body(g.body).loc : SourceLoc{};
+  }
+
+  // ODE's trimesh-trimesh contacts jitter, miss and explode: every pair of triangle meshes that
+  // can meet (not both static, not on one body) is named, with where each is written.
+  void triMeshPairs() {
+    std::vector<const GeomDef*> meshes;
+    for (const Placed& p : placed_)
+      if (p.g->shape == GeomShape::TriMesh) meshes.push_back(p.g);
+    for (size_t i = 0; i < meshes.size(); ++i)
+      for (size_t j = i + 1; j < meshes.size(); ++j) {
+        const GeomDef &a = *meshes[i], &b = *meshes[j];
+        if (a.body == b.body || (a.body < 0 && b.body < 0)) continue;
+        auto where = [&](const GeomDef& g) {
+          const SourceLoc l = loc(g);
+          const std::string file = g.mesh >= 0 ? m_.meshes[static_cast<size_t>(g.mesh)].data->file : "";
+          return "'" + owner(g) + "' (" + file.substr(file.find_last_of('/') + 1) +
+                 (l.line > 0 ? ", " + l.file.str() + ":" + std::to_string(l.line) : std::string()) + ")";
+        };
+        warn("trimesh pair", loc(a.body >= 0 ? a : b), {{a.body, b.body}, {}},
+             "the triangle meshes of " + where(a) + " and " + where(b) +
+                 " can touch: ODE's contacts between two triangle meshes are unreliable; give the moving one "
+                 "its convex hull (Hull=\"True\") or a primitive geom");
+      }
+  }
 
   void overlaps() {
     // Bodies penetrating static planes.
@@ -413,6 +462,8 @@ class Linter {
         if (b.lo[0] > a.hi[0] - kOverlap) break;
         if (a.g->body == b.g->body || (a.g->body < 0 && b.g->body < 0)) continue;
         if (a.g->body >= 0 && b.g->body >= 0 && joined(a.g->body, b.g->body)) continue;
+        // A triangle mesh's bounds say little of its surface: a ramp's box holds what rests on it.
+        if (a.g->shape == GeomShape::TriMesh || b.g->shape == GeomShape::TriMesh) continue;
         double depth;
         if (a.g->shape == GeomShape::Sphere && b.g->shape == GeomShape::Sphere) {
           depth = a.g->size[0] + b.g->size[0] - norm(sub(a.t.p, b.t.p));
@@ -438,6 +489,7 @@ class Linter {
   double recommended_ = std::numeric_limits<double>::infinity();
   std::vector<double> size_, thin_;
   std::vector<Placed> placed_;
+  std::deque<GeomDef> mesh_boxes_;  // meshBox of each mesh geom (Placed points at them)
   std::vector<const GeomDef*> planes_;
   std::set<std::pair<int, int>> joined_;
   std::map<std::string, int> counts_, suppressed_;

@@ -15,7 +15,25 @@ bool isPositiveDefinite(const Mat3& m) {
   return llt.info() == Eigen::Success && llt.matrixLLT().allFinite();
 }
 
-MassProps geomMassProps(const GeomDef& g) {
+namespace {
+
+// A mesh geom: the solid of its hull or of its closed triangles, moved to the geom's offset.
+MassProps meshMassProps(const GeomDef& g, const MeshMass& mm) {
+  MassProps p;
+  p.volume = mm.volume;
+  const Eigen::Matrix3d r = toEigen(g.offset.q).toRotationMatrix();
+  const Eigen::Matrix3d local = toEigen(mm.inertia);
+  Eigen::Matrix3d inertia = r * local * r.transpose();
+  const Eigen::Vector3d c = toEigen(g.offset.p) + r * toEigen(mm.centre);
+  inertia += p.volume * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+  p.inertia = toMat3(inertia);
+  p.moment = toVec3(p.volume * c);
+  return p;
+}
+
+}  // namespace
+
+MassProps geomMassProps(const GeomDef& g, const MeshData* mesh) {
   MassProps p;
   Eigen::Vector3d principal;  // inertia per unit density about the geom's own axes
   switch (g.shape) {
@@ -49,6 +67,10 @@ MassProps geomMassProps(const GeomDef& g) {
     }
     case GeomShape::Plane:
       return p;
+    case GeomShape::ConvexHull:
+      return mesh ? meshMassProps(g, mesh->hull_mass) : p;
+    case GeomShape::TriMesh:
+      return mesh ? meshMassProps(g, mesh->mass) : p;
   }
   // Rotate into the body frame: R diag(principal) R^T, summed as principal moment times the outer
   // product of its axis (the columns of R), axis by axis. Eigen's 3x3 product R D R^T sums the

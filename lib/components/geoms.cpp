@@ -1,5 +1,7 @@
 // GeomComponents (guide 6.5): collision shapes. Cylinders and capsules lie along local Z.
 // The model-derived geoms (RCModelMatchGeom, RCModelWrapGeom) live in model_geoms.cpp.
+#include <cmath>
+
 #include "compile/context.h"
 #include "components/families.h"
 #include "components/geoms.h"
@@ -16,6 +18,8 @@ constexpr ValueParam<double> kHeight{"Height"};
 constexpr ValueParam<double> kDepth{"Depth"};
 constexpr ValueParam<double> kRadius{"Radius"};
 constexpr ValueParam<double> kLength{"Length"};
+constexpr ValueParam<Triple> kScale{"Scale"};
+constexpr ValueParam<bool> kHull{"Hull"};
 
 }  // namespace
 
@@ -62,6 +66,17 @@ void registerGeoms(Registry& r) {
                  Range::Positive)},
          {},
          "Capsule along local Z."});
+  r.add({"RCMeshGeom",
+         Family::Geom,
+         int(GeomKind::Mesh),
+         {text(kFileParam, "", "mesh file (.stl, .obj, .dae), relative to this file; docs/meshes.md"),
+          triple(kScale, {1, 1, 1}, "", "factors along the body's X, Y, Z (0.001 for a file in millimetres)"),
+          flag(kHull, true,
+               "True: the convex hull of the mesh (dGeomConvex); False: its triangles (dGeomTriMesh). Unset "
+               "on a static body: the triangles")},
+         {},
+         "Collision shape from a mesh file, in the body frame (Y up; a COLLADA file's unit and up axis are "
+         "applied)."});
   r.add({"RCEmptyGeom",
          Family::Geom,
          int(GeomKind::Empty),
@@ -91,6 +106,7 @@ void lowerGeom(CompileContext& ctx, const Link& l, const GeomTarget& t, const Tr
   g.static_body = t.static_body;
   g.material = t.material;
   g.offset = offset;
+  g.loc = c.loc;
   switch (static_cast<GeomKind>(c.type->kind)) {
     case GeomKind::Transform: {
       Transform sub;
@@ -131,6 +147,26 @@ void lowerGeom(CompileContext& ctx, const Link& l, const GeomTarget& t, const Tr
       return;
     case GeomKind::Empty:
       return;
+    case GeomKind::Mesh: {
+      // A moving body collides best with a hull; a static one (terrain, a room) with its triangles.
+      const Slot& hull = c.slotOf(kHull);
+      const bool use_hull = hull.set ? c.get(kHull) : t.body >= 0;
+      const Triple& s = c.get(kScale);
+      for (double f : s)
+        if (!std::isfinite(f) || f == 0) {
+          ctx.errorAt(c.slotOf(kScale), c, "parameter 'Scale' needs three finite, non-zero factors");
+          return;
+        }
+      g.mesh = lowerMeshFile(ctx, c, c.slotOf(kFileParam), c.get(kFileParam), {s[0], s[1], s[2]});
+      if (g.mesh < 0) return;
+      const MeshData& mesh = *ctx.model.meshes[static_cast<size_t>(g.mesh)].data;
+      if (use_hull && mesh.hull.empty()) {
+        ctx.errorAt(c.slotOf(kFileParam), c, "mesh '" + mesh.file + "' has no convex hull: " + mesh.hull_problem);
+        return;
+      }
+      g.shape = use_hull ? GeomShape::ConvexHull : GeomShape::TriMesh;
+      break;
+    }
   }
   // A static geom's offset is its global pose.
   if (t.body < 0) g.offset = compose(t.frame, offset);

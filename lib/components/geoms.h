@@ -4,6 +4,6 @@
 
 namespace simbob {
 
-enum class GeomKind { Transform, Cuboid, Plane, Sphere, Cylinder, CappedCylinder, ModelMatch, ModelWrap, Empty };
+enum class GeomKind { Transform, Cuboid, Plane, Sphere, Cylinder, CappedCylinder, ModelMatch, ModelWrap, Empty, Mesh };
 
 }  // namespace simbob

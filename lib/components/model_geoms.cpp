@@ -38,7 +38,7 @@ struct Piece {
   Vec3 ext{0, 0, 0};  // extra half-extents (ellipsoids: exact bounds beyond the ball's)
 };
 
-void piecesOf(const ModelPart& p, std::vector<Piece>* out) {
+void piecesOf(CompileContext& ctx, const ModelPart& p, std::vector<Piece>* out) {
   ModelShape s = modelShape(*p.model);
   auto at = [&](const Vec3& local) { return add(p.frame.p, rotate(p.frame.q, local)); };
   Vec3 z = rotate(p.frame.q, {0, 0, 1});
@@ -77,6 +77,16 @@ void piecesOf(const ModelPart& p, std::vector<Piece>* out) {
       out->push_back({at({0, 0, 0}), s.size[0], true, z});
       out->push_back({at({0, 0, s.size[1]})});
       return;
+    case ModelShape::Mesh: {  // the corners of its hull (all its vertices when it has none)
+      const int mi = lowerModelMesh(ctx, *p.model);
+      if (mi < 0) return;
+      const MeshData& mesh = *ctx.model.meshes[static_cast<size_t>(mi)].data;
+      if (mesh.hull.empty())
+        for (const Vec3& v : mesh.vertices) out->push_back({at(v)});
+      for (size_t i = 0; i < mesh.hull.pointCount(); ++i)
+        out->push_back({at({mesh.hull.points[i * 3], mesh.hull.points[i * 3 + 1], mesh.hull.points[i * 3 + 2]})});
+      return;
+    }
   }
 }
 
@@ -135,6 +145,17 @@ void match(CompileContext& ctx, const Component& geom, const std::vector<ModelPa
         d.shape = s.kind == ModelShape::Capsule ? GeomShape::Capsule : GeomShape::Cylinder;
         d.size = s.size;
         break;
+      case ModelShape::Mesh:
+        // A mesh is matched by its convex hull (what a moving body collides with best).
+        d.mesh = lowerModelMesh(ctx, *p.model);
+        if (d.mesh < 0) continue;
+        if (ctx.model.meshes[static_cast<size_t>(d.mesh)].data->hull.empty()) {
+          ctx.error(geom, "RCModelMatchGeom: mesh model '" + p.model->qkey + "' has no convex hull: " +
+                              ctx.model.meshes[static_cast<size_t>(d.mesh)].data->hull_problem);
+          continue;
+        }
+        d.shape = GeomShape::ConvexHull;
+        break;
       case ModelShape::Plane:
       case ModelShape::Cone:
         ctx.error(geom, "RCModelMatchGeom: no geom matches " + p.model->type->name + " '" + p.model->qkey +
@@ -152,7 +173,7 @@ void match(CompileContext& ctx, const Component& geom, const std::vector<ModelPa
 void wrap(CompileContext& ctx, const Component& geom, const std::vector<ModelPart>& parts, const GeomDef& g,
           const GeomTarget& t) {
   std::vector<Piece> pieces;
-  for (const ModelPart& p : parts) piecesOf(p, &pieces);
+  for (const ModelPart& p : parts) piecesOf(ctx, p, &pieces);
   if (pieces.empty()) {
     ctx.error(geom, "RCModelWrapGeom: the body '" + t.owner->qkey + "' has no visible model to wrap");
     return;

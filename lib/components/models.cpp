@@ -12,7 +12,7 @@ namespace simbob {
 
 namespace {
 
-enum class ModelKind { Cuboid, Plane, Ellipsoid, Cylinder, Cone, Empty };
+enum class ModelKind { Cuboid, Plane, Ellipsoid, Cylinder, Cone, Empty, Mesh };
 
 const EnumTable kSideMask{"SideMask",
                           {{"Left", 1},
@@ -66,6 +66,7 @@ constexpr ValueParam<double> kAngTexScale{"AngTexScale"};
 constexpr ValueParam<double> kLinTexScale{"LinTexScale"};
 constexpr EnumParam kComponentMask{"ComponentMask"};
 constexpr ValueParam<bool> kDrawBase{"DrawBase"};
+constexpr ValueParam<Triple> kScale{"Scale"};
 
 ModelKind kindOf(const Component& c) { return static_cast<ModelKind>(c.type->kind); }
 
@@ -126,6 +127,14 @@ void registerModels(Registry& r) {
           number(kLinTexScale, 1.0, "", "texture scale"), flag(kDrawBase, true, "base visible"), accuracy},
          {},
          "A cone along local Z."});
+  r.add({"RCMeshModel",
+         Family::Model,
+         int(ModelKind::Mesh),
+         {text(kFileParam, "", "mesh file (.stl, .obj, .dae), relative to this file; docs/meshes.md"),
+          triple(kScale, {1, 1, 1}, "", "factors along local X, Y, Z (0.001 for a file in millimetres)")},
+         {},
+         "A triangle mesh from a file (Y up; a COLLADA file's unit and up axis are applied). RCModelMatchGeom "
+         "gives its convex hull."});
   r.add({"RCEmptyModel", Family::Model, int(ModelKind::Empty), {}, {}, "An invisible model."});
   r.addMacro({"NoModel", Family::Model, "RCEmptyModel", {}, "an invisible model"});
 }
@@ -202,8 +211,21 @@ ModelShape modelShape(const Component& m) {
       return s;
     case ModelKind::Empty:
       return s;
+    case ModelKind::Mesh:
+      s.kind = ModelShape::Mesh;
+      return s;
   }
   return s;
+}
+
+int lowerModelMesh(CompileContext& ctx, const Component& model) {
+  const Triple& s = model.get(kScale);
+  for (double f : s)
+    if (!std::isfinite(f) || f == 0) {
+      ctx.errorAt(model.slotOf(kScale), model, "parameter 'Scale' needs three finite, non-zero factors");
+      return -1;
+    }
+  return lowerMeshFile(ctx, model, model.slotOf(kFileParam), model.get(kFileParam), {s[0], s[1], s[2]});
 }
 
 void lowerVisuals(CompileContext& ctx, const Link& root, int body, const Transform& frame, const std::string& key) {
@@ -273,6 +295,11 @@ void lowerVisuals(CompileContext& ctx, const Link& root, int body, const Transfo
         break;
       case ModelKind::Empty:
         visible = false;
+        break;
+      case ModelKind::Mesh:
+        v.shape = VisualDef::Mesh;
+        v.mesh = lowerModelMesh(ctx, c);
+        visible = v.mesh >= 0;
         break;
     }
     if (visible) ctx.model.visuals.push_back(std::move(v));

@@ -13,6 +13,37 @@ bool isIdentity(const Transform& t) {
   return t.p[0] == 0 && t.p[1] == 0 && t.p[2] == 0 && t.q[0] == 1 && t.q[1] == 0 && t.q[2] == 0 && t.q[3] == 0;
 }
 
+// A mesh geom: ODE reads the hull's and the triangles' arrays in place (dReal is double, and
+// ODE never writes them), so the World holds the MeshData for as long as the geoms live.
+dGeomID createMeshGeom(WorldImpl& im, const Model& model, const GeomDef& gd, dSpaceID space) {
+  const auto mi = static_cast<size_t>(gd.mesh);
+  if (im.meshes.empty()) {
+    im.meshes.resize(model.meshes.size());
+    im.triMeshData.assign(model.meshes.size(), nullptr);
+  }
+  im.meshes[mi] = model.meshes[mi].data;
+  const MeshData& mesh = *im.meshes[mi];
+  if (gd.shape == GeomShape::ConvexHull) {
+    const ConvexHull& h = mesh.hull;
+    return dCreateConvex(space, const_cast<dReal*>(h.planes.data()), static_cast<unsigned>(h.faceCount()),  // NOLINT
+                         const_cast<dReal*>(h.points.data()), static_cast<unsigned>(h.pointCount()),        // NOLINT
+                         const_cast<unsigned*>(h.polygons.data()));                                         // NOLINT
+  }
+  static_assert(sizeof(dTriIndex) == sizeof(uint32_t), "ODE's triangle indices are 32-bit");
+  if (!im.triMeshData[mi]) {
+    im.triMeshData[mi] = dGeomTriMeshDataCreate();
+    dGeomTriMeshDataBuildDouble(im.triMeshData[mi], mesh.vertices.data(), sizeof(Vec3),
+                                static_cast<int>(mesh.vertices.size()), mesh.triangles.data(),
+                                static_cast<int>(mesh.triangles.size() * 3), sizeof(mesh.triangles[0]));
+    // Hull-trimesh contacts (libccd) abort the process without the face angles; capsules use
+    // the concave edges.
+    dGeomTriMeshDataPreprocess2(
+        im.triMeshData[mi],
+        (1U << dTRIDATAPREPROCESS_BUILD_CONCAVE_EDGES) | (1U << dTRIDATAPREPROCESS_BUILD_FACE_ANGLES), nullptr);
+  }
+  return dCreateTriMesh(space, im.triMeshData[mi], nullptr, nullptr, nullptr);
+}
+
 }  // namespace
 
 dSpaceID createSpace(const Model& model) {
@@ -72,6 +103,10 @@ void createGeoms(WorldImpl& im, const Model& model) {
         break;
       case GeomShape::Plane:
         g = dCreatePlane(space, gd.plane[0], gd.plane[1], gd.plane[2], gd.plane[3]);
+        break;
+      case GeomShape::ConvexHull:
+      case GeomShape::TriMesh:
+        g = createMeshGeom(im, model, gd, space);
         break;
     }
     const dQuaternion q = {gd.offset.q[0], gd.offset.q[1], gd.offset.q[2], gd.offset.q[3]};

@@ -93,6 +93,8 @@ WorldImpl::~WorldImpl() {
   if (sensorSpace) dSpaceDestroy(sensorSpace);
   if (ray) dGeomDestroy(ray);
   if (rayReach) dGeomDestroy(rayReach);
+  for (dTriMeshDataID d : triMeshData)  // after their geoms
+    if (d) dGeomTriMeshDataDestroy(d);
   if (world) dWorldDestroy(world);
 }
 

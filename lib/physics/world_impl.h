@@ -97,6 +97,11 @@ struct WorldImpl {
   std::vector<Vec3> com;  ///< centre of mass in the body frame, per body (m)
   std::vector<dGeomID> geoms;
   std::vector<GeomInfo> geomInfo;
+  /// The meshes the geoms use (ODE keeps pointers into their hulls' and triangles' arrays, never
+  /// copies), held as long as the World, and one triangle-mesh data per Model::meshes entry that
+  /// a TriMesh geom uses (built on first use, destroyed after the geoms).
+  std::vector<std::shared_ptr<const MeshData>> meshes;
+  std::vector<dTriMeshDataID> triMeshData;
   std::vector<dJointID> joints;
   std::vector<JointInfo> jointInfo;
   std::vector<ActuatorState> actuators;

@@ -20,7 +20,8 @@ namespace simbob::render {
   X(DepthFunc) X(DepthMask) X(BlendFunc) X(StencilFunc) X(StencilOp) X(Fogi) X(Fogf) X(Fogfv)   \
   X(Hint) X(GenTextures) X(DeleteTextures) X(BindTexture) X(TexImage2D) X(TexParameteri)        \
   X(TexEnvi) X(PixelStorei) X(ReadPixels) X(Finish) X(GetString) X(GetError) X(GetIntegerv)     \
-  X(LineWidth) X(PointSize) X(ColorMask) X(ColorMaterial) X(FrontFace) X(CullFace)
+  X(LineWidth) X(PointSize) X(ColorMask) X(ColorMaterial) X(FrontFace) X(CullFace)            \
+  X(GenLists) X(NewList) X(EndList) X(CallList) X(DeleteLists)
 // clang-format on
 
 struct GlApi {

@@ -83,13 +83,14 @@ struct Texture {
 class GlRenderer : public Renderer {
  public:
   GlRenderer(const Model& m, const RenderOptions& o, std::unique_ptr<render::GlContext> ctx)
-      : model_(m), opts_(o), ctx_(std::move(ctx)), gl_(ctx_->gl), skins_(m.skins) {
+      : model_(m), opts_(o), ctx_(std::move(ctx)), gl_(ctx_->gl), skins_(m.skins), meshes_(m.meshes) {
     if (o.draw_models) visuals_ = m.visuals;
     if (o.draw_geoms) addGeomVisuals(!o.draw_models);
   }
 
   ~GlRenderer() override {
     for (GLuint id : texture_ids_) gl_.DeleteTextures(1, &id);
+    meshes_.release(gl_);
   }
 
   bool init(Error* err) {
@@ -271,23 +272,23 @@ class GlRenderer : public Renderer {
     gl_.MultMatrixd(m.data());
     if (q == Quality::Frame) {
       gl_.Disable(GL_LIGHTING);
-      render::drawBoundingBox(gl_, v);
+      render::drawBoundingBox(gl_, v, meshes_);
     } else if (v.wire && q != Quality::Wire) {
       // Pulled towards the eye a little, so that lines on a model's surface (a collision
       // shape over its model) are not hidden by it.
       gl_.PolygonMode(GL_FRONT_AND_BACK, GL_LINE);
       gl_.Enable(GL_POLYGON_OFFSET_LINE);
       gl_.PolygonOffset(-1, -1);
-      render::drawShape(gl_, v);
+      render::drawShape(gl_, v, meshes_);
       gl_.Disable(GL_POLYGON_OFFSET_LINE);
       gl_.PolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     } else if (v.one_sided) {
       gl_.Enable(GL_CULL_FACE);
       gl_.CullFace(GL_BACK);
-      render::drawShape(gl_, v);
+      render::drawShape(gl_, v, meshes_);
       gl_.Disable(GL_CULL_FACE);
     } else {
-      render::drawShape(gl_, v);
+      render::drawShape(gl_, v, meshes_);
     }
     gl_.PopMatrix();
     if (textured) gl_.Disable(GL_TEXTURE_2D);
@@ -333,7 +334,7 @@ class GlRenderer : public Renderer {
       gl_.MultMatrixd(m.data());
       const std::array<double, 16> mv = matrixOf(t);
       gl_.MultMatrixd(mv.data());
-      render::drawShape(gl_, v);
+      render::drawShape(gl_, v, meshes_);
       gl_.PopMatrix();
     }
     gl_.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -345,7 +346,7 @@ class GlRenderer : public Renderer {
     gl_.PushMatrix();
     const std::array<double, 16> pm = matrixOf(pt);
     gl_.MultMatrixd(pm.data());
-    render::drawShape(gl_, pv);
+    render::drawShape(gl_, pv, meshes_);
     gl_.PopMatrix();
     gl_.Disable(GL_BLEND);
     gl_.Disable(GL_STENCIL_TEST);
@@ -498,6 +499,12 @@ class GlRenderer : public Renderer {
         case VisualDef::Cone:
           r = std::hypot(v.size[0], v.size[1]);
           break;
+        case VisualDef::Mesh: {
+          const MeshData& mesh = *model_.meshes[static_cast<size_t>(v.mesh)].data;
+          r = norm(sub(mesh.hi, mesh.lo)) / 2;
+          balls.push_back({add(t.p, rotate(t.q, scale(add(mesh.lo, mesh.hi), 0.5))), r});
+          continue;
+        }
       }
       balls.push_back({t.p, r});
     }
@@ -586,6 +593,12 @@ class GlRenderer : public Renderer {
           v.one_sided = true;
           break;
         }
+        case GeomShape::ConvexHull:
+        case GeomShape::TriMesh:
+          v.shape = VisualDef::Mesh;
+          v.mesh = g.mesh;
+          v.hull = g.shape == GeomShape::ConvexHull;
+          break;
       }
       visuals_.push_back(v);
     }
@@ -663,6 +676,7 @@ class GlRenderer : public Renderer {
   std::vector<double> rays_;         ///< sensor ray lengths for draw_sensors (setSensorRays)
   std::vector<Texture> textures_;    ///< per skin
   std::vector<GLuint> texture_ids_;  ///< per texture file (TextureFiles' slot): what the destructor deletes
+  render::MeshLists meshes_;         ///< Model::meshes uploaded as display lists on first draw
   Error error_;
 };
 

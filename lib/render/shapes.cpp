@@ -233,9 +233,65 @@ void cone(const GlApi& gl, const VisualDef& v) {
   if (v.mask & 1u) disk(gl, r, 0, -1, segs);
 }
 
+// One normal per face: STL and most CAD meshes are faceted, and the replay page shades them the
+// same way (lib/view/viewer.js).
+void meshTriangles(const GlApi& gl, const MeshData& m) {
+  gl.Begin(GL_TRIANGLES);
+  for (const auto& t : m.triangles) {
+    const Vec3 &a = m.vertices[t[0]], &b = m.vertices[t[1]], &c = m.vertices[t[2]];
+    const Vec3 n = cross(sub(b, a), sub(c, a));
+    const double len = norm(n);
+    if (len > 0) gl.Normal3d(n[0] / len, n[1] / len, n[2] / len);
+    for (const Vec3* p : {&a, &b, &c}) gl.Vertex3d((*p)[0], (*p)[1], (*p)[2]);
+  }
+  gl.End();
+}
+
+void hullPolygons(const GlApi& gl, const ConvexHull& h) {
+  gl.Begin(GL_TRIANGLES);
+  size_t at = 0;
+  for (size_t f = 0; f < h.faceCount(); ++f) {
+    const unsigned n = h.polygons[at];
+    gl.Normal3d(h.planes[f * 4], h.planes[f * 4 + 1], h.planes[f * 4 + 2]);
+    for (unsigned k = 2; k < n; ++k)
+      for (unsigned i : {h.polygons[at + 1], h.polygons[at + k], h.polygons[at + k + 1]})
+        gl.Vertex3d(h.points[i * 3], h.points[i * 3 + 1], h.points[i * 3 + 2]);
+    at += 1 + n;
+  }
+  gl.End();
+}
+
 }  // namespace
 
-void drawShape(const GlApi& gl, const VisualDef& v) {
+void MeshLists::draw(const GlApi& gl, int mesh, bool hull) {
+  if (lists_.empty()) lists_.assign(meshes_.size() * 2, 0);
+  const size_t slot = static_cast<size_t>(mesh) * 2 + (hull ? 1 : 0);
+  if (lists_[slot] == 0) {
+    lists_[slot] = gl.GenLists(1);
+    gl.NewList(lists_[slot], GL_COMPILE);
+    const MeshData& m = *meshes_[static_cast<size_t>(mesh)].data;
+    if (hull)
+      hullPolygons(gl, m.hull);
+    else
+      meshTriangles(gl, m);
+    gl.EndList();
+  }
+  gl.CallList(lists_[slot]);
+}
+
+void MeshLists::bounds(int mesh, Vec3* lo, Vec3* hi) const {
+  const MeshData& m = *meshes_[static_cast<size_t>(mesh)].data;
+  *lo = m.lo;
+  *hi = m.hi;
+}
+
+void MeshLists::release(const GlApi& gl) {
+  for (GLuint id : lists_)
+    if (id) gl.DeleteLists(id, 1);
+  lists_.clear();
+}
+
+void drawShape(const GlApi& gl, const VisualDef& v, MeshLists& meshes) {
   switch (v.shape) {
     case VisualDef::Cuboid:
       cuboid(gl, v);
@@ -255,10 +311,13 @@ void drawShape(const GlApi& gl, const VisualDef& v) {
     case VisualDef::Cone:
       cone(gl, v);
       return;
+    case VisualDef::Mesh:
+      meshes.draw(gl, v.mesh, v.hull);
+      return;
   }
 }
 
-void drawBoundingBox(const GlApi& gl, const VisualDef& v) {
+void drawBoundingBox(const GlApi& gl, const VisualDef& v, const MeshLists& meshes) {
   Vec3 lo{0, 0, 0}, hi{0, 0, 0};
   switch (v.shape) {
     case VisualDef::Cuboid:
@@ -284,6 +343,9 @@ void drawBoundingBox(const GlApi& gl, const VisualDef& v) {
     case VisualDef::Cone:
       lo = {-v.size[0], -v.size[0], 0};
       hi = {v.size[0], v.size[0], v.size[1]};
+      break;
+    case VisualDef::Mesh:
+      meshes.bounds(v.mesh, &lo, &hi);
       break;
   }
   gl.Begin(GL_LINES);

@@ -191,6 +191,62 @@ class PageTextures {
   std::vector<std::string> urls_;  ///< by slot: TextureFiles counts distinct files from 0
 };
 
+/// Largest total of mesh data one page embeds (base64 characters): beyond it a browser takes
+/// seconds to parse the page (docs/meshes.md).
+constexpr size_t kMaxPageMeshChars = size_t{64} << 20;
+
+/// Each mesh of the Model once: {file, triangles: {positions (float32 base64, x y z per vertex),
+/// indices (uint32 base64, 3 per triangle)}, hull: the same for its hull's faces as triangles}.
+/// The triangles go in only when a visual or a TriMesh geom draws them, the hull only when a
+/// ConvexHull geom does.
+bool encodeMeshes(const Model& m, json* out, Error* err) {
+  std::vector<uint8_t> use(m.meshes.size(), 0);  // 1 triangles, 2 hull
+  for (const VisualDef& v : m.visuals)
+    if (v.shape == VisualDef::Mesh) use[static_cast<size_t>(v.mesh)] |= 1;
+  for (const GeomDef& g : m.geoms)
+    if (!g.sensor && g.mesh >= 0) use[static_cast<size_t>(g.mesh)] |= g.shape == GeomShape::ConvexHull ? 2 : 1;
+  *out = json::array();
+  size_t chars = 0;
+  for (size_t i = 0; i < m.meshes.size(); ++i) {
+    const MeshData& d = *m.meshes[i].data;
+    const size_t slash = d.file.find_last_of('/');
+    json j = {{"file", slash == std::string::npos ? d.file : d.file.substr(slash + 1)}};
+    auto put = [&](const char* name, const std::vector<float>& pos, const std::vector<uint32_t>& idx) {
+      json part = {{"positions", base64Le(pos)}, {"indices", base64Le(idx)}};
+      chars +=
+          part["positions"].get_ref<const std::string&>().size() + part["indices"].get_ref<const std::string&>().size();
+      j[name] = std::move(part);
+    };
+    if (use[i] & 1) {
+      std::vector<float> pos;
+      pos.reserve(d.vertices.size() * 3);
+      for (const Vec3& v : d.vertices)
+        for (double x : v) pos.push_back(static_cast<float>(x));
+      std::vector<uint32_t> idx;
+      idx.reserve(d.triangles.size() * 3);
+      for (const auto& t : d.triangles) idx.insert(idx.end(), t.begin(), t.end());
+      put("triangles", pos, idx);
+    }
+    if (use[i] & 2) {
+      std::vector<float> pos(d.hull.points.begin(), d.hull.points.end());
+      std::vector<uint32_t> idx;
+      for (size_t at = 0; at < d.hull.polygons.size(); at += 1 + d.hull.polygons[at])
+        for (unsigned k = 2; k < d.hull.polygons[at]; ++k)
+          idx.insert(idx.end(), {d.hull.polygons[at + 1], d.hull.polygons[at + k], d.hull.polygons[at + k + 1]});
+      put("hull", pos, idx);
+    }
+    if (chars > kMaxPageMeshChars) {
+      *err = {ErrorKind::InvalidInput,
+              {d.file, 0},
+              "the scene's meshes would put more than " + std::to_string(kMaxPageMeshChars >> 20) +
+                  " MiB into the replay page (the limit; docs/meshes.md): use coarser meshes for the page"};
+      return false;
+    }
+    out->push_back(std::move(j));
+  }
+  return true;
+}
+
 bool encodeModel(const Model& m, const std::string& texture_folder, json* out, Error* err) {
   json skins = json::array();
   PageTextures textures(texture_folder);
@@ -214,7 +270,7 @@ bool encodeModel(const Model& m, const std::string& texture_folder, json* out, E
   }
   json visuals = json::array();
   for (const VisualDef& v : m.visuals) {
-    static const char* const kShapes[] = {"cuboid", "plane", "ellipsoid", "cylinder", "cone"};
+    static const char* const kShapes[] = {"cuboid", "plane", "ellipsoid", "cylinder", "cone", "mesh"};
     visuals.push_back({{"shape", kShapes[v.shape]},
                        {"body", v.body},
                        {"pose", pose(v.pose)},
@@ -228,16 +284,18 @@ bool encodeModel(const Model& m, const std::string& texture_folder, json* out, E
                        {"tex_scale", v.tex_scale},
                        {"tex_scale2", v.tex_scale2},
                        {"key", v.key}});
+    if (v.shape == VisualDef::Mesh) visuals.back()["mesh"] = v.mesh;
   }
   json geoms = json::array();
   for (const GeomDef& g : m.geoms) {
     if (g.sensor) continue;  // detects contacts only; the renderer leaves them out too
-    static const char* const kGeoms[] = {"box", "sphere", "cylinder", "capsule", "plane"};
+    static const char* const kGeoms[] = {"box", "sphere", "cylinder", "capsule", "plane", "hull", "trimesh"};
     geoms.push_back({{"shape", kGeoms[static_cast<int>(g.shape)]},
                      {"body", g.body},
                      {"pose", pose(g.offset)},
                      {"size", vec(g.size.data(), 3)},
                      {"plane", vec(g.plane.data(), 4)}});
+    if (g.mesh >= 0) geoms.back()["mesh"] = g.mesh;
   }
   json cameras = json::array();
   for (const CameraDef& c : m.cameras) {
@@ -253,6 +311,8 @@ bool encodeModel(const Model& m, const std::string& texture_folder, json* out, E
                        {"auto_view_angle", c.auto_view_angle},
                        {"distance", c.distance}});
   }
+  json meshes;
+  if (!encodeMeshes(m, &meshes, err)) return false;
   json bodies = json::array();
   for (const BodyDef& b : m.bodies) bodies.push_back({{"key", b.key}, {"pose", pose(b.pose)}});
   static const char* const kFog[] = {"off", "linear", "exponential", "exponential2"};
@@ -272,6 +332,7 @@ bool encodeModel(const Model& m, const std::string& texture_folder, json* out, E
             {"fog_start", v.fog_start},
             {"fog_end", v.fog_end},
             {"fog_color", vec(v.fog_color.data(), 4)}}}};
+  if (!meshes.empty()) (*out)["meshes"] = std::move(meshes);  // pages without meshes stay as they were
   return true;
 }
 

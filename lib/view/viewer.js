@@ -167,9 +167,29 @@
     obj.quaternion.set(pose.q[1], pose.q[2], pose.q[3], pose.q[0]);
     return obj;
   }
+  // Meshes (model.meshes, each embedded once): one three.js geometry per mesh and part, shared
+  // by every visual and collision shape that shows it; one normal per face, as lib/render draws.
+  const meshGeometries = new Map();
+  function meshGeometry(index, part) {
+    const name = index + ':' + part;
+    if (!meshGeometries.has(name)) {
+      const m = (model.meshes || [])[index];
+      const d = m && m[part];
+      let g = new THREE.BufferGeometry();
+      if (d) {
+        g.setAttribute('position', new THREE.BufferAttribute(f32(d.positions), 3));
+        g.setIndex(new THREE.BufferAttribute(new Uint32Array(bytesOf(d.indices)), 1));
+        g = g.toNonIndexed();
+        g.computeVertexNormals();
+      }
+      meshGeometries.set(name, g);
+    }
+    return meshGeometries.get(name);
+  }
   function visualGeometry(v) {
     const s = v.size;
     switch (v.shape) {
+      case 'mesh': return meshGeometry(v.mesh, v.hull ? 'hull' : 'triangles');
       case 'cuboid': {
         const g = new THREE.BoxBufferGeometry(Math.abs(v.b[0] - v.a[0]), Math.abs(v.b[1] - v.a[1]), Math.abs(v.b[2] - v.a[2]));
         g.translate((v.a[0] + v.b[0]) / 2, (v.a[1] + v.b[1]) / 2, (v.a[2] + v.b[2]) / 2);
@@ -226,6 +246,8 @@
     let geo;
     switch (g.shape) {
       case 'box': geo = new THREE.BoxBufferGeometry(s[0], s[1], s[2]); break;
+      case 'hull': geo = meshGeometry(g.mesh, 'hull'); break;
+      case 'trimesh': geo = meshGeometry(g.mesh, 'triangles'); break;
       case 'sphere': geo = new THREE.SphereBufferGeometry(s[0], 24, 12); break;
       case 'cylinder': geo = new THREE.CylinderBufferGeometry(s[0], s[0], s[1], 24); geo.rotateX(Math.PI / 2); break;
       case 'capsule': {  // a cylinder with a half sphere at each end, along Z

@@ -874,6 +874,8 @@ bool inside(const GeomDef& g, const Vec3& p, double tol = 1e-9) {
       return norm({l[0], l[1], l[2] - z}) <= g.size[0] + tol;
     }
     case GeomShape::Plane:
+    case GeomShape::ConvexHull:  // no wrap makes a mesh
+    case GeomShape::TriMesh:
       return false;
   }
   return false;

@@ -59,6 +59,9 @@ std::string element(const TypeSpec& t, const std::string& construction_key) {
     const char* file = t.import_root == "Body" ? "body.xml" : t.import_root == "Joint" ? "joint.xml" : "list.xml";
     p += std::string("<File Value=\"") + file + "\"/>";
   }
+  // A type that reads a mesh (File and Scale): the test cube.
+  if (t.import_root.empty() && has("File") && has("Scale"))
+    p += "<File Value=\"" + std::string(SIMBOB_SOURCE_DIR) + "/tests/data/meshes/cube_100mm.stl\"/>";
   switch (t.family) {
     case Family::Body:
       if (has("Original")) p += "<Original Value=\"Ball\"/>";

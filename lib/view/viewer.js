@@ -822,6 +822,8 @@
   window.simbobView = {
     instancedPoses,
     drawCalls: () => renderer.info.render.calls,
+    // The triangles of each mesh geometry built ("MESH:triangles" or "MESH:hull" -> count).
+    meshTriangles: () => Object.fromEntries([...meshGeometries].map(([k, g]) => [k, g.attributes.position ? g.attributes.position.count / 3 : 0])),
     antialias: ANTIALIAS,
     get ready() { return pendingTextures === 0; },
     seek(t) { state.playing = false; updatePlayButton(); applyTime(t); draw(); return state.time; },

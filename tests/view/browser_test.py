@@ -706,6 +706,42 @@ def case_names(d):
     print('checked: JavaScript names as keys; singular and plural')
 
 
+def case_meshes(d):
+    # scenes/mesh_drop.xml: four meshes, each embedded once and built once as a three.js geometry:
+    # the ramp (8 triangles: three quadrilaterals and two ends), the cube and the crate (12 each),
+    # the pyramid (6). The ramp is a static triangle mesh, the others' geoms are hulls.
+    scene = os.path.join(REPO, 'scenes', 'mesh_drop.xml')
+    run('run', scene, '--duration', '1', '--sample-interval', '0.05', '--out', 'mesh_drop.csv')
+    run('view', 'mesh_drop.csv', '--scene', scene, '-o', 'mesh_drop.html')
+    open_page(d, 'mesh_drop.html')
+    rows = read_csv('mesh_drop.csv')
+    times = sorted(rows)
+    check_poses(d, rows, [times[0], times[-1]], 'mesh_drop')
+    built = d.execute_script('return simbobView.meshTriangles()')
+    want = {'0:triangles': 8, '1:triangles': 12, '2:triangles': 12, '3:triangles': 6}
+    for k, n in want.items():
+        if built.get(k) != n:
+            fail(f'mesh geometry {k}: {built.get(k)} triangles, expected {n} (built: {built})')
+    # The models show in their skins' colours: the jade pyramid, the steel cube, the wooden crate.
+    seek(d, 0)
+    d.save_screenshot('mesh_drop.png')  # the page, as case_scenes takes it; counted inside the canvas
+    r = d.find_element('css selector', '#view canvas').rect
+    w, h, ch, px = read_png('mesh_drop.png')
+    x0, y0 = int(r['x']), int(r['y'])
+    x1, y1 = min(w, x0 + int(r['width'])), min(h, y0 + int(r['height']))
+    def count(pred):
+        return sum(1 for y in range(y0, y1) for x in range(x0 * ch, x1 * ch, ch)
+                   if pred(px[y][x], px[y][x + 1], px[y][x + 2]))
+    jade = count(lambda r, g, b: g > r + 40 and g > b + 20)
+    steel = count(lambda r, g, b: b > r + 40 and g > r + 10)  # the sky is blue too, but as red as green
+    wood = count(lambda r, g, b: r > b + 60 and g > b + 20 and r > g)
+    print(f'mesh_drop: {built}; pixels jade {jade}, steel {steel}, wood {wood} of {w * h}')
+    for name, n in (('pyramid (jade)', jade), ('cube (steel)', steel), ('crate (wood)', wood)):
+        if n < 50:
+            fail(f'the {name} is not seen on the page: {n} pixels')
+    check_console(d, 'mesh_drop')
+
+
 def main():
     try:
         d = browser()
@@ -715,7 +751,7 @@ def main():
         {'scenes': case_scenes, 'screenshot': case_screenshot, 'golden': case_golden, 'ui': case_ui,
          'gallery': case_gallery, 'instanced': case_instanced,
          'outputs': case_outputs, 'links': case_links, 'names': case_names, 'far': case_far,
-         'artifacts': case_artifacts}[CASE](d)
+         'artifacts': case_artifacts, 'meshes': case_meshes}[CASE](d)
     finally:
         d.quit()
     if failures:

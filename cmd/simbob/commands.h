@@ -13,6 +13,7 @@ class App;
 }
 namespace simbob {
 class Registry;
+struct NamedPath;
 struct Override;
 struct RenderOptions;
 struct SweepCase;
@@ -22,7 +23,6 @@ struct Trajectory;
 namespace simbob::cli {
 
 struct Common;
-struct NamedPath;
 
 /// The view options of `run --record` and `render` (issue #12).
 struct ViewArgs {

@@ -30,6 +30,7 @@ using protocol::Request;
 
 std::vector<std::string> motionKeys(const std::vector<std::pair<std::string, MotionControl2D*>>& motions) {
   std::vector<std::string> keys;
+  keys.reserve(motions.size());
   for (const auto& m : motions) keys.push_back(m.first);
   return keys;
 }

@@ -25,6 +25,11 @@ struct BodyState {
   Vec3 ang_vel{0, 0, 0};
 };
 
+/// Writes `s` into the plug-in ABI's body_state() arrays (include/simbob/plugin_c.h): p[3]
+/// position, q[4] quaternion (w x y z), v[3] linear and w[3] angular velocity; a NULL array is
+/// skipped. One copy for the host's sensor/actuator mounts and for plug-in controllers.
+void copyBodyState(const BodyState& s, double* p, double* q, double* v, double* w);
+
 /// State of one joint: the motion of its child body (JointDef::body2) relative to its parent
 /// (JointDef::body1; -1 is the static world), measured about (hinge) or along (slider) the joint
 /// axis (JointDef::axis, global at the start; it moves with the parent). Zero at the pose the

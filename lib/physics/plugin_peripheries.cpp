@@ -124,12 +124,7 @@ int hostBodyState(const SimbobHost* h, int ref, double* p, double* q, double* v,
   }
   BodyState s;
   if (m.body >= 0) s = bodyState(*m.im, m.body);
-  for (size_t k = 0; k < 3; ++k) {
-    if (p) p[k] = s.pose.p[k];
-    if (v) v[k] = s.lin_vel[k];
-    if (w) w[k] = s.ang_vel[k];
-  }
-  for (size_t k = 0; k < 4 && q; ++k) q[k] = s.pose.q[k];
+  copyBodyState(s, p, q, v, w);
   return 0;
 }
 

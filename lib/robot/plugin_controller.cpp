@@ -161,12 +161,7 @@ class PluginController : public Party {
     const int i = refIndex("body_state", ref, 2);
     if (i < 0) return -1;
     const BodyState s = world_->body(i);
-    for (size_t k = 0; k < 3; ++k) {
-      if (p) p[k] = s.pose.p[k];
-      if (v) v[k] = s.lin_vel[k];
-      if (w) w[k] = s.ang_vel[k];
-    }
-    for (size_t k = 0; k < 4 && q; ++k) q[k] = s.pose.q[k];
+    copyBodyState(s, p, q, v, w);
     return 0;
   }
   void fail(const std::string& what) {

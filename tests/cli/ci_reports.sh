@@ -22,7 +22,7 @@ golden_sum=$(cd "$REPO" && sha256sum golden/*.csv)
 
 check "copies of scenes/ and golden/, with the three broken things"
 mkdir -p scenes golden
-cp -r "$REPO"/scenes/*.xml "$REPO/scenes/parts" "$REPO/scenes/textures" scenes/
+cp -r "$REPO"/scenes/* scenes/  # the scenes with their parts, textures and meshes
 cp "$REPO"/golden/*.csv golden/
 # The socket scenes start their peers from ../examples/clients and ../scripts (and the client
 # module in ../python).

@@ -61,6 +61,8 @@ expect_status 1 "$SIMBOB" batch scenes/*.xml --duration 10 --out-dir out -j 2 --
   --junit report.xml --artifacts art --summary-md summary.md
 validate report.xml
 nscenes=$(ls scenes/*.xml | wc -l)
+# What did not pass, for the log when a count is off.
+junit_get report.xml '"\n".join(n + ": " + p.tag + ": " + (p.get("message") or "") for n, c in cases.items() for p in c if p.tag in ("failure", "error", "skipped"))'
 expect_eq "counts" "$(junit_get report.xml '[r.get(k) for k in ("name", "tests", "failures", "errors", "skipped")]')" \
   "['simbob batch', '$nscenes', '1', '1', '1']"
 expect_eq "cases" "$(junit_get report.xml 'len(cases)')" "$nscenes"

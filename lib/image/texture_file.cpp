@@ -151,7 +151,7 @@ std::string findTextureFile(const SkinDef& s, const std::string& texture_folder,
     if (dir.empty()) continue;
     *where += (where->empty() ? "" : " or ") + dir;
     for (const char* ext : {"", ".bmp", ".png"}) {
-      const std::string p = (s.texture[0] == '/' ? "" : dir + "/") + s.texture + ext;
+      std::string p = (s.texture[0] == '/' ? "" : dir + "/") + s.texture + ext;
       std::error_code ec;
       if (std::filesystem::is_regular_file(p, ec)) return p;
     }

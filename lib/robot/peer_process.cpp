@@ -44,9 +44,9 @@ namespace {
 
 using Wall = std::chrono::steady_clock;
 
-constexpr size_t kChunk = size_t{64} * 1024;      ///< bytes the keeper reads at a time
-constexpr size_t kMaxPids = 8192;          ///< descendants the keeper can track in one sweep
-constexpr uint32_t kOrphanGraceMs = 1000;  ///< grace when simbob is gone without asking
+constexpr size_t kChunk = size_t{64} << 10;  ///< bytes the keeper reads at a time
+constexpr size_t kMaxPids = 8192;            ///< descendants the keeper can track in one sweep
+constexpr uint32_t kOrphanGraceMs = 1000;    ///< grace when simbob is gone without asking
 
 volatile sig_atomic_t g_keeper_stop = 0;
 void onKeeperSignal(int) { g_keeper_stop = 1; }

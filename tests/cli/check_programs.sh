@@ -66,6 +66,6 @@ expect_match "the case's refusal" sw/case-0000/case.json "would start the progra
 expect_no_file started
 
 check "without --no-controllers the program starts (the test can fail)"
-expect_status 0 "$SIMBOB" run sent/scene.xml --duration 0.2 --out ok.csv -q
+expect_status 0 "$SIMBOB" run sent/scene.xml --duration 0.2 --out ok.csv -q --peer-timeout 60
 expect_file started
 say "ok"

@@ -21,7 +21,7 @@ setsid sh -c 'echo \$\$ >"$WORK/setsid.pid"; exec sleep 300' &
 bash -c 'set -m; sleep 300 & echo \$! >"$WORK/jobctl.pid"; sleep 300' &
 /usr/bin/python3 -c 'import subprocess; p = subprocess.Popen(["sleep", "300"], start_new_session=True); open("$WORK/popen.pid", "w").write(str(p.pid))' &
 for f in setsid jobctl popen; do
-  for _ in \$(seq 100); do [[ -s "$WORK/\$f.pid" ]] && break; sleep 0.05; done
+  for _ in \$(seq 600); do [[ -s "$WORK/\$f.pid" ]] && break; sleep 0.05; done
 done
 [[ \$mode == fail ]] && exit 3
 exec /usr/bin/python3 "$REPO/scripts/simbob_client.py"
@@ -41,18 +41,18 @@ none_left() {
 }
 
 check "a run that completes (0): nothing the controller started is left"
-expect_status 0 "$SIMBOB" run "$SCENE" --duration 2 --out ok.csv -q --controller "$KEY=./spawner.sh ok"
+expect_status 0 "$SIMBOB" run "$SCENE" --duration 2 --out ok.csv -q --controller "$KEY=./spawner.sh ok" --peer-timeout 60
 none_left "exit 0"
 
 check "a controller that exits 3 before connecting (69): nothing it started is left"
-expect_status 69 "$SIMBOB" run "$SCENE" --duration 2 --out fail.csv -q --controller "$KEY=./spawner.sh fail"
+expect_status 69 "$SIMBOB" run "$SCENE" --duration 2 --out fail.csv -q --controller "$KEY=./spawner.sh fail" --peer-timeout 60
 none_left "exit 69"
 
 for sig in TERM INT; do
   check "SIG$sig during the run: nothing the controller started is left"
-  "$SIMBOB" run "$SCENE" --duration 100000 --out sig.csv -q --controller "$KEY=./spawner.sh wait" 2>sig.err &
+  "$SIMBOB" run "$SCENE" --duration 100000 --out sig.csv -q --controller "$KEY=./spawner.sh wait" --peer-timeout 60 2>sig.err &
   run=$!
-  for _ in $(seq 200); do [[ -s popen.pid && -s sig.controller.log ]] && break; sleep 0.05; done
+  for _ in $(seq 1200); do [[ -s popen.pid && -s sig.controller.log ]] && break; sleep 0.05; done
   sleep 0.5
   kill -$sig $run
   status=0
@@ -63,13 +63,22 @@ for sig in TERM INT; do
   none_left "SIG$sig"
 done
 
-check "simbob SIGKILLed: nothing the controller started is left within 2 s"
-"$SIMBOB" run "$SCENE" --duration 100000 --out kill.csv -q --controller "$KEY=./spawner.sh wait" 2>kill.err &
+check "simbob SIGKILLed: nothing the controller started is left within 10 s"
+"$SIMBOB" run "$SCENE" --duration 100000 --out kill.csv -q --controller "$KEY=./spawner.sh wait" --peer-timeout 60 2>kill.err &
 run=$!
-for _ in $(seq 200); do [[ -s popen.pid && -s kill.controller.log ]] && break; sleep 0.05; done
+for _ in $(seq 1200); do [[ -s popen.pid && -s kill.controller.log ]] && break; sleep 0.05; done
 sleep 0.5
 kill -KILL $run
 wait $run || true
-sleep 2
+# The keeper gives them 1 s after simbob is gone, then SIGKILL: at most a few s on a busy machine.
+for _ in $(seq 200); do
+  left=0
+  for f in setsid jobctl popen; do
+    state=$(awk '{print $3}' /proc/$(cat $f.pid)/stat 2>/dev/null || true)
+    [[ -z "$state" || "$state" == Z ]] || left=1
+  done
+  [[ $left == 0 ]] && break
+  sleep 0.05
+done
 none_left "SIGKILL"
 say "ok"

@@ -41,7 +41,7 @@ timeout 2 yes
 exec /usr/bin/python3 "$REPO/scripts/simbob_client.py"
 SH
 chmod +x chatty.sh
-expect_status 0 "$SIMBOB" run "$SCENE" --duration 2 --out chatty.csv -q --controller "$KEY=./chatty.sh" --peer-timeout 20
+expect_status 0 "$SIMBOB" run "$SCENE" --duration 2 --out chatty.csv -q --controller "$KEY=./chatty.sh" --peer-timeout 60
 shape=$(log_shape chatty.controller.log)
 say "  $shape" | head -c 300; echo
 expect_match "the tail is the client's last words" chatty.controller.log "the run ended at t=2 s"

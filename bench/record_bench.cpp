@@ -30,12 +30,12 @@
 
 #include "simbob/clock.h"
 #include "simbob/compile.h"
-#include "simbob/frame_sinks.h"
+#include "simbob/tool/frame_sinks.h"
 #include "simbob/graph.h"
 #include "simbob/physics.h"
 #include "simbob/registry.h"
-#include "simbob/render.h"
-#include "simbob/run.h"
+#include "simbob/renderer.h"
+#include "simbob/loop.h"
 #include "simbob/simulation.h"
 
 namespace {

@@ -1,6 +1,6 @@
 # `cmake --install build --prefix P` and `cpack -G DEB` (docs/install.md, "Installing on cluster nodes").
 #   P/bin/simbob
-#   P/share/simbob/scenes/     the example scenes with the parts they import
+#   P/share/simbob/scenes/     the example scenes with the parts they import and the meshes they read
 #   P/share/simbob/scripts/simbob_client.py   the peer socket_robot.xml starts (../scripts/)
 #   P/share/simbob/python/simbob_client.py and P/share/simbob/examples/clients/: the client libraries
 #   P/share/doc/simbob/README.md and P/share/doc/simbob/docs/ (the reference README links to)

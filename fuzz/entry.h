@@ -21,7 +21,7 @@
 #include <variant>
 #include <vector>
 
-#include "simbob/compare.h"
+#include "simbob/tool/comparison.h"
 #include "simbob/compile.h"
 #include "simbob/graph.h"
 #include "simbob/registry.h"

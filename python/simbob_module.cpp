@@ -9,9 +9,13 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <thread>
 #include <cmath>
+#include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <memory>
@@ -26,8 +30,9 @@
 #include "simbob/physics.h"
 #include "simbob/plugin.h"
 #include "simbob/registry.h"
-#include "simbob/render.h"
-#include "simbob/run.h"
+#include "simbob/renderer.h"
+#include "simbob/loop.h"
+#include "simbob/scene_run.h"
 #include "simbob/simulation.h"
 
 namespace py = pybind11;
@@ -37,6 +42,11 @@ namespace {
 using simbob::Error;
 using simbob::ErrorKind;
 using simbob::SimTime;
+
+// The last instant of simbob's clock (SimTime counts nanoseconds in an int64; kNever, 2**63 - 1
+// ns, means never): a step or run_until beyond it is refused, never wrapped to a negative time.
+constexpr SimTime kClockEnd = simbob::kNever - 1;
+const char* const kClockEndText = "9.223372036854775807e9";
 
 // The one registry of component types, built at import (as `main` builds the CLI's); plug-ins
 // add to it (load_plugin). Never destroyed: compiled models may point at its types until the
@@ -60,7 +70,8 @@ class Error(Exception):
 
     Attributes:
         kind (str): the error's kind: "InvalidInput", "MissingInput", "CannotCreate",
-            "IoError", "Diverged", "Internal", "Unavailable", "Protocol" or "Usage".
+            "IoError", "Diverged", "Interrupted", "ControllerFailed", "Internal",
+            "Unavailable", "Protocol" or "Usage".
         file (str or None): the file the error is about (a scene file, or "override TEXT"
             for an override), None when it is about no file.
         line (int or None): the 1-based line in that file, None when unknown.
@@ -102,12 +113,26 @@ class UsageError(Error):
 
 
 class DivergedError(Error):
-    """The run diverged (a non-finite or runaway state, a joint that came apart) or a controller
-    failed it (kind "Diverged"; exit status 1)."""
+    """The run diverged: a non-finite or runaway state, or a joint that came apart (kind
+    "Diverged"; exit status 1)."""
     exit_status = 1
 
 
-class UnavailableError(Error):
+class ControllerError(Error):
+    """A controller failed the run: a plug-in (controller, sensor or actuator) reported an error
+    or misused the API, or a controller threw (kind "ControllerFailed"; exit status 2). The
+    failures of socket peers are its subclasses UnavailableError and ProtocolError. A Python
+    controller's own exception propagates as itself instead."""
+    exit_status = 2
+
+
+class RunInterrupted(Error, KeyboardInterrupt):
+    """The run was asked to stop (SIGINT or SIGTERM; kind "Interrupted"; exit status 130/143).
+    A KeyboardInterrupt too, so `except KeyboardInterrupt` catches it."""
+    exit_status = 130
+
+
+class UnavailableError(ControllerError):
     """A party held the simulation past MaxAccessTime, or a socket peer never connected, went
     away or fell silent (kind "Unavailable"; exit status 69)."""
     exit_status = 69
@@ -118,7 +143,7 @@ class OutputError(Error):
     exit_status = 74
 
 
-class ProtocolError(Error):
+class ProtocolError(ControllerError):
     """A socket peer sent a line the protocol does not allow (kind "Protocol"; exit status 76)."""
     exit_status = 76
 
@@ -146,6 +171,10 @@ const char* kindName(ErrorKind k) {
       return "IoError";
     case ErrorKind::Diverged:
       return "Diverged";
+    case ErrorKind::Interrupted:
+      return "Interrupted";
+    case ErrorKind::ControllerFailed:
+      return "ControllerFailed";
     case ErrorKind::Internal:
       return "Internal";
     case ErrorKind::Unavailable:
@@ -169,6 +198,10 @@ const char* className(ErrorKind k) {
       return "OutputError";
     case ErrorKind::Diverged:
       return "DivergedError";
+    case ErrorKind::Interrupted:
+      return "RunInterrupted";
+    case ErrorKind::ControllerFailed:
+      return "ControllerError";
     case ErrorKind::Internal:
       return "InternalError";
     case ErrorKind::Unavailable:
@@ -212,6 +245,16 @@ const char* className(ErrorKind k) {
     all.append(place + ": error: " + e.message);
   }
   raiseError(*chosen, all);
+}
+
+/// A path argument (str, bytes or os.PathLike) as a string. A NUL in it is refused: the C calls
+/// underneath would read the path only up to it, and open another file without a word.
+std::string pathArg(const py::object& path, const char* what) {
+  const std::string p = py::module_::import("os").attr("fspath")(path).cast<std::string>();
+  if (p.find('\0') != std::string::npos)
+    raiseUsage(std::string(what) + " " + py::repr(path).cast<std::string>() +
+               " holds a NUL character, which no file name can hold");
+  return p;
 }
 
 // ---- overrides: a dict {"KEY.PARAM": value} or a list of "KEY.PARAM=VALUE" ----
@@ -276,10 +319,10 @@ class PyController : public simbob::Party {
       fn_(sim_);
     } catch (py::error_already_set& e) {
       pending_ = std::make_unique<py::error_already_set>(std::move(e));
-      failure_ = Error{ErrorKind::Diverged, loc, name + " raised " + std::string(pending_->what())};
+      failure_ = Error{ErrorKind::ControllerFailed, loc, name + " raised " + oneLine(*pending_)};
       return simbob::kNever;
     } catch (const std::exception& e) {
-      failure_ = Error{ErrorKind::Diverged, loc, name + " failed: " + e.what()};
+      failure_ = Error{ErrorKind::ControllerFailed, loc, name + " failed: " + e.what()};
       return simbob::kNever;
     }
     return nextAfter(now);
@@ -289,6 +332,20 @@ class PyController : public simbob::Party {
   std::unique_ptr<py::error_already_set> takePending() { return std::move(pending_); }
 
  private:
+  /// "ValueError: the first line of its message", or the class alone ("KeyboardInterrupt"): the
+  /// run's error says it again at every later call, in one line (no traceback).
+  static std::string oneLine(const py::error_already_set& e) {
+    std::string out = "an exception";
+    try {
+      out = py::str(e.type().attr("__name__")).cast<std::string>();
+      std::string text = e.value() && !e.value().is_none() ? py::str(e.value()).cast<std::string>() : "";
+      text = text.substr(0, text.find('\n'));
+      if (!text.empty()) out += ": " + text;
+    } catch (...) {  // NOLINT(bugprone-empty-catch): a class or message that cannot be read leaves the default
+    }
+    return out;
+  }
+
   SimTime nextAfter(SimTime now) const {
     const SimTime k = now / period_ + 1;
     return k > simbob::kNever / period_ ? simbob::kNever : k * period_;
@@ -310,16 +367,21 @@ class PySimulation {
     opts.overrides = parseOverrides(overrides);
     opts.seed = seed;
     if (!dt.is_none()) {
-      const double h = dt.cast<double>();
+      const py::object real = py::module_::import("numbers").attr("Real");
+      double h = std::nan("");
+      if (!py::isinstance<py::bool_>(dt) && py::isinstance(dt, real)) {
+        try {
+          h = py::float_(dt).cast<double>();
+        } catch (py::error_already_set&) {  // OverflowError of an int beyond a double: out of range below
+        }
+      }
       if (!(h >= 1e-9 && h <= 1e9))
-        raiseUsage("dt must be between 1e-9 and 1e9 s, got " + py::repr(dt).cast<std::string>());
+        raiseUsage("dt must be a number of seconds from 1e-9 to 1e9, got " + py::repr(dt).cast<std::string>());
       opts.dt = h;
     }
     simbob::Diagnostics diag;
     if (text) {
-      const bool ini = scene.size() >= 4 && scene.compare(scene.size() - 4, 4, ".ini") == 0;
-      sim_ = simbob::Simulation::fromText(*text, scene, ini ? simbob::Format::Ini : simbob::Format::Xml, registry(),
-                                          opts, diag);
+      sim_ = simbob::Simulation::fromText(*text, scene, registry(), opts, diag);
     } else {
       sim_ = simbob::Simulation::fromFile(scene, registry(), opts, diag);
     }
@@ -365,27 +427,24 @@ class PySimulation {
 
   void step(uint64_t n) {
     Busy b(*this, false);
-    bool ok;
-    if (controllers_.empty()) {
-      py::gil_scoped_release nogil;
-      ok = sim_->step(n);
-    } else {
-      ok = sim_->step(n);
-    }
-    check(ok);
+    // The clock counts nanoseconds in 63 bits: refuse what would pass its end (the time would
+    // wrap to a negative one), before anything moves.
+    const SimTime now = sim_->now(), h = stepNs();
+    const uint64_t room = static_cast<uint64_t>((kClockEnd - now) / h);
+    if (n > room)
+      raiseUsage("step(" + std::to_string(n) + "): the time would pass " + kClockEndText +
+                 " s (2**63 ns), the end of simbob's clock: at most " + std::to_string(room) + " more steps of " +
+                 simbob::formatNumber(sim_->stepSize()) + " s from t=" + simbob::formatNumber(sim_->time()) + " s");
+    check(stepSliced(n));
   }
 
   void runUntil(double t) {
-    if (!std::isfinite(t)) raiseUsage("run_until: the time must be finite, got " + std::to_string(t));
+    if (!std::isfinite(t)) raiseUsage("run_until: the time must be finite, got " + simbob::formatNumber(t));
+    if (!simbob::toSimTime(t) || *simbob::toSimTime(t) > kClockEnd)
+      raiseUsage("run_until: t=" + simbob::formatNumber(t) + " s is beyond the end of simbob's clock (" +
+                 kClockEndText + " s: 2**63 ns)");
     Busy b(*this, false);
-    bool ok;
-    if (controllers_.empty()) {
-      py::gil_scoped_release nogil;
-      ok = sim_->runUntil(t);
-    } else {
-      ok = sim_->runUntil(t);
-    }
-    check(ok);
+    check(runUntilSliced(t));
   }
 
   // The parties due at the current instant are served first (step(0), as step() would), so the
@@ -420,10 +479,6 @@ class PySimulation {
     if (width < 1 || height < 1 || width > simbob::kMaxImageSide || height > simbob::kMaxImageSide)
       raiseUsage("size must be 1 to " + std::to_string(simbob::kMaxImageSide) + " pixels a side");
     const simbob::Model& model = sim_->model();
-    if (simbob::modelsShowNoBody(model)) {  // as `simbob render` does: the collision shapes then
-      ro.draw_models = false;
-      ro.draw_geoms = true;
-    }
     const std::string key =
         camera + "\n" + std::to_string(width) + "x" + std::to_string(height) + "\n" + simbob::qualityName(ro.quality);
     auto it = renderers_.find(key);
@@ -446,7 +501,9 @@ class PySimulation {
   void addController(py::handle self, double period, py::function fn) {
     Busy b(*this, false);
     const std::optional<SimTime> p = std::isfinite(period) && period > 0 ? simbob::toSimTime(period) : std::nullopt;
-    if (!p || *p < 1) raiseUsage("add_controller: the period must be at least 1e-9 s, got " + std::to_string(period));
+    if (!p || *p < 1 || *p > kClockEnd)
+      raiseUsage("add_controller: the period must be from 1e-9 s to " + std::string(kClockEndText) +
+                 " s (the clock's range), got " + simbob::formatNumber(period));
     // Named after fn and placed where add_controller was called, for the run's messages.
     std::string what = "Python controller";
     if (py::hasattr(fn, "__qualname__")) what += " '" + py::str(fn.attr("__qualname__")).cast<std::string>() + "'";
@@ -461,6 +518,58 @@ class PySimulation {
 
   const std::vector<std::string>& warnings() const { return warnings_; }
   const std::string& scene() const { return scene_; }
+
+  /// The run's step in ns (whole: the clock's grid).
+  SimTime stepNs() const { return std::max<SimTime>(1, *simbob::toSimTime(sim_->stepSize())); }
+
+  // A long call runs in slices of about 10 ms of wall-clock time, so that Ctrl-C (SIGINT,
+  // Python's KeyboardInterrupt) stops it at a grid instant with the run usable from there:
+  // between slices the GIL is taken back (when it was released) and Python's signal handlers run;
+  // an exception from them is raised from the call. Slicing does not change the run: step(a)
+  // then step(b) is step(a + b), and runUntil through earlier instants reaches the instant
+  // runUntil alone does (docs/python.md).
+  using Wall = std::chrono::steady_clock;
+  /// Steps in the first slice: a short call (step(37)) is one slice, as it was one call.
+  static constexpr uint64_t kFirstSlice = 32;
+
+  /// f() with the GIL released unless a Python controller needs it.
+  template <class F>
+  bool unlocked(F f) {
+    if (!controllers_.empty()) return f();
+    py::gil_scoped_release nogil;
+    return f();
+  }
+
+  /// Between two slices: the next slice aims at about 10 ms; Python's signal handlers run.
+  static void betweenSlices(Wall::time_point start, uint64_t* slice) {
+    const double took = std::chrono::duration<double>(Wall::now() - start).count();
+    if (took < 0.005 && *slice < (uint64_t{1} << 40)) *slice *= 2;
+    if (took > 0.02 && *slice > 1) *slice /= 2;
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  }
+
+  bool stepSliced(uint64_t n) {
+    uint64_t slice = kFirstSlice;
+    while (true) {
+      const uint64_t k = std::min(n, slice);
+      const Wall::time_point start = Wall::now();
+      if (!unlocked([&] { return sim_->step(k); })) return false;
+      n -= k;
+      if (n == 0) return true;
+      betweenSlices(start, &slice);
+    }
+  }
+
+  bool runUntilSliced(double t) {
+    uint64_t slice = kFirstSlice;
+    while (true) {
+      const double next = sim_->time() + static_cast<double>(slice) * sim_->stepSize();
+      if (!(next < t)) return unlocked([&] { return sim_->runUntil(t); });
+      const Wall::time_point start = Wall::now();
+      if (!unlocked([&] { return sim_->runUntil(next); })) return false;
+      betweenSlices(start, &slice);
+    }
+  }
 
   // Raises the run's stop: a Python controller's exception as it was, else the run's error.
   void check(bool ok) {
@@ -520,9 +629,11 @@ int actuatorIndex(PySimulation& s, const py::object& key) {
                (list.empty() ? " (it has none)" : " (its actuators: " + list + ")"));
   }
   if (py::isinstance<py::int_>(key) && !py::isinstance<py::bool_>(key)) {
-    const long long i = key.cast<long long>();
-    if (i < 0 || i >= static_cast<long long>(acts.size()))
-      raiseUsage("no actuator " + std::to_string(i) + " (the scene has " + std::to_string(acts.size()) + ")");
+    int overflow = 0;  // an int beyond 64 bits (2**70) is out of range too, not a bare RuntimeError
+    const long long i = PyLong_AsLongLongAndOverflow(key.ptr(), &overflow);
+    if (overflow != 0 || i < 0 || i >= static_cast<long long>(acts.size()))
+      raiseUsage("no actuator " + py::str(key).cast<std::string>() + " (the scene has " + std::to_string(acts.size()) +
+                 ")");
     return static_cast<int>(i);
   }
   raiseUsage("set_command: an actuator is a key (str) or an index (int), got " + py::repr(key).cast<std::string>());
@@ -535,6 +646,134 @@ int sensorIndex(PySimulation& s, const std::string& key) {
   for (const auto& d : s.sim().model().sensors) list += (list.empty() ? "" : ", ") + d.key;
   raiseUsage("no sensor '" + simbob::quoteInput(key) + "' in " + s.scene() +
              (list.empty() ? " (it has none)" : " (its sensors: " + list + ")"));
+}
+
+// ---- simbob.run(): a whole run through the Run, writing exactly the files `simbob run` writes ----
+
+std::string pathText(const py::object& p) { return py::module_::import("os").attr("fspath")(p).cast<std::string>(); }
+
+// The view of a recording: size "WxH" or (w, h), camera key, quality level.
+void recordingView(const py::object& size, const std::string& camera, const std::string& quality,
+                   simbob::RenderOptions* ro) {
+  if (!size.is_none()) {
+    int w = 0, h = 0;
+    if (py::isinstance<py::str>(size)) {
+      const std::string t = size.cast<std::string>();
+      char x = 0;
+      if (std::sscanf(t.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x') w = h = 0;
+    } else {
+      const py::sequence wh = size.cast<py::sequence>();
+      if (wh.size() == 2) {
+        w = wh[0].cast<int>();
+        h = wh[1].cast<int>();
+      }
+    }
+    if (w < 1 || h < 1 || w > simbob::kMaxImageSide || h > simbob::kMaxImageSide)
+      raiseUsage("size must be \"WIDTHxHEIGHT\" or (width, height) with 1 to " + std::to_string(simbob::kMaxImageSide) +
+                 " pixels each, got " + py::repr(size).cast<std::string>());
+    ro->width = w;
+    ro->height = h;
+  }
+  ro->camera = camera;
+  if (!quality.empty() && !simbob::parseQuality(quality, &ro->quality))
+    raiseUsage("unknown quality '" + quality + "' (frame, wire, plane, flat, smooth, textures, shadows, " +
+               "transparency, fog)");
+}
+
+// Ctrl-C during a long run: Python would see the signal only once the run returned, so while
+// simbob.run() runs on the main thread SIGINT sets a stop flag instead, as `simbob run`'s
+// handler does: the run ends at the next step and keeps its partial outputs, and Python's own
+// handler is back before RunInterrupted (a KeyboardInterrupt) is raised.
+volatile std::sig_atomic_t g_py_stop = 0;
+
+class StopOnSigint {
+ public:
+  StopOnSigint() {
+    g_py_stop = 0;
+    const bool main_thread = py::module_::import("threading")
+                                 .attr("current_thread")()
+                                 .is(py::module_::import("threading").attr("main_thread")());
+    if (!main_thread) return;  // signals reach the main thread's Python only
+    struct sigaction sa {};
+    sa.sa_handler = [](int) { g_py_stop = 1; };
+    sigemptyset(&sa.sa_mask);
+    installed_ = ::sigaction(SIGINT, &sa, &old_) == 0;
+  }
+  ~StopOnSigint() {
+    if (installed_) ::sigaction(SIGINT, &old_, nullptr);
+  }
+  StopOnSigint(const StopOnSigint&) = delete;
+  StopOnSigint& operator=(const StopOnSigint&) = delete;
+
+ private:
+  struct sigaction old_ {};
+  bool installed_ = false;
+};
+
+py::dict pyRun(const py::object& scene, double duration, const py::object& out, const py::object& overrides,
+               uint32_t seed, const py::object& dt, double sample_interval, const std::string& log,
+               const py::object& log_out, const std::string& columns, const py::object& record, const py::object& video,
+               const py::object& html, const py::object& size, const std::string& camera, const std::string& quality,
+               double fps, bool check_determinism, const py::object& controllers, double peer_timeout,
+               int port_offset) {
+  simbob::RunOptions o;
+  o.scene = pathText(scene);
+  o.simulation.duration = duration;
+  o.simulation.overrides = parseOverrides(overrides);
+  o.simulation.seed = seed;
+  if (!dt.is_none()) o.simulation.dt = dt.cast<double>();
+  o.sample_interval = sample_interval;
+  if (!out.is_none()) o.out = pathText(out);
+  if (!log.empty()) {
+    std::string problem;
+    if (!simbob::parseRunLogWhat(log, &o.log, &problem)) raiseUsage("log: " + problem);
+  }
+  if (!log_out.is_none()) o.log_out = pathText(log_out);
+  if (columns != "pose" && columns != "pose,velocity")
+    raiseUsage("columns must be \"pose\" or \"pose,velocity\", got '" + columns + "'");
+  o.velocity_columns = columns == "pose,velocity";
+  if (!record.is_none()) o.record = pathText(record);
+  if (!video.is_none()) o.video = pathText(video);
+  if (!html.is_none()) o.html = pathText(html);
+  recordingView(size, camera, quality, &o.render);
+  o.fps = fps;
+  if (!(fps > 0 && fps <= 1000))
+    raiseUsage("fps must be above 0 and at most 1000, got " + py::repr(py::float_(fps)).cast<std::string>());
+  o.check_determinism = check_determinism;
+  if (!controllers.is_none())
+    for (const auto& kv : controllers.cast<py::dict>())
+      o.simulation.controllers.push_back(
+          py::str(kv.first).cast<std::string>() + "=" +
+          (kv.second.is_none() ? std::string() : py::str(kv.second).cast<std::string>()));
+  o.simulation.peer_timeout = peer_timeout;
+  o.simulation.port_offset = port_offset;
+  o.simulation.stop = &g_py_stop;
+  std::vector<std::string> errors, warnings;
+  simbob::RunListener listener;
+  listener.note = [&](const simbob::RunNote& n) {
+    if (n.level == simbob::RunNote::Warning) warnings.push_back(n.what.str());
+    if (n.level == simbob::RunNote::Error) errors.push_back(n.what.errorLine());
+  };
+  Error refusal;
+  std::unique_ptr<simbob::Run> run;
+  simbob::RunOutcome outcome;
+  {
+    StopOnSigint sigint;  // Python's handler is back before any Python code runs again
+    py::gil_scoped_release nogil;
+    run = simbob::Run::open(o, registry(), listener, &refusal);
+    if (run) outcome = run->finish();
+  }
+  if (!run) {
+    py::list all;
+    for (const std::string& e : errors) all.append(e);
+    raiseError(refusal, all);
+  }
+  py::object warn = py::module_::import("warnings").attr("warn");
+  for (const std::string& w : warnings) warn(w, py::module_::import("builtins").attr("RuntimeWarning"), 2);
+  if (outcome.output_error) raiseError(*outcome.output_error);
+  if (outcome.result.status != simbob::RunStatus::Completed) raiseError(outcome.result.error);
+  py::object json = py::module_::import("json");
+  return json.attr("loads")(outcome.summary.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
 }
 
 }  // namespace
@@ -555,14 +794,14 @@ Same scene, overrides and seed give the same numbers, bit for bit, as `simbob ru
 Errors are simbob.Error subclasses carrying kind, file, line and message.)";
   m.attr("__version__") = SIMBOB_VERSION;
   py::exec(kErrorClasses, m.attr("__dict__"));
-  for (const char* name : {"Error", "SceneError", "MissingInputError", "UsageError", "DivergedError",
-                           "UnavailableError", "OutputError", "ProtocolError", "InternalError"})
+  for (const char* name : {"Error", "SceneError", "MissingInputError", "UsageError", "DivergedError", "ControllerError",
+                           "RunInterrupted", "UnavailableError", "OutputError", "ProtocolError", "InternalError"})
     m.attr(name).attr("__module__") = "simbob";
   registry();
   m.def(
       "load_plugin",
       [](const py::object& path) {
-        const std::string p = py::module_::import("os").attr("fspath")(path).cast<std::string>();
+        const std::string p = pathArg(path, "load_plugin: the path");
         Error e;
         if (!simbob::loadPluginLibrary(registry(), p, &e)) raiseError(e);
       },
@@ -571,6 +810,34 @@ Errors are simbob.Error subclasses carrying kind, file, line and message.)";
 and actuator types join the registry for every scene loaded after. Raises simbob.MissingInputError
 when the file cannot be loaded and simbob.SceneError when it is not a simbob plug-in of this ABI
 or its type names are taken (loading it twice included).)");
+
+  m.def("run", &pyRun, py::arg("scene"), py::kw_only(), py::arg("duration"), py::arg("out") = py::none(),
+        py::arg("overrides") = py::none(), py::arg("seed") = 0, py::arg("dt") = py::none(),
+        py::arg("sample_interval") = 0.01, py::arg("log") = "", py::arg("log_out") = py::none(),
+        py::arg("columns") = "pose", py::arg("record") = py::none(), py::arg("video") = py::none(),
+        py::arg("html") = py::none(), py::arg("size") = py::none(), py::arg("camera") = "", py::arg("quality") = "",
+        py::arg("fps") = 30.0, py::arg("check_determinism") = false, py::arg("controllers") = py::none(),
+        py::arg("peer_timeout") = 10.0, py::arg("port_offset") = 0,
+        R"(Runs a scene to `duration` s and writes what `simbob run` writes, byte for byte: the
+trajectory CSV (`out`, default the scene's name with .csv in the current folder), its summary
+(.json beside it), the controllers' log, and, when asked, the run log, the recording and the
+replay page. The same object runs both (the library's Run), so options, defaults, checks,
+messages and outputs are the CLI's.
+
+Args mirror `simbob run`'s options: overrides (--set, as for Simulation), seed, dt, sample_interval,
+log ("joints,sensors,commands") and log_out, columns ("pose" or "pose,velocity"), record (a
+folder of PNG frames), video (.avi or .mp4), html (the replay page), size ("640x480" or (w, h)),
+camera, quality and fps of the recording, check_determinism, controllers ({"KEY": "COMMAND"},
+as --controller), peer_timeout, port_offset.
+
+Returns the run summary as a dict. The scene's warnings go to Python's warnings (RuntimeWarning).
+
+Raises:
+    SceneError, MissingInputError, UsageError, OutputError: refused before it started
+        (e.errors lists every error line); nothing is written then.
+    DivergedError, ControllerError (UnavailableError, ProtocolError), RunInterrupted (a
+        KeyboardInterrupt): the run stopped; like `simbob run`, it kept what it computed as
+        .partial files beside its outputs, named in its .partial.json summary.)");
 
   py::class_<PySimulation> cls(m, "Simulation",
                                R"(One run of a scene: its compiled model, its world, the clock on the fixed step
@@ -588,7 +855,7 @@ UsageError). Any number of Simulations may live in one process; each gives the s
 numbers as it would alone.)");
 
   cls.def(py::init([](const py::object& scene, const py::object& overrides, uint32_t seed, const py::object& dt) {
-            const std::string path = py::module_::import("os").attr("fspath")(scene).cast<std::string>();
+            const std::string path = pathArg(scene, "the scene path");
             return std::make_unique<PySimulation>(path, overrides, seed, dt, nullptr);
           }),
           py::arg("scene"), py::arg("overrides") = py::none(), py::arg("seed") = 0, py::arg("dt") = py::none(),
@@ -613,8 +880,10 @@ Raises:
 The scene's warnings (`simbob check`'s) are in `warnings`.)");
   cls.def_static(
       "from_text",
-      [](const std::string& text, const std::string& name, const py::object& overrides, uint32_t seed,
-         const py::object& dt) { return std::make_unique<PySimulation>(name, overrides, seed, dt, &text); },
+      [](const std::string& text, const py::object& name, const py::object& overrides, uint32_t seed,
+         const py::object& dt) {
+        return std::make_unique<PySimulation>(pathArg(name, "from_text: the name"), overrides, seed, dt, &text);
+      },
       py::arg("text"), py::arg("name") = "scene.xml", py::arg("overrides") = py::none(), py::arg("seed") = 0,
       py::arg("dt") = py::none(),
       R"(The same as Simulation(...) from scene text in memory. `name` stands for the file
@@ -681,6 +950,16 @@ keep the GIL. An exception from fn stops the run; step() re-raises it.)");
   cls.def_property_readonly(
       "sensor_keys", [](PySimulation& s) { return keysOf(s.sim().model().sensors); },
       "Fully qualified keys of the sensors (every kind), in the order of touching().");
+  cls.def_property_readonly(
+      "programs",
+      [](PySimulation& s) {
+        std::vector<std::string> out;
+        for (const simbob::SocketDef& d : s.sim().model().sockets)
+          if (!d.controller.empty()) out.push_back(d.key);
+        return out;
+      },
+      R"(Keys of the RCLocalSocketCommunicators whose Controller program this Simulation started
+(a child process, ended with the run or at reset()): the programs a scene runs.)");
 
   cls.def(
       "poses",

@@ -32,6 +32,8 @@ TEST_PACKAGES=(
   git                   # cluster.version builds throwaway repositories (tests/cluster/version.sh)
   pybind11-dev python3-dev python3-numpy python3-pytest  # the optional Python module (python/) and its tests
   chromium chromium-driver python3-selenium  # view pages driven in headless Chromium (tests/view/)
+  libxml2-utils         # xmllint validates the JUnit reports against tests/ci/junit.xsd (docs/ci.md)
+  python3-yaml          # tests/ci/recipes.py reads the CI recipes (.github/workflows, .gitlab-ci.yml)
   dart-doc              # real URDF robots with STL and DAE meshes (/usr/share/doc/dart/data/urdf; tests/urdf, tests/mesh)
 )
 

@@ -23,9 +23,9 @@
 #include "cli.h"
 #include "commands.h"
 #include "workers.h"
-#include "simbob/compare.h"
-#include "simbob/files.h"
-#include "simbob/run.h"
+#include "simbob/tool/comparison.h"
+#include "simbob/tool/files.h"
+#include "simbob/loop.h"
 #include "simbob/trajectory.h"
 #include "simbob/values.h"
 
@@ -72,6 +72,7 @@ void finish(Job& j, int wstatus, const BatchArgs& a) {
 // Compares a worker's trajectory with the golden file of the same name (--golden DIR).
 void compareWithGolden(Job& j, const BatchArgs& a) {
   std::string golden = (fs::path(a.golden) / fs::path(j.out).filename()).string();
+  j.golden_path = golden;
   if (!fs::exists(golden)) {
     j.golden_status = "no-golden";
     j.error = "no golden file " + golden;
@@ -88,6 +89,7 @@ void compareWithGolden(Job& j, const BatchArgs& a) {
   opts.tol_pos = a.tol_pos;
   opts.tol_rot = a.tol_rot;
   CompareResult r = compareTrajectories(actual, gold, opts);
+  j.comparison = r;
   for (const auto& b : r.bodies) {
     j.max_pos = std::max(j.max_pos, b.max_pos_err);
     j.max_rot = std::max(j.max_rot, b.max_rot_err);
@@ -170,6 +172,7 @@ int cmdBatch(const BatchArgs& a, const Common& common) {
   if (!checkTimeOption("--duration", a.duration) || (a.dt != 0 && !checkTimeOption("--dt", a.dt)) ||
       !checkTimeOption("--sample-interval", a.sample_interval))
     return kExitUsage;
+  if (int c = batch::checkCiOptions(a)) return c;
   std::vector<Job> jobs;
   if (int c = batch::readJobs(a, &jobs)) return c;
   if (int c = batch::assignOutputs(a, common, &jobs)) return c;
@@ -200,6 +203,7 @@ int cmdBatch(const BatchArgs& a, const Common& common) {
                            j.scene + "  " + fixedDecimals(j.wall, 2) + " s";
         if (!j.golden_status.empty()) line += "  golden: " + j.golden_status;
         if (!j.error.empty()) line += "  -- " + j.error;
+        if (g_log.level == Level::Quiet && !jobFailed(j)) return;  // -q: only the scenes that failed
         std::printf("%s\n", line.c_str());
         std::fflush(stdout);
       });
@@ -208,7 +212,9 @@ int cmdBatch(const BatchArgs& a, const Common& common) {
   size_t failed = 0;
   for (const auto& j : jobs) failed += jobFailed(j) ? 1 : 0;
   if (int c = writeReport(jobs, a, workers, wall)) return c;
+  if (int c = batch::writeCiOutputs(jobs, a, common, wall)) return c;
   if (g_stop) return stopExitCode();
+  if (a.bless) return batch::blessGoldens(jobs, a);
   return failed == 0 ? kExitOk : kExitResultWrong;
 }
 

@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,7 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "simbob/tool/comparison.h"
 
 namespace simbob::cli::batch {
 
@@ -30,6 +32,8 @@ struct Job {
   std::string golden_status;              // pass, mismatch, no-golden, unreadable ("" without --golden)
   double max_pos = 0, max_rot = 0;
   std::string divergence;
+  std::string golden_path;                  ///< GOLDEN/STEM.csv (with --golden)
+  std::optional<CompareResult> comparison;  ///< with --golden, when both files could be read
 };
 
 /// The jobs of the scenes (globs expanded, sorted) and of --manifest FILE. 0, or the exit status
@@ -38,5 +42,15 @@ int readJobs(const BatchArgs& a, std::vector<Job>* jobs);
 /// Each job's trajectory (OUT_DIR/STEM.csv unless its manifest line gives --out) and worker log,
 /// checked: no two jobs write one file, and no output is an input. 0, or the exit status.
 int assignOutputs(const BatchArgs& a, const Common& common, std::vector<Job>* jobs);
+
+// CI reports (batch_ci.cpp, docs/ci.md).
+/// 0, or 64 after reporting: --bless without --golden.
+int checkCiOptions(const BatchArgs& a);
+/// --junit, --summary-md and --artifacts once every job has finished: 0, or the exit status of
+/// the first report that could not be written (reported; the others are still written).
+int writeCiOutputs(const std::vector<Job>& jobs, const BatchArgs& a, const Common& common, double wall);
+/// --bless: refuses (1) when a scene did not run to the end; else prints each change (body,
+/// largest difference) and then rewrites the golden files that differ or are new. The exit status.
+int blessGoldens(const std::vector<Job>& jobs, const BatchArgs& a);
 
 }  // namespace simbob::cli::batch

@@ -11,7 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "batch.h"
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 #include "simbob/values.h"
 
 namespace simbob::cli::batch {
@@ -70,7 +70,7 @@ std::string manifestLineProblem(const std::vector<std::string>& words, const Bat
   } catch (const CLI::ParseError& e) {
     return std::string("run options: ") + e.what();
   }
-  if (app.count("--out") > 0 && ra.out.empty()) return "--out needs a file name, got \"\"";
+  if (app.count("--out") > 0 && ra.run.out.empty()) return "--out needs a file name, got \"\"";
   return runArgsProblem(ra);
 }
 
@@ -89,7 +89,12 @@ int checkBatchFiles(const std::vector<Job>& jobs, const BatchArgs& a, const Comm
     addInput("the scene", j.scene);
     if (!a.golden.empty()) addInput("the golden file", (fs::path(a.golden) / fs::path(j.out).filename()).string());
   }
-  std::vector<NamedPath> outputs = {{"--report", a.report}, {"--log-file", g_log.path}};
+  std::vector<NamedPath> outputs = {
+      {"--report", a.report},
+      {"--log-file", g_log.path},
+      {"--junit", a.junit},
+      {"--summary-md", a.summary_md},
+      {"the artifacts index", a.artifacts.empty() ? "" : (fs::path(a.artifacts) / "index.html").string()}};
   for (const Job& j : jobs) {
     outputs.push_back({"the trajectory", j.out});
     outputs.push_back({"the worker log", j.log});

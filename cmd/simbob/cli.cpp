@@ -7,8 +7,8 @@
 #include <cstring>
 #include <filesystem>
 
-#include "simbob/document_ini.h"
-#include "simbob/frame_sinks.h"
+#include "simbob/tool/document_ini.h"
+#include "simbob/tool/frame_sinks.h"
 #include "simbob/registry.h"
 #include "simbob/values.h"
 
@@ -70,40 +70,28 @@ void exitOnStopSignals(const std::string& place, const std::string& what) {
 int stopExitCode() { return g_stop == SIGTERM ? kExitSigTerm : kExitSigInt; }
 
 bool checkTimeOption(const char* name, double seconds) {
-  if (std::isfinite(seconds) && seconds >= kMinTimeOption && seconds <= kMaxTimeOption) return true;
-  g_log.error({ErrorKind::InvalidInput,
-               {},
-               std::string(name) + " must be between 1e-9 and 1e9 s, got " + formatNumber(seconds)});
+  const std::string problem = clockTimeProblem(name, seconds);
+  if (problem.empty()) return true;
+  g_log.error({ErrorKind::InvalidInput, {}, problem});
   return false;
 }
 
 int checkOutputs(const std::vector<NamedPath>& outputs, const std::vector<NamedPath>& inputs) {
-  for (size_t i = 0; i < outputs.size(); ++i) {
-    const NamedPath& o = outputs[i];
-    if (o.path.empty() || isStreamOutput(o.path)) continue;
-    for (const NamedPath& in : inputs)
-      if (sameExistingFile(o.path, in.path)) {
-        if (o.path == g_log.path && g_log.file) {
-          std::fclose(g_log.file);  // not one more line into an input
-          g_log.file = nullptr;
-        }
-        g_log.error({ErrorKind::InvalidInput,
-                     {},
-                     o.what + " " + quoteInput(o.path, 400) + " is " + in.what + " " + quoteInput(in.path, 400) +
-                         ": an output must not overwrite an input"});
-        return kExitUsage;
-      }
-    for (size_t k = 0; k < i; ++k)
-      if (!outputs[k].path.empty() && sameOutputPlace(o.path, outputs[k].path)) {
-        g_log.error({ErrorKind::InvalidInput,
-                     {},
-                     o.what + " " + quoteInput(o.path, 400) + " and " + outputs[k].what + " " +
-                         quoteInput(outputs[k].path, 400) +
-                         " are the same file: outputs of one command must not collide"});
-        return kExitUsage;
-      }
-  }
-  return 0;
+  const Error e = outputCollision(outputs, inputs);
+  if (e.message.empty()) return 0;
+  closeLogIfInput(inputs);
+  g_log.error(e);
+  return kExitUsage;
+}
+
+void closeLogIfInput(const std::vector<NamedPath>& inputs) {
+  if (!g_log.file) return;
+  for (const NamedPath& in : inputs)
+    if (sameExistingFile(g_log.path, in.path)) {
+      std::fclose(g_log.file);  // not one more line into an input
+      g_log.file = nullptr;
+      return;
+    }
 }
 
 int checkNotEmpty(const char* option, const std::string& value, bool given) {
@@ -141,6 +129,10 @@ int exitCodeFor(ErrorKind k) {
       return kExitIoErr;
     case ErrorKind::Diverged:
       return kExitResultWrong;
+    case ErrorKind::Interrupted:
+      return stopExitCode();
+    case ErrorKind::ControllerFailed:
+      return kExitControllerFailed;
     case ErrorKind::Internal:
       return kExitSoftware;
     case ErrorKind::Unavailable:

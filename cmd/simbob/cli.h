@@ -11,18 +11,20 @@
 
 #include "simbob/compile.h"
 #include "simbob/error.h"
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 #include "simbob/graph.h"
+#include "simbob/options.h"
 #include "simbob/overrides.h"
 
 namespace simbob::cli {
 
 // Exit statuses (README "Exit statuses").
 constexpr int kExitOk = 0;
-constexpr int kExitResultWrong = 1;  // diverged run, golden mismatch, failed scene in a batch
-constexpr int kExitUsage = 64;       // EX_USAGE
-constexpr int kExitDataErr = 65;     // EX_DATAERR: invalid scene or data file
-constexpr int kExitNoInput = 66;     // EX_NOINPUT
+constexpr int kExitResultWrong = 1;       // diverged run, golden mismatch, failed scene in a batch
+constexpr int kExitControllerFailed = 2;  // a controller or plug-in failed (reported an error, misused the API, threw)
+constexpr int kExitUsage = 64;            // EX_USAGE
+constexpr int kExitDataErr = 65;          // EX_DATAERR: invalid scene or data file
+constexpr int kExitNoInput = 66;          // EX_NOINPUT
 constexpr int kExitUnavailable =
     69;  // EX_UNAVAILABLE: a party held the simulation past MaxAccessTime, or a socket peer is not there
 constexpr int kExitSoftware = 70;    // EX_SOFTWARE: internal error
@@ -68,11 +70,12 @@ struct Common {
   bool verbose = false;
   std::string log_file;
   std::string settings;
-  std::vector<std::string> plugins;   ///< --plugin FILE, in order
+  std::vector<std::string> plugins;  ///< --plugin FILE, in order
   std::vector<std::string> packages;  ///< --package NAME=DIR, in order (URDF package:// folders)
-  std::string extension_folder;       ///< the global setting ExtensionFolder (--settings)
-  std::string texture_folder;         ///< TextureFolder of the global settings (relative to the settings file)
-  bool document_ini = false;          ///< DocumentIni of the global settings: read <scene>.ini's cameras
+  std::string extension_folder;      ///< the global setting ExtensionFolder (--settings)
+  std::string texture_folder;        ///< TextureFolder of the global settings (relative to the settings file)
+  bool document_ini = false;         ///< DocumentIni of the global settings: read <scene>.ini's cameras
+  bool no_controllers = false;       ///< --no-controllers: refuse scenes that start programs
   /// The component types: built once by main (registerBuiltins) and passed down with the options.
   const Registry* registry = nullptr;
 };
@@ -82,37 +85,26 @@ int report(const Diagnostics& d, bool warnings);
 int setupLogging(const Common& c);
 int readSettings(Common& c);
 
-/// A file a command reads or writes, and what it is ("the scene", "--out").
-struct NamedPath {
-  std::string what;
-  std::string path;
-};
+using simbob::NamedPath;
 
 /// Appends the files a loaded scene was read from, as inputs no output may replace: the scene,
 /// its imports, and the DocumentIni its overrides came from.
-void appendSceneInputs(const Scene& scene, const std::string& path, const std::vector<Override>& overrides,
+void appendSceneInputs(const LoadReport& loaded, const std::string& path, const std::vector<Override>& overrides,
                        std::vector<NamedPath>* inputs);
 
 /// Appends what else a compiled scene reads when it is drawn or set up: every texture file its
-/// skins may name (each place the renderer looks: TextureFolder, then beside the scene file,
-/// as written, .bmp, .png) and, with the global setting DocumentIni, the INI beside the scene.
+/// skins may name (textureFiles) and, with the global setting DocumentIni, the INI beside the scene.
 void appendModelInputs(const Model& model, const Common& common, const std::string& scene,
                        std::vector<NamedPath>* inputs);
 
-/// `run --record DIR` writes DIR/frame_NNNNNN.png and removes such frames of an earlier, longer
-/// recording: a usage error (reported, 64) if an input or another output of the command is such
-/// a file in DIR; 0 otherwise.
-int checkRecordFolder(const std::string& dir, const std::vector<NamedPath>& outputs,
-                      const std::vector<NamedPath>& inputs);
-
-/// Load and compile a scene, reporting problems; *code is the exit status on failure. The log
-/// file must not be any file read (the scene, its imports, `inputs`): nothing is appended to
-/// an input, and that is a usage error.
-/// With `collect_all` (simbob check), a scene that failed to load is compiled too, so that one
-/// pass reports every problem the compile step can still see.
-/// `overrides` (--set, a DocumentIni) change the graph between loading and compiling.
-bool loadAndCompile(const std::string& path, const Registry& reg, Scene* scene, Model* model, int* code, bool warnings,
-                    bool collect_all, const std::vector<NamedPath>& inputs = {},
+/// Loads and compiles a scene (loadModel), reporting problems (and, with `warnings`, warnings);
+/// *code is the exit status on failure. The log file must not be any file read (the scene, its
+/// imports, `inputs`): nothing is appended to an input, and that is a usage error. With
+/// `collect_all` (simbob check), a scene that failed to load is compiled too, so that one pass
+/// reports every problem the compile step can still see. `overrides` (--set, a DocumentIni)
+/// change the graph between loading and compiling.
+bool loadAndCompile(const std::string& path, const Registry& reg, Model* model, LoadReport* loaded, int* code,
+                    bool warnings, bool collect_all, const std::vector<NamedPath>& inputs = {},
                     const std::vector<Override>& overrides = {});
 
 /// The `--set` options as overrides; a malformed one is reported (usage error, 64).
@@ -145,15 +137,17 @@ void exitOnStopSignals(const std::string& place, const std::string& what);
 /// 130 or 143 after SIGINT or SIGTERM (g_stop).
 int stopExitCode();
 
-/// Time options (--duration, --dt, --sample-interval) lie in [kMinTimeOption, kMaxTimeOption]
-/// seconds: the clock counts integer nanoseconds in 64 bits. Returns false after reporting.
-constexpr double kMinTimeOption = 1e-9;
-constexpr double kMaxTimeOption = 1e9;
+/// Time options (--duration, --dt, --sample-interval) lie in [kMinClockTime, kMaxClockTime]
+/// seconds (clockTimeProblem): the clock counts integer nanoseconds in 64 bits. Returns false
+/// after reporting.
 bool checkTimeOption(const char* name, double seconds);
 
 /// A usage error (reported, 64) if an output names an input of the command by any spelling,
 /// or two outputs would be the same file; 0 otherwise. Streams (/dev/null, "-") never collide.
 int checkOutputs(const std::vector<NamedPath>& outputs, const std::vector<NamedPath>& inputs);
+
+/// Stops writing the log file (--log-file) when it is one of `inputs`: nothing is appended to an input.
+void closeLogIfInput(const std::vector<NamedPath>& inputs);
 
 /// A usage error (reported, 64) if an output option was given as "".
 int checkNotEmpty(const char* option, const std::string& value, bool given);

@@ -15,19 +15,21 @@ void addCommon(CLI::App* app, Common& c) {
   app->add_option("--settings", c.settings, "Global settings INI (LogFile, ExtensionFolder, TextureFolder)");
   app->add_option("--plugin", c.plugins, "Load component types from this shared library (repeatable)");
   app->add_option("--package", c.packages, "A URDF's package://NAME/... is in DIR: NAME=DIR (repeatable)");
+  app->add_flag("--no-controllers", c.no_controllers,
+                "Refuse a scene that would start a program (a communicator's Controller); check lists them");
 }
 
 void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
-  run->add_option("scene", ra.scene, "Scene file (XML, or INI by extension)")->required();
-  run->add_option("--duration", ra.duration, "Simulated seconds (1e-9 to 1e9)")->required();
-  run->add_option("--dt", ra.dt, "Step size in s, 1e-9 to 1e9 (default: the scene's MaxTimeStep)");
-  run->add_option("--out", ra.out,
+  run->add_option("scene", ra.run.scene, "Scene file (XML, or INI by extension)")->required();
+  run->add_option("--duration", ra.run.simulation.duration, "Simulated seconds (1e-9 to 1e9)")->required();
+  run->add_option("--dt", ra.run.simulation.dt, "Step size in s, 1e-9 to 1e9 (default: the scene's MaxTimeStep)");
+  run->add_option("--out", ra.run.out,
                   "Trajectory CSV (default: <scene name>.csv; - for stdout); the summary goes beside it as .json");
-  run->add_option("--sample-interval", ra.sample_interval,
+  run->add_option("--sample-interval", ra.run.sample_interval,
                   "Simulated seconds between samples, 1e-9 to 1e9 (default 0.01)");
-  run->add_option("--seed", ra.seed, "Seed of ODE's random generator (default 0)");
+  run->add_option("--seed", ra.run.simulation.seed, "Seed of ODE's random generator (default 0)");
   run->add_flag("--json", ra.json, "Also print the run summary as JSON on stdout");
-  run->add_flag("--check-determinism", ra.check_determinism,
+  run->add_flag("--check-determinism", ra.run.check_determinism,
                 "Run twice in this process; fail naming the first step and body where the runs differ");
   run->add_option("--space", ra.space, "Collision space (overrides the scene): hash, sap, quadtree, simple")
       ->check(CLI::IsMember({"hash", "sap", "quadtree", "simple"}));
@@ -36,27 +38,27 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
       ->check(CLI::Range(1, 64));
   run->add_option("--set", ra.sets, "Override a scene parameter: KEY.PARAM=VALUE (repeatable; docs/sweeps.md)")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  run->add_option("--port-offset", ra.port_offset,
+  run->add_option("--port-offset", ra.run.simulation.port_offset,
                   "Added to the Port of every RCLocalSocketCommunicator, so parallel runs do not clash (default 0)");
-  run->add_option("--controller", ra.controllers,
+  run->add_option("--controller", ra.run.simulation.controllers,
                   "KEY=COMMAND: the program simbob starts as the peer of communicator KEY (repeatable; KEY= "
                   "starts none; docs/socket-protocol.md)")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  run->add_option("--peer-timeout", ra.peer_timeout,
+  run->add_option("--peer-timeout", ra.run.simulation.peer_timeout,
                   "Wall-clock s a socket peer may take to connect or to answer, 0.001 to 86400 (default 10)");
-  run->add_option("--html", ra.html, "Also write the run's replay page (simbob view) after the run");
+  run->add_option("--html", ra.run.html, "Also write the run's replay page (simbob view) after the run");
   run->add_option("--columns", ra.columns,
                   "Trajectory columns: pose (default) or pose,velocity (adds vx,vy,vz m/s and wx,wy,wz rad/s, "
                   "world frame)")
       ->check(CLI::IsMember({"pose", "pose,velocity"}));
   run->add_option("--log", ra.log, "Also write a run log: comma list of joints, sensors, commands");
-  run->add_option("--log-out", ra.log_out, "The run log CSV (default: --out with .csv replaced by .log.csv)");
+  run->add_option("--log-out", ra.run.log_out, "The run log CSV (default: --out with .csv replaced by .log.csv)");
   run->add_flag("--batch-child", ra.batch_child, "(internal) started by simbob batch")->group("");
-  run->add_flag("--refusal-summary", ra.refusal_summary,
+  run->add_flag("--refusal-summary", ra.run.refusal_summary,
                 "(internal) started by batch or sweep run: a refused run writes its partial summary")
       ->group("");
-  run->add_option("--record", ra.record, "Render frames to DIR/frame_000000.png, ... (frame n at t = n / fps)");
-  run->add_option("--video", ra.video, "Render the frames into one video: FILE.avi (MJPEG) or FILE.mp4 (H.264)");
+  run->add_option("--record", ra.run.record, "Render frames to DIR/frame_000000.png, ... (frame n at t = n / fps)");
+  run->add_option("--video", ra.run.video, "Render the frames into one video: FILE.avi (MJPEG) or FILE.mp4 (H.264)");
   addViewOptions(run, ra.view);
   addCommon(run, common);
   // A batch manifest appends per-scene options after the batch-wide ones: the last one wins
@@ -74,7 +76,7 @@ void defineInspectCommands(CLI::App& app, Invocation& in) {
   in.cmd.check->add_option("scene", in.check_scene, "Scene file")->required();
   in.cmd.check->add_option("--set", in.check_sets, "Override a scene parameter: KEY.PARAM=VALUE (repeatable)");
   in.cmd.check->add_option("--dt", in.check_dt, "Check for this step (s) as `run --dt` takes it (default: MaxTimeStep)")
-      ->check(CLI::Range(kMinTimeOption, kMaxTimeOption));
+      ->check(CLI::Range(kMinClockTime, kMaxClockTime));
   addCommon(in.cmd.check, in.common);
   in.cmd.dump = app.add_subcommand("dump", "Print the normalized scene with every default filled in");
   in.cmd.dump->add_option("scene", in.dump_scene, "Scene file")->required();
@@ -99,6 +101,7 @@ void defineCompareCommand(CLI::App& app, Invocation& in) {
   compare->add_flag("--bless", ca.bless, "Show what changes, then replace the golden file with the actual one");
   compare->add_option("--html", ca.html, "Also write the replay page of the comparison (needs --scene; simbob view)");
   compare->add_option("--scene", ca.scene, "With --html: the scene both trajectories were run in");
+  compare->add_option("--junit", ca.junit, "Also write the result as a JUnit XML report (docs/ci.md)");
   addCommon(compare, in.common);
 }
 
@@ -113,13 +116,20 @@ void defineBatchCommand(CLI::App& app, Invocation& in) {
   batch->add_option("--duration", ba.duration, "Simulated seconds per scene (default 10)");
   batch->add_option("--dt", ba.dt, "Step size in s (default: each scene's MaxTimeStep)");
   batch->add_option("--sample-interval", ba.sample_interval, "Seconds between samples (default 0.01)");
-  batch->add_option("--out-dir", ba.out_dir, "Folder for trajectories and logs (default batch-out)");
+  batch->add_option("-o,--out-dir", ba.out_dir, "Folder for trajectories and logs (default batch-out)");
   batch->add_option("--golden", ba.golden, "Compare each result with GOLDEN/<name>.csv");
   batch->add_option("--tol-pos", ba.tol_pos, "Position tolerance in m (default 1e-6)");
   batch->add_option("--tol-rot", ba.tol_rot, "Rotation tolerance in rad (default 1e-6)");
   batch->add_option("--report", ba.report, "Also write the summary to FILE (JSON if it ends in .json)");
   batch->add_flag("--json", ba.json, "Print the summary as JSON");
   batch->add_flag("--html", ba.html, "Also write each run's replay page beside its trajectory, STEM.html");
+  batch->add_option("--junit", ba.junit, "Also write a JUnit XML report, one test case per scene (docs/ci.md)");
+  batch->add_option("--artifacts", ba.artifacts,
+                    "Folder for each failed scene's replay page against its golden run and plot, and index.html");
+  batch->add_option("--summary-md", ba.summary_md, "Also write a short Markdown table of the scenes that did not pass");
+  batch->add_flag("--bless", ba.bless,
+                  "With --golden: show each change, then make the new trajectories the golden files (not after a "
+                  "failed run)");
   addCommon(batch, in.common);
 }
 
@@ -179,11 +189,12 @@ int dispatch(Invocation& in, simbob::Registry& registry) {
 std::vector<NamedPath> commandOutputs(const Invocation& in) {
   const auto& c = in.cmd;
   if (*c.run) return runOutputs(in.run);
-  if (*c.compare) return {{"--report", in.compare.report}, {"--html", in.compare.html}};
+  if (*c.compare) return {{"--report", in.compare.report}, {"--html", in.compare.html}, {"--junit", in.compare.junit}};
   if (*c.plot) return {{"--out", in.plot.out}};
   if (*c.render) return {{"--out", in.render.out}};
   if (*c.view) return {{"--out", in.view.out}};
-  if (*c.batch) return {{"--report", in.batch.report}};
+  if (*c.batch)
+    return {{"--report", in.batch.report}, {"--junit", in.batch.junit}, {"--summary-md", in.batch.summary_md}};
   return {};
 }
 

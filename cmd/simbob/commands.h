@@ -5,14 +5,15 @@
 #include <string>
 #include <vector>
 
-#include "simbob/compare.h"
-#include "simbob/run_outputs.h"
+#include "simbob/tool/comparison.h"
+#include "simbob/scene_run.h"
 
 namespace CLI {
 class App;
 }
 namespace simbob {
 class Registry;
+struct NamedPath;
 struct Override;
 struct RenderOptions;
 struct SweepCase;
@@ -22,7 +23,6 @@ struct Trajectory;
 namespace simbob::cli {
 
 struct Common;
-struct NamedPath;
 
 /// The view options of `run --record` and `render` (issue #12).
 struct ViewArgs {
@@ -39,52 +39,40 @@ void addViewOptions(CLI::App* app, ViewArgs& v);
 /// Checks the view options and fills `o` (the back end from $SIMBOB_GL when --gl is not given);
 /// 0, or the exit status after logging the problem.
 int renderOptions(const ViewArgs& v, const Common& common, RenderOptions* o);
-/// Without --draw, draws the collision shapes instead of models that show no body, saying so
-/// once on stderr.
-void drawFallback(const ViewArgs& v, const Model& model, RenderOptions* o);
+/// What a Run says goes to the log (and the log file stops before it writes into a file the run
+/// reads): the listener of `run` and `render`.
+RunListener runListener();
 
+/// `simbob run`: the run itself (RunOptions: most options bind straight to its fields) and what
+/// only the command line has.
 struct RunArgs {
-  std::string scene;
-  double duration = 0;
-  double dt = 0;
-  double sample_interval = 0.01;
-  std::string out;
-  uint32_t seed = 0;
+  RunOptions run;
   bool json = false;
-  bool check_determinism = false;
   bool batch_child = false;       ///< started by `simbob batch`: warnings stay out of the log
-  bool refusal_summary = false;   ///< a run refused before it starts writes its partial summary
   std::string space;              ///< overrides SceneSettings Space ("" = the scene's)
   bool auto_disable = false;      ///< turns SceneSettings AutoDisable on
   int max_contacts = 0;           ///< overrides SceneSettings MaxContacts (0 = the scene's)
-  bool out_given = false;         ///< --out was on the command line
   std::vector<std::string> sets;  ///< --set KEY.PARAM=VALUE, in order
-  int port_offset = 0;            ///< added to every socket communicator's Port
-  double peer_timeout = 10;       ///< wall-clock s for a socket peer to connect or answer
-  /// --controller KEY=COMMAND, in order (SimulationOptions::controllers)
-  std::vector<std::string> controllers;
-  std::string record;  ///< --record DIR: frames as DIR/frame_000000.png ("" = no GL context at all)
-  std::string video;   ///< --video FILE.avi|FILE.mp4: the same frames as one video
-  ViewArgs view;
-  std::string log;               ///< --log: comma list of joints, sensors, commands ("" = no run log)
-  std::string log_out;           ///< --log-out: the run log (default: --out with .csv -> .log.csv)
-  std::string columns = "pose";  ///< --columns: "pose", or "pose,velocity" for the velocity block
-  std::string html;              ///< --html PAGE: the replay page of the run (simbob view), written after it
+  ViewArgs view;                  ///< the recording's view (--size, --camera, ...): run.render
+  std::string log;                ///< --log: comma list of joints, sensors, commands (run.log)
+  std::string columns = "pose";   ///< --columns: "pose", or "pose,velocity" (run.velocity_columns)
 };
 int cmdRun(RunArgs& a, const Common& common);
 
 /// The options of `simbob run` (also used to check the lines of a batch manifest).
 void addRunOptions(CLI::App* run, RunArgs& ra, Common& common);
 void addCommon(CLI::App* app, Common& c);
-/// The files `simbob run` writes: --out, then (unless --out is a stream) the summary and the
-/// partial trajectory.
+/// The files `simbob run` writes (runOutputFiles): --out, then (unless --out is a stream) the
+/// summary, the partial files and the controllers' log, the replay page and the run log.
 std::vector<NamedPath> runOutputs(const RunArgs& a);
-/// The same as the paths a run opens (RunOutputs): --out, its summary, the run log and the video.
-RunOutputPaths runPaths(const RunArgs& a);
-/// "out.csv" -> "out.controller.log": what the controllers simbob starts print.
-std::string controllerLogPath(const std::string& out);
-/// What is wrong with run options beyond their syntax ("" if nothing): time ranges, --out.
+/// What is wrong with run options beyond their syntax ("" if nothing): runOptionsProblem, then
+/// what only the command line can get wrong (--out - with --json, --log and --log-out).
 std::string runArgsProblem(const RunArgs& a);
+/// Fills the fields of a.run that options do not bind directly: the run log's list, the
+/// columns, a batch worker's silence, the overrides (runOverrides), the recording's view, the
+/// global settings' texture folder, the stop flag, and the files the command reads and writes
+/// besides the run's own. 0, or the exit status (reported).
+int completeRunOptions(RunArgs& a, const Common& common);
 
 int cmdCheck(const std::string& path, const Common& common, const std::vector<std::string>& sets = {}, double dt = 0);
 int cmdDump(const std::string& path, const std::string& format, const Common& common,
@@ -105,6 +93,7 @@ struct CompareArgs {
   double tol_rot = 1e-6;
   bool json = false;
   bool bless = false;
+  std::string junit;  ///< --junit FILE: the comparison as a JUnit report of one test case
 };
 int cmdCompare(const CompareArgs& a, const Common& common);
 
@@ -118,8 +107,6 @@ CLI::App* addViewCommand(CLI::App& app, ViewPageArgs& v, Common& common);
 int cmdView(const ViewPageArgs& a, const Common& common);
 /// Writes the page of `actual` (and `golden`, may be null) in a.scene to a.out; the exit status.
 int viewPage(const ViewPageArgs& a, const Common& common, const Trajectory* actual, const Trajectory* golden);
-/// `run --html PAGE`: the page of the trajectory the run has just written (--out), with its --set.
-int viewAfterRun(const RunArgs& a, const Common& common);
 
 struct PlotArgs {
   std::string trajectory, golden, out, bodies, title;
@@ -153,6 +140,11 @@ struct BatchArgs {
   std::string report;
   bool json = false;
   bool html = false;  ///< --html: each run's replay page beside its trajectory (STEM.html)
+  // CI reports (docs/ci.md, batch_ci.cpp).
+  std::string junit;       ///< --junit FILE: JUnit XML, one test case per scene
+  std::string artifacts;   ///< --artifacts DIR: each failed scene's page and plot, DIR/index.html
+  std::string summary_md;  ///< --summary-md FILE: a short Markdown table of what did not pass
+  bool bless = false;      ///< --bless: show each change, then rewrite the golden files
 };
 int cmdBatch(const BatchArgs& a, const Common& common);
 
@@ -166,7 +158,8 @@ struct SweepArgs {
   bool retry = false;
   int max_parallel = 0;
   std::string partition;
-  std::string html;  ///< gather --html PAGE: the gallery of the cases, each with its replay page
+  std::string html;   ///< gather --html PAGE: the gallery of the cases, each with its replay page
+  std::string junit;  ///< gather --junit FILE: one JUnit test case per sweep case
   CLI::App *plan = nullptr, *run = nullptr, *gather = nullptr, *sbatch = nullptr;
 };
 CLI::App* addSweepCommands(CLI::App& app, SweepArgs& s, Common& common);
@@ -174,10 +167,10 @@ int cmdSweep(const SweepArgs& a, const Common& common);
 /// `sweep gather --html PAGE` after the table is written (`gathered`: gather's exit status):
 /// each ok case's replay page (OUT/case-NNNN/view.html) and the gallery linking them.
 int galleryAfterGather(const SweepArgs& a, const Common& common, int gathered);
-/// The replay page of sweep case `c` of `manifest` (its scene is relative to the manifest's
-/// folder), from DIR/trajectory.csv to DIR/view.html, titled with the case's index and varied
-/// values: `sweep run --html` and `sweep gather --html`. The exit status.
-int sweepCasePage(const SweepCase& c, const std::string& manifest, const std::string& dir, const Common& common);
+/// The replay page of sweep case `c` run in `scene`, from DIR/trajectory.csv to DIR/view.html,
+/// titled with the case's index and varied values: `sweep run --html` and `sweep gather --html`
+/// (the scene case.json names). The exit status.
+int sweepCasePage(const SweepCase& c, const std::string& scene, const std::string& dir, const Common& common);
 
 /// Every command's arguments and its CLI11 subcommand (command_line.cpp): what main parses,
 /// checks and dispatches.

@@ -5,13 +5,16 @@
 #include <fstream>
 #include <sstream>
 
+#include "ci_report.h"
 #include "cli.h"
 #include "commands.h"
-#include "simbob/compare.h"
-#include "simbob/files.h"
-#include "simbob/plot.h"
-#include "simbob/sweep.h"
+#include "simbob/tool/comparison.h"
+#include "simbob/tool/files.h"
+#include "simbob/tool/plot.h"
+#include "simbob/tool/sweep_plan.h"
+#include "simbob/tool/test_report.h"
 #include "simbob/trajectory.h"
+#include "simbob/values.h"
 
 namespace simbob::cli {
 
@@ -27,6 +30,36 @@ bool readOrReport(const std::string& path, Trajectory* t, int* code) {
   return true;
 }
 
+// --junit FILE: the comparison as one test case; `r` null when a file could not be read (an
+// error case with the error line reported). 0, or the exit status of a report not written.
+int compareJUnit(const CompareArgs& a, const CompareResult* r) {
+  if (a.junit.empty()) return 0;
+  TestSuiteReport suite = ciSuite("simbob compare");
+  suite.properties.push_back({"tolerance.position", formatNumber(a.tol_pos) + " m"});
+  suite.properties.push_back({"tolerance.rotation", formatNumber(a.tol_rot) + " rad"});
+  TestCaseReport c;
+  c.classname = testClassName(a.actual);
+  c.name = std::filesystem::path(a.actual).stem().string();
+  c.file = a.actual;
+  if (!r) {
+    c.outcome = TestOutcome::Error;
+    c.type = "unreadable";
+    c.message = g_log.first_error ? g_log.first_error->errorLine() : "cannot read the trajectories";
+  } else if (!r->pass) {
+    c.outcome = TestOutcome::Failed;
+    c.type = "golden mismatch";
+    c.message = divergenceMessage(*r);
+    c.details = "actual: " + a.actual + "\ngolden: " + a.golden + "\n" + r->text();
+  }
+  suite.cases.push_back(std::move(c));
+  Error err;
+  if (!writeJUnit(suite, a.junit, &err)) {
+    g_log.error(err);
+    return exitCodeFor(err.kind);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int cmdCompare(const CompareArgs& a, const Common& common) {
@@ -39,17 +72,22 @@ int cmdCompare(const CompareArgs& a, const Common& common) {
     return kExitUsage;
   }
   if (int c =
-          checkOutputs({{"--report", a.report}, {"--html", a.html}, {"--log-file", g_log.path}},
+          checkOutputs({{"--report", a.report}, {"--html", a.html}, {"--junit", a.junit}, {"--log-file", g_log.path}},
                        {{"the trajectory", a.actual}, {"the golden file", a.golden}, {"--settings", common.settings}}))
     return c;
   Trajectory actual, golden;
   int code = 0;
-  if (!readOrReport(a.actual, &actual, &code) || !readOrReport(a.golden, &golden, &code)) return code;
+  if (!readOrReport(a.actual, &actual, &code) || !readOrReport(a.golden, &golden, &code)) {
+    compareJUnit(a, nullptr);
+    return code;
+  }
   CompareOptions opts;
   opts.tol_pos = a.tol_pos;
   opts.tol_rot = a.tol_rot;
   CompareResult r = compareTrajectories(actual, golden, opts);
-  std::string text = "actual: " + a.actual + "\ngolden: " + a.golden + "\n" + r.text();
+  if (int c = compareJUnit(a, &r)) return c;
+  std::string text =
+      "actual: " + quoteInput(a.actual, 4096) + "\ngolden: " + quoteInput(a.golden, 4096) + "\n" + r.text();
   std::string json = jsonText(r.json());
   std::fputs(a.json ? json.c_str() : text.c_str(), stdout);
   std::fflush(stdout);

@@ -6,7 +6,9 @@
 #include "simbob/compile.h"
 #include "simbob/overrides.h"
 #include "simbob/registry.h"
+#include "simbob/simulation.h"
 #include "simbob/values.h"
+#include "simbob/tool/replay_page.h"
 
 namespace simbob::cli {
 
@@ -14,14 +16,30 @@ int cmdCheck(const std::string& path, const Common& common, const std::vector<st
   std::vector<Override> overrides;
   if (int c = sceneOverrides(common, path, sets, &overrides)) return c;
   exitOnStopSignals(path, "loading");
-  Scene scene;
+  LoadReport loaded;
   Model model;
   int code = 0;
-  if (!loadAndCompile(path, *common.registry, &scene, &model, &code, true, true, {{"--settings", common.settings}},
+  if (!loadAndCompile(path, *common.registry, &model, &loaded, &code, true, true, {{"--settings", common.settings}},
                       overrides))
     return code;
   Diagnostics lint;
   lintModel(model, lint, dt);
+  checkTextureBudgets(model, common.texture_folder, lint);
+  size_t programs = 0;
+  for (const SocketDef& d : model.sockets) {
+    if (d.controller.empty()) continue;
+    ++programs;
+    if (common.no_controllers) {
+      SimulationOptions so;
+      so.no_controllers = true;
+      Simulation::fromModel(model, so, lint);  // refuses it, with run's words
+      break;
+    }
+    g_log.info(d.loc.file.str() + ":" + std::to_string(d.loc.line) + ": RCLocalSocketCommunicator '" + d.key +
+               "' starts the program '" + quoteInput(d.controller, 400) + "' in " +
+               quoteInput(controllerFolder(d), 400) +
+               " when the scene runs (run, batch, sweep run, render --at, Python's Simulation)");
+  }
   if (int c = report(lint, true)) return c;
   for (const ImportReport& r : model.imports) {  // what each URDF import built, ignored or approximated
     g_log.note({ErrorKind::InvalidInput, r.loc, r.text});
@@ -29,7 +47,7 @@ int cmdCheck(const std::string& path, const Common& common, const std::vector<st
   }
   g_log.info(path + ": ok (" + countOf(model.bodies.size(), "mobile body", "mobile bodies") + ", " +
              countOf(model.geoms.size(), "geom", "geoms") + ", " + countOf(model.joints.size(), "joint", "joints") +
-             ")");
+             (programs ? "; starts " + countOf(programs, "program", "programs") : std::string()) + ")");
   for (const std::string& line : describeMeshes(model)) g_log.info(path + ": " + line);
   return kExitOk;
 }
@@ -43,7 +61,9 @@ int cmdDump(const std::string& path, const std::string& format, const Common& co
   Diagnostics d;
   const bool ok = loadScene(path, *common.registry, &scene, d) && applyOverrides(scene, overrides, d);
   std::vector<NamedPath> read = {{"--settings", common.settings}};
-  appendSceneInputs(scene, path, overrides, &read);
+  LoadReport loaded;
+  loaded.files = scene.files;
+  appendSceneInputs(loaded, path, overrides, &read);
   if (int c = checkOutputs({{"--log-file", g_log.path}}, read)) return c;
   if (!ok) return report(d, true);
   std::string text = writeScene(scene, format == "ini" ? Format::Ini : Format::Xml, true);

@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <exception>
+#include <functional>
 
 #include "cli.h"
 #include "commands.h"
@@ -61,7 +62,8 @@ int unknownCommand(CLI::App& app, int argc, char** argv) {
 int emptyOutputOption(const Invocation& in) {
   const auto& c = in.cmd;
   for (CLI::App* sub : {c.run, c.compare, c.plot, c.batch, c.check, c.dump, c.render, c.view, c.info})
-    for (const char* name : {"--out", "--report", "--log-file", "--out-dir", "--settings", "--record", "--video"}) {
+    for (const char* name : {"--out", "--report", "--log-file", "--out-dir", "--settings", "--record", "--video",
+                             "--junit", "--artifacts", "--summary-md"}) {
       CLI::Option* o = sub->get_option_no_throw(name);
       if (!o || o->count() == 0) continue;
       for (const std::string& v : o->results())
@@ -97,7 +99,10 @@ int prepare(Invocation& in, simbob::Registry& registry) {
 int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   CLI::App app{"simbob: headless batch simulator for mobile robots (Simulator Bob scenes on ODE)"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", versionLine());
+  app.set_version_flag("--version", std::function<std::string()>([] {
+                         const std::string v = versionText();
+                         return v.substr(0, v.size() - 1);  // CLI11 adds the newline
+                       }));
   Invocation in;
   defineCommands(app, in);
   if (int c = unknownCommand(app, argc, argv)) return c;
@@ -111,8 +116,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
     return kExitUsage;
   }
   if (int c = emptyOutputOption(in)) return c;
-  in.run.out_given = in.cmd.run->count("--out") > 0;
-  // The one registry of component types: built here, passed down (plug-ins will add to it).
+  // The one registry of component types: built here, passed down (--plugin adds its types to it).
   simbob::Registry registry;
   if (!simbob::registerBuiltins(registry)) {
     for (const std::string& p : registry.problems())

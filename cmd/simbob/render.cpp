@@ -9,12 +9,13 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "simbob/render.h"
+#include "simbob/renderer.h"
 #include "simbob/physics.h"
-#include "simbob/png.h"
+#include "simbob/tool/png.h"
 #include "simbob/robot.h"
-#include "simbob/run.h"
-#include "simbob/simulation.h"
+#include "simbob/loop.h"
+#include "simbob/scene_run.h"
+#include "simbob/tool/document_ini.h"
 #include "simbob/values.h"
 #include "version.h"
 
@@ -126,6 +127,7 @@ int renderOptions(const ViewArgs& v, const Common& common, RenderOptions* o) {
     return kExitUsage;
   }
   if (!v.draw.empty()) {
+    o->draw_chosen = true;
     o->draw_models = o->draw_geoms = false;
     size_t start = 0;
     while (start <= v.draw.size()) {
@@ -151,13 +153,6 @@ int renderOptions(const ViewArgs& v, const Common& common, RenderOptions* o) {
   return 0;
 }
 
-void drawFallback(const ViewArgs& v, const Model& model, RenderOptions* o) {
-  if (!v.draw.empty() || !modelsShowNoBody(model)) return;
-  o->draw_models = false;
-  o->draw_geoms = true;
-  g_log.info("no body has a model: drawing the collision shapes (--draw geoms; --draw models for the models alone)");
-}
-
 namespace {
 
 // The still's arguments: a .png name, --at and --dt in range. 0, or 64 (reported).
@@ -174,40 +169,31 @@ int renderArgsProblem(const RenderArgs& a) {
       return kExitUsage;
     }
   }
-  if (!std::isfinite(a.at) || a.at < 0 || a.at > kMaxTimeOption) {
+  if (!std::isfinite(a.at) || a.at < 0 || a.at > kMaxClockTime) {
     g_log.error({ErrorKind::InvalidInput, {}, "--at must be between 0 and 1e9 s, got " + formatNumber(a.at)});
     return kExitUsage;
   }
-  if (a.dt != 0 && !(a.dt >= kMinTimeOption && a.dt <= kMaxTimeOption)) {
-    g_log.error({ErrorKind::InvalidInput, {}, "--dt must be between 1e-9 and 1e9 s, got " + formatNumber(a.dt)});
+  if (std::string p = clockTimeProblem("--dt", a.dt, true); !p.empty()) {
+    g_log.error({ErrorKind::InvalidInput, {}, p});
     return kExitUsage;
   }
   return 0;
 }
 
-// Simulates up to --at with the controllers acting, as `run` would: a Simulation whose parties
-// (after the scene's) are the frames a recording would follow, then the still. 0, or the exit
-// status (reported).
-int simulateTo(const RenderArgs& a, const Model& model, const RenderOptions& ro, Renderer& renderer,
+// Simulates up to --at with the controllers acting, as `run` would: the Run's Simulation, whose
+// parties (after the scene's) are the frames a recording would follow, then the still. 0, or the
+// exit status (reported).
+int simulateTo(const RenderArgs& a, Run& run, const RenderOptions& ro, Renderer& renderer,
                std::vector<Transform>* poses) {
-  // Simulate up to T with the controllers acting, as `run` would: a Simulation whose
-  // parties (after the scene's) are the frames a recording would follow, then the still.
   catchStopSignals();
-  SimulationOptions so;
-  so.duration = a.at;
-  so.dt = a.dt;
-  so.seed = a.seed;
-  so.stop = &g_stop;
-  Diagnostics sd;
-  std::unique_ptr<Simulation> sim = Simulation::fromModel(model, so, sd);
-  if (!sim) return report(sd, false);
+  const Model& model = run.model();
   const std::optional<SimTime> at = toSimTime(a.at);
   Still still(at ? *at : kNever, model.bodies.size(), ro.draw_sensors ? &model : nullptr);
   Follower follower(renderer, a.view.fps, at ? *at : kNever, toSimTime(model.settings.min_time_step).value_or(0),
                     model.bodies.size());
-  sim->addParty(follower);
-  sim->addParty(still);
-  const RunResult r = sim->runToEnd();
+  run.simulation().addParty(follower);
+  run.simulation().addParty(still);
+  const RunResult& r = run.finish().result;
   if (r.status != RunStatus::Completed || !still.taken()) {
     g_log.error(r.error.message.empty() ? Error{ErrorKind::Internal, {}, "the run ended before --at"} : r.error);
     if (r.status == RunStatus::Interrupted) return stopExitCode();
@@ -218,29 +204,38 @@ int simulateTo(const RenderArgs& a, const Model& model, const RenderOptions& ro,
   return 0;
 }
 
+// The Run of a still: it writes nothing of its own; --out must not be any file it reads.
+RunOptions stillRun(const RenderArgs& a, const Common& common) {
+  RunOptions o;
+  o.scene = a.scene;
+  o.write_outputs = false;
+  o.simulation.duration = a.at;
+  o.simulation.dt = a.dt;
+  o.simulation.seed = a.seed;
+  o.simulation.stop = &g_stop;
+  o.simulation.texture_folder = common.texture_folder;
+  o.inputs = {{"--settings", common.settings}};
+  if (common.document_ini) o.inputs.push_back({"the DocumentIni", documentIniPath(a.scene)});
+  o.outputs = {{"--out", a.out}, {"--log-file", g_log.path}};
+  return o;
+}
+
 }  // namespace
 
 int cmdRender(const RenderArgs& a, const Common& common) {
   if (int c = renderArgsProblem(a)) return c;
   RenderOptions ro;
   if (int c = renderOptions(a.view, common, &ro)) return c;
-  std::vector<Override> overrides;
-  if (int c = sceneOverrides(common, a.scene, {}, &overrides)) return c;
+  RunOptions o = stillRun(a, common);
+  // A still at t = 0 (without sensor rays) runs nothing: --no-controllers has nothing to refuse.
+  o.simulation.no_controllers = common.no_controllers && (a.at > 0 || ro.draw_sensors);
+  if (int c = sceneOverrides(common, a.scene, {}, &o.simulation.overrides)) return c;
   exitOnStopSignals(a.scene, "loading");
-  Scene scene;
-  Model model;
-  int code = 0;
-  if (!loadAndCompile(a.scene, *common.registry, &scene, &model, &code, true, false, {{"--settings", common.settings}},
-                      overrides))
-    return code;
-  {
-    std::vector<NamedPath> inputs = {{"--settings", common.settings}};
-    appendSceneInputs(scene, a.scene, overrides, &inputs);
-    appendModelInputs(model, common, a.scene, &inputs);
-    if (int c = checkOutputs({{"--out", a.out}, {"--log-file", g_log.path}}, inputs)) return c;
-  }
-  scene = Scene{};
-  drawFallback(a.view, model, &ro);
+  Error refusal;
+  std::unique_ptr<Run> run = Run::open(o, *common.registry, runListener(), &refusal);
+  if (!run) return exitCodeFor(refusal.kind);
+  const Model& model = run->model();
+  if (std::string n = drawFallbackNote(model, ro); !n.empty()) g_log.info(n);
   Error err;
   std::unique_ptr<Renderer> renderer = Renderer::create(model, ro, &err);
   if (!renderer) {
@@ -249,7 +244,7 @@ int cmdRender(const RenderArgs& a, const Common& common) {
   }
   std::vector<Transform> poses = initialPoses(model);
   if (a.at > 0 || ro.draw_sensors)  // the rays need the readings: a world at T
-    if (int c = simulateTo(a, model, ro, *renderer, &poses)) return c;
+    if (int c = simulateTo(a, *run, ro, *renderer, &poses)) return c;
   Image img;
   if (const Error* e = renderer->render(poses, a.at, &img)) {
     g_log.error(*e);
@@ -266,7 +261,7 @@ int cmdRender(const RenderArgs& a, const Common& common) {
 }
 
 int cmdInfo(const std::string& gl, const Common& /*common*/) {
-  std::printf("%s\n", versionLine().c_str());  // the line of --version, git revision included
+  std::fputs(versionText().c_str(), stdout);  // the lines of --version, git revision included
   std::vector<std::pair<const char*, GlBackend>> backends = {{"egl", GlBackend::Egl}, {"osmesa", GlBackend::OsMesa}};
   if (!gl.empty()) {
     GlBackend b;

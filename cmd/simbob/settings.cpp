@@ -5,8 +5,8 @@
 #include <filesystem>
 
 #include "cli.h"
-#include "simbob/document_ini.h"
-#include "simbob/frame_sinks.h"
+#include "simbob/tool/document_ini.h"
+#include "simbob/renderer.h"
 #include "simbob/registry.h"
 #include "simbob/values.h"
 
@@ -32,75 +32,37 @@ int readSettings(Common& c) {
   return 0;
 }
 
-void appendSceneInputs(const Scene& scene, const std::string& path, const std::vector<Override>& overrides,
+void appendSceneInputs(const LoadReport& loaded, const std::string& path, const std::vector<Override>& overrides,
                        std::vector<NamedPath>* inputs) {
-  for (const std::string& f : scene.files) inputs->push_back({f == path ? "the scene" : "the import", f});
+  for (const std::string& f : loaded.files) inputs->push_back({f == path ? "the scene" : "the import", f});
   for (const Override& o : overrides)
     if (o.line > 0) inputs->push_back({"the DocumentIni", o.place});
 }
 
 void appendModelInputs(const Model& model, const Common& common, const std::string& scene,
                        std::vector<NamedPath>* inputs) {
-  // The renderer's lookup (lib/render/renderer.cpp loadTextures): every candidate that exists.
-  for (const SkinDef& s : model.skins) {
-    if (s.texture.empty()) continue;
-    for (const std::string& dir : {common.texture_folder, s.base_dir}) {
-      if (dir.empty()) continue;
-      for (const char* ext : {"", ".bmp", ".png"}) {
-        const std::string p = (s.texture[0] == '/' ? "" : dir + "/") + s.texture + ext;
-        std::error_code ec;
-        if (std::filesystem::is_regular_file(p, ec)) inputs->push_back({"the texture", p});
-      }
-    }
-  }
+  for (const std::string& t : textureFiles(model, common.texture_folder)) inputs->push_back({"the texture", t});
   if (common.document_ini) inputs->push_back({"the DocumentIni", documentIniPath(scene)});
 }
 
-int checkRecordFolder(const std::string& dir, const std::vector<NamedPath>& outputs,
-                      const std::vector<NamedPath>& inputs) {
-  if (dir.empty()) return 0;
-  auto inFolder = [&](const std::string& p) {
-    if (p.empty() || p == "-" || isStreamOutput(p)) return false;
-    const std::filesystem::path path(p);
-    if (!isFrameFileName(path.filename().string())) return false;
-    const std::string parent = path.has_parent_path() ? path.parent_path().string() : ".";
-    return sameOutputPlace(parent, dir);
-  };
-  for (const auto* list : {&inputs, &outputs})
-    for (const NamedPath& f : *list)
-      if (inFolder(f.path)) {
-        g_log.error({ErrorKind::InvalidInput,
-                     {},
-                     f.what + " " + quoteInput(f.path, 400) + " is a frame file of --record " + quoteInput(dir, 400) +
-                         ", which the recording writes or removes: " +
-                         (list == &inputs ? "an output must not overwrite an input"
-                                          : "outputs of one command must not collide")});
-        return kExitUsage;
-      }
-  return 0;
-}
-
-bool loadAndCompile(const std::string& path, const Registry& reg, Scene* scene, Model* model, int* code, bool warnings,
-                    bool collect_all, const std::vector<NamedPath>& inputs, const std::vector<Override>& overrides) {
-  Diagnostics d;
-  const bool loaded = loadScene(path, reg, scene, d) && applyOverrides(*scene, overrides, d);
-  // A scene that failed to load is still a consistent graph (bad links are empty), so `check`
-  // compiles it too and reports what the compile step finds in the same pass.
-  const bool ok = (loaded || (collect_all && !scene->comps.empty())) && compileScene(*scene, model, d) && loaded;
+bool loadAndCompile(const std::string& path, const Registry& reg, Model* model, LoadReport* loaded, int* code,
+                    bool warnings, bool collect_all, const std::vector<NamedPath>& inputs,
+                    const std::vector<Override>& overrides) {
+  LoadRequest req;
+  req.path = path;
+  req.overrides = overrides;
+  req.collect_all = collect_all;
+  const bool ok = loadModel(req, reg, model, loaded);
   std::vector<NamedPath> read = inputs;
-  appendSceneInputs(*scene, path, overrides, &read);
+  appendSceneInputs(*loaded, path, overrides, &read);
   if (g_log.file) {
     if (int c = checkOutputs({{"--log-file", g_log.path}}, read)) {
       *code = c;
       return false;
     }
   }
-  if (!ok) {
-    *code = report(d, warnings);
-    return false;
-  }
-  report(d, warnings);
-  return true;
+  *code = report(loaded->diagnostics, warnings);
+  return ok;
 }
 
 int parseSetOptions(const std::vector<std::string>& sets, std::vector<Override>* out) {

@@ -19,9 +19,9 @@
 #include "sweep_cli.h"
 #include "commands.h"
 #include "workers.h"
-#include "simbob/csv.h"
-#include "simbob/files.h"
-#include "simbob/sweep.h"
+#include "simbob/tool/csv.h"
+#include "simbob/tool/files.h"
+#include "simbob/tool/sweep_plan.h"
 #include "simbob/trajectory.h"
 #include "simbob/values.h"
 
@@ -88,9 +88,9 @@ int sweepPlan(const SweepArgs& a, const Common& common) {
   }
   // Every case's overrides are checked against the scene now, not in the thousandth array task.
   {
-    Scene sc;
+    LoadReport loaded;
     Model model;
-    if (!loadAndCompile(scene_path, *common.registry, &sc, &model, &code, false, false, {})) return code;
+    if (!loadAndCompile(scene_path, *common.registry, &model, &loaded, &code, false, false, {})) return code;
     std::vector<std::string> keys;
     for (const BodyDef& b : model.bodies) keys.push_back(b.key);
     for (const SweepMetric& m : cases.front().metrics)
@@ -117,9 +117,9 @@ int sweepPlan(const SweepArgs& a, const Common& common) {
       }
       o.place = a.input + ": case " + std::to_string(c.index) + ": " + s;
       ov.push_back(o);
-      Scene sc;
+      LoadReport loaded;
       Model model;
-      if (!loadAndCompile(scene_path, *common.registry, &sc, &model, &code, false, false, {}, ov)) return code;
+      if (!loadAndCompile(scene_path, *common.registry, &model, &loaded, &code, false, false, {}, ov)) return code;
     }
   std::string out;
   for (const SweepCase& c : cases) out += manifestLine(c) + "\n";
@@ -144,7 +144,7 @@ CLI::App* addSweepCommands(CLI::App& app, SweepArgs& s, Common& common) {
   CLI::App* run =
       sweep->add_subcommand("run", "Run one case (--case, SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX) or all (-j)");
   run->add_option("manifest", s.input, "Case manifest")->required();
-  run->add_option("-o,--out", s.out, "Output folder (case-NNNN/ per case)")->required();
+  run->add_option("-o,--out,--out-dir", s.out, "Output folder (case-NNNN/ per case)")->required();
   run->add_option("--case", s.case_index, "Case index (default: from the environment)")
       ->check(CLI::Range(0, 999999999));
   run->add_option("-j,--jobs", s.jobs, "Run every case here on N worker processes")->check(CLI::Range(1, 1024));
@@ -156,10 +156,11 @@ CLI::App* addSweepCommands(CLI::App& app, SweepArgs& s, Common& common) {
   gather->add_option("-o,--out", s.out, "Table to write (default OUT/results.csv)");
   gather->add_flag("--retry", s.retry, "Print the cases to resubmit as --array=3,17,42");
   gather->add_option("--html", s.html, "Also write a gallery page: the table, a plot, each case's replay page");
+  gather->add_option("--junit", s.junit, "Also write a JUnit XML report, one test case per sweep case (docs/ci.md)");
   addCommon(gather, common);
   CLI::App* sbatch = sweep->add_subcommand("sbatch", "Write Slurm scripts: a case array and a dependent gather job");
   sbatch->add_option("manifest", s.input, "Case manifest")->required();
-  sbatch->add_option("-o,--out", s.out, "Output folder of the sweep (the scripts go there too)")->required();
+  sbatch->add_option("-o,--out,--out-dir", s.out, "Output folder of the sweep (the scripts go there too)")->required();
   sbatch->add_option("--max-parallel", s.max_parallel, "At most K array tasks at once (%K)")
       ->check(CLI::Range(1, 1000000));
   sbatch->add_option("--partition", s.partition, "Slurm partition");

@@ -7,7 +7,7 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "simbob/sweep.h"
+#include "simbob/tool/sweep_plan.h"
 
 namespace simbob::cli::sweep {
 

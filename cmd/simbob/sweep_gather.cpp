@@ -14,13 +14,14 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "ci_report.h"
 #include "cli.h"
 #include "sweep_cli.h"
 #include "commands.h"
 #include "workers.h"
-#include "simbob/csv.h"
-#include "simbob/files.h"
-#include "simbob/sweep.h"
+#include "simbob/tool/csv.h"
+#include "simbob/tool/files.h"
+#include "simbob/tool/sweep_plan.h"
 #include "simbob/trajectory.h"
 #include "simbob/values.h"
 
@@ -40,7 +41,9 @@ int sweepGather(const SweepArgs& a) {
     std::vector<NamedPath> inputs = {{"the manifest", manifest}};
     for (const SweepCase& c : cases)
       inputs.push_back({"the case file", (fs::path(a.input) / caseDirName(c.index) / "case.json").string()});
-    if (int c = checkOutputs({{a.out.empty() ? "the table" : "-o", out}, {"--log-file", g_log.path}}, inputs)) return c;
+    if (int c = checkOutputs(
+            {{a.out.empty() ? "the table" : "-o", out}, {"--junit", a.junit}, {"--log-file", g_log.path}}, inputs))
+      return c;
   }
   const GatheredTable table = gatherSweep(a.input, cases);
   std::vector<int> retry;
@@ -61,6 +64,7 @@ int sweepGather(const SweepArgs& a) {
     g_log.error(err);
     return exitCodeFor(err.kind);
   }
+  if (int c = sweepJUnit(a.junit, a.input, cases, table)) return c;
   if (a.retry) {
     if (!retry.empty()) std::printf("--array=%s\n", arrayList(retry).c_str());
   }

@@ -18,9 +18,9 @@
 #include "sweep_cli.h"
 #include "commands.h"
 #include "workers.h"
-#include "simbob/csv.h"
-#include "simbob/files.h"
-#include "simbob/sweep.h"
+#include "simbob/tool/csv.h"
+#include "simbob/tool/files.h"
+#include "simbob/tool/sweep_plan.h"
 #include "simbob/trajectory.h"
 #include "simbob/values.h"
 
@@ -63,14 +63,19 @@ int caseIndex(const SweepArgs& a, int* index) {
   return kExitUsage;
 }
 
+// The scene of case c: relative to the manifest's folder.
+fs::path caseScene(const SweepCase& c, const std::string& manifest) {
+  fs::path scene = c.scene;
+  if (scene.is_relative()) scene = fs::path(manifest).parent_path() / scene;
+  return scene.lexically_normal();
+}
+
 // The `simbob run` of case c, writing into tmp.
 std::vector<std::string> caseRunArgs(const SweepCase& c, const std::string& manifest, const fs::path& tmp,
                                      const Common& common) {
-  fs::path scene = c.scene;
-  if (scene.is_relative()) scene = fs::path(manifest).parent_path() / scene;
   std::vector<std::string> args = {"simbob",
                                    "run",
-                                   scene.lexically_normal().string(),
+                                   caseScene(c, manifest).string(),
                                    "--duration",
                                    formatNumber(c.duration),
                                    "--sample-interval",
@@ -148,8 +153,11 @@ int runOneCase(const SweepArgs& a, const SweepCase& c, const std::string& manife
     if (error.empty()) error = "simbob run exited with status " + std::to_string(run_exit);
   }
   if (run_exit == kExitOk) fs::rename(tmp / "trajectory.json", tmp / "summary.json", ec);
-  const nlohmann::ordered_json j = sweepCaseRecord(c, tmp.string(), run_exit, error, wall);
-  if (int code = j["status"] == "ok" && a.case_pages ? sweepCasePage(c, manifest, tmp.string(), common) : kExitOk) {
+  nlohmann::ordered_json j = sweepCaseRecord(c, tmp.string(), run_exit, error, wall);
+  const fs::path scene = caseScene(c, manifest);
+  j["scene"] = fs::absolute(scene, ec).lexically_normal().string();  // for gather --html, run from anywhere
+  if (int code =
+          j["status"] == "ok" && a.case_pages ? sweepCasePage(c, scene.string(), tmp.string(), common) : kExitOk) {
     fs::remove_all(tmp, ec);
     return code;
   }

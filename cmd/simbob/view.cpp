@@ -1,16 +1,17 @@
 // simbob view TRAJ.csv --scene SCENE -o PAGE.html [--golden GOLDEN.csv] [--title T] (issue #23):
 // parses the options and hands the scene, the trajectories and the output to the library
-// (simbob/view.h); `compare --html` goes through viewPage too.
+// (simbob/tool/replay_page.h); `compare --html` goes through viewPage too.
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 
 #include "cli.h"
 #include "commands.h"
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 #include "simbob/overrides.h"
-#include "simbob/sweep.h"
+#include "simbob/tool/sweep_plan.h"
 #include "simbob/trajectory.h"
-#include "simbob/view.h"
+#include "simbob/tool/replay_page.h"
 
 namespace simbob::cli {
 
@@ -32,15 +33,15 @@ CLI::App* addViewCommand(CLI::App& app, ViewPageArgs& v, Common& common) {
 int viewPage(const ViewPageArgs& a, const Common& common, const Trajectory* actual, const Trajectory* golden) {
   std::vector<Override> overrides;
   if (int c = sceneOverrides(common, a.scene, a.sets, &overrides)) return c;
-  Scene scene;
+  LoadReport loaded;
   Model model;
   int code = 0;
-  if (!loadAndCompile(a.scene, *common.registry, &scene, &model, &code, false, false, {{"--settings", common.settings}},
-                      overrides))
+  if (!loadAndCompile(a.scene, *common.registry, &model, &loaded, &code, false, false,
+                      {{"--settings", common.settings}}, overrides))
     return code;
   std::vector<NamedPath> inputs = {
       {"the trajectory", a.trajectory}, {"the golden file", a.golden}, {"--settings", common.settings}};
-  appendSceneInputs(scene, a.scene, overrides, &inputs);
+  appendSceneInputs(loaded, a.scene, overrides, &inputs);
   appendModelInputs(model, common, a.scene, &inputs);
   if (int c = checkOutputs({{"--out", a.out}, {"--log-file", g_log.path}}, inputs)) return c;
   ViewPageInput in;
@@ -72,19 +73,6 @@ int cmdView(const ViewPageArgs& a, const Common& common) {
     return exitCodeFor(err.kind);
   }
   return viewPage(a, common, &actual, a.golden.empty() ? nullptr : &golden);
-}
-
-int viewAfterRun(const RunArgs& a, const Common& common) {
-  if (isStreamOutput(a.out)) {
-    g_log.error({ErrorKind::InvalidInput, {}, "--html reads the trajectory back: --out must be a file, not a stream"});
-    return kExitUsage;
-  }
-  ViewPageArgs v;
-  v.trajectory = a.out;
-  v.scene = a.scene;
-  v.out = a.html;
-  v.sets = a.sets;
-  return cmdView(v, common);
 }
 
 namespace {
@@ -121,17 +109,29 @@ std::vector<std::vector<std::string>> csvRows(const std::string& text) {
 
 }  // namespace
 
-int sweepCasePage(const SweepCase& c, const std::string& manifest, const std::string& dir, const Common& common) {
+int sweepCasePage(const SweepCase& c, const std::string& scene, const std::string& dir, const Common& common) {
   // The case's own page beside its trajectory, in its scene with its overrides.
   namespace fs = std::filesystem;
   ViewPageArgs v;
   v.trajectory = (fs::path(dir) / "trajectory.csv").string();
-  v.scene = fs::path(c.scene).is_relative() ? (fs::path(manifest).parent_path() / c.scene).string() : c.scene;
+  v.scene = scene;
   v.out = (fs::path(dir) / "view.html").string();
   v.sets = c.set;
   v.title = "case " + std::to_string(c.index);
   for (const auto& [k, val] : c.vary) v.title += " " + k + "=" + val;
   return cmdView(v, common);
+}
+
+// The scene a gathered case ran: case.json's "scene" (absolute, written by sweep run); for a case
+// of an older simbob, the scene its summary names (as sweep run was given it: from its folder).
+static std::string gatheredScene(const std::filesystem::path& dir) {
+  for (const char* file : {"case.json", "summary.json"}) {
+    std::string text;
+    if (!readFile((dir / file).string(), size_t{1} << 20, &text, nullptr, true)) continue;
+    const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+    if (j.is_object() && j.contains("scene") && j["scene"].is_string()) return j["scene"].get<std::string>();
+  }
+  return "";
 }
 
 int galleryAfterGather(const SweepArgs& a, const Common& common, int gathered) {
@@ -158,7 +158,7 @@ int galleryAfterGather(const SweepArgs& a, const Common& common, int gathered) {
     GalleryCase g{c.index, status_col < rows[r].size() ? rows[r][status_col] : "missing", rows[r], ""};
     const fs::path dir = fs::path(a.input) / caseDirName(c.index);
     if (g.status == "ok" && fs::exists(dir / "trajectory.csv")) {
-      if (int code = sweepCasePage(c, manifest, dir.string(), common)) return code;
+      if (int code = sweepCasePage(c, gatheredScene(dir), dir.string(), common)) return code;
       g.page = fs::relative(fs::absolute(dir / "view.html"), gallery_dir).generic_string();
     }
     gallery.push_back(std::move(g));

@@ -1,7 +1,7 @@
 // Worker processes of `batch` and `sweep run` (workers.h).
 #include "workers.h"
 
-#include "simbob/run_outputs.h"
+#include "simbob/scene_run.h"
 
 #include <fcntl.h>
 #include <sys/prctl.h>
@@ -93,6 +93,7 @@ std::vector<std::string> workerOptions(const Common& common) {
     args.emplace_back("--settings");
     args.push_back(absolutePath(common.settings));
   }
+  if (common.no_controllers) args.emplace_back("--no-controllers");
   return args;
 }
 
@@ -107,9 +108,7 @@ std::string firstErrorLine(const std::string& log_path) {
 }
 
 std::string workerError(const std::string& trajectory, const std::string& log, std::filesystem::file_time_type since) {
-  const RunOutputPaths paths = defaultOutputPaths(trajectory, false);
-  if (!paths.summary.empty()) {
-    const std::string partial = partialSummaryPath(paths.summary);
+  if (const std::string partial = partialSummaryOf(trajectory); !partial.empty()) {
     std::error_code ec;
     const auto written = std::filesystem::last_write_time(partial, ec);
     if (!ec && written >= since) {

@@ -8,6 +8,7 @@
 
 #include "simbob/graph.h"
 #include "simbob/model.h"
+#include "simbob/overrides.h"
 
 namespace simbob {
 
@@ -30,8 +31,33 @@ std::vector<std::string> describeMeshes(const Model& model);
 /// (infinity when nothing in the scene limits it): what a diverged run recommends.
 double recommendedStep(const Model& model);
 
-/// A diverged run's error names its body ('KEY'); the checks of lintModel usually know why it
-/// diverged: appends "; likely cause: " and the first of their warnings about that body, if any.
-void explainDivergence(const Model& model, Error* error);
+/// The checks of lintModel usually know why a run diverged: appends "; likely cause: " and the
+/// first of their warnings about the body that ran away or the joint that came apart (indices
+/// into Model::bodies and Model::joints, -1 for none), if any.
+void explainDivergence(const Model& model, int body, int joint, Error* error);
+
+/// What to load: a scene file, or its text in memory, and what is done to it.
+struct LoadRequest {
+  std::string path;                   ///< the scene file (XML, INI by extension); with `text`, its name
+  const std::string* text = nullptr;  ///< the scene text, or null to read `path`
+  std::vector<Override> overrides;    ///< applied to the graph before compiling (--set, a DocumentIni)
+  /// `simbob check`: a scene that failed to load is compiled too (a failed load still leaves a
+  /// consistent graph), so that one pass reports every problem the compile step can still see.
+  bool collect_all = false;
+  bool lint = false;  ///< add lintModel's warnings, judged at the step `dt` (0: MaxTimeStep)
+  double dt = 0;
+};
+
+/// What loading read and found.
+struct LoadReport {
+  std::vector<std::string> files;  ///< every file read: the scene first, then its imports
+  std::string content_hash;        ///< FNV-1a 64 of their bytes, hex
+  Diagnostics diagnostics;         ///< every error (file:line) and warning
+};
+
+/// The one way a scene becomes a Model, for every command, the Simulation API and Python: read
+/// the file or text, apply the overrides, compile, and (when asked) add the checks' warnings.
+/// False when the scene cannot run (its errors are in report->diagnostics).
+bool loadModel(const LoadRequest& request, const Registry& reg, Model* model, LoadReport* report);
 
 }  // namespace simbob

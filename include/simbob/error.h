@@ -56,8 +56,10 @@ enum class ErrorKind {
   MissingInput,  ///< an input file does not exist or cannot be read (EX_NOINPUT 66)
   CannotCreate,  ///< an output file cannot be created (EX_CANTCREAT 73)
   IoError,       ///< writing an output failed (EX_IOERR 74)
-  Diverged,      ///< the simulation produced a non-finite or runaway state (exit 1)
-  Internal,      ///< a bug in simbob (EX_SOFTWARE 70)
+  Diverged,      ///< the simulation produced a non-finite or runaway state, or a joint came apart (exit 1)
+  Interrupted,   ///< the run was asked to stop (SIGINT/SIGTERM; exit 130/143)
+  ControllerFailed,  ///< a controller, plug-in or controller program failed: reported an error, misused the API, threw (exit 2)
+  Internal,          ///< a bug in simbob (EX_SOFTWARE 70)
   Unavailable,  ///< a party held the simulation past MaxAccessTime, or a socket peer never connected, went away or fell silent (EX_UNAVAILABLE 69)
   Protocol,     ///< a socket peer sent a line the protocol does not allow (EX_PROTOCOL 76)
   Usage,        ///< a caller passed an option or argument that cannot be used (EX_USAGE 64)
@@ -75,10 +77,21 @@ struct Error {
   std::string errorLine() const;
 };
 
+/// An error about a whole file (no line): what outputs and image files report.
+inline Error fileError(ErrorKind kind, const std::string& file, std::string message) {
+  return {kind, {file, 0}, std::move(message)};
+}
+
 /// Input text as it may appear inside a message: control characters and invalid UTF-8 as \xNN,
 /// invisible characters (a byte order mark, zero-width spaces, direction marks) as \u{FEFF}, and
 /// anything beyond max_bytes cut, saying how long it was: "abc... (52428800 bytes)".
 std::string quoteInput(std::string_view text, size_t max_bytes = 80);
+
+/// A file a command reads or writes, and what it is ("the scene", "--out"), for messages.
+struct NamedPath {
+  std::string what;
+  std::string path;
+};
 
 /// Collects errors and warnings so one pass can report every problem.
 class Diagnostics {

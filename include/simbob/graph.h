@@ -137,6 +137,9 @@ struct Scene {
 
 enum class Format { Xml, Ini };
 
+/// The format a scene file's name says: INI for a name ending in .ini (any case), else XML.
+Format sceneFormatOf(const std::string& path);
+
 /// Read a scene file (XML, or INI when the name ends in .ini), resolve imports and Refs, fill
 /// defaults. Errors go to diag; returns false if any. With collect_all, keeps going after the
 /// first error to report as many as possible (`simbob check`).

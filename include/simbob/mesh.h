@@ -31,9 +31,12 @@ constexpr size_t kMaxMeshTriangles = 2000000;
 /// A convex polyhedron in ODE's dGeomConvex layout (dCreateConvex(space, planes, planecount,
 /// points, pointcount, polygons)): plain numbers, copied to dReal by the physics.
 struct ConvexHull {
-  std::vector<double> planes;      ///< 4 per face: unit outward normal nx ny nz and d, points p of the face have n.p = d (m)
-  std::vector<double> points;      ///< 3 per vertex, m, in the mesh frame
-  std::vector<unsigned> polygons;  ///< per face, in `planes` order: its vertex count, then its vertex indices, counterclockwise seen from outside
+  /// 4 per face: its unit outward normal nx ny nz and d (m): the face's points p have n.p = d.
+  std::vector<double> planes;
+  std::vector<double> points;  ///< 3 per vertex, m, in the mesh frame
+  /// Per face, in `planes` order: its vertex count, then its vertex indices, counterclockwise
+  /// seen from outside.
+  std::vector<unsigned> polygons;
   size_t faceCount() const { return planes.size() / 4; }
   size_t pointCount() const { return points.size() / 3; }
   bool empty() const { return planes.empty(); }
@@ -42,8 +45,8 @@ struct ConvexHull {
 /// Volume, centre and inertia of a closed solid of unit density (multiply by the density in
 /// kg/m^3 for kg and kg m^2).
 struct MeshMass {
-  double volume = 0;                         ///< m^3 (> 0 for a closed mesh wound outward)
-  Vec3 centre{0, 0, 0};                      ///< centroid, m, mesh frame
+  double volume = 0;                        ///< m^3 (> 0 for a closed mesh wound outward)
+  Vec3 centre{0, 0, 0};                     ///< centroid, m, mesh frame
   Mat3 inertia{0, 0, 0, 0, 0, 0, 0, 0, 0};  ///< m^5 (per unit density) about the centroid, mesh axes
 };
 
@@ -51,12 +54,12 @@ struct MeshMass {
 /// own unit (COLLADA `<unit meter>`), then the turn from the file's up axis to the caller's
 /// (COLLADA only; STL and OBJ are taken as written), then `scale` are applied to every vertex, once.
 struct MeshData {
-  std::string file;    ///< the path it was read from, as given to loadMesh
-  Vec3 scale{1, 1, 1};  ///< the scale it was read with (per axis of the caller's frame)
-  UpAxis up = UpAxis::Y;  ///< the up axis of the caller's frame
-  std::vector<Vec3> vertices;                       ///< m
-  std::vector<std::array<uint32_t, 3>> triangles;   ///< indices into vertices, counterclockwise seen from outside
-  Vec3 lo{0, 0, 0}, hi{0, 0, 0};                    ///< bounds of the vertices (m)
+  std::string file;                                ///< the path it was read from, as given to loadMesh
+  Vec3 scale{1, 1, 1};                             ///< the scale it was read with (per axis of the caller's frame)
+  UpAxis up = UpAxis::Y;                           ///< the up axis of the caller's frame
+  std::vector<Vec3> vertices;                      ///< m
+  std::vector<std::array<uint32_t, 3>> triangles;  ///< indices into vertices, counterclockwise seen from outside
+  Vec3 lo{0, 0, 0}, hi{0, 0, 0};                   ///< bounds of the vertices (m)
   /// Every edge is shared by exactly two triangles, used in opposite directions: the mesh
   /// encloses a volume, and `mass` is its solid's.
   bool closed = false;

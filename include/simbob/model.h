@@ -1,5 +1,5 @@
 // The compiled model: plain data, every reference resolved, every value validated.
-// The compile step (lib/scene/compile.cpp) produces it from the component graph; the physics
+// The compile step (lib/compile, lib/components) produces it from the component graph; the physics
 // layer (lib/physics) is the only consumer that talks to ODE. Nothing here includes ODE.
 #pragma once
 
@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "simbob/error.h"
@@ -41,11 +42,11 @@ struct BodyDef {
 };
 
 enum class GeomShape : uint8_t {
-  Box,       ///< size = full extents along local x, y, z (m)
-  Sphere,    ///< size[0] = radius (m)
-  Cylinder,  ///< size[0] = radius, size[1] = length along local Z (m)
-  Capsule,   ///< size[0] = radius, size[1] = length of the cylindrical part along local Z (m)
-  Plane,     ///< static only: plane = (nx, ny, nz, d), points p with n.p = d, n unit
+  Box,         ///< size = full extents along local x, y, z (m)
+  Sphere,      ///< size[0] = radius (m)
+  Cylinder,    ///< size[0] = radius, size[1] = length along local Z (m)
+  Capsule,     ///< size[0] = radius, size[1] = length of the cylindrical part along local Z (m)
+  Plane,       ///< static only: plane = (nx, ny, nz, d), points p with n.p = d, n unit
   ConvexHull,  ///< the hull of Model::meshes[mesh] (MeshData::hull, a dGeomConvex); size unused
   TriMesh,     ///< the triangles of Model::meshes[mesh] (a dGeomTriMesh); size unused
 };
@@ -60,6 +61,7 @@ struct GeomDef {
   std::string key;  ///< qualified key of the owning body (for messages)
   GeomShape shape = GeomShape::Box;
   int body = -1;                            ///< index into Model::bodies; -1 = static (world) geom
+  int static_body = -1;                     ///< body == -1: the static body it belongs to (its number)
   Transform offset;                         ///< relative to the body frame, or global when body == -1
   Vec3 size{0, 0, 0};                       ///< see GeomShape
   std::array<double, 4> plane{0, 1, 0, 0};  ///< Plane only, global
@@ -78,6 +80,7 @@ struct JointDef {
   JointKind kind = JointKind::BallSocket;
   int body1 = -1;        ///< parent body index, -1 = the static world
   int body2 = -1;        ///< child body index, -1 = the static world (not both -1)
+  int static_body = -1;  ///< body1 or body2 == -1: the static body it joins (GeomDef::static_body), if known
   Vec3 anchor{0, 0, 0};  ///< global, m (BallSocket, Hinge)
   Vec3 axis{0, 0, 1};    ///< global unit vector (Hinge, Slider)
   // What a URDF joint adds (docs/urdf.md); the defaults leave a joint as the scene format makes it.
@@ -128,6 +131,7 @@ struct ActuatorDef {
   double smooth = 1.0;                                        ///< Servo: s, time constant of the final approach
   // Plugin only:
   int body = -1;                       ///< index into Model::bodies it pushes; -1 = static (pushes nothing)
+  int static_body = -1;                ///< body == -1: the static body it is mounted on (GeomDef::static_body)
   Transform pose;                      ///< its mount relative to the body's frame (global if body == -1)
   const SimbobType* plugin = nullptr;  ///< the plug-in's type (simbob/plugin_c.h)
   std::vector<double> numbers;         ///< its number parameters, in the order the type declares them
@@ -156,15 +160,16 @@ struct SensorDef {
   std::string key;  ///< fully qualified key of the periphery
   SourceLoc loc;
   SensorKind kind = SensorKind::Proximity;
-  int body = -1;            ///< index into Model::bodies it is attached to; -1 = static (fixed in the world)
-  std::vector<int> geoms;   ///< Proximity: indices into Model::geoms, each with sensor = true
-  Transform pose;           ///< Range, Scanner, Imu: sensor frame relative to the body's frame (global if body == -1)
-  double period = 0.0;      ///< s; > 0: the reading updates only at the grid instants at or after multiples of it
-  double min_range = 0.0;   ///< m (Range, Scanner): hits closer than this read min_range
-  double max_range = 5.0;   ///< m (Range, Scanner): the reading when nothing is hit
-  double noise = 0.0;       ///< standard deviation: m (Range, Scanner), m/s^2 (Imu accelerometer)
-  double resolution = 0.0;  ///< Range, Scanner: quantisation step (m, 0 = none); Encoder: ticks per turn
-  int rays = 1;             ///< Scanner: number of rays (>= 1)
+  int body = -1;           ///< index into Model::bodies it is attached to; -1 = static (fixed in the world)
+  int static_body = -1;    ///< body == -1: the static body it is mounted on (GeomDef::static_body): rays skip its geoms
+  std::vector<int> geoms;  ///< Proximity: indices into Model::geoms, each with sensor = true
+  Transform pose;          ///< Range, Scanner, Imu: sensor frame relative to the body's frame (global if body == -1)
+  double period = 0.0;     ///< s; > 0: the reading updates only at the grid instants at or after multiples of it
+  double min_range = 0.0;  ///< m (Range, Scanner): hits closer than this read min_range
+  double max_range = 5.0;  ///< m (Range, Scanner): the reading when nothing is hit
+  double noise = 0.0;      ///< standard deviation: m (Range, Scanner), m/s^2 (Imu accelerometer)
+  double resolution = 0.0;              ///< Range, Scanner: quantisation step (m, 0 = none); Encoder: ticks per turn
+  int rays = 1;                         ///< Scanner: number of rays (>= 1)
   double field_of_view = 180.0;         ///< Scanner: degrees, (0, 360]
   double gyro_noise = 0.0;              ///< Imu: standard deviation of the gyro (rad/s)
   Vec3 accel_bias{0, 0, 0};             ///< Imu: constant accelerometer bias (m/s^2, sensor frame)
@@ -223,47 +228,117 @@ struct CameraSensorDef {
   double period = 0.1;  ///< s between images (0: every step); the image is held in between
 };
 
-/// A built-in controller (guide 6.12), a command schedule or a plug-in controller; runs as a
-/// party of the run loop.
+// ---- Controllers (guide 6.12): one definition struct per kind, as Box2D keeps one per joint
+// type. Each is lowered by its own function (lib/components/controllers.cpp) and made into a
+// party of the run loop by its own file in lib/robot. Indices are into the Model's vectors. ----
+
+/// RCDriveTest: a sine voltage on one drive.
+struct DriveTestDef {
+  int drive = -1;          ///< Model::actuators (an RCDriver)
+  double period = 0.01;    ///< s, loop period
+  double variation = 6.0;  ///< sine cycles per minute
+};
+
+/// RCServoTest: a triangle wave between the limits of one servo.
+struct ServoTestDef {
+  int servo = -1;          ///< Model::actuators (an RCPosControl with finite MinPos and MaxPos)
+  double period = 0.01;    ///< s, loop period
+  double variation = 6.0;  ///< oscillations per minute
+};
+
+/// RCTwoWheelMotionControl: (linear, angular) velocity -> the velocities of two wheels.
+struct TwoWheelDef {
+  int left = -1, right = -1;    ///< Model::actuators (RCVelControl), the left and right wheels
+  double wheel_distance = 0.5;  ///< m between the wheels
+  double wheel_radius = 0.1;    ///< m (the guide's parameter `Variation`)
+};
+
+/// RCCommandSchedule: timed commands to one actuator, or (linear, angular) to a motion control.
+struct CommandScheduleDef {
+  int actuator = -1;             ///< Model::actuators, when it commands an actuator
+  int target = -1;               ///< Model::controllers (a TwoWheel), when it commands a motion control
+  int values = 1;                ///< values per row: 1, or 2 (linear angular) for a motion control
+  std::vector<double> commands;  ///< rows of (time s, values...), times increasing
+};
+
+/// RCWallStop: drives a motion control at `speed` until a contact sensor touches, then stops.
+struct WallStopDef {
+  int target = -1;       ///< Model::controllers (a TwoWheel)
+  int sensor = -1;       ///< Model::sensors (a Proximity sensor)
+  double period = 0.01;  ///< s
+  double speed = 0.1;    ///< m/s
+};
+
+/// RCSimGoToPoint: steers a motion control until a body is within `tolerance` of the goal.
+struct GoToPointDef {
+  int target = -1;                ///< Model::controllers (a TwoWheel)
+  int body = -1;                  ///< Model::bodies whose pose it reads
+  double period = 0.01;           ///< s
+  double speed = 0.1;             ///< m/s
+  double turn_rate = 1.0;         ///< rad/s, largest angular velocity
+  double tolerance = 0.05;        ///< m from the goal at which it stops
+  double goal_x = 0, goal_z = 0;  ///< the target point on the ground plane (m)
+};
+
+/// RCObstacleAvoider: steers a motion control away from what its range sensors see.
+struct ObstacleAvoiderDef {
+  int target = -1;           ///< Model::controllers (a TwoWheel)
+  std::vector<int> sensors;  ///< Model::sensors (RCRangeSensor)
+  double period = 0.01;      ///< s
+  double speed = 0.1;        ///< m/s
+  double turn_rate = 1.0;    ///< rad/s
+};
+
+/// RCWallFollower: steers a motion control along a wall seen by a laser scanner.
+struct WallFollowerDef {
+  int target = -1;             ///< Model::controllers (a TwoWheel)
+  int scanner = -1;            ///< Model::sensors (an RCLaserScanner)
+  double period = 0.01;        ///< s
+  double speed = 0.1;          ///< m/s
+  double turn_rate = 1.0;      ///< rad/s
+  double wall_distance = 0.3;  ///< m to keep between the scanner and the wall
+  int side = 1;                ///< +1 the wall on the robot's left, -1 on its right
+};
+
+/// A plug-in's controller type: acts through its refs (simbob/plugin_c.h).
+struct PluginControllerDef {
+  std::string type;                         ///< the type name
+  std::string plugin;                       ///< the plug-in's name (SimbobPlugin::name), for messages
+  const SimbobType* plugin_type = nullptr;  ///< the plug-in's type
+  double period = 0.01;                     ///< s
+  std::vector<double> numbers;              ///< its number parameters, in the order it declared them
+  /// Per ref of the type, an index into Model::actuators (RCDriver, RCPosControl, RCVelControl or
+  /// an actuator type's interface), Model::sensors (a sensor interface) or Model::bodies (RCBody)...
+  std::vector<int> refs;
+  /// ... and which: 0 Model::actuators, 1 Model::sensors, 2 Model::bodies.
+  std::vector<uint8_t> ref_kind;
+};
+
+/// A controller of the scene: its key, its place and its kind's definition.
 struct ControllerDef {
   std::string key;  ///< fully qualified key
   SourceLoc loc;
+  /// The kinds, in the order of `def`'s alternatives.
   enum Kind : uint8_t {
-    DriveTest,        ///< sine voltage on actuators[0]
-    ServoTest,        ///< triangle wave between the limits of actuators[0]
-    TwoWheel,         ///< (v, w) -> wheel velocities of actuators[0] (left), actuators[1] (right)
-    CommandSchedule,  ///< timed commands to actuators[0], or to controllers[target] (TwoWheel)
-    WallStop,         ///< drives controllers[target] (TwoWheel) at `speed` until sensors[0] touches, then stops
-    Plugin,           ///< a plug-in's controller type: `plugin` acts through `refs`
-    GoToPoint,        ///< steers controllers[target] (TwoWheel) until bodies[body] is within `tolerance` of goal
-    ObstacleAvoider,  ///< steers controllers[target] (TwoWheel) away from what its range sensors[] see
-    WallFollower,     ///< steers controllers[target] (TwoWheel) along a wall seen by its laser scanner sensors[0]
-  } kind = DriveTest;
-  double period = 0.01;                     ///< s, loop period (DriveTest, ServoTest)
-  double variation = 6.0;                   ///< 1/min (DriveTest, ServoTest); wheel radius in m (TwoWheel)
-  double wheel_distance = 0.5;              ///< m (TwoWheel)
-  std::vector<int> actuators;               ///< indices into Model::actuators
-  int target = -1;                          ///< CommandSchedule to a controller: index into Model::controllers
-  int values = 1;                           ///< CommandSchedule: values per row (1, or 2 for linear angular)
-  std::vector<double> commands;             ///< CommandSchedule: rows of (time s, values...), times increasing
-  std::string type;                         ///< Plugin: the type name
-  std::vector<double> numbers;              ///< Plugin: its number parameters, in the order it declared them
-  const SimbobType* plugin_type = nullptr;  ///< Plugin: the plug-in's type (simbob/plugin_c.h)
-  /// Plugin: per ref of the type, an index into Model::sensors (a sensor interface),
-  /// Model::actuators (RCDriver, RCPosControl, RCVelControl or an actuator type's interface) or
-  /// Model::bodies (RCBody).
-  std::vector<int> refs;
-  /// Plugin: per ref, what refs[i] indexes: 0 Model::actuators, 1 Model::sensors, 2 Model::bodies.
-  std::vector<uint8_t> ref_kind;
-  std::vector<int> sensors;       ///< indices into Model::sensors (WallStop, ObstacleAvoider, WallFollower)
-  double speed = 0.1;             ///< m/s (WallStop, GoToPoint, ObstacleAvoider, WallFollower)
-  int body = -1;                  ///< GoToPoint: index into Model::bodies whose pose it reads
-  double goal_x = 0, goal_z = 0;  ///< GoToPoint: the target point on the ground plane (m)
-  double turn_rate = 1.0;         ///< GoToPoint, ObstacleAvoider, WallFollower: largest angular velocity (rad/s)
-  double wall_distance = 0.3;     ///< WallFollower: m to keep between the scanner and the wall
-  int side = 1;                   ///< WallFollower: +1 the wall on the robot's left, -1 on its right
-  double tolerance = 0.05;        ///< GoToPoint: m from the goal at which it stops
-  std::string plugin;             ///< Plugin: the plug-in's name (SimbobPlugin::name), for messages
+    DriveTest,
+    ServoTest,
+    TwoWheel,
+    CommandSchedule,
+    WallStop,
+    Plugin,
+    GoToPoint,
+    ObstacleAvoider,
+    WallFollower,
+  };
+  std::variant<DriveTestDef, ServoTestDef, TwoWheelDef, CommandScheduleDef, WallStopDef, PluginControllerDef,
+               GoToPointDef, ObstacleAvoiderDef, WallFollowerDef>
+      def;
+  Kind kind() const { return static_cast<Kind>(def.index()); }
+  /// The definition of kind T (which must be this controller's).
+  template <typename T>
+  const T& as() const {
+    return std::get<T>(def);
+  }
 };
 
 /// An RCLocalSocketCommunicator (guide 6.11.6): a peer program on 127.0.0.1 that reads the

@@ -14,12 +14,21 @@ namespace simbob {
 /// "ODE <configuration>" of the linked ODE (precision and build options), for run summaries.
 std::string physicsVersion();
 
+/// The ODE release simbob was built against: "0.16.2" (CMake requires 0.16.x; the broad phase
+/// reproduces 0.16's pair order).
+std::string odeVersion();
+
 /// State of one mobile body, global frame.
 struct BodyState {
   Transform pose;
   Vec3 lin_vel{0, 0, 0};
   Vec3 ang_vel{0, 0, 0};
 };
+
+/// Writes `s` into the plug-in ABI's body_state() arrays (include/simbob/plugin_c.h): p[3]
+/// position, q[4] quaternion (w x y z), v[3] linear and w[3] angular velocity; a NULL array is
+/// skipped. One copy for the host's sensor/actuator mounts and for plug-in controllers.
+void copyBodyState(const BodyState& s, double* p, double* q, double* v, double* w);
 
 /// State of one joint: the motion of its child body (JointDef::body2) relative to its parent
 /// (JointDef::body1; -1 is the static world), measured about (hinge) or along (slider) the joint
@@ -47,15 +56,6 @@ struct WorldImpl;  // ODE handles; private to lib/physics (world_impl.h)
 /// in parallel within a process; for parallel worlds use processes. One World must be used from
 /// one thread at a time: a step that overlaps another step of the same World is refused (see
 /// step), and other calls must not overlap a step.
-struct Image;
-/// Where World::cameraImage looks: the Simulation's camera sensors (lib/simulation).
-class CameraImages {
- public:
-  virtual ~CameraImages() = default;
-  /// The latest image of the RCCameraSensor with this key; null if there is none.
-  virtual const Image* image(const std::string& key) const = 0;
-};
-
 class World {
  public:
   /// Validates nothing: the Model must come from compile(). `seed` is the starting state of
@@ -123,13 +123,6 @@ class World {
   const std::vector<double>& sensorReading(int sensor) const;
   /// Names of sensor i's quantities, in reading order (sensorQuantities of its SensorDef).
   const std::vector<std::string>& sensorQuantities(int sensor) const;
-  /// The latest image of the RCCameraSensor with this key (docs/sensors.md), drawn by the
-  /// Simulation before the controllers of its Period instants: how controllers and plug-ins see
-  /// it. Null for an unknown key, or in a World that no Simulation draws images for.
-  const Image* cameraImage(const std::string& key) const;
-  /// Where cameraImage looks (it must outlive its use here); null: nowhere.
-  void setCameraImages(const CameraImages* images);
-
   /// Index of the first body whose state is non-finite or beyond `limit` (m or m/s, rad/s),
   /// or -1 when all are fine.
   int firstBadBody(double limit = 1e6) const;

@@ -57,7 +57,4 @@ std::string registerPlugin(Registry& reg, const SimbobPlugin& plugin);
 /// types (65). A library is never unloaded.
 bool loadPluginLibrary(Registry& reg, const std::string& path, Error* error);
 
-/// Whether `interface` names an actuator interface (RCDriver, RCPosControl, RCVelControl).
-bool isActuatorInterface(const std::string& interface);
-
 }  // namespace simbob

@@ -66,7 +66,9 @@ typedef struct SimbobHost SimbobHost;
 
 /** simbob's side of one instance: call its functions with the host itself as first argument.
  * Valid only during the callback that received it. Every function returns 0 (or a count) on
- * success and -1 for an argument out of range, which also stops the run with an error. */
+ * success and -1 for an argument out of range, which also stops the run with an error: a ref out
+ * of range, a NULL host or one from another callback, a NULL pointer (body_state alone takes
+ * NULL for what it need not write), a negative n, a command that is not finite. */
 struct SimbobHost {
   uint32_t size; /**< sizeof(SimbobHost) as simbob built it */
   void* context; /**< simbob's; do not touch */
@@ -92,7 +94,7 @@ struct SimbobHost {
                     double angular[3]);
   /** Sensors and actuators: casts a ray from `origin` along `direction` (both in the mount frame;
    * the direction need not be unit) against every geom of another body (its own body and bodies
-   * joined to it are not seen; static geoms are, except from a static mount). Returns the
+   * joined to it are not seen, also on a static mount; every other geom is). Returns the
    * distance (m) to the first hit, or -1 when nothing is hit within max_length (in (0, 1e6] m).
    * The same world gives the same answer. */
   double (*cast_ray)(const SimbobHost* host, const double origin[3], const double direction[3], double max_length);
@@ -126,7 +128,8 @@ typedef struct SimbobType {
   void (*destroy)(void* user);
   /** Controllers: acts at simulated time t (s). */
   int (*act)(void* user, const SimbobHost* host, double t, char* message);
-  /** Sensors: writes the reading at time t (s) into out[0..n-1], n = quantity_count. */
+  /** Sensors: writes the reading at time t (s) into out[0..n-1], n = quantity_count, every entry
+   * finite (a NaN or infinite entry, or a write past out[n-1], stops the run with an error). */
   int (*read)(void* user, const SimbobHost* host, double t, double* out, int n, char* message);
   /** Actuators: the force (N) and torque (N m), in the mount frame, to apply at the mount's origin
    * during the next step of dt s, given the latest command (0 before the first). */

@@ -129,6 +129,15 @@ struct TypeSpec {
   int paramIndex(std::string_view name) const;
   /// Same, ignoring ASCII case (INI keys are case-insensitive).
   int paramIndexIgnoreCase(std::string_view name) const;
+  /// Indexes `params` by name (Registry::add does, once they are final), so that the two
+  /// lookups above take log time: a plug-in type may have thousands of parameters, and reading
+  /// every one of them by name must not take quadratic time.
+  void indexParams();
+
+ private:
+  std::map<std::string, int, std::less<>> by_name_;        ///< name -> first index (indexParams)
+  std::map<std::string, int, std::less<>> by_lower_name_;  ///< ASCII-lowercased name -> first index
+  size_t indexed_ = 0;                                     ///< params.size() when indexed (0: not)
 };
 
 /// A Macro creates a component of a fixed type with some parameters set ("NoGeom").

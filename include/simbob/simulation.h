@@ -20,40 +20,16 @@
 
 #include "simbob/error.h"
 #include "simbob/graph.h"
-#include "simbob/render.h"
+#include "simbob/renderer.h"
 #include "simbob/model.h"
+#include "simbob/options.h"
 #include "simbob/overrides.h"
 #include "simbob/physics.h"
 #include "simbob/registry.h"
-#include "simbob/run.h"
+#include "simbob/loop.h"
 #include "simbob/trajectory.h"
 
 namespace simbob {
-
-struct SimulationOptions {
-  std::vector<Override> overrides;  ///< applied to the scene before compiling (--set)
-  uint32_t seed = 0;                ///< ODE's random generator (QuickStep constraint order)
-  double dt = 0.0;                  ///< s; 0 = the scene's MaxTimeStep
-  double duration = 1e9;            ///< s: the end a run to completion stops at (runToEnd)
-  double max_access_time = 0.0;     ///< s; 0 = the scene's MaxAccessTime
-  double peer_timeout = 10.0;       ///< s a socket peer may take to connect or answer
-  int port_offset = 0;              ///< added to every RCLocalSocketCommunicator's Port
-  /// "KEY=COMMAND": the Controller of communicator KEY, in place of the scene's (run --controller;
-  /// paths relative to the current folder; "KEY=" = none, its peer is started by hand).
-  std::vector<std::string> controllers;
-  /// The file that takes the stdout and stderr of the controllers simbob starts ("" = simbob's
-  /// stderr); with several, ".KEY" is added to the name of each.
-  std::string controller_log;
-  double runaway_limit = 1e6;      ///< m or m/s beyond which a run diverged
-  double joint_apart_limit = 0.1;  ///< m between a joint's anchors beyond which it came apart
-  /// Set asynchronously (SIGINT/SIGTERM) to stop at the next step.
-  const volatile std::sig_atomic_t* stop = nullptr;
-  /// Called about every 1% of `duration` with the simulated time reached.
-  std::function<void(double)> progress;
-  /// Camera sensors' renderer (RCCameraSensor): GL back end and global TextureFolder.
-  GlBackend gl = GlBackend::Auto;
-  std::string texture_folder;
-};
 
 /// What the run summary says of a run beyond its model and result.
 struct RunSummaryInput {
@@ -67,6 +43,10 @@ struct RunSummaryInput {
 
 /// "completed", "diverged", "interrupted" or "failed".
 const char* runStatusName(RunStatus s);
+
+/// The folder communicator `d`'s Controller runs in, absolute (the scene's folder, or the
+/// current one for --controller).
+std::string controllerFolder(const SocketDef& d);
 
 /// The run summary JSON (docs/formats.md): version, scene, status, step, times, settings,
 /// counts, speed (waiting for peers excluded) and what reproducibility depends on. Clients
@@ -83,8 +63,9 @@ class Simulation {
   static std::unique_ptr<Simulation> fromFile(const std::string& path, const Registry& reg,
                                               const SimulationOptions& opts, Diagnostics& diag);
   /// The same from scene text in memory; `name` stands for the file in messages and imports.
-  static std::unique_ptr<Simulation> fromText(const std::string& text, const std::string& name, Format format,
-                                              const Registry& reg, const SimulationOptions& opts, Diagnostics& diag);
+  /// The format is the name's (sceneFormatOf: INI for .ini).
+  static std::unique_ptr<Simulation> fromText(const std::string& text, const std::string& name, const Registry& reg,
+                                              const SimulationOptions& opts, Diagnostics& diag);
   /// From a compiled Model (the CLI compiles it itself to report inputs). Null with the error in
   /// diag when an option does not fit the model (a port beyond 65535, a step beyond the clock).
   static std::unique_ptr<Simulation> fromModel(Model model, const SimulationOptions& opts, Diagnostics& diag);
@@ -151,7 +132,6 @@ class Simulation {
  private:
   explicit Simulation(Model model, SimulationOptions opts);
   bool start();
-  std::vector<Party*> sceneParties();
 
   Model model_;
   SimulationOptions opts_;

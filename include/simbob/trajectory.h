@@ -13,7 +13,6 @@
 #include <vector>
 
 #include "simbob/error.h"
-#include "simbob/files.h"
 
 namespace simbob {
 
@@ -29,7 +28,9 @@ inline constexpr size_t kPoseSize = 7;
 /// Doubles of the velocity block per body per sample: vx vy vz (m/s) wx wy wz (rad/s).
 inline constexpr size_t kVelocitySize = 6;
 
-/// Streams a trajectory CSV to an OutputFile (simbob/files.h): a temporary file next to the
+class OutputFile;  // simbob/tool/files.h
+
+/// Streams a trajectory CSV to an OutputFile (simbob/tool/files.h): a temporary file next to the
 /// final path, moved into place only on commit(), so a failed or interrupted run never leaves a
 /// truncated file under the final name; a device or FIFO is written through instead. Output is
 /// buffered (flushed in ~1 MiB blocks) and formatted with std::to_chars.
@@ -92,7 +93,6 @@ class TrajectoryWriter {
 
   const std::string& finalPath() const { return final_path_; }
   const std::string& tempPath() const;
-  const std::vector<std::string>& bodyKeys() const { return keys_; }
 
  private:
   TrajectoryWriter() = default;

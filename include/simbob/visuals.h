@@ -8,11 +8,16 @@
 #include <string>
 #include <vector>
 
+#include "simbob/error.h"
 #include "simbob/frames.h"
 
 namespace simbob {
 
 using Rgba = std::array<double, 4>;
+
+/// Which GL implementation renders: Auto tries EGL (surfaceless, then device platform), then
+/// OSMesa.
+enum class GlBackend { Auto, Egl, OsMesa };
 
 /// A surface's appearance (RCColoredSkin, RCTexturedSkin, RCColTexSkin).
 struct SkinDef {
@@ -27,6 +32,8 @@ struct SkinDef {
   bool colored = true;   ///< has a base colour (RCColoredSkin, RCColTexSkin)
   std::string texture;   ///< Texture as written ("" = none)
   std::string base_dir;  ///< directory of the file the skin is written in (textures beside the scene)
+  std::string type;      ///< RCColoredSkin, RCTexturedSkin, RCColTexSkin (for messages)
+  SourceLoc loc;         ///< where it is written
 };
 
 /// One visible primitive: a model of the tree of a body (or a ground, sky, sandbox wall, rod).

@@ -23,6 +23,7 @@ struct Built {
   int index = -1;
   Transform frame;
   bool ok = false;
+  int static_id = -1;  ///< a static body: its number among the scene's static bodies (GeomDef::static_body)
 };
 
 /// Where a geom lands: the body that owns it and the frames its pose is relative to.
@@ -32,6 +33,7 @@ struct GeomTarget {
   Transform frame;                   ///< the owner's global frame
   int material = 0;                  ///< Model::materials index
   const Link* model = nullptr;       ///< the owner's Model (for model-derived geoms)
+  int static_body = -1;              ///< body == -1: the owner's number among the static bodies
 };
 
 class CompileContext {
@@ -115,7 +117,8 @@ class CompileContext {
   int clone_depth = 0;
   std::map<int, Built> memo;
   std::set<int> in_progress;
-  bool too_big = false;  ///< a size bound was hit (reported once)
+  int static_bodies = 0;  ///< static bodies lowered so far (Built::static_id)
+  bool too_big = false;   ///< a size bound was hit (reported once)
 
   /// The meshes of this compile (simbob/mesh.h): each file + scale + up axis is read once.
   MeshCache mesh_cache;

@@ -24,7 +24,7 @@ constexpr double kAnchorFar = 10.0;       // anchor farther than this many body 
 constexpr double kAnchorFarMin = 2.0;     // m; pendulum rods up to this length are normal
 constexpr double kOverlap = 1e-3;         // m of penetration that counts as overlap
 constexpr int kMaxPerKind = 20;
-constexpr double kRunaway = 1e6;  // m and m/s: RunOptions::runaway_limit
+constexpr double kRunaway = 1e6;  // m and m/s: SimulationOptions::runaway_limit
 
 double boundingRadius(const GeomDef& g) {
   switch (g.shape) {
@@ -156,16 +156,33 @@ class Linter {
             {}, "... and " + countOf(static_cast<size_t>(n), "more warning", "more warnings") + " like '" + kind + "'");
   }
 
+  /// What a warning is about, as data: indices into Model::bodies and Model::joints.
+  struct Subjects {
+    std::vector<int> bodies, joints;
+  };
+
+  /// The first warning said about body `body` or joint `joint` (-1: none), or "".
+  std::string firstAbout(int body, int joint) const {
+    for (const auto& [s, message] : findings_)
+      if ((body >= 0 && std::count(s.bodies.begin(), s.bodies.end(), body)) ||
+          (joint >= 0 && std::count(s.joints.begin(), s.joints.end(), joint)))
+        return message;
+    return "";
+  }
+
  private:
-  void warn(const std::string& kind, const SourceLoc& loc, const std::string& msg) {
+  void warn(const std::string& kind, const SourceLoc& loc, Subjects about, const std::string& msg) {
     if (++counts_[kind] > kMaxPerKind) {
       ++suppressed_[kind];
       return;
     }
     d_.warning(loc, msg);
+    findings_.emplace_back(std::move(about), msg);
   }
 
-  // A run stops as diverged when a body is beyond kRunaway m (RunOptions::runaway_limit): a
+  int jointIndex(const JointDef& j) const { return static_cast<int>(&j - m_.joints.data()); }
+
+  // A run stops as diverged when a body is beyond kRunaway m (SimulationOptions::runaway_limit): a
   // body that starts there can never run, whatever the step. An error, not a warning. (A start
   // that fast only diverges at the first step, as it should.)
   void farAway() {
@@ -213,10 +230,11 @@ class Linter {
   // An axle the other way turns its wheel backwards on a forward command.
   void wheelAxles() {
     for (const ControllerDef& c : m_.controllers) {
-      if (c.kind != ControllerDef::TwoWheel || c.actuators.size() < 2) continue;
+      if (c.kind() != ControllerDef::TwoWheel) continue;
+      const TwoWheelDef& wheels = c.as<TwoWheelDef>();
       const JointDef* j[2] = {};
       for (size_t k = 0; k < 2; ++k) {
-        const int a = c.actuators[k];
+        const int a = k == 0 ? wheels.left : wheels.right;
         if (a < 0 || static_cast<size_t>(a) >= m_.actuators.size()) break;
         const int ji = m_.actuators[static_cast<size_t>(a)].joint;
         if (ji >= 0 && m_.joints[static_cast<size_t>(ji)].kind == JointKind::Hinge)
@@ -234,7 +252,7 @@ class Linter {
         // A positive command turns the child relative to the parent about +axis.
         const Vec3 wheel_axis = j[k]->body2 == chassis ? scale(j[k]->axis, -1) : j[k]->axis;
         if (dot(wheel_axis, left) >= 0) continue;
-        warn("wheel axle", j[k]->loc,
+        warn("wheel axle", j[k]->loc, {{}, {jointIndex(*j[k])}},
              "joint '" + j[k]->key + "' (the " + side[k] + " wheel of RCTwoWheelMotionControl '" + c.key +
                  "') turns its wheel backwards on a forward command: the wheel turns about the robot's right; "
                  "point the hinge axis from the right wheel to the left one (now " +
@@ -253,7 +271,7 @@ class Linter {
       double a = body(j.body1).mass, b = body(j.body2).mass;
       double ratio = std::max(a, b) / std::min(a, b);
       if (ratio > kMassRatio)
-        warn("mass ratio", j.loc,
+        warn("mass ratio", j.loc, {{}, {jointIndex(j)}},
              "joint '" + j.key + "' connects masses " + formatApprox(a) + " kg and " + formatApprox(b) + " kg (ratio " +
                  formatApprox(std::round(ratio)) + " > " + formatApprox(kMassRatio) +
                  "): QuickStep converges slowly and joints stretch; bring the masses closer, raise "
@@ -276,7 +294,7 @@ class Linter {
             Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia, Eigen::EigenvaluesOnly).eigenvalues()[0];
         double reference = b.mass * d * d;
         if (reference > 0 && smallest < kInertiaRatio * reference)
-          warn("inertia ratio", b.loc,
+          warn("inertia ratio", b.loc, {{bi}, {jointIndex(j)}},
                "body '" + b.key + "' (" + formatApprox(b.mass) + " kg) sits " + formatApprox(d) + " m from joint '" +
                    j.key + "' but its smallest moment of inertia is " + formatApprox(smallest) + " kg m^2, " +
                    formatApprox(smallest / reference) + " of m*d^2 (below " + formatApprox(kInertiaRatio) +
@@ -324,7 +342,7 @@ class Linter {
       double period = 2 * kPi * std::sqrt(i_pivot / (b.mass * g_eff * lever));
       recommended_ = std::min(recommended_, period / kStepsPerPeriod);
       if (dt() > period / kStepsPerPeriod)
-        warn("step size", j.loc,
+        warn("step size", j.loc, {{}, {jointIndex(j)}},
              "joint '" + j.key + "' makes a pendulum of period " + formatApprox(period) + " s but the step is " +
                  formatApprox(dt()) + " s (fewer than " + formatApprox(kStepsPerPeriod) +
                  " steps per swing): the motion loses energy or blows up; use --dt " +
@@ -341,7 +359,7 @@ class Linter {
         double size = std::max(size_[static_cast<size_t>(bi)], 0.01);
         double dist = norm(sub(b.pose.p, j.anchor));
         if (dist > kAnchorFar * size && dist > kAnchorFarMin)
-          warn("anchor far", j.loc,
+          warn("anchor far", j.loc, {{bi}, {jointIndex(j)}},
                "joint '" + j.key + "' has its anchor " + formatApprox(dist) + " m from body '" + b.key + "' (about " +
                    formatApprox(size) +
                    " m in size): check the joint's Pose and Hinge/Anchor "
@@ -367,7 +385,7 @@ class Linter {
       double travel = speed * dt();
       if (speed > 0) recommended_ = std::min(recommended_, 0.5 * thin_[i] / speed);
       if (travel > 0.5 * thin_[i])
-        warn("tunneling", b.loc,
+        warn("tunneling", b.loc, {{static_cast<int>(i)}, {}},
              "body '" + b.key + "' is " + formatApprox(thin_[i]) + " m thin and may move " + formatApprox(speed) +
                  " m/s, " + formatApprox(travel) +
                  " m per step: it can pass through other bodies in one step; "
@@ -405,7 +423,7 @@ class Linter {
           return "'" + owner(g) + "' (" + file.substr(file.find_last_of('/') + 1) +
                  (l.line > 0 ? ", " + l.file.str() + ":" + std::to_string(l.line) : std::string()) + ")";
         };
-        warn("trimesh pair", loc(a.body >= 0 ? a : b),
+        warn("trimesh pair", loc(a.body >= 0 ? a : b), {{a.body, b.body}, {}},
              "the triangle meshes of " + where(a) + " and " + where(b) +
                  " can touch: ODE's contacts between two triangle meshes are unreliable; give the moving one "
                  "its convex hull (Hull=\"True\") or a primitive geom");
@@ -419,7 +437,7 @@ class Linter {
       for (const GeomDef* plane : planes_) {
         double c = planeClearance(*p.g, p.t, plane->plane);
         if (c < -kOverlap)
-          warn("overlap", loc(*p.g),
+          warn("overlap", loc(*p.g), {{p.g->body}, {}},
                "body '" + owner(*p.g) + "' starts " + formatApprox(-c) + " m inside the plane of '" + owner(*plane) +
                    "': ODE pushes it out violently at the first step; move it out");
       }
@@ -446,6 +464,8 @@ class Linter {
         if (a.g->body == b.g->body || (a.g->body < 0 && b.g->body < 0)) continue;
         if (a.g->body >= 0 && b.g->body >= 0 && joined(a.g->body, b.g->body)) continue;
         if (a.g->group >= 0 && a.g->group == b.g->group) continue;  // one URDF robot's links never collide
+        // A triangle mesh's bounds say little of its surface: a ramp's box holds what rests on it.
+        if (a.g->shape == GeomShape::TriMesh || b.g->shape == GeomShape::TriMesh) continue;
         double depth;
         if (a.g->shape == GeomShape::Sphere && b.g->shape == GeomShape::Sphere) {
           depth = a.g->size[0] + b.g->size[0] - norm(sub(a.t.p, b.t.p));
@@ -457,7 +477,7 @@ class Linter {
         std::pair<int, int> key{std::min(a.g->body, b.g->body), std::max(a.g->body, b.g->body)};
         if (!reported.insert(key).second) continue;
         const GeomDef& mob = a.g->body >= 0 ? *a.g : *b.g;
-        warn("overlap", loc(mob),
+        warn("overlap", loc(mob), {{a.g->body, b.g->body}, {}},
              "bodies '" + owner(*a.g) + "' and '" + owner(*b.g) + "' overlap by about " + formatApprox(depth) +
                  " m at t = 0: ODE pushes them apart violently at the first step; move them apart (or join "
                  "them with a joint)");
@@ -475,6 +495,7 @@ class Linter {
   std::vector<const GeomDef*> planes_;
   std::set<std::pair<int, int>> joined_;
   std::map<std::string, int> counts_, suppressed_;
+  std::vector<std::pair<Subjects, std::string>> findings_;  ///< every warning said, with its subjects
 };
 
 }  // namespace
@@ -488,17 +509,12 @@ double recommendedStep(const Model& model) {
   return l.recommendedStep();
 }
 
-void explainDivergence(const Model& model, Error* error) {
-  const size_t q = error->message.find('\'');
-  if (q == std::string::npos) return;
-  const std::string key = error->message.substr(q + 1, error->message.find('\'', q + 1) - q - 1);
+void explainDivergence(const Model& model, int body, int joint, Error* error) {
   Diagnostics lint;
-  lintModel(model, lint);
-  for (const auto& w : lint.warnings())
-    if (w.message.find("'" + key + "'") != std::string::npos) {
-      error->message += "; likely cause: " + w.message;
-      return;
-    }
+  Linter l(model, lint, 0);
+  l.run();
+  const std::string cause = l.firstAbout(body, joint);
+  if (!cause.empty()) error->message += "; likely cause: " + cause;
 }
 
 }  // namespace simbob

@@ -8,8 +8,7 @@
 namespace simbob {
 
 std::vector<std::string> describeMeshes(const Model& model) {
-  std::vector<size_t> hulls(model.meshes.size(), 0), trimeshes(model.meshes.size(), 0),
-      visuals(model.meshes.size(), 0);
+  std::vector<size_t> hulls(model.meshes.size(), 0), trimeshes(model.meshes.size(), 0), visuals(model.meshes.size(), 0);
   for (const GeomDef& g : model.geoms) {
     if (g.mesh < 0) continue;
     (g.shape == GeomShape::ConvexHull ? hulls : trimeshes)[static_cast<size_t>(g.mesh)]++;
@@ -19,10 +18,9 @@ std::vector<std::string> describeMeshes(const Model& model) {
   std::vector<std::string> out;
   for (size_t i = 0; i < model.meshes.size(); ++i) {
     const MeshData& m = *model.meshes[i].data;
-    std::string line = "mesh " + m.file + " (scale " + formatApprox(m.scale[0]) + " " + formatApprox(m.scale[1]) +
-                       " " + formatApprox(m.scale[2]) + "): " + countOf(m.vertices.size(), "vertex", "vertices") +
-                       ", " + countOf(m.triangles.size(), "triangle", "triangles") +
-                       (m.closed ? ", closed" : ", not closed");
+    std::string line = "mesh " + m.file + " (scale " + formatApprox(m.scale[0]) + " " + formatApprox(m.scale[1]) + " " +
+                       formatApprox(m.scale[2]) + "): " + countOf(m.vertices.size(), "vertex", "vertices") + ", " +
+                       countOf(m.triangles.size(), "triangle", "triangles") + (m.closed ? ", closed" : ", not closed");
     if (hulls[i])
       line += "; hull of " + countOf(hulls[i], "geom", "geoms") + " (" +
               countOf(m.hull.pointCount(), "point", "points") + ", " + countOf(m.hull.faceCount(), "face", "faces") +

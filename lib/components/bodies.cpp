@@ -96,7 +96,8 @@ Built lowerUncached(CompileContext& ctx, int ci, const Transform* parent) {
     case BodyKind::StaticRigid: {
       if (!lowerPose(ctx, c.get(kPose), c, parent, &out.frame)) return out;
       checkModelTree(ctx, c.get(kModel));
-      GeomTarget t{&c, -1, out.frame, lowerMaterial(ctx, c.get(kMaterial)), &c.get(kModel)};
+      out.static_id = ctx.static_bodies++;
+      GeomTarget t{&c, -1, out.frame, lowerMaterial(ctx, c.get(kMaterial)), &c.get(kModel), out.static_id};
       lowerGeom(ctx, c.get(kGeom), t, Transform{});
       lowerVisuals(ctx, c.get(kModel), -1, out.frame, c.qkey);
       out.ok = true;
@@ -112,9 +113,13 @@ Built lowerUncached(CompileContext& ctx, int ci, const Transform* parent) {
       int index = static_cast<int>(ctx.model.bodies.size());
       size_t first_geom = ctx.model.geoms.size();
       GeomTarget t{&c, index, b.pose, lowerMaterial(ctx, c.get(kMaterial)), &c.get(kModel)};
+      const size_t errors = ctx.diag.errors().size();
       lowerGeom(ctx, c.get(kGeom), t, Transform{});
       // A bad inertia is reported and the body kept, so that what hangs on it is checked too.
-      lowerInertia(ctx, c.get(kInertia), c, first_geom, &b);
+      // A body whose geoms all failed (a missing mesh file) has no volume to weigh: their errors
+      // say it all.
+      if (ctx.model.geoms.size() > first_geom || ctx.diag.errors().size() == errors)
+        lowerInertia(ctx, c.get(kInertia), c, first_geom, &b);
       lowerVisuals(ctx, c.get(kModel), index, Transform{}, b.key);
       return addMobileBody(ctx, b);
     }

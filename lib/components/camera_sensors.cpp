@@ -20,6 +20,9 @@ constexpr ValueParam<double> kFarClip{"FarClip"};
 constexpr ValueParam<double> kPeriod{"Period"};
 
 constexpr int64_t kMaxSide = 8192;  // pixels: the renderer's kMaxSide
+/// Pixels of all camera sensors' images together: one full-size image. Each pixel costs about
+/// 12 bytes (the image, its GL colour and depth buffers, the read-back copy): 800 MB.
+constexpr int64_t kMaxPixels = kMaxSide * kMaxSide;
 
 }  // namespace
 
@@ -58,6 +61,14 @@ void lowerCameraSensor(CompileContext& ctx, const Component& c, const Built& par
     ok = false;
   }
   if (!lowerSensorPose(ctx, c, c.get(kPose), parent, &cam.pose)) ok = false;
+  int64_t pixels = int64_t{s.width} * s.height;
+  for (const CameraSensorDef& other : ctx.model.camera_sensors) pixels += int64_t{other.width} * other.height;
+  if (ok && pixels > kMaxPixels) {
+    ctx.errorAt(c.slotOf(kWidth), c,
+                "the camera sensors' images together would be " + std::to_string(pixels) + " pixels, more than " +
+                    std::to_string(kMaxPixels) + " (one 8192 x 8192 image)");
+    ok = false;
+  }
   // On a mobile body the pose rides with it; on a static root it is global.
   cam.body = parent.index;
   cam.kind = parent.index >= 0 ? CameraDef::Mounted : CameraDef::Static;

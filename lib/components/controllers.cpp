@@ -178,7 +178,7 @@ int mobileBodyOf(CompileContext& ctx, const Component& c, LinkParam param) {
 /// or the Model::sensors index of the sensor it refers to (which must offer r.interface;
 /// "RCSensor": any sensor), or for "RCBody" the Model::bodies index of the mobile body, and
 /// returns it, or -1 after an error.
-int pluginRefOf(CompileContext& ctx, const Component& c, const PluginRef& r, ControllerDef* d) {
+int pluginRefOf(CompileContext& ctx, const Component& c, const PluginRef& r, PluginControllerDef* d) {
   const LinkParam param{r.name.c_str()};
   if (r.interface == "RCBody") {
     const int b = mobileBodyOf(ctx, c, param);
@@ -312,6 +312,167 @@ void registerControllers(Registry& r) {
          "Follows a wall on one side at a set distance, turning at corners (docs/sensors.md)."});
 }
 
+namespace {
+
+// ---- one lowering per kind: fills its definition, false after an error (reported) ----
+
+/// The actuator behind `param`, which must implement `interface`: its Model index, or -1.
+int actuatorParam(CompileContext& ctx, const Component& c, LinkParam param, const char* interface) {
+  const Component* t = target(ctx, c, param, interface);
+  return t ? actuatorOf(ctx, c, c.get(param), *t) : -1;
+}
+
+bool lowerDriveTest(CompileContext& ctx, const Component& c, DriveTestDef* d) {
+  d->period = c.get(kPeriod);
+  d->variation = c.get(kVariation);
+  d->drive = actuatorParam(ctx, c, kDrive, "RCDriver");
+  return d->drive >= 0;
+}
+
+bool lowerServoTest(CompileContext& ctx, const Component& c, ServoTestDef* d) {
+  d->period = c.get(kPeriod);
+  d->variation = c.get(kVariation);
+  const Component* servo = target(ctx, c, kPosControl, "RCPosControl");
+  double lo, hi;
+  if (servo && peripheryLimits(*servo, &lo, &hi) && !(std::isfinite(lo) && std::isfinite(hi))) {
+    ctx.error(c, "RCServoTest moves its servo between MinPos and MaxPos, but " + CompileContext::describe(*servo) +
+                     " has an infinite limit");
+    servo = nullptr;
+  }
+  d->servo = servo ? actuatorOf(ctx, c, c.get(kPosControl), *servo) : -1;
+  return d->servo >= 0;
+}
+
+bool lowerTwoWheel(CompileContext& ctx, const Component& c, TwoWheelDef* d) {
+  d->wheel_distance = c.get(kWheelDistance);
+  d->wheel_radius = c.get(kVariation);
+  d->left = actuatorParam(ctx, c, kControlLeft, "RCVelControl");
+  d->right = actuatorParam(ctx, c, kControlRight, "RCVelControl");
+  return d->left >= 0 && d->right >= 0;
+}
+
+bool lowerCommandSchedule(CompileContext& ctx, const Component& c, CommandScheduleDef* d) {
+  const Link& l = c.get(kTarget);
+  if (l.comp < 0) {
+    if (!l.isRef())
+      ctx.error(c,
+                "parameter 'Target' is required (a Ref to a component implementing RCDriver, RCPosControl, "
+                "RCVelControl or RC2DMotionControl)");
+    return false;
+  }
+  const Component& t = ctx.at(l.comp);
+  bool ok = true;
+  if (t.type->implements("RC2DMotionControl")) {
+    d->values = 2;
+    lowerController(ctx, t);  // a target listed later is lowered now, so its index is known
+    auto it = ctx.controller_index.find(l.comp);
+    d->target = it == ctx.controller_index.end() ? -1 : it->second;
+    ok = d->target >= 0;
+  } else if (t.type->implements("RCDriver") || t.type->implements("RCPosControl") ||
+             t.type->implements("RCVelControl")) {
+    d->actuator = actuatorOf(ctx, c, l, t);
+    ok = d->actuator >= 0;
+  } else {
+    ctx.error(l, c,
+              "parameter 'Target' must refer to a component implementing RCDriver, RCPosControl, RCVelControl "
+              "or RC2DMotionControl, but " +
+                  CompileContext::describe(t) + " does not");
+    return false;
+  }
+  return parseCommands(ctx, c, d->values, &d->commands) && ok;
+}
+
+bool lowerWallStop(CompileContext& ctx, const Component& c, WallStopDef* d) {
+  d->period = c.get(kPeriod);
+  d->speed = c.get(kSpeed);
+  d->target = motionControlOf(ctx, c, kMotion);
+  d->sensor = sensorOf(ctx, c, kSensor);
+  return d->target >= 0 && d->sensor >= 0;
+}
+
+bool lowerPluginController(CompileContext& ctx, const Component& c, PluginControllerDef* d) {
+  const PluginType& t = *c.type->plugin;
+  d->type = t.name;
+  d->plugin = t.plugin;
+  d->plugin_type = t.c;
+  d->period = c.get(kPeriod);
+  bool ok = true;
+  for (const PluginRef& r : t.refs)
+    if (pluginRefOf(ctx, c, r, d) < 0) ok = false;
+  for (const PluginNumber& n : t.numbers) d->numbers.push_back(c.get(ValueParam<double>{n.name.c_str()}));
+  return ok;
+}
+
+bool lowerGoToPoint(CompileContext& ctx, const Component& c, GoToPointDef* d) {
+  d->period = c.get(kPeriod);
+  d->speed = c.get(kSpeed);
+  d->turn_rate = c.get(kTurnRate);
+  d->tolerance = c.get(kTolerance);
+  d->target = motionControlOf(ctx, c, kMotion);
+  d->body = mobileBodyOf(ctx, c, kBody);
+  const bool goal = parseGoal(ctx, c, &d->goal_x, &d->goal_z);
+  return goal && d->target >= 0 && d->body >= 0;
+}
+
+bool lowerObstacleAvoider(CompileContext& ctx, const Component& c, ObstacleAvoiderDef* d) {
+  d->period = c.get(kPeriod);
+  d->speed = c.get(kSpeed);
+  d->turn_rate = c.get(kTurnRate);
+  d->target = motionControlOf(ctx, c, kMotion);
+  const std::vector<Link>& sensors = c.get(kSensors);
+  if (sensors.empty()) ctx.error(c, "parameter 'Sensors' needs at least one Ref to an RCRangeSensor");
+  for (const Link& l : sensors) d->sensors.push_back(sensorLinkOf(ctx, c, l, kSensors.name, "RCRangeSensor"));
+  return d->target >= 0 && !sensors.empty() && !std::count(d->sensors.begin(), d->sensors.end(), -1);
+}
+
+bool lowerWallFollower(CompileContext& ctx, const Component& c, WallFollowerDef* d) {
+  d->period = c.get(kPeriod);
+  d->speed = c.get(kSpeed);
+  d->turn_rate = c.get(kTurnRate);
+  d->wall_distance = c.get(kDistance);
+  d->side = c.get(kSideParam) == 0 ? 1 : -1;
+  d->target = motionControlOf(ctx, c, kMotion);
+  const Component* t = target(ctx, c, kScanner, "RCLaserScanner");
+  d->scanner = t ? sensorLinkOf(ctx, c, c.get(kScanner), kScanner.name, "RCLaserScanner") : -1;
+  return d->target >= 0 && d->scanner >= 0;
+}
+
+/// The kind's definition, lowered by its function: the one dispatch over controller kinds.
+template <typename Def>
+bool lowerAs(CompileContext& ctx, const Component& c, ControllerDef* d,
+             bool (*lower)(CompileContext&, const Component&, Def*)) {
+  Def def;
+  const bool ok = lower(ctx, c, &def);
+  d->def = std::move(def);
+  return ok;
+}
+
+bool lowerKind(CompileContext& ctx, const Component& c, ControllerDef* d) {
+  switch (static_cast<ControllerKind>(c.type->kind)) {
+    case ControllerKind::DriveTest:
+      return lowerAs(ctx, c, d, lowerDriveTest);
+    case ControllerKind::ServoTest:
+      return lowerAs(ctx, c, d, lowerServoTest);
+    case ControllerKind::TwoWheelMotionControl:
+      return lowerAs(ctx, c, d, lowerTwoWheel);
+    case ControllerKind::CommandSchedule:
+      return lowerAs(ctx, c, d, lowerCommandSchedule);
+    case ControllerKind::WallStop:
+      return lowerAs(ctx, c, d, lowerWallStop);
+    case ControllerKind::Plugin:
+      return lowerAs(ctx, c, d, lowerPluginController);
+    case ControllerKind::GoToPoint:
+      return lowerAs(ctx, c, d, lowerGoToPoint);
+    case ControllerKind::ObstacleAvoider:
+      return lowerAs(ctx, c, d, lowerObstacleAvoider);
+    case ControllerKind::WallFollower:
+      return lowerAs(ctx, c, d, lowerWallFollower);
+  }
+  return false;
+}
+
+}  // namespace
+
 void lowerController(CompileContext& ctx, const Component& c) {
   const int ci = ctx.indexOf(c);
   if (ctx.controller_index.count(ci)) return;  // lowered already (a schedule's target, or listed twice)
@@ -319,140 +480,7 @@ void lowerController(CompileContext& ctx, const Component& c) {
   ControllerDef d;
   d.key = c.qkey;
   d.loc = c.loc;
-  bool ok = true;
-  // The actuator behind `param`, which must implement `interface`.
-  auto actuator = [&](LinkParam param, const char* interface) {
-    const Component* t = target(ctx, c, param, interface);
-    const int i = t ? actuatorOf(ctx, c, c.get(param), *t) : -1;
-    if (i < 0) ok = false;
-    d.actuators.push_back(i);
-  };
-  switch (static_cast<ControllerKind>(c.type->kind)) {
-    case ControllerKind::DriveTest:
-      d.kind = ControllerDef::DriveTest;
-      d.period = c.get(kPeriod);
-      d.variation = c.get(kVariation);
-      actuator(kDrive, "RCDriver");
-      break;
-    case ControllerKind::ServoTest: {
-      d.kind = ControllerDef::ServoTest;
-      d.period = c.get(kPeriod);
-      d.variation = c.get(kVariation);
-      const Component* servo = target(ctx, c, kPosControl, "RCPosControl");
-      double lo, hi;
-      if (servo && peripheryLimits(*servo, &lo, &hi) && !(std::isfinite(lo) && std::isfinite(hi))) {
-        ctx.error(c, "RCServoTest moves its servo between MinPos and MaxPos, but " + CompileContext::describe(*servo) +
-                         " has an infinite limit");
-        servo = nullptr;
-      }
-      const int i = servo ? actuatorOf(ctx, c, c.get(kPosControl), *servo) : -1;
-      if (i < 0) ok = false;
-      d.actuators.push_back(i);
-      break;
-    }
-    case ControllerKind::TwoWheelMotionControl:
-      d.kind = ControllerDef::TwoWheel;
-      d.wheel_distance = c.get(kWheelDistance);
-      d.variation = c.get(kVariation);
-      actuator(kControlLeft, "RCVelControl");
-      actuator(kControlRight, "RCVelControl");
-      break;
-    case ControllerKind::CommandSchedule: {
-      d.kind = ControllerDef::CommandSchedule;
-      const Link& l = c.get(kTarget);
-      if (l.comp < 0) {
-        if (!l.isRef())
-          ctx.error(c,
-                    "parameter 'Target' is required (a Ref to a component implementing RCDriver, RCPosControl, "
-                    "RCVelControl or RC2DMotionControl)");
-        ok = false;
-        break;
-      }
-      const Component& t = ctx.at(l.comp);
-      if (t.type->implements("RC2DMotionControl")) {
-        d.values = 2;
-        lowerController(ctx, t);  // a target listed later is lowered now, so its index is known
-        auto it = ctx.controller_index.find(l.comp);
-        d.target = it == ctx.controller_index.end() ? -1 : it->second;
-        if (d.target < 0) {
-          ok = false;
-        }
-      } else if (t.type->implements("RCDriver") || t.type->implements("RCPosControl") ||
-                 t.type->implements("RCVelControl")) {
-        const int i = actuatorOf(ctx, c, l, t);
-        if (i < 0) ok = false;
-        d.actuators.push_back(i);
-      } else {
-        ctx.error(l, c,
-                  "parameter 'Target' must refer to a component implementing RCDriver, RCPosControl, RCVelControl "
-                  "or RC2DMotionControl, but " +
-                      CompileContext::describe(t) + " does not");
-        ok = false;
-        break;
-      }
-      if (!parseCommands(ctx, c, d.values, &d.commands)) ok = false;
-      break;
-    }
-    case ControllerKind::WallStop:
-      d.kind = ControllerDef::WallStop;
-      d.period = c.get(kPeriod);
-      d.speed = c.get(kSpeed);
-      d.target = motionControlOf(ctx, c, kMotion);
-      d.sensors.push_back(sensorOf(ctx, c, kSensor));
-      if (d.target < 0 || d.sensors[0] < 0) ok = false;
-      break;
-    case ControllerKind::Plugin: {
-      const PluginType& t = *c.type->plugin;
-      d.kind = ControllerDef::Plugin;
-      d.type = t.name;
-      d.plugin = t.plugin;
-      d.plugin_type = t.c;
-      d.period = c.get(kPeriod);
-      for (const PluginRef& r : t.refs) {
-        const int i = pluginRefOf(ctx, c, r, &d);
-        if (i < 0) ok = false;
-      }
-      for (const PluginNumber& n : t.numbers) d.numbers.push_back(c.get(ValueParam<double>{n.name.c_str()}));
-      break;
-    }
-    case ControllerKind::GoToPoint:
-      d.kind = ControllerDef::GoToPoint;
-      d.period = c.get(kPeriod);
-      d.speed = c.get(kSpeed);
-      d.turn_rate = c.get(kTurnRate);
-      d.tolerance = c.get(kTolerance);
-      d.target = motionControlOf(ctx, c, kMotion);
-      d.body = mobileBodyOf(ctx, c, kBody);
-      if (!parseGoal(ctx, c, &d.goal_x, &d.goal_z)) ok = false;
-      if (d.target < 0 || d.body < 0) ok = false;
-      break;
-    case ControllerKind::ObstacleAvoider: {
-      d.kind = ControllerDef::ObstacleAvoider;
-      d.period = c.get(kPeriod);
-      d.speed = c.get(kSpeed);
-      d.turn_rate = c.get(kTurnRate);
-      d.target = motionControlOf(ctx, c, kMotion);
-      const std::vector<Link>& sensors = c.get(kSensors);
-      if (sensors.empty()) ctx.error(c, "parameter 'Sensors' needs at least one Ref to an RCRangeSensor");
-      for (const Link& l : sensors) d.sensors.push_back(sensorLinkOf(ctx, c, l, kSensors.name, "RCRangeSensor"));
-      if (d.target < 0 || sensors.empty() || std::count(d.sensors.begin(), d.sensors.end(), -1)) ok = false;
-      break;
-    }
-    case ControllerKind::WallFollower: {
-      d.kind = ControllerDef::WallFollower;
-      d.period = c.get(kPeriod);
-      d.speed = c.get(kSpeed);
-      d.turn_rate = c.get(kTurnRate);
-      d.wall_distance = c.get(kDistance);
-      d.side = c.get(kSideParam) == 0 ? 1 : -1;
-      d.target = motionControlOf(ctx, c, kMotion);
-      const Component* t = target(ctx, c, kScanner, "RCLaserScanner");
-      d.sensors.push_back(t ? sensorLinkOf(ctx, c, c.get(kScanner), kScanner.name, "RCLaserScanner") : -1);
-      if (d.target < 0 || d.sensors[0] < 0) ok = false;
-      break;
-    }
-  }
-  if (!ok) return;
+  if (!lowerKind(ctx, c, &d)) return;
   ctx.controller_index[ci] = static_cast<int>(ctx.model.controllers.size());
   ctx.model.controllers.push_back(std::move(d));
 }

@@ -19,7 +19,9 @@ constexpr ValueParam<double> kDepth{"Depth"};
 constexpr ValueParam<double> kRadius{"Radius"};
 constexpr ValueParam<double> kLength{"Length"};
 constexpr ValueParam<Triple> kScale{"Scale"};
-constexpr ValueParam<bool> kHull{"Hull"};
+constexpr EnumParam kHull{"Hull"};
+/// Auto decides by the body (a dump writes the default as it is, so it must not be True or False).
+const EnumTable kHullChoice{"Hull", {{"Auto", 0}, {"True", 1}, {"False", 2}}};
 
 }  // namespace
 
@@ -71,9 +73,9 @@ void registerGeoms(Registry& r) {
          int(GeomKind::Mesh),
          {text(kFileParam, "", "mesh file (.stl, .obj, .dae), relative to this file; docs/meshes.md"),
           triple(kScale, {1, 1, 1}, "", "factors along the body's X, Y, Z (0.001 for a file in millimetres)"),
-          flag(kHull, true,
-               "True: the convex hull of the mesh (dGeomConvex); False: its triangles (dGeomTriMesh). Unset "
-               "on a static body: the triangles")},
+          enumParam(kHull, ValueType::Enum, &kHullChoice, 0,
+                    "True: the convex hull of the mesh (dGeomConvex); False: its triangles (dGeomTriMesh); Auto: "
+                    "the hull on a mobile body, the triangles on a static one")},
          {},
          "Collision shape from a mesh file, in the body frame (Y up; a COLLADA file's unit and up axis are "
          "applied)."});
@@ -103,6 +105,7 @@ void lowerGeom(CompileContext& ctx, const Link& l, const GeomTarget& t, const Tr
   GeomDef g;
   g.key = ctx.modelKey(*t.owner);
   g.body = t.body;
+  g.static_body = t.static_body;
   g.material = t.material;
   g.offset = offset;
   g.loc = c.loc;
@@ -148,8 +151,8 @@ void lowerGeom(CompileContext& ctx, const Link& l, const GeomTarget& t, const Tr
       return;
     case GeomKind::Mesh: {
       // A moving body collides best with a hull; a static one (terrain, a room) with its triangles.
-      const Slot& hull = c.slotOf(kHull);
-      const bool use_hull = hull.set ? c.get(kHull) : t.body >= 0;
+      const uint32_t hull = c.get(kHull);
+      const bool use_hull = hull == 0 ? t.body >= 0 : hull == 1;
       const Triple& s = c.get(kScale);
       for (double f : s)
         if (!std::isfinite(f) || f == 0) {

@@ -64,7 +64,15 @@ bool lowerInertia(CompileContext& ctx, const Link& l, const Component& owner, si
       MassProps total;
       for (size_t gi = first_geom; gi < ctx.model.geoms.size(); ++gi) {
         const GeomDef& g = ctx.model.geoms[gi];
-        MassProps p = geomMassProps(g, g.mesh >= 0 ? ctx.model.meshes[static_cast<size_t>(g.mesh)].data.get() : nullptr);
+        const MeshData* mesh = g.mesh >= 0 ? ctx.model.meshes[static_cast<size_t>(g.mesh)].data.get() : nullptr;
+        if (g.shape == GeomShape::TriMesh && !mesh->closed) {
+          // An open mesh bounds no volume: its "mass" would be whatever the gaps make of it.
+          ctx.error(owner,
+                    "RCInertiaByGeom: the triangle mesh '" + mesh->file + "' of body '" + owner.qkey +
+                        "' is not closed, so it has no volume; use its hull (Hull=\"True\") or RCGenericInertia");
+          return false;
+        }
+        MassProps p = geomMassProps(g, mesh);
         total.volume += p.volume;
         total.moment = add(total.moment, p.moment);
         for (int k = 0; k < 9; ++k) total.inertia[k] += p.inertia[k];

@@ -108,6 +108,7 @@ void lowerJoint(CompileContext& ctx, int ji, const Built& parent, const Link* po
   j.loc = c.loc;
   j.body1 = parent.index;
   j.body2 = child.index;
+  j.static_body = parent.index < 0 ? parent.static_id : child.static_id;
   j.anchor = frame.p;
   j.axis = rotate(frame.q, {0, 0, 1});
   if (j.body1 < 0 && j.body2 < 0) {

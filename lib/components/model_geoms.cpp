@@ -243,6 +243,7 @@ void lowerModelGeom(CompileContext& ctx, const Component& geom, const GeomTarget
   GeomDef g;
   g.key = ctx.modelKey(*t.owner);
   g.body = t.body;
+  g.static_body = t.static_body;
   g.material = t.material;
   std::vector<ModelPart> parts;
   static const Link kNone;

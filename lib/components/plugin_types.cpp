@@ -6,7 +6,9 @@
 // Controllers are lowered with the built-ins (controllers.cpp).
 #include <dlfcn.h>
 
+#include <cctype>
 #include <deque>
+#include <unordered_map>
 
 #include "compile/context.h"
 #include "components/families.h"
@@ -18,6 +20,12 @@ namespace {
 
 constexpr LinkParam kPose{"Pose"};
 constexpr ValueParam<double> kPeriod{"Period"};
+
+// Bounds on a plug-in's description (docs/plugins.md): far beyond any real type, and small
+// enough that a plug-in listing millions of names is refused at once rather than loaded slowly.
+constexpr int kMaxTypes = 10000;        // types per plug-in
+constexpr int kMaxParams = 10000;       // numbers and refs of one type
+constexpr int kMaxQuantities = 100000;  // entries of a sensor's reading: as many as RCLaserScanner's rays
 
 /// Plug-in types live as long as the process: the registry and models point at them.
 std::deque<PluginType>& keptTypes() {
@@ -39,6 +47,9 @@ std::string describe(const SimbobType& c, const std::string& plugin, PluginType*
   if (c.kind != SIMBOB_CONTROLLER && c.kind != SIMBOB_SENSOR && c.kind != SIMBOB_ACTUATOR)
     return what + "kind " + std::to_string(c.kind) + " is none of SIMBOB_CONTROLLER, SIMBOB_SENSOR, SIMBOB_ACTUATOR";
   if (c.number_count < 0 || (c.number_count > 0 && !c.numbers)) return what + "numbers and number_count disagree";
+  if (c.number_count > kMaxParams || (c.kind == SIMBOB_CONTROLLER && c.ref_count > kMaxParams - c.number_count))
+    return what + "more than " + std::to_string(kMaxParams) + " numbers and refs (" + std::to_string(c.number_count) +
+           " numbers" + (c.kind == SIMBOB_CONTROLLER ? ", " + std::to_string(c.ref_count) + " refs" : "") + ")";
   for (int i = 0; i < c.number_count; ++i) {
     const SimbobNumber& n = c.numbers[i];
     if (!n.name || !*n.name) return what + "number " + std::to_string(i) + " has no name";
@@ -56,6 +67,9 @@ std::string describe(const SimbobType& c, const std::string& plugin, PluginType*
   } else if (c.kind == SIMBOB_SENSOR) {
     if (!c.read) return what + "a sensor needs read";
     if (c.quantity_count < 1 || !c.quantities) return what + "a sensor needs at least one quantity";
+    if (c.quantity_count > kMaxQuantities)
+      return what + "more than " + std::to_string(kMaxQuantities) + " quantities (" + std::to_string(c.quantity_count) +
+             ")";
     for (int i = 0; i < c.quantity_count; ++i) {
       if (!c.quantities[i] || !*c.quantities[i]) return what + "quantity " + std::to_string(i) + " has no name";
       t->quantities.emplace_back(c.quantities[i]);
@@ -69,6 +83,37 @@ std::string describe(const SimbobType& c, const std::string& plugin, PluginType*
     if (!c.apply) return what + "an actuator needs apply";
     if (t->interface.empty()) t->interface = "RCDriver";
   }
+  return "";
+}
+
+std::string lowerAscii(const std::string& s) {
+  std::string out = s;
+  for (char& ch : out) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return out;
+}
+
+/// "" or the first parameter of `t` whose name is taken: by a parameter simbob gives every type
+/// of its kind (Period; Pose), or by another of its numbers and refs. Names that differ only in
+/// case clash too: INI scenes ignore the case of keys. Linear in the number of names.
+std::string clashOf(const PluginType& t) {
+  const unsigned kind = t.c->kind;
+  const char* kind_word = kind == SIMBOB_CONTROLLER ? "controller" : kind == SIMBOB_SENSOR ? "sensor" : "actuator";
+  std::unordered_map<std::string, std::string> taken;  // lowercased name -> what has it
+  if (kind != SIMBOB_CONTROLLER) taken.emplace("pose", std::string("simbob's own parameter 'Pose'"));
+  if (kind != SIMBOB_ACTUATOR) taken.emplace("period", std::string("simbob's own parameter 'Period'"));
+  auto take = [&](const char* what, const std::string& name) -> std::string {
+    const std::string me = std::string(what) + " '" + name + "'";
+    auto [it, fresh] = taken.emplace(lowerAscii(name), me);
+    if (fresh) return "";
+    const bool own = it->second.rfind("simbob's", 0) == 0;
+    return me + " clashes with " + it->second +
+           (own ? " (every plug-in " + std::string(kind_word) + " has it): rename it"
+                : " (parameter names must differ, also in case: INI keys ignore it)");
+  };
+  for (const PluginRef& r : t.refs)
+    if (std::string why = take("the ref", r.name); !why.empty()) return why;
+  for (const PluginNumber& n : t.numbers)
+    if (std::string why = take("the number", n.name); !why.empty()) return why;
   return "";
 }
 
@@ -119,16 +164,15 @@ std::string pluginWho(const std::string& plugin, const std::string& type) {
   return "plug-in '" + plugin + "', type '" + type + "'";
 }
 
-bool isActuatorInterface(const std::string& interface) {
-  return interface == "RCDriver" || interface == "RCPosControl" || interface == "RCVelControl";
-}
-
 std::string registerPlugin(Registry& reg, const SimbobPlugin& p) {
   const std::string plugin = str(p.name);
   if (p.type_count < 0 || (p.type_count > 0 && !p.types)) return "types and type_count disagree";
+  if (p.type_count > kMaxTypes)
+    return "more than " + std::to_string(kMaxTypes) + " types (" + std::to_string(p.type_count) + ")";
   for (int i = 0; i < p.type_count; ++i) {
     PluginType t;
     std::string problem = describe(p.types[i], plugin, &t);
+    if (problem.empty() && !(problem = clashOf(t)).empty()) problem = "type '" + t.name + "': " + problem;
     if (!problem.empty()) return problem;
     keptTypes().push_back(std::move(t));
     if (!reg.add(specOf(keptTypes().back()))) return reg.problems().back();
@@ -186,6 +230,7 @@ void lowerPluginPeriphery(CompileContext& ctx, const Component& c, const Built& 
     s.loc = c.loc;
     s.kind = SensorKind::Plugin;
     s.body = parent.index;
+    s.static_body = parent.static_id;
     s.pose = pose;
     s.period = c.get(kPeriod);
     if (!checkSensorPeriod(ctx, c, c.slotOf(kPeriod), s.period)) return;
@@ -206,6 +251,7 @@ void lowerPluginPeriphery(CompileContext& ctx, const Component& c, const Built& 
   a.loc = c.loc;
   a.kind = ActuatorDef::Plugin;
   a.body = parent.index;
+  a.static_body = parent.static_id;
   a.pose = pose;
   a.plugin = t.c;
   a.numbers = numbersOf(c, t);

@@ -36,6 +36,7 @@ void lowerRangeSensor(CompileContext& ctx, const Component& c, const Built& pare
   s.kind =
       static_cast<PeripheryKind>(c.type->kind) == PeripheryKind::LaserScanner ? SensorKind::Scanner : SensorKind::Range;
   s.body = parent.index;
+  s.static_body = parent.static_id;
   s.min_range = c.get(kMinRange);
   s.max_range = c.get(kMaxRange);
   s.noise = c.get(kNoise);

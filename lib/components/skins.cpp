@@ -71,6 +71,8 @@ int lowerSkin(CompileContext& ctx, const Link& l) {
   const Component& c = ctx.at(l.comp);
   SkinDef d;
   d.key = c.qkey;
+  d.type = c.type->name;
+  d.loc = c.loc;
   const auto kind = static_cast<SkinKind>(c.type->kind);
   d.colored = kind != SkinKind::Textured;
   if (d.colored) {

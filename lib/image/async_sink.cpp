@@ -3,7 +3,7 @@
 #include <thread>
 
 #include "image/work_queue.h"
-#include "simbob/frame_sinks.h"
+#include "simbob/tool/frame_sinks.h"
 
 namespace simbob {
 

@@ -1,4 +1,4 @@
-#include "simbob/image_compare.h"
+#include "simbob/tool/image_compare.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "simbob/png.h"
+#include "simbob/tool/png.h"
 
 #include <png.h>
 
@@ -7,19 +7,11 @@
 #include <limits>
 #include <memory>
 
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 
 namespace simbob {
 
 namespace {
-
-Error makeError(ErrorKind kind, const std::string& file, std::string message) {
-  Error e;
-  e.kind = kind;
-  e.loc.file = file;
-  e.message = std::move(message);
-  return e;
-}
 
 constexpr size_t kPngMessageSize = 200;
 
@@ -135,7 +127,7 @@ bool decodePng(const std::string& bytes, Image& out, std::string* why) {
 
 Error writePng(const std::string& path, const Image& img) {
   std::string bytes, why;
-  if (!encodePng(img, &bytes, &why)) return makeError(ErrorKind::InvalidInput, path, "cannot write PNG: " + why);
+  if (!encodePng(img, &bytes, &why)) return fileError(ErrorKind::InvalidInput, path, "cannot write PNG: " + why);
   Error err;
   if (!writeFileAtomically(path, bytes, &err)) return err;
   return Error();
@@ -145,8 +137,8 @@ Error readPng(const std::string& path, Image& out) {
   out = Image();
   std::string bytes, why;
   // A 2^28-pixel image compresses well, but no sane PNG input is over 1 GiB.
-  if (!readFile(path, size_t{1} << 30, &bytes, &why, true)) return makeError(ErrorKind::MissingInput, path, why);
-  if (!decodePng(bytes, out, &why)) return makeError(ErrorKind::InvalidInput, path, why);
+  if (!readFile(path, size_t{1} << 30, &bytes, &why, true)) return fileError(ErrorKind::MissingInput, path, why);
+  if (!decodePng(bytes, out, &why)) return fileError(ErrorKind::InvalidInput, path, why);
   return Error();
 }
 

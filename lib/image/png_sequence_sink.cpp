@@ -7,22 +7,14 @@
 #include <cstring>
 #include <filesystem>
 
-#include "simbob/frame_sinks.h"
-#include "simbob/png.h"
+#include "simbob/tool/frame_sinks.h"
+#include "simbob/tool/png.h"
 
 namespace simbob {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-Error makeError(ErrorKind kind, const std::string& file, std::string message) {
-  Error e;
-  e.kind = kind;
-  e.loc.file = file;
-  e.message = std::move(message);
-  return e;
-}
 
 std::string frameName(uint64_t n) {
   char buf[32];
@@ -57,7 +49,7 @@ class PngSequenceSink : public FrameSink {
 
   const Error* add(Image&& frame) override {
     if (failed_) return &error_;
-    if (finished_) return fail(makeError(ErrorKind::Internal, dir_, "frame added after finish()"));
+    if (finished_) return fail(fileError(ErrorKind::Internal, dir_, "frame added after finish()"));
     const std::string name = frameName(count_);
     Error e = writePng((fs::path(staging_) / name).string(), frame);
     if (!e.message.empty()) {
@@ -78,7 +70,7 @@ class PngSequenceSink : public FrameSink {
       const fs::path to = fs::path(dir_) / name;
       if (std::rename((fs::path(staging_) / name).c_str(), to.c_str()) != 0)
         return fail(
-            makeError(ErrorKind::CannotCreate, to.string(), std::string("cannot create: ") + std::strerror(errno)));
+            fileError(ErrorKind::CannotCreate, to.string(), std::string("cannot create: ") + std::strerror(errno)));
     }
     // Frames of an earlier, longer recording would otherwise follow this one's.
     std::error_code ec;
@@ -127,7 +119,7 @@ bool isFrameFileName(const std::string& name) { return frameNumber(name) >= 0; }
 
 std::unique_ptr<FrameSink> makePngSequenceSink(const std::string& dir, Error* err) {
   auto fail = [&](const std::string& file, const std::string& what) {
-    if (err) *err = makeError(ErrorKind::CannotCreate, file, what);
+    if (err) *err = fileError(ErrorKind::CannotCreate, file, what);
     return nullptr;
   };
   if (dir.empty()) return fail(dir, "empty output directory name");

@@ -9,8 +9,8 @@
 #include <memory>
 #include <string>
 
-#include "simbob/frame_sinks.h"
-#include "simbob/video_probe.h"
+#include "simbob/tool/frame_sinks.h"
+#include "simbob/tool/video_probe.h"
 
 namespace simbob {
 

@@ -5,7 +5,7 @@ extern "C" {
 }
 
 #include "image/video_module.h"
-#include "simbob/video_probe.h"
+#include "simbob/tool/video_probe.h"
 
 namespace simbob {
 

@@ -20,19 +20,11 @@ extern "C" {
 #include <mutex>
 
 #include "image/video_module.h"
-#include "simbob/frame_sinks.h"
+#include "simbob/tool/frame_sinks.h"
 
 namespace simbob {
 
 namespace {
-
-Error makeError(ErrorKind kind, const std::string& file, std::string message) {
-  Error e;
-  e.kind = kind;
-  e.loc.file = file;
-  e.message = std::move(message);
-  return e;
-}
 
 std::string avError(int code) {
   char buf[AV_ERROR_MAX_STRING_SIZE] = {0};
@@ -41,7 +33,7 @@ std::string avError(int code) {
 }
 
 // The output named by its own folder, not by the temporary name it is written under (as
-// simbob/files.h cannotCreateReason says it; this module links no simbob library).
+// simbob/tool/files.h cannotCreateReason says it; this module links no simbob library).
 std::string missingFolder(const std::string& path) {
   const size_t slash = path.find_last_of('/');
   const std::string folder = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
@@ -107,7 +99,7 @@ class VideoSink : public FrameSink {
 
   static std::unique_ptr<FrameSink> open(const std::string& path, double fps, Error* err, const std::string& write_to) {
     auto fail = [&](ErrorKind kind, const std::string& what) {
-      if (err) *err = makeError(kind, path, what);
+      if (err) *err = fileError(kind, path, what);
       return nullptr;
     };
     Choice c = choose(path);
@@ -186,7 +178,7 @@ class VideoSink : public FrameSink {
   VideoSink() = default;
 
   const Error* fail(ErrorKind kind, std::string message) {
-    if (!failed_) error_ = makeError(kind, path_, std::move(message));
+    if (!failed_) error_ = fileError(kind, path_, std::move(message));
     failed_ = true;
     release();
     if (!temp_.empty()) ::unlink(temp_.c_str());

@@ -94,8 +94,8 @@ bool convexHull(const std::vector<Vec3>& points, ConvexHull* hull, std::string* 
   qhT* qh = &qh_qh;
   qh_zero(qh, messages.file());
   char command[] = "qhull Pp";  // Pp: no precision warnings on the message stream
-  const int code = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coords.data(), False, command, nullptr,
-                                messages.file());
+  const int code =
+      qh_new_qhull(qh, 3, static_cast<int>(points.size()), coords.data(), False, command, nullptr, messages.file());
   bool ok = code == 0;
   if (ok) {
     std::map<int, unsigned> index;  // qhull point id -> hull point

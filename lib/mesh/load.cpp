@@ -54,9 +54,9 @@ struct Collector {
       for (unsigned k = 0; k < mesh->mNumVertices; ++k) {
         const aiVector3D& v = mesh->mVertices[k];
         Vec3 p;
-        for (unsigned r = 0; r < 3; ++r)
+        for (unsigned r = 0; r < 3; ++r)  // + 0.0 turns -0 into 0, so both merge (their hashes differ)
           p[r] = static_cast<double>(m[r][0]) * v.x + static_cast<double>(m[r][1]) * v.y +
-                 static_cast<double>(m[r][2]) * v.z + static_cast<double>(m[r][3]);
+                 static_cast<double>(m[r][2]) * v.z + static_cast<double>(m[r][3]) + 0.0;
         ids[k] = vertex(p);
       }
       for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
@@ -117,14 +117,16 @@ MeshLoad loadMesh(const std::string& path, const Vec3& scale, UpAxis up) {
   {
     std::ifstream probe(path, std::ios::binary);
     if (!probe) {
-      out.error = meshError(ErrorKind::MissingInput, path, std::string("cannot read the mesh: ") + std::strerror(errno));
+      out.error =
+          meshError(ErrorKind::MissingInput, path, std::string("cannot read the mesh: ") + std::strerror(errno));
       return out;
     }
   }
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate);
   if (!scene || !scene->mRootNode) {
-    out.error = meshError(ErrorKind::InvalidInput, path, std::string("not a mesh assimp can read: ") + importer.GetErrorString());
+    out.error = meshError(ErrorKind::InvalidInput, path,
+                          std::string("not a mesh assimp can read: ") + importer.GetErrorString());
     return out;
   }
   size_t faces = 0;
@@ -137,8 +139,9 @@ MeshLoad loadMesh(const std::string& path, const Vec3& scale, UpAxis up) {
   Collector c;
   c.collect(scene, scene->mRootNode, aiMatrix4x4());
   if (c.vertices.size() > kMaxMeshVertices) {
-    out.error = meshError(ErrorKind::InvalidInput, path,
-                          "has " + count(c.vertices.size()) + " vertices, more than the limit of " + count(kMaxMeshVertices));
+    out.error =
+        meshError(ErrorKind::InvalidInput, path,
+                  "has " + count(c.vertices.size()) + " vertices, more than the limit of " + count(kMaxMeshVertices));
     return out;
   }
   if (c.triangles.empty()) {

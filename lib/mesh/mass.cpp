@@ -24,9 +24,9 @@ MeshMass polyhedronMass(const std::vector<Vec3>& vertices, const std::vector<std
       b[k] = vertices[t[1]][k] - o[k];
       c[k] = vertices[t[2]][k] - o[k];
     }
-    const double v = (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-                      a[2] * (b[0] * c[1] - b[1] * c[0])) /
-                     6.0;
+    const double v =
+        (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])) /
+        6.0;
     volume += v;
     double s[3];
     for (size_t i = 0; i < 3; ++i) {

@@ -1,11 +1,13 @@
-#include "simbob/compare.h"
+#include "simbob/tool/comparison.h"
 
 #include <algorithm>
 
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 #include <utility>
 
+#include "simbob/error.h"
 #include "simbob/values.h"
 
 namespace simbob {
@@ -27,11 +29,15 @@ const char* statusOf(const BodyDiff& d) {
   return "ok";
 }
 
+/// A body name as a report prints it: control bytes and invisible characters escaped, as error
+/// messages show input (a name from a CSV must not drive the terminal), never cut.
+std::string shown(const std::string& name) { return quoteInput(name, std::numeric_limits<size_t>::max()); }
+
 std::string joinNames(const std::vector<std::string>& names) {
   std::string out;
   for (size_t i = 0; i < names.size(); ++i) {
     if (i) out += ", ";
-    out += names[i];
+    out += shown(names[i]);
   }
   return out;
 }
@@ -196,11 +202,11 @@ std::string CompareResult::text() const {
   rows.push_back({"body", "max pos err (m)", "max rot err (rad)", "first exceed (s)", "status"});
   for (const BodyDiff& d : bodies) {
     const bool any = d.compared > 0;
-    rows.push_back({d.body, any ? formatApprox(d.max_pos_err) : "-", any ? formatApprox(d.max_rot_err) : "-",
+    rows.push_back({shown(d.body), any ? formatApprox(d.max_pos_err) : "-", any ? formatApprox(d.max_rot_err) : "-",
                     d.first_exceed_time ? fmtTime(*d.first_exceed_time) : "-", statusOf(d)});
   }
-  for (const std::string& b : only_actual) rows.push_back({b, "-", "-", "-", "only in actual"});
-  for (const std::string& b : only_golden) rows.push_back({b, "-", "-", "-", "only in golden"});
+  for (const std::string& b : only_actual) rows.push_back({shown(b), "-", "-", "-", "only in actual"});
+  for (const std::string& b : only_golden) rows.push_back({shown(b), "-", "-", "-", "only in golden"});
   std::string out = renderTable(rows);
 
   out += "\ntolerances: pos " + formatApprox(options.tol_pos) + " m, rot " + formatApprox(options.tol_rot) + " rad\n";
@@ -217,14 +223,14 @@ std::string CompareResult::text() const {
   if (!only_golden.empty()) out += "bodies only in golden: " + joinNames(only_golden) + "\n";
   for (const BodyDiff& d : bodies) {
     if (!d.missingRows()) continue;
-    out += "missing rows for " + d.body + ": " + std::to_string(d.missing_in_actual) + " in actual, " +
+    out += "missing rows for " + shown(d.body) + ": " + std::to_string(d.missing_in_actual) + " in actual, " +
            std::to_string(d.missing_in_golden) + " in golden (first at t=" + fmtTime(*d.first_missing_time) + ")\n";
   }
   if (first_divergence) {
     const Divergence& v = *first_divergence;
-    out += "first divergence: t=" + fmtTime(v.time) + " body " + v.body + ": pos err " + formatApprox(v.pos_err) +
-           " m" + (v.pos_exceeded ? " (exceeds)" : "") + ", rot err " + formatApprox(v.rot_err) + " rad" +
-           (v.rot_exceeded ? " (exceeds)" : "") + "\n";
+    out += "first divergence: t=" + fmtTime(v.time) + " body " + shown(v.body) + ": pos err " +
+           formatApprox(v.pos_err) + " m" + (v.pos_exceeded ? " (exceeds)" : "") + ", rot err " +
+           formatApprox(v.rot_err) + " rad" + (v.rot_exceeded ? " (exceeds)" : "") + "\n";
   }
   out += pass ? "result: PASS\n" : "result: FAIL\n";
   return out;

@@ -1,5 +1,5 @@
-// See simbob/csv.h.
-#include "simbob/csv.h"
+// See simbob/tool/csv.h.
+#include "simbob/tool/csv.h"
 
 #include <cstring>
 

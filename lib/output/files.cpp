@@ -1,4 +1,4 @@
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -83,14 +83,6 @@ std::string followLinks(const std::string& path) {
   return p;
 }
 
-Error makeError(ErrorKind kind, const std::string& file, std::string message) {
-  Error e;
-  e.kind = kind;
-  e.loc.file = file;
-  e.message = std::move(message);
-  return e;
-}
-
 }  // namespace
 
 int writeAll(int fd, const char* data, size_t size) {
@@ -124,7 +116,7 @@ std::string cannotCreateReason(const std::string& path, int e) {
 
 std::unique_ptr<OutputFile> OutputFile::open(const std::string& path, Error* err) {
   auto fail = [&](const std::string& what) {
-    if (err) *err = makeError(ErrorKind::CannotCreate, path, what);
+    if (err) *err = fileError(ErrorKind::CannotCreate, path, what);
     return nullptr;
   };
   if (path.empty()) return fail("empty output file name");
@@ -170,16 +162,9 @@ bool OutputFile::write(const char* data, size_t size) {
   return true;
 }
 
-bool OutputFile::truncate(uint64_t bytes) {
-  if (stream_ || closed_ || fd_ < 0) return false;
-  if (::ftruncate(fd_, static_cast<off_t>(bytes)) != 0) return false;
-  size_ = bytes;
-  return ::lseek(fd_, static_cast<off_t>(bytes), SEEK_SET) >= 0;
-}
-
 bool OutputFile::close(Error* err) {
   if (done_) {
-    if (err) *err = makeError(ErrorKind::Internal, path_, "output already closed");
+    if (err) *err = fileError(ErrorKind::Internal, path_, "output already closed");
     return false;
   }
   if (!closed_) {
@@ -192,7 +177,7 @@ bool OutputFile::close(Error* err) {
   if (errno_ != 0) {
     const int e = errno_;
     abandon();
-    if (err) *err = makeError(ErrorKind::IoError, path_, std::string("write failed: ") + std::strerror(e));
+    if (err) *err = fileError(ErrorKind::IoError, path_, std::string("write failed: ") + std::strerror(e));
     return false;
   }
   return true;
@@ -208,7 +193,7 @@ bool OutputFile::rename(const std::string& to, Error* err) {
     const int e = errno;
     abandon();
     if (err)
-      *err = makeError(ErrorKind::CannotCreate, target,
+      *err = fileError(ErrorKind::CannotCreate, target,
                        "cannot rename " + temp_ + " to " + target + ": " + std::strerror(e));
     return false;
   }
@@ -295,6 +280,26 @@ bool sameOutputPlace(const std::string& a, const std::string& b) {
   const fs::path pa = fs::weakly_canonical(fs::absolute(followLinks(a)), ea);
   const fs::path pb = fs::weakly_canonical(fs::absolute(followLinks(b)), eb);
   return !ea && !eb && pa == pb;
+}
+
+Error outputCollision(const std::vector<NamedPath>& outputs, const std::vector<NamedPath>& inputs) {
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    const NamedPath& o = outputs[i];
+    if (o.path.empty() || isStreamOutput(o.path)) continue;
+    for (const NamedPath& in : inputs)
+      if (sameExistingFile(o.path, in.path))
+        return {ErrorKind::Usage,
+                {},
+                o.what + " " + quoteInput(o.path, 400) + " is " + in.what + " " + quoteInput(in.path, 400) +
+                    ": an output must not overwrite an input"};
+    for (size_t k = 0; k < i; ++k)
+      if (!outputs[k].path.empty() && sameOutputPlace(o.path, outputs[k].path))
+        return {ErrorKind::Usage,
+                {},
+                o.what + " " + quoteInput(o.path, 400) + " and " + outputs[k].what + " " +
+                    quoteInput(outputs[k].path, 400) + " are the same file: outputs of one command must not collide"};
+  }
+  return {};
 }
 
 }  // namespace simbob

@@ -1,7 +1,7 @@
-#include "simbob/csv.h"
+#include "simbob/tool/csv.h"
 #include "simbob/trajectory.h"
 
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>

@@ -32,6 +32,15 @@ void createBodies(WorldImpl& im, const Model& model) {
   }
 }
 
+void copyBodyState(const BodyState& s, double* p, double* q, double* v, double* w) {
+  for (size_t k = 0; k < 3; ++k) {
+    if (p) p[k] = s.pose.p[k];
+    if (v) v[k] = s.lin_vel[k];
+    if (w) w[k] = s.ang_vel[k];
+  }
+  for (size_t k = 0; k < 4 && q; ++k) q[k] = s.pose.q[k];
+}
+
 BodyState bodyState(const WorldImpl& im, int i) {
   dBodyID b = im.bodies[static_cast<size_t>(i)];
   const dReal* p = dBodyGetPosition(b);

@@ -26,8 +26,8 @@ dGeomID createMeshGeom(WorldImpl& im, const Model& model, const GeomDef& gd, dSp
   if (gd.shape == GeomShape::ConvexHull) {
     const ConvexHull& h = mesh.hull;
     return dCreateConvex(space, const_cast<dReal*>(h.planes.data()), static_cast<unsigned>(h.faceCount()),  // NOLINT
-                         const_cast<dReal*>(h.points.data()), static_cast<unsigned>(h.pointCount()),      // NOLINT
-                         const_cast<unsigned*>(h.polygons.data()));                                       // NOLINT
+                         const_cast<dReal*>(h.points.data()), static_cast<unsigned>(h.pointCount()),        // NOLINT
+                         const_cast<unsigned*>(h.polygons.data()));                                         // NOLINT
   }
   static_assert(sizeof(dTriIndex) == sizeof(uint32_t), "ODE's triangle indices are 32-bit");
   if (!im.triMeshData[mi]) {
@@ -35,6 +35,11 @@ dGeomID createMeshGeom(WorldImpl& im, const Model& model, const GeomDef& gd, dSp
     dGeomTriMeshDataBuildDouble(im.triMeshData[mi], mesh.vertices.data(), sizeof(Vec3),
                                 static_cast<int>(mesh.vertices.size()), mesh.triangles.data(),
                                 static_cast<int>(mesh.triangles.size() * 3), sizeof(mesh.triangles[0]));
+    // Hull-trimesh contacts (libccd) abort the process without the face angles; capsules use
+    // the concave edges.
+    dGeomTriMeshDataPreprocess2(
+        im.triMeshData[mi],
+        (1U << dTRIDATAPREPROCESS_BUILD_CONCAVE_EDGES) | (1U << dTRIDATAPREPROCESS_BUILD_FACE_ANGLES), nullptr);
   }
   return dCreateTriMesh(space, im.triMeshData[mi], nullptr, nullptr, nullptr);
 }
@@ -121,7 +126,7 @@ void createGeoms(WorldImpl& im, const Model& model) {
     // ODE's user data is a pointer; the geom's index travels in it (read back in contacts.cpp).
     dGeomSetData(g, reinterpret_cast<void*>(static_cast<intptr_t>(gi)));  // NOLINT(performance-no-int-to-ptr)
     const MaterialDef& mat = model.materials[static_cast<size_t>(gd.material)];
-    im.geomInfo.push_back({mat.friction, mat.bounceness, mat.min_bounce_vel, gd.sensor, gd.group});
+    im.geomInfo.push_back({mat.friction, mat.bounceness, mat.min_bounce_vel, gd.sensor, gd.static_body, gd.group});
     im.geoms.push_back(g);
   }
 }

@@ -63,6 +63,11 @@ void createJoints(WorldImpl& im, const Model& model) {
     dBodyID b1 = jd.body1 >= 0 ? im.bodies[static_cast<size_t>(jd.body1)] : nullptr;
     dBodyID b2 = jd.body2 >= 0 ? im.bodies[static_cast<size_t>(jd.body2)] : nullptr;
     dJointAttach(j, b1, b2);
+    if (jd.static_body >= 0) {  // joined to a static body: its sensors' rays do not see this body (rays.cpp)
+      if (im.staticJoined.size() <= static_cast<size_t>(jd.static_body))
+        im.staticJoined.resize(static_cast<size_t>(jd.static_body) + 1);
+      im.staticJoined[static_cast<size_t>(jd.static_body)].push_back(b1 ? b1 : b2);
+    }
     // Anchors/axes after attach: ODE stores them relative to the attached bodies.
     switch (jd.kind) {
       case JointKind::BallSocket:

@@ -13,6 +13,7 @@
 // [MinRange, MaxRange] -- a hit closer than MinRange reads MinRange.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -25,7 +26,10 @@ namespace {
 
 struct ReachProbe {
   dGeomID reach;
-  dBodyID own;
+  dBodyID own;                         ///< the sensor's mobile body, or null for a static mount
+  int static_body;                     ///< a static mount: its static body (GeomDef::static_body), or -1
+  const std::vector<dBodyID>* joined;  ///< a static mount: the mobile bodies joined to its static body
+  const std::vector<GeomInfo>* info;
   std::vector<dGeomID>* out;
 };
 
@@ -33,10 +37,15 @@ void reachPair(void* data, dGeomID a, dGeomID b) {
   ReachProbe& p = *static_cast<ReachProbe*>(data);
   dGeomID other = a == p.reach ? b : a;
   dBodyID body = dGeomGetBody(other);
-  // As for contacts and proximity sensors: not its own body (for a static sensor: not the static
-  // geoms), not the bodies joined to it.
-  if (body == p.own) return;
-  if (p.own && body && dAreConnected(p.own, body)) return;
+  // Not the sensor's own body, not the bodies joined to it; every other geom, static or mobile.
+  if (p.own) {
+    if (body == p.own || (body && dAreConnected(p.own, body))) return;
+  } else if (!body) {
+    const auto gi = static_cast<size_t>(reinterpret_cast<intptr_t>(dGeomGetData(other)));
+    if (p.static_body >= 0 && (*p.info)[gi].staticBody == p.static_body) return;
+  } else if (p.joined && std::find(p.joined->begin(), p.joined->end(), body) != p.joined->end()) {
+    return;
+  }
   p.out->push_back(other);
 }
 
@@ -60,13 +69,17 @@ double rayReading(SensorState& s, double d) {
 // rays now test only the geoms within its reach, gathered by one dSpaceCollide2 per scan. The
 // reading is the same: every geom a ray can hit is a candidate, and the nearest of the hits does
 // not depend on the order they are found in.
-void gatherRayCandidates(WorldImpl& im, dBodyID own, const Vec3& origin, double reach) {
+void gatherRayCandidates(WorldImpl& im, int body, int static_body, const Vec3& origin, double reach) {
   if (!im.rayReach) im.rayReach = dCreateBox(nullptr, 1, 1, 1);  // axis-aligned: never rotated
   const double half = reach * (1 + 1e-9) + 1e-9;                 // a margin for the rounding of a ray's end
   dGeomBoxSetLengths(im.rayReach, 2 * half, 2 * half, 2 * half);
   dGeomSetPosition(im.rayReach, origin[0], origin[1], origin[2]);
   im.rayCandidates.clear();
-  ReachProbe p{im.rayReach, own, &im.rayCandidates};
+  dBodyID own = body >= 0 ? im.bodies[static_cast<size_t>(body)] : nullptr;
+  const std::vector<dBodyID>* joined = nullptr;
+  if (!own && static_body >= 0 && static_cast<size_t>(static_body) < im.staticJoined.size())
+    joined = &im.staticJoined[static_cast<size_t>(static_body)];
+  ReachProbe p{im.rayReach, own, static_body, joined, &im.geomInfo, &im.rayCandidates};
   dSpaceCollide2(im.rayReach, reinterpret_cast<dGeomID>(im.space), &p, &reachPair);
 }
 
@@ -95,8 +108,7 @@ double castRay(WorldImpl& im, const Vec3& origin, const Vec3& dir, double length
 void readRays(WorldImpl& im, SensorState& s) {
   const SensorDef& d = s.def;
   const Transform f = sensorFrame(im, d);
-  dBodyID own = d.body >= 0 ? im.bodies[static_cast<size_t>(d.body)] : nullptr;
-  gatherRayCandidates(im, own, f.p, d.max_range);
+  gatherRayCandidates(im, d.body, d.static_body, f.p, d.max_range);
   if (d.kind == SensorKind::Range) {
     s.reading[0] = rayReading(s, castRay(im, f.p, rotate(f.q, Vec3{0, 0, -1}), d.max_range));
     return;

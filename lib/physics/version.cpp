@@ -13,4 +13,6 @@ std::string physicsVersion() {
   return dGetConfiguration();  // "ODE ODE_double_precision ..."
 }
 
+std::string odeVersion() { return dODE_VERSION; }
+
 }  // namespace simbob

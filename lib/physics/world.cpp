@@ -210,12 +210,6 @@ double World::command(int actuator) const {
   return impl_->actuators[static_cast<size_t>(actuator)].command;
 }
 
-const Image* World::cameraImage(const std::string& key) const {
-  return impl_->cameraImages ? impl_->cameraImages->image(key) : nullptr;
-}
-
-void World::setCameraImages(const CameraImages* images) { impl_->cameraImages = images; }
-
 int World::sensorCount() const { return static_cast<int>(impl_->sensors.size()); }
 
 bool World::touching(int sensor) const {

@@ -4,6 +4,7 @@
 //
 //   bodies.cpp    mobile bodies, centre-of-mass offset, body state
 //   geoms.cpp     the collision space, geoms and their contact data
+//   broadphase.cpp  the default hash space's candidate pairs, in dHashSpace's order (faster)
 //   joints.cpp    joints and joint state (simbob's sign convention)
 //   contacts.cpp  the near callback: contact joints per the material rules of guide 7.1
 //   actuators.cpp drives, servos and velocity drives on hinge and slider joints
@@ -11,8 +12,10 @@
 //                 space of their own, that only detect) and encoders
 //   rays.cpp      range sensors and laser scanners: ODE rays cast against the collision space
 //   imu.cpp       inertial measurement units: specific force and angular velocity
+//   sensor_noise.cpp  each sensor's own random generator (run seed and sensor key)
 //   plugin_peripheries.cpp  plug-in sensors and actuators (simbob/plugin_c.h) and World::failure
 //   world.cpp     World: create, step, accessors
+//   version.cpp   physicsVersion(): ODE's version and configuration, for run summaries
 //
 // Actuators and sensors join as files of their own: a create function called by World::create
 // after createJoints, which may append to WorldImpl::beforeStep what it must do every step.
@@ -40,6 +43,7 @@ struct GeomInfo {
   double bounceness;    ///< restitution in [0,1]
   double minBounceVel;  ///< m/s
   bool sensor;          ///< creates no contact joints
+  int staticBody;       ///< a static geom: the static body it belongs to (GeomDef::static_body), else -1
   int group;            ///< GeomDef::group: >= 0, no contacts within it
 };
 
@@ -86,7 +90,6 @@ struct ActuatorState {
 };
 
 struct WorldImpl {
-  const CameraImages* cameraImages = nullptr;  ///< World::cameraImage (the Simulation's camera sensors)
   dWorldID world = nullptr;
   dSpaceID space = nullptr;
   /// Sensor geoms live here, so the collision space (and the order in which it reports pairs)
@@ -106,10 +109,13 @@ struct WorldImpl {
   std::vector<JointInfo> jointInfo;
   std::vector<ActuatorState> actuators;
   std::vector<SensorState> sensors;
-  HashSpacePairs hashPairs;             ///< broadphase.h: the default space's pairs, faster
-  dGeomID ray = nullptr;                ///< rays.cpp: the one ray of range sensors and scanners, in no space
-  dGeomID rayReach = nullptr;           ///< rays.cpp: a box about a sensor's reach, in no space
-  std::vector<dGeomID> rayCandidates;   ///< rays.cpp: the geoms within a sensor's reach
+  HashSpacePairs hashPairs;            ///< broadphase.h: the default space's pairs, faster
+  dGeomID ray = nullptr;               ///< rays.cpp: the one ray of range sensors and scanners, in no space
+  dGeomID rayReach = nullptr;          ///< rays.cpp: a box about a sensor's reach, in no space
+  std::vector<dGeomID> rayCandidates;  ///< rays.cpp: the geoms within a sensor's reach
+  /// Per static body (GeomDef::static_body): the mobile bodies joined to it, which the rays of a
+  /// sensor mounted on it do not see (joints.cpp).
+  std::vector<std::vector<dBodyID>> staticJoined;
   Vec3 gravity{0, 0, 0};                ///< m/s^2 (imu.cpp: specific force = acceleration - gravity)
   int64_t time_ns = 0;                  ///< simulated time: the sum of the steps taken (ns)
   std::vector<dContact> contactBuffer;  ///< sized max_contacts once; reused by every collision
@@ -185,10 +191,11 @@ Transform sensorFrame(const WorldImpl& im, const SensorDef& d);
 
 // rays.cpp
 /// Collects in im.rayCandidates the geoms of the collision space whose bounding boxes meet the
-/// cube of half side `reach` about `origin` and that belong to neither `own` nor a body joined
-/// to it (null `own`: static geoms are skipped): every geom a ray of length <= reach from
-/// `origin` can hit.
-void gatherRayCandidates(WorldImpl& im, dBodyID own, const Vec3& origin, double reach);
+/// cube of half side `reach` about `origin` and that belong neither to the sensor's own body nor
+/// to a body joined to it -- mobile body `body`, or for a static mount (body -1) static body
+/// `static_body` (GeomDef::static_body) -- : every geom a ray of length <= reach from `origin`
+/// can hit.
+void gatherRayCandidates(WorldImpl& im, int body, int static_body, const Vec3& origin, double reach);
 /// Distance (m) along the ray from `origin` in unit direction `dir` to the nearest of
 /// im.rayCandidates (gathered for this origin and a reach >= `length`), or +infinity when
 /// nothing is hit within `length`.

@@ -1,6 +1,6 @@
-#include "simbob/plot.h"
+#include "simbob/tool/plot.h"
 
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 #include "simbob/values.h"
 
 #include <cairo-svg.h>
@@ -381,8 +381,9 @@ struct Scene {
   std::string time_label = "time [s]";
 };
 
-/// Lays out and draws everything; returns why the image is too small for the layout, else "".
-std::string render(cairo_t* cr, const Scene& sc, double width, double height) {
+/// Paints the background and draws the headline and the legend (wrapped into rows); returns
+/// where the panels start.
+double drawHeader(cairo_t* cr, const Scene& sc, double width) {
   cairo_font_options_t* fo = cairo_font_options_create();
   // Unhinted grey-scale text: identical metrics on every surface type and display setting.
   cairo_font_options_set_hint_style(fo, CAIRO_HINT_STYLE_NONE);
@@ -421,7 +422,82 @@ std::string render(cairo_t* cr, const Scene& sc, double width, double height) {
     drawText(cr, it.label, lx + kLegendSwatch + 6, row_y + kTextSize * 0.35, 0);
     lx += w + 20;
   }
-  const double panels_top = row_y + kLegendRowH * 0.5 + 6;
+  return row_y + kLegendRowH * 0.5 + 6;
+}
+
+/// The sampled columns of the actual and golden trajectories, and a scratch run of indices.
+struct Columns {
+  std::vector<int32_t> actual, golden;
+  std::vector<size_t> run;
+};
+
+/// Panel p in the box of `m`: title, grid, data (golden under actual), frame, ticks, labels.
+void drawPanel(cairo_t* cr, const Scene& sc, int p, const Mapper& m, const Axis& taxis, const Axis& vaxis,
+               Columns* cols) {
+  const Rect& b = m.box;
+  setFont(cr, kPanelTitleSize, true);
+  setGray(cr, 0.1);
+  drawText(cr, sc.titles[p], b.x, b.y - 7, 0);
+
+  // Grid (half-pixel offsets keep 1 px lines crisp).
+  cairo_set_line_width(cr, 1.0);
+  setGray(cr, 0.9);
+  for (double t : taxis.ticks) {
+    const double px = std::round(m.x(t)) + 0.5;
+    cairo_move_to(cr, px, b.y);
+    cairo_line_to(cr, px, b.y + b.h);
+  }
+  for (double v : vaxis.ticks) {
+    const double py = std::round(m.y(v)) + 0.5;
+    cairo_move_to(cr, b.x, py);
+    cairo_line_to(cr, b.x + b.w, py);
+  }
+  cairo_stroke(cr);
+
+  // Data, clipped to the box; golden first so the actual lines stay on top.
+  cairo_save(cr);
+  cairo_rectangle(cr, b.x, b.y, b.w, b.h);
+  cairo_clip(cr);
+  if (sc.golden) {
+    for (const Series& s : sc.series) {
+      if (s.golden == SIZE_MAX) continue;
+      drawSeries(cr, *sc.golden, s.golden, p, cols->golden, m, s.color, true, &cols->run);
+    }
+  }
+  for (const Series& s : sc.series) {
+    drawSeries(cr, *sc.actual, s.actual, p, cols->actual, m, s.color, false, &cols->run);
+  }
+  cairo_restore(cr);
+
+  // Frame and ticks.
+  cairo_set_line_width(cr, 1.0);
+  setGray(cr, 0.25);
+  cairo_rectangle(cr, b.x + 0.5, b.y + 0.5, b.w - 1, b.h - 1);
+  for (double t : taxis.ticks) {
+    const double px = std::round(m.x(t)) + 0.5;
+    cairo_move_to(cr, px, b.y + b.h);
+    cairo_line_to(cr, px, b.y + b.h + kTickLen);
+  }
+  for (double v : vaxis.ticks) {
+    const double py = std::round(m.y(v)) + 0.5;
+    cairo_move_to(cr, b.x - kTickLen, py);
+    cairo_line_to(cr, b.x, py);
+  }
+  cairo_stroke(cr);
+
+  setFont(cr, kTextSize, false);
+  setGray(cr, 0.2);
+  for (size_t i = 0; i < taxis.ticks.size(); ++i) {
+    drawText(cr, taxis.labels[i], m.x(taxis.ticks[i]), b.y + b.h + kTickLen + kTextSize + 1, 0.5);
+  }
+  for (size_t i = 0; i < vaxis.ticks.size(); ++i) {
+    drawText(cr, vaxis.labels[i], b.x - kTickLen - 4, m.y(vaxis.ticks[i]) + kTextSize * 0.35, 1.0);
+  }
+}
+
+/// Lays out and draws everything; returns why the image is too small for the layout, else "".
+std::string render(cairo_t* cr, const Scene& sc, double width, double height) {
+  const double panels_top = drawHeader(cr, sc, width);
   const double slot_h = (height - kFooterH - panels_top) / sc.panels;
   const double box_h = slot_h - kPanelTitleH - kTickLabelH - kPanelGap;
   if (box_h < kMinBoxSide) {
@@ -443,11 +519,9 @@ std::string render(cairo_t* cr, const Scene& sc, double width, double height) {
   }
   const Axis taxis = makeAxis(sc.t_lo, sc.t_hi, box_w, 90);
 
-  const std::vector<int32_t> actual_cols = sampleColumns(*sc.actual, sc.t_lo, sc.t_hi, box_w);
-  std::vector<int32_t> golden_cols;
-  if (sc.golden) golden_cols = sampleColumns(*sc.golden, sc.t_lo, sc.t_hi, box_w);
-  std::vector<size_t> run;
-
+  Columns cols;
+  cols.actual = sampleColumns(*sc.actual, sc.t_lo, sc.t_hi, box_w);
+  if (sc.golden) cols.golden = sampleColumns(*sc.golden, sc.t_lo, sc.t_hi, box_w);
   for (int p = 0; p < sc.panels; ++p) {
     const double slot_y = panels_top + p * slot_h;
     Mapper m;
@@ -456,66 +530,7 @@ std::string render(cairo_t* cr, const Scene& sc, double width, double height) {
     m.t1 = sc.t_hi;
     m.v0 = vaxes[p].lo;
     m.v1 = vaxes[p].hi;
-    const Rect& b = m.box;
-
-    setFont(cr, kPanelTitleSize, true);
-    setGray(cr, 0.1);
-    drawText(cr, sc.titles[p], b.x, b.y - 7, 0);
-
-    // Grid (half-pixel offsets keep 1 px lines crisp).
-    cairo_set_line_width(cr, 1.0);
-    setGray(cr, 0.9);
-    for (double t : taxis.ticks) {
-      const double px = std::round(m.x(t)) + 0.5;
-      cairo_move_to(cr, px, b.y);
-      cairo_line_to(cr, px, b.y + b.h);
-    }
-    for (double v : vaxes[p].ticks) {
-      const double py = std::round(m.y(v)) + 0.5;
-      cairo_move_to(cr, b.x, py);
-      cairo_line_to(cr, b.x + b.w, py);
-    }
-    cairo_stroke(cr);
-
-    // Data, clipped to the box; golden first so the actual lines stay on top.
-    cairo_save(cr);
-    cairo_rectangle(cr, b.x, b.y, b.w, b.h);
-    cairo_clip(cr);
-    if (sc.golden) {
-      for (const Series& s : sc.series) {
-        if (s.golden == SIZE_MAX) continue;
-        drawSeries(cr, *sc.golden, s.golden, p, golden_cols, m, s.color, true, &run);
-      }
-    }
-    for (const Series& s : sc.series) {
-      drawSeries(cr, *sc.actual, s.actual, p, actual_cols, m, s.color, false, &run);
-    }
-    cairo_restore(cr);
-
-    // Frame and ticks.
-    cairo_set_line_width(cr, 1.0);
-    setGray(cr, 0.25);
-    cairo_rectangle(cr, b.x + 0.5, b.y + 0.5, b.w - 1, b.h - 1);
-    for (double t : taxis.ticks) {
-      const double px = std::round(m.x(t)) + 0.5;
-      cairo_move_to(cr, px, b.y + b.h);
-      cairo_line_to(cr, px, b.y + b.h + kTickLen);
-    }
-    for (double v : vaxes[p].ticks) {
-      const double py = std::round(m.y(v)) + 0.5;
-      cairo_move_to(cr, b.x - kTickLen, py);
-      cairo_line_to(cr, b.x, py);
-    }
-    cairo_stroke(cr);
-
-    setFont(cr, kTextSize, false);
-    setGray(cr, 0.2);
-    for (size_t i = 0; i < taxis.ticks.size(); ++i) {
-      drawText(cr, taxis.labels[i], m.x(taxis.ticks[i]), b.y + b.h + kTickLen + kTextSize + 1, 0.5);
-    }
-    for (size_t i = 0; i < vaxes[p].ticks.size(); ++i) {
-      drawText(cr, vaxes[p].labels[i], b.x - kTickLen - 4, m.y(vaxes[p].ticks[i]) + kTextSize * 0.35, 1.0);
-    }
+    drawPanel(cr, sc, p, m, taxis, vaxes[p], &cols);
   }
 
   setFont(cr, kTextSize, true);
@@ -615,6 +630,43 @@ std::unordered_map<std::string, size_t> bodyIndex(const Trajectory& tr) {
 
 PlotColor plotColor(size_t i) { return kPalette[i % kMaxPlotBodies]; }
 
+namespace {
+
+/// The bodies to plot, in legend order: those named (at most kMaxPlotBodies), or the first
+/// kMaxPlotBodies (saying so in `note`). False and *err for a name the trajectory lacks.
+bool selectBodies(const Trajectory& actual, const PlotOptions& options, std::vector<size_t>* selected,
+                  std::string* note, Error* err) {
+  if (options.bodies.empty()) {
+    const size_t n = std::min(actual.bodyCount(), kMaxPlotBodies);
+    for (size_t b = 0; b < n; ++b) selected->push_back(b);
+    if (actual.bodyCount() > n) {
+      *note = " (first " + std::to_string(n) + " of " + std::to_string(actual.bodyCount()) + " bodies)";
+    }
+    return true;
+  }
+  const auto index = bodyIndex(actual);
+  for (const std::string& key : options.bodies) {
+    const auto it = index.find(key);
+    if (it == index.end()) {
+      setError(err, ErrorKind::InvalidInput, "",
+               "no body '" + key + "' in trajectory" + bodySuggestion(key, actual.bodies));
+      return false;
+    }
+    if (std::find(selected->begin(), selected->end(), it->second) == selected->end()) {
+      selected->push_back(it->second);
+    }
+  }
+  if (selected->size() > kMaxPlotBodies) {
+    setError(err, ErrorKind::InvalidInput, "",
+             "too many bodies for one plot: " + std::to_string(selected->size()) + " (at most " +
+                 std::to_string(kMaxPlotBodies) + ")");
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 bool plotTrajectory(const Trajectory& actual, const Trajectory* golden, const PlotOptions& options,
                     const std::string& out_path, Error* err) {
   const std::string ext = lowerExtension(out_path);
@@ -651,32 +703,7 @@ bool plotTrajectory(const Trajectory& actual, const Trajectory* golden, const Pl
   // Which bodies, in legend order.
   std::vector<size_t> selected;
   std::string note;
-  if (options.bodies.empty()) {
-    const size_t n = std::min(actual.bodyCount(), kMaxPlotBodies);
-    for (size_t b = 0; b < n; ++b) selected.push_back(b);
-    if (actual.bodyCount() > n) {
-      note = " (first " + std::to_string(n) + " of " + std::to_string(actual.bodyCount()) + " bodies)";
-    }
-  } else {
-    const auto index = bodyIndex(actual);
-    for (const std::string& key : options.bodies) {
-      const auto it = index.find(key);
-      if (it == index.end()) {
-        setError(err, ErrorKind::InvalidInput, "",
-                 "no body '" + key + "' in trajectory" + bodySuggestion(key, actual.bodies));
-        return false;
-      }
-      if (std::find(selected.begin(), selected.end(), it->second) == selected.end()) {
-        selected.push_back(it->second);
-      }
-    }
-    if (selected.size() > kMaxPlotBodies) {
-      setError(err, ErrorKind::InvalidInput, "",
-               "too many bodies for one plot: " + std::to_string(selected.size()) + " (at most " +
-                   std::to_string(kMaxPlotBodies) + ")");
-      return false;
-    }
-  }
+  if (!selectBodies(actual, options, &selected, &note, err)) return false;
 
   Scene sc;
   sc.actual = &actual;

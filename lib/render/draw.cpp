@@ -8,8 +8,8 @@
 #include <thread>
 
 #include "image/work_queue.h"
-#include "simbob/frame_sinks.h"
-#include "simbob/render.h"
+#include "simbob/tool/frame_sinks.h"
+#include "simbob/renderer.h"
 
 namespace simbob {
 

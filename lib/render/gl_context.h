@@ -6,7 +6,7 @@
 
 #include "render/gl_api.h"
 #include "simbob/error.h"
-#include "simbob/render.h"
+#include "simbob/renderer.h"
 
 namespace simbob::render {
 

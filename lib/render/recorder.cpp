@@ -4,7 +4,7 @@
 #include <optional>
 
 #include "simbob/physics.h"
-#include "simbob/render.h"
+#include "simbob/renderer.h"
 
 namespace simbob {
 

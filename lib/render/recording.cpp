@@ -1,9 +1,9 @@
 // `run --record` / `--video`: the renderer, its render thread, the sinks and the Recorder party,
-// built and checked together before the run (see Recording in simbob/render.h).
+// built and checked together before the run (see Recording in simbob/renderer.h).
 #include <filesystem>
 
-#include "simbob/frame_sinks.h"
-#include "simbob/render.h"
+#include "simbob/tool/frame_sinks.h"
+#include "simbob/renderer.h"
 
 namespace simbob {
 

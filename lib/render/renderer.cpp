@@ -1,5 +1,6 @@
 // The renderer: fixed-function GL over the compiled visuals. One light (LightPos, LightColor),
 // the skins' materials, quality levels of guide 3.3.3, planar shadows on shadow planes, fog.
+#include <filesystem>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -7,8 +8,8 @@
 
 #include "render/gl_context.h"
 #include "render/shapes.h"
-#include "render/texture_file.h"
-#include "simbob/render.h"
+#include "image/texture_file.h"
+#include "simbob/renderer.h"
 #include "simbob/transform.h"
 
 namespace simbob {
@@ -607,7 +608,7 @@ class GlRenderer : public Renderer {
     textures_.assign(skins_.size(), Texture{});
     if (opts_.quality < Quality::Textures) return true;
     // Each file is read and uploaded once, however many skins name it (one GL texture each).
-    render::TextureFiles files;
+    TextureFiles files;
     for (size_t i = 0; i < skins_.size(); ++i) {
       const SkinDef& s = skins_[i];
       if (s.texture.empty()) continue;
@@ -726,6 +727,27 @@ bool modelsShowNoBody(const Model& model) {
 
 Renderer::~Renderer() = default;
 
+std::vector<std::string> textureFiles(const Model& model, const std::string& texture_folder) {
+  std::vector<std::string> files;
+  for (const SkinDef& s : model.skins) {
+    if (s.texture.empty()) continue;
+    for (const std::string& dir : {texture_folder, s.base_dir}) {
+      if (dir.empty()) continue;
+      for (const char* ext : {"", ".bmp", ".png"}) {
+        const std::string p = (s.texture[0] == '/' ? "" : dir + "/") + s.texture + ext;
+        std::error_code ec;
+        if (std::filesystem::is_regular_file(p, ec)) files.push_back(p);
+      }
+    }
+  }
+  return files;
+}
+
+std::string drawFallbackNote(const Model& model, const RenderOptions& options) {
+  if (options.draw_chosen || !modelsShowNoBody(model)) return "";
+  return "no body has a model: drawing the collision shapes (--draw geoms; --draw models for the models alone)";
+}
+
 std::unique_ptr<Renderer> Renderer::create(const Model& model, const RenderOptions& opts, Error* err) {
   if (opts.width < 1 || opts.height < 1 || opts.width > kMaxImageSide || opts.height > kMaxImageSide) {
     err->kind = ErrorKind::InvalidInput;
@@ -734,7 +756,12 @@ std::unique_ptr<Renderer> Renderer::create(const Model& model, const RenderOptio
   }
   std::unique_ptr<render::GlContext> ctx = render::createContext(opts.backend, opts.width, opts.height, err);
   if (!ctx) return nullptr;
-  auto r = std::make_unique<GlRenderer>(model, opts, std::move(ctx));
+  RenderOptions o = opts;
+  if (!o.draw_chosen && modelsShowNoBody(model)) {
+    o.draw_models = false;
+    o.draw_geoms = true;
+  }
+  auto r = std::make_unique<GlRenderer>(model, o, std::move(ctx));
   if (!r->init(err)) return nullptr;
   return r;
 }

@@ -10,11 +10,8 @@ namespace {
 
 class CommandSchedule : public Party {
  public:
-  CommandSchedule(const ControllerDef& c, MotionControl2D* target)
-      : actuator_(c.actuators.empty() ? -1 : c.actuators[0]),
-        target_(target),
-        width_(static_cast<size_t>(c.values) + 1),
-        rows_(c.commands) {}
+  CommandSchedule(const CommandScheduleDef& c, MotionControl2D* target)
+      : actuator_(c.actuator), target_(target), width_(static_cast<size_t>(c.values) + 1), rows_(c.commands) {}
   SimTime first() override { return timeOf(0); }
   SimTime onGrant(SimTime now, World& world) override {
     const double* r = &rows_[row_ * width_];
@@ -42,7 +39,7 @@ class CommandSchedule : public Party {
 
 }  // namespace
 
-std::unique_ptr<Party> makeCommandSchedule(const ControllerDef& c, MotionControl2D* target) {
+std::unique_ptr<Party> makeCommandSchedule(const CommandScheduleDef& c, MotionControl2D* target) {
   return std::make_unique<CommandSchedule>(c, target);
 }
 

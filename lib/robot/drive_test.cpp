@@ -13,7 +13,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 class DriveTest : public Party {
  public:
-  explicit DriveTest(const ControllerDef& c) : drive_(c.actuators.at(0)), variation_(c.variation), tick_(c.period) {}
+  explicit DriveTest(const DriveTestDef& c) : drive_(c.drive), variation_(c.variation), tick_(c.period) {}
   SimTime first() override { return 0; }
   SimTime onGrant(SimTime now, World& world) override {
     world.setCommand(drive_, std::sin(2 * kPi * variation_ * toSeconds(now) / 60));
@@ -28,6 +28,6 @@ class DriveTest : public Party {
 
 }  // namespace
 
-std::unique_ptr<Party> makeDriveTest(const ControllerDef& c) { return std::make_unique<DriveTest>(c); }
+std::unique_ptr<Party> makeDriveTest(const DriveTestDef& c) { return std::make_unique<DriveTest>(c); }
 
 }  // namespace simbob::robot

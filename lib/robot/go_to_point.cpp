@@ -24,7 +24,7 @@ constexpr double kGain = 2.0;
 
 class GoToPoint : public Party {
  public:
-  GoToPoint(const ControllerDef& c, MotionControl2D* motion)
+  GoToPoint(const GoToPointDef& c, MotionControl2D* motion)
       : motion_(motion),
         body_(c.body),
         goal_x_(c.goal_x),
@@ -65,7 +65,7 @@ class GoToPoint : public Party {
 
 }  // namespace
 
-std::unique_ptr<Party> makeGoToPoint(const ControllerDef& c, MotionControl2D* motion) {
+std::unique_ptr<Party> makeGoToPoint(const GoToPointDef& c, MotionControl2D* motion) {
   return std::make_unique<GoToPoint>(c, motion);
 }
 

@@ -27,7 +27,7 @@ namespace {
 
 class ObstacleAvoider : public Party {
  public:
-  ObstacleAvoider(const ControllerDef& c, const Model& model, MotionControl2D* motion)
+  ObstacleAvoider(const ObstacleAvoiderDef& c, const Model& model, MotionControl2D* motion)
       : motion_(motion), sensors_(c.sensors), speed_(c.speed), turn_rate_(c.turn_rate), tick_(c.period) {
     for (int i : sensors_) {
       const SensorDef& s = model.sensors[static_cast<size_t>(i)];
@@ -67,7 +67,7 @@ class ObstacleAvoider : public Party {
 
 }  // namespace
 
-std::unique_ptr<Party> makeObstacleAvoider(const ControllerDef& c, const Model& model, MotionControl2D* motion) {
+std::unique_ptr<Party> makeObstacleAvoider(const ObstacleAvoiderDef& c, const Model& model, MotionControl2D* motion) {
   return std::make_unique<ObstacleAvoider>(c, model, motion);
 }
 

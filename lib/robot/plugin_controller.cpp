@@ -1,11 +1,13 @@
 // A plug-in's controller (simbob/plugin_c.h, docs/plugins.md): its instance is made from its
 // numbers when the run's parties are, and its act() runs at 0, Period, 2 Period, ... with a
 // SimbobHost that reads the sensors and commands the actuators its refs name
-// (ControllerDef::refs). A failure -- create() returning NULL, act() returning nonzero, a host
+// (PluginControllerDef::refs). A failure -- create() returning NULL, act() returning nonzero, a host
 // call with a ref out of range or of the wrong kind, or a World index out of range
 // (World::misuse) -- stops the run with an error naming the controller, the plug-in and the
 // type, where the controller is defined (exit 1, the trajectory so far kept).
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 
 #include "robot/controllers.h"
@@ -19,9 +21,14 @@ namespace {
 class PluginController : public Party {
  public:
   explicit PluginController(const ControllerDef& c)
-      : def_(c), type_(*c.plugin_type), tick_(c.period), who_("plug-in '" + c.plugin + "', type '" + c.type + "'") {
+      : key_(c.key),
+        loc_(c.loc),
+        def_(c.as<PluginControllerDef>()),
+        type_(*def_.plugin_type),
+        tick_(def_.period),
+        who_("plug-in '" + def_.plugin + "', type '" + def_.type + "'") {
     if (!type_.create) return;
-    std::array<char, SIMBOB_MESSAGE_SIZE> msg{};
+    std::array<char, size_t{16} * SIMBOB_MESSAGE_SIZE> msg{};  // room to spare, as in onGrant
     user_ = type_.create(def_.numbers.data(), msg.data());
     if (!user_) fail("create() failed: " + messageOf(msg.data()));
   }
@@ -39,19 +46,35 @@ class PluginController : public Party {
     SimbobHost h{};
     h.size = sizeof(SimbobHost);
     h.context = this;
-    h.time = [](const SimbobHost* host) { return self(host).time_; };
-    h.read_sensor = [](const SimbobHost* host, int ref, double* out, int n) { return self(host).read(ref, out, n); };
-    h.set_command = [](const SimbobHost* host, int ref, double v) { return self(host).command(ref, v); };
-    h.mount_pose = [](const SimbobHost* host, double*, double*) { return self(host).misuse("mount_pose()"); };
-    h.body_velocity = [](const SimbobHost* host, double*, double*) { return self(host).misuse("body_velocity()"); };
+    h.time = [](const SimbobHost* host) {
+      PluginController* c = self(host, "time()");
+      return c ? c->time_ : -1.0;
+    };
+    h.read_sensor = [](const SimbobHost* host, int ref, double* out, int n) {
+      PluginController* c = self(host, "read_sensor()");
+      return c ? c->read(ref, out, n) : -1;
+    };
+    h.set_command = [](const SimbobHost* host, int ref, double v) {
+      PluginController* c = self(host, "set_command()");
+      return c ? c->command(ref, v) : -1;
+    };
+    h.mount_pose = [](const SimbobHost* host, double*, double*) { return misuse(host, "mount_pose()"); };
+    h.body_velocity = [](const SimbobHost* host, double*, double*) { return misuse(host, "body_velocity()"); };
     h.body_state = [](const SimbobHost* host, int ref, double* p, double* q, double* v, double* w) {
-      return self(host).bodyState(ref, p, q, v, w);
+      PluginController* c = self(host, "body_state()");
+      return c ? c->bodyState(ref, p, q, v, w) : -1;
     };
     h.cast_ray = [](const SimbobHost* host, const double*, const double*, double) {
-      return static_cast<double>(self(host).misuse("cast_ray()"));
+      return static_cast<double>(misuse(host, "cast_ray()"));
     };
-    std::array<char, SIMBOB_MESSAGE_SIZE> msg{};
+    // Room to spare: a message written past SIMBOB_MESSAGE_SIZE is cut there, not written into
+    // the stack. Only what messageOf reads is cleared.
+    std::array<char, size_t{16} * SIMBOB_MESSAGE_SIZE> msg;  // NOLINT(cppcoreguidelines-pro-type-member-init)
+    std::fill_n(msg.data(), SIMBOB_MESSAGE_SIZE, '\0');
+    PluginController* const outer = tCurrent;
+    tCurrent = this;
     const int rc = type_.act(user_, &h, time_, msg.data());
+    tCurrent = outer;
     world_ = nullptr;
     if (rc != 0) fail("act() failed: " + messageOf(msg.data()));
     if (!world.misuse().empty()) fail(world.misuse());
@@ -60,12 +83,33 @@ class PluginController : public Party {
   const Error* failure() const override { return error_.message.empty() ? nullptr : &error_; }
 
  private:
-  static PluginController& self(const SimbobHost* h) { return *static_cast<PluginController*>(h->context); }
+  /// The controller whose act() runs now on this thread (null between calls): host calls are
+  /// checked against it, so a NULL host or one kept from an earlier call is an error, not a crash.
+  static thread_local PluginController* tCurrent;
+  /// The controller behind `h`, or null after recording (on the running one) why there is none.
+  static PluginController* self(const SimbobHost* h, const char* call) {
+    if (!h) {
+      if (tCurrent) tCurrent->fail(std::string(call) + ": the host is NULL: pass the SimbobHost the callback got");
+      return nullptr;
+    }
+    if (!tCurrent || h->context != tCurrent) {
+      if (tCurrent)
+        tCurrent->fail(std::string(call) +
+                       ": not the host of this callback (a host is valid only during the callback that got it)");
+      return nullptr;
+    }
+    return tCurrent;
+  }
+  static int misuse(const SimbobHost* h, const char* call) {
+    if (PluginController* c = self(h, call))
+      c->fail(std::string(call) + " is for sensors and actuators, not controllers");
+    return -1;
+  }
   static std::string messageOf(const char* buf) {
     const size_t n = strnlen(buf, SIMBOB_MESSAGE_SIZE);
     return n ? std::string(buf, n) : std::string("(no message)");
   }
-  /// The Model index behind ref `ref` if it is of the wanted kind (ControllerDef::ref_kind); -1
+  /// The Model index behind ref `ref` if it is of the wanted kind (PluginControllerDef::ref_kind); -1
   /// after recording the misuse.
   int refIndex(const char* call, int ref, uint8_t kind) {
     const int count = static_cast<int>(def_.refs.size());
@@ -86,6 +130,15 @@ class PluginController : public Party {
   int read(int ref, double* out, int n) {
     const int i = refIndex("read_sensor", ref, 1);
     if (i < 0) return -1;
+    const std::string call = "read_sensor(" + std::to_string(ref) + "): ";
+    if (n < 0) {
+      fail(call + "n is " + std::to_string(n) + ": it is the number of entries out has room for");
+      return -1;
+    }
+    if (!out && n > 0) {
+      fail(call + "out is NULL but n is " + std::to_string(n));
+      return -1;
+    }
     const std::vector<double>& r = world_->sensorReading(i);
     for (int k = 0; k < n && k < static_cast<int>(r.size()); ++k) out[k] = r[static_cast<size_t>(k)];
     return static_cast<int>(r.size());
@@ -93,6 +146,14 @@ class PluginController : public Party {
   int command(int ref, double value) {
     const int i = refIndex("set_command", ref, 0);
     if (i < 0) return -1;
+    if (!std::isfinite(value)) {  // as Python's set_command: never clamped or taken as 0
+      fail("set_command(" + std::to_string(ref) + "): the command is not finite (" +
+           (std::isnan(value) ? "nan"
+            : value > 0       ? "inf"
+                              : "-inf") +
+           ")");
+      return -1;
+    }
     world_->setCommand(i, value);
     return 0;
   }
@@ -100,24 +161,17 @@ class PluginController : public Party {
     const int i = refIndex("body_state", ref, 2);
     if (i < 0) return -1;
     const BodyState s = world_->body(i);
-    for (size_t k = 0; k < 3; ++k) {
-      if (p) p[k] = s.pose.p[k];
-      if (v) v[k] = s.lin_vel[k];
-      if (w) w[k] = s.ang_vel[k];
-    }
-    for (size_t k = 0; k < 4 && q; ++k) q[k] = s.pose.q[k];
+    copyBodyState(s, p, q, v, w);
     return 0;
-  }
-  int misuse(const char* call) {
-    fail(std::string(call) + " is for sensors and actuators, not controllers");
-    return -1;
   }
   void fail(const std::string& what) {
     if (error_.message.empty())
-      error_ = {ErrorKind::Diverged, def_.loc, "controller '" + def_.key + "' (" + who_ + "): " + what};
+      error_ = {ErrorKind::ControllerFailed, loc_, "controller '" + key_ + "' (" + who_ + "): " + what};
   }
 
-  const ControllerDef def_;  // a copy, so the party points into nothing of the Model
+  const std::string key_;
+  const SourceLoc loc_;
+  const PluginControllerDef def_;  // a copy, so the party points into nothing of the Model
   const SimbobType& type_;
   Periodic tick_;
   std::string who_;
@@ -126,6 +180,8 @@ class PluginController : public Party {
   double time_ = 0;
   Error error_;
 };
+
+thread_local PluginController* PluginController::tCurrent = nullptr;
 
 }  // namespace
 

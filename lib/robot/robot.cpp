@@ -79,24 +79,25 @@ std::unique_ptr<Party> clampNotices(const Model& model, std::function<void(const
   return std::make_unique<ClampNotices>(model, std::move(warn));
 }
 
-std::vector<std::unique_ptr<Party>> robotParties(const Model& model) {
+std::vector<std::unique_ptr<Party>> robotParties(const Model& model, const CameraImages* images) {
   std::vector<std::unique_ptr<Party>> out(model.controllers.size());
   std::vector<robot::MotionControl2D*> motion(model.controllers.size(), nullptr);
   // Two-wheel controllers first: a schedule may command one listed after it.
   for (size_t i = 0; i < model.controllers.size(); ++i)
-    if (model.controllers[i].kind == ControllerDef::TwoWheel) {
-      auto p = robot::makeTwoWheel(model.controllers[i]);
+    if (model.controllers[i].kind() == ControllerDef::TwoWheel) {
+      auto p = robot::makeTwoWheel(model.controllers[i].as<TwoWheelDef>());
       motion[i] = p.get();
       out[i] = std::move(p);
     }
+  auto motionOf = [&](int target) { return target >= 0 ? motion[static_cast<size_t>(target)] : nullptr; };
   for (size_t i = 0; i < model.controllers.size(); ++i) {
     const ControllerDef& c = model.controllers[i];
-    switch (c.kind) {
+    switch (c.kind()) {
       case ControllerDef::DriveTest:
-        out[i] = robot::makeDriveTest(c);
+        out[i] = robot::makeDriveTest(c.as<DriveTestDef>());
         break;
       case ControllerDef::ServoTest:
-        out[i] = robot::makeServoTest(c, model);
+        out[i] = robot::makeServoTest(c.as<ServoTestDef>(), model);
         break;
       case ControllerDef::TwoWheel:
         break;  // made above
@@ -104,19 +105,20 @@ std::vector<std::unique_ptr<Party>> robotParties(const Model& model) {
         out[i] = robot::makePluginController(c);
         break;
       case ControllerDef::CommandSchedule:
-        out[i] = robot::makeCommandSchedule(c, c.target >= 0 ? motion[static_cast<size_t>(c.target)] : nullptr);
+        out[i] = robot::makeCommandSchedule(c.as<CommandScheduleDef>(), motionOf(c.as<CommandScheduleDef>().target));
         break;
       case ControllerDef::WallStop:
-        out[i] = robot::makeWallStop(c, motion[static_cast<size_t>(c.target)]);
+        out[i] = robot::makeWallStop(c.as<WallStopDef>(), motionOf(c.as<WallStopDef>().target));
         break;
       case ControllerDef::GoToPoint:
-        out[i] = robot::makeGoToPoint(c, motion[static_cast<size_t>(c.target)]);
+        out[i] = robot::makeGoToPoint(c.as<GoToPointDef>(), motionOf(c.as<GoToPointDef>().target));
         break;
       case ControllerDef::ObstacleAvoider:
-        out[i] = robot::makeObstacleAvoider(c, model, motion[static_cast<size_t>(c.target)]);
+        out[i] =
+            robot::makeObstacleAvoider(c.as<ObstacleAvoiderDef>(), model, motionOf(c.as<ObstacleAvoiderDef>().target));
         break;
       case ControllerDef::WallFollower:
-        out[i] = robot::makeWallFollower(c, model, motion[static_cast<size_t>(c.target)]);
+        out[i] = robot::makeWallFollower(c.as<WallFollowerDef>(), model, motionOf(c.as<WallFollowerDef>().target));
         break;
     }
   }
@@ -129,7 +131,7 @@ std::vector<std::unique_ptr<Party>> robotParties(const Model& model) {
   for (size_t i = 0; i < model.controllers.size(); ++i)
     if (motion[i]) motions.emplace_back(model.controllers[i].key, motion[i]);
   for (const SocketDef& d : model.sockets) {
-    out.push_back(robot::makeSocketPeer(d, model, motions));
+    out.push_back(robot::makeSocketPeer(d, model, motions, images));
     out.back()->name = "RCLocalSocketCommunicator '" + d.key + "'";
     out.back()->loc = d.loc;
   }

@@ -13,8 +13,8 @@ namespace {
 
 class ServoTest : public Party {
  public:
-  ServoTest(const ControllerDef& c, const ActuatorDef& servo)
-      : servo_(c.actuators.at(0)), lo_(servo.min_pos), hi_(servo.max_pos), variation_(c.variation), tick_(c.period) {}
+  ServoTest(const ServoTestDef& c, const ActuatorDef& servo)
+      : servo_(c.servo), lo_(servo.min_pos), hi_(servo.max_pos), variation_(c.variation), tick_(c.period) {}
   SimTime first() override { return 0; }
   SimTime onGrant(SimTime now, World& world) override {
     double f = 0;
@@ -34,8 +34,8 @@ class ServoTest : public Party {
 
 }  // namespace
 
-std::unique_ptr<Party> makeServoTest(const ControllerDef& c, const Model& model) {
-  return std::make_unique<ServoTest>(c, model.actuators.at(static_cast<size_t>(c.actuators.at(0))));
+std::unique_ptr<Party> makeServoTest(const ServoTestDef& c, const Model& model) {
+  return std::make_unique<ServoTest>(c, model.actuators.at(static_cast<size_t>(c.servo)));
 }
 
 }  // namespace simbob::robot

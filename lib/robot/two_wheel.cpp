@@ -13,8 +13,8 @@ namespace {
 
 class TwoWheel : public MotionControl2D {
  public:
-  explicit TwoWheel(const ControllerDef& c)
-      : left_(c.actuators.at(0)), right_(c.actuators.at(1)), half_track_(c.wheel_distance / 2), radius_(c.variation) {}
+  explicit TwoWheel(const TwoWheelDef& c)
+      : left_(c.left), right_(c.right), half_track_(c.wheel_distance / 2), radius_(c.wheel_radius) {}
   SimTime first() override { return 0; }
   SimTime onGrant(SimTime, World& world) override {
     command(world);
@@ -39,6 +39,6 @@ class TwoWheel : public MotionControl2D {
 
 }  // namespace
 
-std::unique_ptr<MotionControl2D> makeTwoWheel(const ControllerDef& c) { return std::make_unique<TwoWheel>(c); }
+std::unique_ptr<MotionControl2D> makeTwoWheel(const TwoWheelDef& c) { return std::make_unique<TwoWheel>(c); }
 
 }  // namespace simbob::robot

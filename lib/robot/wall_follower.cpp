@@ -29,9 +29,9 @@ namespace {
 
 class WallFollower : public Party {
  public:
-  WallFollower(const ControllerDef& c, const Model& model, MotionControl2D* motion)
+  WallFollower(const WallFollowerDef& c, const Model& model, MotionControl2D* motion)
       : motion_(motion),
-        scanner_(c.sensors.at(0)),
+        scanner_(c.scanner),
         sigma_(c.side),
         distance_(c.wall_distance),
         speed_(c.speed),
@@ -90,7 +90,7 @@ class WallFollower : public Party {
 
 }  // namespace
 
-std::unique_ptr<Party> makeWallFollower(const ControllerDef& c, const Model& model, MotionControl2D* motion) {
+std::unique_ptr<Party> makeWallFollower(const WallFollowerDef& c, const Model& model, MotionControl2D* motion) {
   return std::make_unique<WallFollower>(c, model, motion);
 }
 

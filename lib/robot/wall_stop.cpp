@@ -10,8 +10,8 @@ namespace {
 
 class WallStop : public Party {
  public:
-  WallStop(const ControllerDef& c, MotionControl2D* motion)
-      : motion_(motion), sensor_(c.sensors.at(0)), speed_(c.speed), tick_(c.period) {}
+  WallStop(const WallStopDef& c, MotionControl2D* motion)
+      : motion_(motion), sensor_(c.sensor), speed_(c.speed), tick_(c.period) {}
   SimTime first() override { return 0; }
   SimTime onGrant(SimTime now, World& world) override {
     if (world.touching(sensor_)) {
@@ -35,7 +35,7 @@ class WallStop : public Party {
 
 }  // namespace
 
-std::unique_ptr<Party> makeWallStop(const ControllerDef& c, MotionControl2D* motion) {
+std::unique_ptr<Party> makeWallStop(const WallStopDef& c, MotionControl2D* motion) {
   return std::make_unique<WallStop>(c, motion);
 }
 

@@ -1,7 +1,7 @@
 // DocumentIni (guide 3.3.1): the camera settings beside a scene, read as overrides. The guide's
 // GUI also wrote the file back when a simulation closed (the user had moved the camera with the
 // mouse); a batch run moves no camera, so simbob only reads it.
-#include "simbob/document_ini.h"
+#include "simbob/tool/document_ini.h"
 
 #include <sys/stat.h>
 
@@ -9,7 +9,7 @@
 #include <string_view>
 
 #include "scene/source.h"
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 #include "simbob/values.h"
 
 namespace simbob {

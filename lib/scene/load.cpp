@@ -13,7 +13,7 @@
 #include <pugixml.hpp>
 
 #include "scene/source.h"
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 #include "simbob/graph.h"
 #include "urdf/urdf.h"
 
@@ -163,32 +163,36 @@ class Builder {
       scene_.at(index).slots[pi] = std::move(slot);
     }
 
-    if (src) {
-      for (const auto& [name, line] : src->unread()) {
-        std::vector<std::string> names;
-        for (const auto& p : t->params) names.push_back(p.name);
-        std::string near = didYouMean(name, names);
-        bool duplicate = t->paramIndex(name) >= 0 || (src->ignoresCase() && t->paramIndexIgnoreCase(name) >= 0);
-        if (duplicate) {
-          diag_.error({loc.file, line}, prefix(what) + "parameter '" + quoteInput(name) + "' given twice");
-        } else if (!near.empty()) {
-          diag_.error({loc.file, line},
-                      prefix(what) + "parameter '" + quoteInput(name) + "' unknown (did you mean '" + near + "'?)");
-        } else {
-          // Nothing close: say what the type does take (an INI list by its Count key).
-          std::string list;
-          for (const auto& p : t->params)
-            list += (list.empty() ? "" : ", ") +
-                    (p.kind == ParamKind::List && src->ignoresCase() ? listItemName(p.name) + "Count" : p.name);
-          diag_.error({loc.file, line}, prefix(what) + "parameter '" + quoteInput(name) + "' unknown (" + t->name +
-                                            (names.empty() ? " takes no parameters)" : " takes " + list + ")"));
-        }
-      }
-    }
+    if (src) reportUnread(*t, *src, loc, what);
     if (!t->import_root.empty()) readImport(index, loc);
     if (diag_.errors().size() > errors_before) scene_.load_failed.insert(index);
     --depth_;
     return index;
+  }
+
+  /// Every parameter the source gave that type `t` does not take (or took twice), with a "did
+  /// you mean" or the list of what it takes.
+  void reportUnread(const TypeSpec& t, const Source& src, const SourceLoc& loc, const std::string& what) {
+    for (const auto& [name, line] : src.unread()) {
+      std::vector<std::string> names;
+      for (const auto& p : t.params) names.push_back(p.name);
+      std::string near = didYouMean(name, names);
+      bool duplicate = t.paramIndex(name) >= 0 || (src.ignoresCase() && t.paramIndexIgnoreCase(name) >= 0);
+      if (duplicate) {
+        diag_.error({loc.file, line}, prefix(what) + "parameter '" + quoteInput(name) + "' given twice");
+      } else if (!near.empty()) {
+        diag_.error({loc.file, line},
+                    prefix(what) + "parameter '" + quoteInput(name) + "' unknown (did you mean '" + near + "'?)");
+      } else {
+        // Nothing close: say what the type does take (an INI list by its Count key).
+        std::string list;
+        for (const auto& p : t.params)
+          list += (list.empty() ? "" : ", ") +
+                  (p.kind == ParamKind::List && src.ignoresCase() ? listItemName(p.name) + "Count" : p.name);
+        diag_.error({loc.file, line}, prefix(what) + "parameter '" + quoteInput(name) + "' unknown (" + t.name +
+                                          (names.empty() ? " takes no parameters)" : " takes " + list + ")"));
+      }
+    }
   }
 
   void readImport(int index, const SourceLoc& loc) {
@@ -605,6 +609,11 @@ bool loadFromText(std::string text, const std::string& name, Format format, cons
                   Diagnostics& diag) {
   *scene = Scene{};
   scene->path = name;
+  if (text.size() > kMaxSceneFileBytes) {  // scene text from memory (Python's from_text) has a file's limit
+    diag.error({name, 0}, "cannot read scene: larger than " + std::to_string(kMaxSceneFileBytes >> 20) + " MiB",
+               ErrorKind::InvalidInput);
+    return false;
+  }
   Builder b(reg, *scene, diag);
   if (format == Format::Xml && looksLikeUrdf(name, text)) {
     b.preload(std::filesystem::path(name).lexically_normal().string(), text);
@@ -662,6 +671,11 @@ bool loadSceneFromText(const std::string& text, const std::string& name, Format 
   return loadFromText(text, name, format, reg, scene, diag);
 }
 
+Format sceneFormatOf(const std::string& path) {
+  const bool ini = path.size() >= 4 && equalsIgnoreCase(std::string_view(path).substr(path.size() - 4), ".ini");
+  return ini ? Format::Ini : Format::Xml;
+}
+
 bool loadScene(const std::string& path, const Registry& reg, Scene* scene, Diagnostics& diag) {
   std::string text, err;
   bool too_large = false;
@@ -670,8 +684,7 @@ bool loadScene(const std::string& path, const Registry& reg, Scene* scene, Diagn
     diag.error({path, 0}, "cannot read scene: " + err, too_large ? ErrorKind::InvalidInput : ErrorKind::MissingInput);
     return false;
   }
-  bool ini = path.size() >= 4 && equalsIgnoreCase(std::string_view(path).substr(path.size() - 4), ".ini");
-  return loadFromText(std::move(text), path, ini ? Format::Ini : Format::Xml, reg, scene, diag);
+  return loadFromText(std::move(text), path, sceneFormatOf(path), reg, scene, diag);
 }
 
 bool loadStructIni(const std::string& path, const Registry& reg, const std::string& struct_type, Scene* holder,

@@ -41,13 +41,41 @@ const char* familyName(Family f) {
   return "?";
 }
 
+namespace {
+
+std::string lowerAscii(std::string_view s) {
+  std::string out(s);
+  for (char& ch : out) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return out;
+}
+
+}  // namespace
+
+void TypeSpec::indexParams() {
+  by_name_.clear();
+  by_lower_name_.clear();
+  for (size_t i = 0; i < params.size(); ++i) {
+    by_name_.emplace(params[i].name, static_cast<int>(i));  // emplace keeps the first of equal names
+    by_lower_name_.emplace(lowerAscii(params[i].name), static_cast<int>(i));
+  }
+  indexed_ = params.size();
+}
+
 int TypeSpec::paramIndex(std::string_view n) const {
+  if (indexed_ != 0 && indexed_ == params.size()) {
+    auto it = by_name_.find(n);
+    return it == by_name_.end() ? -1 : it->second;
+  }
   for (size_t i = 0; i < params.size(); ++i)
     if (params[i].name == n) return static_cast<int>(i);
   return -1;
 }
 
 int TypeSpec::paramIndexIgnoreCase(std::string_view n) const {
+  if (indexed_ != 0 && indexed_ == params.size()) {
+    auto it = by_lower_name_.find(lowerAscii(n));
+    return it == by_lower_name_.end() ? -1 : it->second;
+  }
   for (size_t i = 0; i < params.size(); ++i)
     if (equalsIgnoreCase(params[i].name, n)) return static_cast<int>(i);
   return -1;
@@ -75,6 +103,7 @@ bool Registry::add(TypeSpec spec) {
   }
   auto it = family_params_.find(spec.family);
   if (it != family_params_.end()) spec.params.insert(spec.params.begin(), it->second.begin(), it->second.end());
+  spec.indexParams();
   size_t index = types_.size();
   for (const auto& n : names) by_name_[n] = index;
   types_.push_back(std::move(spec));

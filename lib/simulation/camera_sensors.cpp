@@ -19,10 +19,6 @@ std::unique_ptr<CameraSensors> CameraSensors::create(const Model& model, const S
     ro.camera = d.key;
     ro.backend = opts.gl;
     ro.texture_folder = opts.texture_folder;
-    if (modelsShowNoBody(model)) {  // as `simbob render` does: the collision shapes then
-      ro.draw_models = false;
-      ro.draw_geoms = true;
-    }
     Camera c;
     c.def = &d;
     c.period = d.period > 0 ? toSimTime(d.period).value_or(kNever) : 0;

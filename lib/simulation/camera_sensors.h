@@ -12,8 +12,9 @@
 #include <vector>
 
 #include "simbob/physics.h"
-#include "simbob/render.h"
-#include "simbob/run.h"
+#include "simbob/renderer.h"
+#include "simbob/robot.h"
+#include "simbob/loop.h"
 #include "simbob/simulation.h"
 
 namespace simbob {

@@ -1,5 +1,5 @@
 // A run repeated and compared bit for bit: see simbob/determinism.h.
-#include "simbob/determinism.h"
+#include "simulation/determinism.h"
 
 #include <cmath>
 #include <cstring>

@@ -3,8 +3,9 @@
 
 #include "simbob/clock.h"
 #include "simbob/model.h"
-#include "simbob/run.h"
-#include "simbob/run_outputs.h"
+#include "simbob/loop.h"
+#include "simulation/outputs.h"
+#include "loop/run_log.h"
 #include "simbob/simulation.h"
 
 namespace simbob {

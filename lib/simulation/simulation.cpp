@@ -1,12 +1,15 @@
 // The Simulation API (include/simbob/simulation.h): loading, the parties of a run in their
-// order, and stepping through the Runner of lib/sim.
+// order, and stepping through the Runner of lib/loop.
 #include "simbob/simulation.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <utility>
 
 #include "simbob/compile.h"
+#include "simbob/tool/files.h"
 #include "simbob/robot.h"
 #include "simbob/values.h"
 #include "simulation/camera_sensors.h"
@@ -15,17 +18,62 @@ namespace simbob {
 
 namespace {
 
-constexpr double kMinTime = 1e-9, kMaxTime = 1e9;  // s: what the nanosecond clock holds with room
-
-// Compiles a loaded scene and adds `simbob check`'s warnings for the step the run will take.
-std::unique_ptr<Simulation> compiled(bool loaded, Scene& scene, const SimulationOptions& opts, Diagnostics& diag) {
+// The one load path (loadModel) with `simbob check`'s warnings for the step the run will take.
+std::unique_ptr<Simulation> loaded(const std::string& path, const std::string* text, const Registry& reg,
+                                   const SimulationOptions& opts, Diagnostics& diag) {
+  LoadRequest req;
+  req.path = path;
+  req.text = text;
+  req.overrides = opts.overrides;
+  req.lint = true;
+  req.dt = opts.dt;
+  LoadReport report;
   Model model;
-  if (!loaded || !applyOverrides(scene, opts.overrides, diag) || !compileScene(scene, &model, diag)) return nullptr;
-  lintModel(model, diag, opts.dt);
-  return Simulation::fromModel(std::move(model), opts, diag);
+  const bool ok = loadModel(req, reg, &model, &report);
+  for (const Error& e : report.diagnostics.errors()) diag.error(e.loc, e.message, e.kind);
+  for (const Error& w : report.diagnostics.warnings()) diag.warning(w.loc, w.message);
+  return ok ? Simulation::fromModel(std::move(model), opts, diag) : nullptr;
+}
+
+/// Where the controller's log would overwrite one of its inputs -- the program (words[0], found
+/// on PATH as execvp does) or a file named on its command line, both as seen from the folder it
+/// runs in -- what that input is; else "".
+std::string controllerLogClash(const SocketDef& d) {
+  std::vector<std::string> words;
+  std::string problem;
+  if (d.controller_log.empty() || !splitCommandLine(d.controller, &words, &problem)) return "";
+  auto inFolder = [&](const std::string& w) {
+    return w.empty() || w[0] == '/' || d.controller_dir.empty() ? w : d.controller_dir + "/" + w;
+  };
+  const char* env_path = std::getenv("PATH");
+  const std::string path = env_path ? env_path : "";
+  for (size_t i = 0; i < words.size(); ++i) {
+    std::vector<std::string> places = {inFolder(words[i])};
+    if (i == 0 && words[0].find('/') == std::string::npos && env_path) {
+      places.clear();
+      for (size_t at = 0;;) {
+        const size_t colon = path.find(':', at);
+        const std::string dir = path.substr(at, colon == std::string::npos ? std::string::npos : colon - at);
+        places.push_back(inFolder((dir.empty() ? "." : dir) + "/" + words[0]));
+        if (colon == std::string::npos) break;
+        at = colon + 1;
+      }
+    }
+    for (const std::string& p : places)
+      if (sameExistingFile(p, d.controller_log))
+        return (i == 0 ? "the controller program " : "a file on the controller's command line ") + quoteInput(p, 400);
+  }
+  return "";
 }
 
 }  // namespace
+
+std::string controllerFolder(const SocketDef& d) {
+  std::error_code ec;
+  const std::filesystem::path dir =
+      d.controller_dir.empty() ? std::filesystem::current_path(ec) : std::filesystem::absolute(d.controller_dir, ec);
+  return ec ? d.controller_dir : dir.lexically_normal().string();
+}
 
 Simulation::Simulation(Model model, SimulationOptions opts) : model_(std::move(model)), opts_(std::move(opts)) {}
 
@@ -37,26 +85,21 @@ const Image* Simulation::cameraImage(const std::string& key) const { return came
 
 std::unique_ptr<Simulation> Simulation::fromFile(const std::string& path, const Registry& reg,
                                                  const SimulationOptions& opts, Diagnostics& diag) {
-  Scene scene;
-  const bool loaded = loadScene(path, reg, &scene, diag);
-  return compiled(loaded, scene, opts, diag);
+  return loaded(path, nullptr, reg, opts, diag);
 }
 
-std::unique_ptr<Simulation> Simulation::fromText(const std::string& text, const std::string& name, Format format,
-                                                 const Registry& reg, const SimulationOptions& opts,
-                                                 Diagnostics& diag) {
-  Scene scene;
-  const bool loaded = loadSceneFromText(text, name, format, reg, &scene, diag);
-  return compiled(loaded, scene, opts, diag);
+std::unique_ptr<Simulation> Simulation::fromText(const std::string& text, const std::string& name, const Registry& reg,
+                                                 const SimulationOptions& opts, Diagnostics& diag) {
+  return loaded(name, &text, reg, opts, diag);
 }
 
 std::unique_ptr<Simulation> Simulation::fromModel(Model model, const SimulationOptions& opts, Diagnostics& diag) {
-  const double dt = opts.dt > 0 ? opts.dt : model.settings.max_time_step;
-  if (!(dt >= kMinTime && dt <= kMaxTime)) {
+  const double dt = resolvedStep(opts.dt, model.settings.max_time_step);
+  if (!clockTimeProblem("", dt).empty()) {
     diag.error({}, "the step " + formatNumber(dt) + " s is outside 1e-9 to 1e9 s");
     return nullptr;
   }
-  if (!(opts.duration >= 0 && opts.duration <= kMaxTime)) {
+  if (!(opts.duration >= 0 && opts.duration <= kMaxClockTime)) {
     diag.error({}, "the duration " + formatNumber(opts.duration) + " s is outside 0 to 1e9 s");
     return nullptr;
   }
@@ -94,11 +137,30 @@ std::unique_ptr<Simulation> Simulation::fromModel(Model model, const SimulationO
     it->controller = command;
     it->controller_dir.clear();  // relative to where simbob runs, as any path on its command line
   }
+  for (const SocketDef& d : model.sockets)
+    if (opts.no_controllers && !d.controller.empty()) {
+      diag.error(d.loc,
+                 "RCLocalSocketCommunicator '" + d.key + "' would start the program '" + quoteInput(d.controller, 400) +
+                     "' in " + quoteInput(controllerFolder(d), 400) + ": --no-controllers refuses it (--controller " +
+                     d.key + "= runs the scene with a peer of your own)",
+                 ErrorKind::Usage);
+      return nullptr;
+    }
   const long started = std::count_if(model.sockets.begin(), model.sockets.end(),
                                      [](const SocketDef& d) { return !d.controller.empty(); });
   for (SocketDef& d : model.sockets)
     if (!d.controller.empty() && !opts.controller_log.empty())
       d.controller_log = started > 1 ? opts.controller_log + "." + d.key : opts.controller_log;
+  for (const SocketDef& d : model.sockets) {
+    const std::string input = controllerLogClash(d);
+    if (input.empty()) continue;
+    // Controller programs and their files are inputs: the log is never opened over one.
+    diag.error(d.loc,
+               "RCLocalSocketCommunicator '" + d.key + "': its controller's log " + quoteInput(d.controller_log, 400) +
+                   " is " + input + ": an output must not overwrite an input",
+               ErrorKind::Usage);
+    return nullptr;
+  }
   std::unique_ptr<Simulation> sim(new Simulation(std::move(model), opts));
   if (!sim->model_.camera_sensors.empty()) {
     Error err;
@@ -131,15 +193,6 @@ void Simulation::addParty(Party& party) {
 
 bool Simulation::start() {
   if (runner_) return runner_->running();
-  RunOptions ro;
-  ro.duration = opts_.duration;
-  ro.dt = opts_.dt;
-  ro.seed = opts_.seed;
-  ro.max_access_time = opts_.max_access_time;
-  ro.runaway_limit = opts_.runaway_limit;
-  ro.joint_apart_limit = opts_.joint_apart_limit;
-  ro.progress = opts_.progress;
-  ro.stop = opts_.stop;
   std::vector<Party*> parties;
   sampler_.reset();
   if (sampling_) {
@@ -152,11 +205,10 @@ bool Simulation::start() {
   }
   for (SocketDef& d : model_.sockets) d.seed = opts_.seed;  // SIMBOB_SEED of a started controller
   if (cameras_) parties.push_back(cameras_.get());          // before the controllers: they read its images
-  robot_ = robotParties(model_);
+  robot_ = robotParties(model_, cameras_.get());
   for (auto& p : robot_) parties.push_back(p.get());
   parties.insert(parties.end(), extra_.begin(), extra_.end());
-  runner_ = std::make_unique<Runner>(model_, ro, std::move(parties));
-  if (cameras_ && runner_->world()) runner_->world()->setCameraImages(cameras_.get());
+  runner_ = std::make_unique<Runner>(model_, opts_, std::move(parties));
   return runner_->running();
 }
 
@@ -201,7 +253,7 @@ double Simulation::time() const { return toSeconds(now()); }
 SimTime Simulation::now() const { return runner_ ? runner_->clock().now() : 0; }
 uint64_t Simulation::steps() const { return runner_ ? runner_->clock().steps() : 0; }
 double Simulation::stepSize() const {
-  const double dt = opts_.dt > 0 ? opts_.dt : model_.settings.max_time_step;
+  const double dt = resolvedStep(opts_.dt, model_.settings.max_time_step);
   return toSeconds(std::max<SimTime>(toSimTime(dt).value_or(1), 1));
 }
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "simbob/physics.h"
+#include "simbob/tool/platform.h"
 #include "simbob/simulation.h"
 
 namespace simbob {
@@ -70,14 +71,8 @@ nlohmann::ordered_json runSummary(const Model& model, const RunResult& r, const 
   const double busy = r.wall_seconds - r.wait_seconds;
   summary["steps_per_second"] = busy > 0 ? static_cast<double>(r.steps) / busy : 0.0;
   // What bit-identical reruns depend on.
-  summary["reproducibility"] = {{"physics", physicsVersion()},
-                                {"precision", "double"},
-#ifdef __clang__
-                                {"compiler", "clang " __clang_version__},
-#else
-                                {"compiler", "gcc " __VERSION__},
-#endif
-                                {"fp_contract", "off"},
+  summary["reproducibility"] = {{"physics", physicsVersion()},   {"ode_version", odeVersion()}, {"precision", "double"},
+                                {"compiler", compilerVersion()}, {"fp_contract", "off"},        {"libc", libcVersion()},
                                 {"cpu_features", cpuFeatures()}};
   if (r.status != RunStatus::Completed) {
     // Why it ended: what `simbob batch` and `sweep run` read from a worker's partial summary.

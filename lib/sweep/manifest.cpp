@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-#include "simbob/sweep.h"
+#include "simbob/tool/sweep_plan.h"
 #include "simbob/values.h"
 
 namespace simbob {

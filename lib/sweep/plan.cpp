@@ -3,7 +3,8 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-#include "simbob/sweep.h"
+#include "simbob/options.h"
+#include "simbob/tool/sweep_plan.h"
 #include "simbob/values.h"
 
 namespace simbob {
@@ -191,6 +192,67 @@ bool sweepScene(const std::string& text, const std::string& path, std::string* s
   return true;
 }
 
+namespace {
+
+/// Metric `w` of a sweep description (w = "metrics[i]"), checked against those before it.
+SweepMetric metric(const json& m, const std::string& w, const std::vector<SweepMetric>& before) {
+  if (!m.is_object()) fail(w, "must be an object {\"name\", \"body\", \"value\", \"stat\"}");
+  onlyKeys(m, w, {"name", "body", "value", "stat"});
+  SweepMetric sm;
+  for (auto [field, dst] : {std::pair<const char*, std::string*>{"name", &sm.name},
+                            {"body", &sm.body},
+                            {"value", &sm.value},
+                            {"stat", &sm.stat}}) {
+    if (m.contains(field) && !m[field].is_string()) fail(w, std::string("'") + field + "' must be a string");
+    if (m.contains(field)) *dst = m[field].get<std::string>();
+  }
+  if (sm.name.empty() || sm.body.empty()) fail(w, "'name' and 'body' are required");
+  if (sm.value != "x" && sm.value != "y" && sm.value != "z")
+    fail(w, "'value' must be x, y or z, got '" + quoteInput(sm.value) + "'");
+  static const std::vector<std::string> kStats = {"final", "initial", "max", "min", "delta"};
+  if (std::find(kStats.begin(), kStats.end(), sm.stat) == kStats.end()) {
+    std::string near = didYouMean(sm.stat, kStats);
+    fail(w, "'stat' must be final, initial, max, min or delta, got '" + quoteInput(sm.stat) + "'" +
+                (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+  }
+  for (const SweepMetric& o : before)
+    if (o.name == sm.name) fail(w, "metric name '" + quoteInput(sm.name) + "' given twice");
+  return sm;
+}
+
+/// The dimensions of `vary`, after counting the cases from the counts alone: each count is at
+/// most 1000000 and the product so far too, so no product overflows.
+std::vector<Dimension> dimensions(const json& j) {
+  std::vector<Dimension> dims;
+  if (!j.contains("vary")) return dims;
+  if (!j["vary"].is_array()) fail("vary", "must be a list");
+  size_t total = 1;
+  for (size_t i = 0; i < j["vary"].size(); ++i) {
+    const json& e = j["vary"][i];
+    std::string w = "vary[" + std::to_string(i) + "]";
+    const json* first = &e;
+    if (!e.is_object()) continue;  // dimension() says what is wrong
+    // Checked in the order dimension() checks them, so the first problem is the one named.
+    if (e.contains("zip")) {
+      onlyKeys(e, w, {"zip"});
+      if (!e["zip"].is_array() || e["zip"].size() < 2 || !e["zip"][0].is_object()) continue;
+      first = &e["zip"][0];
+      w += ".zip[0]";
+    }
+    onlyKeys(*first, w, {"param", "values", "range"});
+    paramName(*first, w);
+    size_t n = 0;
+    values(*first, w, &n);
+    total *= n;
+    if (total > kMaxCases) fail("vary", "more than 1000000 cases");
+  }
+  for (size_t i = 0; i < j["vary"].size(); ++i)
+    dims.push_back(dimension(j["vary"][i], "vary[" + std::to_string(i) + "]"));
+  return dims;
+}
+
+}  // namespace
+
 bool planSweep(const std::string& text, const std::string& path, const std::string& scene_rel,
                std::vector<SweepCase>* cases, Error* err) {
   json j;
@@ -205,8 +267,8 @@ bool planSweep(const std::string& text, const std::string& path, const std::stri
     if (j.contains("sample_interval")) base.sample_interval = number(j, "sample_interval", "");
     for (const auto& [name, v] : std::initializer_list<std::pair<const char*, double>>{
              {"duration", base.duration}, {"sample_interval", base.sample_interval}})
-      if (!(v >= 1e-9 && v <= 1e9)) fail("", std::string("'") + name + "' must be between 1e-9 and 1e9 s");
-    if (j.contains("dt") && !(base.dt >= 1e-9 && base.dt <= 1e9)) fail("", "'dt' must be between 1e-9 and 1e9 s");
+      if (!clockTimeProblem(name, v).empty()) fail("", std::string("'") + name + "' must be between 1e-9 and 1e9 s");
+    if (j.contains("dt") && !clockTimeProblem("dt", base.dt).empty()) fail("", "'dt' must be between 1e-9 and 1e9 s");
     if (j.contains("seed")) {
       if (!j["seed"].is_number_integer()) fail("", "'seed' must be an integer");
       base.seed = seedValue(std::to_string(j["seed"].get<int64_t>()), "seed");
@@ -230,61 +292,10 @@ bool planSweep(const std::string& text, const std::string& path, const std::stri
     }
     if (j.contains("metrics")) {
       if (!j["metrics"].is_array()) fail("metrics", "must be a list");
-      for (size_t i = 0; i < j["metrics"].size(); ++i) {
-        const std::string w = "metrics[" + std::to_string(i) + "]";
-        const json& m = j["metrics"][i];
-        if (!m.is_object()) fail(w, "must be an object {\"name\", \"body\", \"value\", \"stat\"}");
-        onlyKeys(m, w, {"name", "body", "value", "stat"});
-        SweepMetric sm;
-        for (auto [field, dst] : {std::pair<const char*, std::string*>{"name", &sm.name},
-                                  {"body", &sm.body},
-                                  {"value", &sm.value},
-                                  {"stat", &sm.stat}}) {
-          if (m.contains(field) && !m[field].is_string()) fail(w, std::string("'") + field + "' must be a string");
-          if (m.contains(field)) *dst = m[field].get<std::string>();
-        }
-        if (sm.name.empty() || sm.body.empty()) fail(w, "'name' and 'body' are required");
-        if (sm.value != "x" && sm.value != "y" && sm.value != "z")
-          fail(w, "'value' must be x, y or z, got '" + quoteInput(sm.value) + "'");
-        static const std::vector<std::string> kStats = {"final", "initial", "max", "min", "delta"};
-        if (std::find(kStats.begin(), kStats.end(), sm.stat) == kStats.end()) {
-          std::string near = didYouMean(sm.stat, kStats);
-          fail(w, "'stat' must be final, initial, max, min or delta, got '" + quoteInput(sm.stat) + "'" +
-                      (near.empty() ? "" : " (did you mean '" + near + "'?)"));
-        }
-        for (const SweepMetric& o : base.metrics)
-          if (o.name == sm.name) fail(w, "metric name '" + quoteInput(sm.name) + "' given twice");
-        base.metrics.push_back(sm);
-      }
+      for (size_t i = 0; i < j["metrics"].size(); ++i)
+        base.metrics.push_back(metric(j["metrics"][i], "metrics[" + std::to_string(i) + "]", base.metrics));
     }
-    std::vector<Dimension> dims;
-    if (j.contains("vary")) {
-      if (!j["vary"].is_array()) fail("vary", "must be a list");
-      // The number of cases first, from the counts alone: each count is at most 1000000 and the
-      // product so far too, so no product overflows.
-      size_t total = 1;
-      for (size_t i = 0; i < j["vary"].size(); ++i) {
-        const json& e = j["vary"][i];
-        std::string w = "vary[" + std::to_string(i) + "]";
-        const json* first = &e;
-        if (!e.is_object()) continue;  // dimension() says what is wrong
-        // Checked in the order dimension() checks them, so the first problem is the one named.
-        if (e.contains("zip")) {
-          onlyKeys(e, w, {"zip"});
-          if (!e["zip"].is_array() || e["zip"].size() < 2 || !e["zip"][0].is_object()) continue;
-          first = &e["zip"][0];
-          w += ".zip[0]";
-        }
-        onlyKeys(*first, w, {"param", "values", "range"});
-        paramName(*first, w);
-        size_t n = 0;
-        values(*first, w, &n);
-        total *= n;
-        if (total > kMaxCases) fail("vary", "more than 1000000 cases");
-      }
-      for (size_t i = 0; i < j["vary"].size(); ++i)
-        dims.push_back(dimension(j["vary"][i], "vary[" + std::to_string(i) + "]"));
-    }
+    const std::vector<Dimension> dims = dimensions(j);
     std::vector<std::string> names;
     for (size_t d = 0; d < dims.size(); ++d)
       for (const std::string& p : dims[d].params) {

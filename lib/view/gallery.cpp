@@ -1,10 +1,10 @@
-// The gallery of a sweep (include/simbob/view.h, `sweep gather --html`): the gathered table as
+// The gallery of a sweep (include/simbob/tool/replay_page.h, `sweep gather --html`): the gathered table as
 // JSON in the page, drawn by the page's short script (lib/view/gallery.html, embedded at build
 // time) -- a sortable table with a link to each case's replay page, and an SVG plot of one column
 // against another.
 #include <nlohmann/json.hpp>
 
-#include "simbob/view.h"
+#include "simbob/tool/replay_page.h"
 #include "view/assets.h"
 
 namespace simbob {
@@ -16,7 +16,10 @@ std::string sweepGalleryHtml(const std::string& title, const std::vector<std::st
   j["columns"] = columns;
   j["cases"] = nlohmann::json::array();
   for (const GalleryCase& c : cases)
-    j["cases"].push_back({{"index", c.index}, {"status", c.status}, {"fields", c.fields}, {"page", c.page}});
+    j["cases"].push_back({{"index", c.index},
+                          {"status", c.status},
+                          {"fields", c.fields},
+                          {"page", c.page.empty() ? "" : view::relativeLink(c.page)}});
   return view::fill(view::kGalleryHtml,
                     {{"TITLE", view::escapeHtml(title)},
                      {"DATA", view::scriptSafe(j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace))}});

@@ -1,17 +1,20 @@
-// The replay page (include/simbob/view.h): the Model's visuals, skins, cameras and collision
+// The replay page (include/simbob/tool/replay_page.h): the Model's visuals, skins, cameras and collision
 // shapes as JSON, the poses as float32 base64, three.js and the viewer (lib/view/viewer.js,
 // lib/view/page.html, embedded at build time) in one HTML file.
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <utility>
 #include <vector>
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
-#include "simbob/files.h"
-#include "simbob/view.h"
+#include "image/texture_file.h"
+#include "simbob/tool/files.h"
+#include "simbob/tool/png.h"
+#include "simbob/tool/replay_page.h"
 #include "view/assets.h"
 
 namespace simbob {
@@ -155,38 +158,38 @@ json encodeComparison(const Trajectory& actual, const Trajectory& golden, const 
   return out;
 }
 
-const char* mimeOf(const std::string& bytes) {
-  if (bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0) return "image/png";
-  if (bytes.compare(0, 2, "BM") == 0) return "image/bmp";
-  if (bytes.compare(0, 3, "\xff\xd8\xff") == 0) return "image/jpeg";
-  if (bytes.compare(0, 4, "GIF8") == 0) return "image/gif";
-  return nullptr;
-}
-
-/// A skin's texture as a data URL, looked up as the renderer does: TextureFolder, then beside
-/// the scene; the name as written, then with .bmp, then .png.
-bool textureUrl(const SkinDef& s, const std::string& texture_folder, std::string* url, Error* err) {
-  std::string where;
-  for (const std::string& dir : {texture_folder, s.base_dir}) {
-    if (dir.empty()) continue;
-    where += (where.empty() ? "" : " or ") + dir;
-    for (const char* ext : {"", ".bmp", ".png"}) {
-      const std::string p = (s.texture[0] == '/' ? "" : dir + "/") + s.texture + ext;
-      std::string bytes, reason;
-      if (!readFile(p, size_t{1} << 30, &bytes, &reason, true)) continue;
-      const char* mime = mimeOf(bytes);
-      if (!mime) {
-        *err = {
-            ErrorKind::InvalidInput, {p, 0}, "texture of skin '" + s.key + "' is not a PNG, BMP, JPEG or GIF image"};
-        return false;
-      }
-      *url = std::string("data:") + mime + ";base64," + base64(bytes.data(), bytes.size());
-      return true;
+/// The page's textures: each file once, decoded as the renderer decodes it (trailing bytes never
+/// read), re-encoded as PNG, within kMaxPageTextureBytes; a skin refers to its file by index.
+class PageTextures {
+ public:
+  explicit PageTextures(const std::string& texture_folder) : folder_(texture_folder) {}
+  /// The index of skin s's texture in urls(); false with *err when it is missing or unreadable.
+  bool add(const SkinDef& s, size_t* index, Error* err) {
+    std::string where;
+    const std::string path = findTextureFile(s, folder_, &where);
+    if (path.empty()) {
+      *err = {ErrorKind::MissingInput, {}, "texture '" + s.texture + "' of skin '" + s.key + "' not found in " + where};
+      return false;
     }
+    Image image;
+    bool fresh = false;
+    if (!files_.load(path, index, &image, &fresh, err)) return false;
+    if (!fresh) return true;
+    std::string png, why;
+    if (!encodePng(image, &png, &why)) {
+      *err = {ErrorKind::Internal, {path, 0}, "cannot encode the texture as PNG: " + why};
+      return false;
+    }
+    urls_.push_back("data:image/png;base64," + base64(png.data(), png.size()));
+    return true;
   }
-  *err = {ErrorKind::MissingInput, {}, "texture '" + s.texture + "' of skin '" + s.key + "' not found in " + where};
-  return false;
-}
+  const std::vector<std::string>& urls() const { return urls_; }
+
+ private:
+  std::string folder_;
+  TextureFiles files_{kMaxPageTextureBytes};
+  std::vector<std::string> urls_;  ///< by slot: TextureFiles counts distinct files from 0
+};
 
 /// Largest total of mesh data one page embeds (base64 characters): beyond it a browser takes
 /// seconds to parse the page (docs/meshes.md).
@@ -210,7 +213,8 @@ bool encodeMeshes(const Model& m, json* out, Error* err) {
     json j = {{"file", slash == std::string::npos ? d.file : d.file.substr(slash + 1)}};
     auto put = [&](const char* name, const std::vector<float>& pos, const std::vector<uint32_t>& idx) {
       json part = {{"positions", base64Le(pos)}, {"indices", base64Le(idx)}};
-      chars += part["positions"].get_ref<const std::string&>().size() + part["indices"].get_ref<const std::string&>().size();
+      chars +=
+          part["positions"].get_ref<const std::string&>().size() + part["indices"].get_ref<const std::string&>().size();
       j[name] = std::move(part);
     };
     if (use[i] & 1) {
@@ -232,7 +236,8 @@ bool encodeMeshes(const Model& m, json* out, Error* err) {
       put("hull", pos, idx);
     }
     if (chars > kMaxPageMeshChars) {
-      *err = {ErrorKind::InvalidInput, {d.file, 0},
+      *err = {ErrorKind::InvalidInput,
+              {d.file, 0},
               "the scene's meshes would put more than " + std::to_string(kMaxPageMeshChars >> 20) +
                   " MiB into the replay page (the limit; docs/meshes.md): use coarser meshes for the page"};
       return false;
@@ -244,6 +249,7 @@ bool encodeMeshes(const Model& m, json* out, Error* err) {
 
 bool encodeModel(const Model& m, const std::string& texture_folder, json* out, Error* err) {
   json skins = json::array();
+  PageTextures textures(texture_folder);
   for (const SkinDef& s : m.skins) {
     static const char* const kModes[] = {"color", "shading", "transparent_color", "transparent_lighting"};
     json j = {{"key", s.key},
@@ -256,9 +262,9 @@ bool encodeModel(const Model& m, const std::string& texture_folder, json* out, E
               {"mode", kModes[s.mode]},
               {"colored", s.colored}};
     if (!s.texture.empty()) {
-      std::string url;
-      if (!textureUrl(s, texture_folder, &url, err)) return false;
-      j["texture"] = url;
+      size_t index = 0;
+      if (!textures.add(s, &index, err)) return false;
+      j["texture"] = index;
     }
     skins.push_back(j);
   }
@@ -312,6 +318,7 @@ bool encodeModel(const Model& m, const std::string& texture_folder, json* out, E
   static const char* const kFog[] = {"off", "linear", "exponential", "exponential2"};
   const ViewSettings& v = m.view;
   *out = {{"bodies", bodies},
+          {"textures", textures.urls()},
           {"skins", skins},
           {"visuals", visuals},
           {"geoms", geoms},
@@ -338,6 +345,35 @@ bool readThree(const std::string& rel, std::string* text, Error* err) {
 }
 
 }  // namespace
+
+void checkTextureBudgets(const Model& m, const std::string& texture_folder, Diagnostics& d) {
+  std::vector<std::string> seen;
+  uint64_t total = 0;
+  auto mib = [](uint64_t n) { return std::to_string((n + (1 << 20) - 1) >> 20) + " MiB"; };
+  for (const SkinDef& s : m.skins) {
+    std::string where;
+    const std::string path = s.texture.empty() ? "" : findTextureFile(s, texture_folder, &where);
+    if (path.empty()) continue;  // no texture, or none found: view and render say so
+    std::error_code ec;
+    std::string key = std::filesystem::weakly_canonical(path, ec).string();
+    if (ec || key.empty()) key = path;
+    if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
+    seen.push_back(key);
+    int w = 0, h = 0;
+    Error err;
+    if (!readTextureSize(path, &w, &h, &err)) continue;  // render and view give the reason
+    const uint64_t bytes = uint64_t{3} * static_cast<uint64_t>(w) * static_cast<uint64_t>(h);
+    const uint64_t before = total;
+    total += bytes;
+    for (const auto& [limit, who] :
+         {std::pair<uint64_t, const char*>{kMaxPageTextureBytes, "a replay page embeds (view and --html will refuse)"},
+          {kMaxTextureBytes, "the renderer holds (render, --record, camera sensors will refuse)"}})
+      if (before <= limit && total > limit)
+        d.warning(s.loc, s.type + " '" + s.key + "': its texture " + s.texture + " takes " + mib(bytes) +
+                             " decoded: the scene's textures come to " + mib(total) + ", more than the " + mib(limit) +
+                             " " + who);
+  }
+}
 
 namespace view {
 
@@ -398,6 +434,23 @@ std::string scriptSafe(const std::string& s) {
       out += "\\u003c";
     else
       out += c;
+  }
+  return out;
+}
+
+std::string relativeLink(const std::string& path) {
+  static const char* const kHex = "0123456789ABCDEF";
+  std::string out = "./";
+  for (char c : path) {
+    const auto u = static_cast<unsigned char>(c);
+    if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || c == '.' ||
+        c == '_' || c == '~' || c == '/') {
+      out += c;
+    } else {
+      out += '%';
+      out += kHex[u >> 4];
+      out += kHex[u & 15];
+    }
   }
   return out;
 }

@@ -23,17 +23,21 @@
   const f64 = (b64) => new Float64Array(bytesOf(b64));
 
   // A trajectory: times, and per body 7 floats per sample (x y z qw qx qy qz, NaN = no row),
-  // positions relative to the body's origin.
+  // positions relative to the body's origin; pose() and poseInto() give them relative to the
+  // page's origin (see ORIGIN) once rebase() has been called.
   function decodeTrajectory(t) {
-    const out = { bodies: t.bodies, times: f64(t.times), origins: t.origins, poses: f32(t.poses), index: {} };
-    t.bodies.forEach((key, i) => { out.index[key] = i; });
+    const out = { bodies: t.bodies, times: f64(t.times), origins: t.origins, poses: f32(t.poses), index: new Map() };
+    // Per body: its origin less the page's, in doubles (exact where both are whole metres or 0).
+    out.shift = t.origins;
+    out.rebase = (o) => { out.shift = t.origins.map((g) => [g[0] - o[0], g[1] - o[1], g[2] - o[2]]); };
+    t.bodies.forEach((key, i) => { out.index.set(key, i); });
     out.count = out.times.length;
     // The pose of body b at sample s as [x, y z, qw, qx, qy, qz] in doubles, or null.
     out.pose = function (b, s) {
       const o = (b * out.count + s) * 7;
       const p = out.poses;
       if (s < 0 || s >= out.count || Number.isNaN(p[o])) return null;
-      const g = out.origins[b];
+      const g = out.shift[b];
       return [g[0] + p[o], g[1] + p[o + 1], g[2] + p[o + 2], p[o + 3], p[o + 4], p[o + 5], p[o + 6]];
     };
     // The same into obj's position and quaternion, without allocating (the frame loop's path);
@@ -43,7 +47,7 @@
       const p = out.poses;
       if (s < 0 || s >= out.count) return false;
       for (let k = 0; k < 7; ++k) if (Number.isNaN(p[o + k])) return false;
-      const g = out.origins[b];
+      const g = out.shift[b];
       obj.position.set(g[0] + p[o], g[1] + p[o + 1], g[2] + p[o + 2]);
       obj.quaternion.set(p[o + 4], p[o + 5], p[o + 6], p[o + 3]);
       return true;
@@ -62,7 +66,33 @@
   }
   const actual = decodeTrajectory(data.actual);
   const golden = data.golden ? decodeTrajectory(data.golden) : null;
+  // The page's origin: what three.js calls (0, 0, 0). WebGL and the instance matrices hold
+  // float32, which keeps 0.1 mm only within about 1,000 m, so a run that goes farther is drawn
+  // relative to the middle of its bodies' origins (page.cpp gives a body an origin, a whole
+  // metre, only on an axis where it goes beyond 1,000 m): every position, of the run, the golden
+  // run and the scene's static parts, cameras and light, is moved by -ORIGIN in doubles; the
+  // read-outs and the test hook add it back. 0 for a run within 1,000 m: nothing moves.
+  const ORIGIN = [0, 1, 2].map((k) => {
+    const vs = actual.origins.map((g) => g[k]);
+    return vs.some((v) => v !== 0) ? Math.round((Math.min(...vs) + Math.max(...vs)) / 2) : 0;
+  });
+  actual.rebase(ORIGIN);
+  if (golden) golden.rebase(ORIGIN);
+  const shiftPoint = (p) => { for (let k = 0; k < 3; ++k) p[k] -= ORIGIN[k]; };
+  for (const v of model.visuals) if (v.body < 0) shiftPoint(v.pose.p);
+  for (const g of model.geoms) {
+    if (g.body >= 0) continue;
+    shiftPoint(g.pose.p);
+    if (g.shape === 'plane') g.plane[3] -= g.plane[0] * ORIGIN[0] + g.plane[1] * ORIGIN[1] + g.plane[2] * ORIGIN[2];
+  }
+  for (const c of model.cameras) {
+    if (c.kind !== 'mounted' || c.body < 0) shiftPoint(c.pose.p);
+    shiftPoint(c.target);
+  }
+  if (model.view.light_pos[3] !== 0) shiftPoint(model.view.light_pos);
+  const absolute = (x, k) => x + ORIGIN[k];  // a drawn coordinate as the CSV has it
   const compare = data.compare || null;
+  const compareErrors = new Map(compare ? Object.entries(compare.errors) : []);  // body -> its error series
   timings.decoded = performance.now();
 
   // ---- three.js scene: renderer, light, background, fog ----
@@ -90,8 +120,20 @@
     : view.fog === 'off' ? null : new THREE.FogExp2(rgb(view.fog_color), view.fog_density);
 
   // ---- Materials of the skins (lib/render/renderer.cpp's drawVisual) ----
+  // One image element per texture file (the page holds each once, as PNG); the meshes' textures
+  // (clones with their own repeat) share it and are all updated once it has decoded.
   let pendingTextures = 0;
   const imageUsers = new Map();  // image element -> the textures drawn from it
+  const images = model.textures.map((url, i) => {
+    const img = new Image();
+    imageUsers.set(img, []);
+    pendingTextures++;
+    img.onload = () => { pendingTextures--; for (const t of imageUsers.get(img)) t.needsUpdate = true; };
+    img.onerror = () => { pendingTextures--; console.error('simbob view: texture ' + i + ' did not load'); };
+    // Only the data: URLs page.cpp embeds: a page never fetches, nor runs, what a link names.
+    if (/^data:image\/png;base64,/.test(url)) img.src = url; else img.onerror();
+    return img;
+  });
   const materials = model.skins.map(materialOf);
   function materialOf(s) {
     const alpha = s.color[3];
@@ -108,19 +150,12 @@
         shininess: Math.min(s.shininess, 128),
       }, common));
     }
-    if (s.texture) {
-      // One image element per skin; the meshes' textures (clones with their own repeat) share it
-      // and are all updated once it has decoded.
-      const img = new Image();
-      const users = [];
-      pendingTextures++;
-      img.onload = () => { pendingTextures--; for (const t of users) t.needsUpdate = true; };
-      img.onerror = () => { pendingTextures--; console.error('simbob view: texture of skin ' + s.key + ' did not load'); };
-      img.src = s.texture;
+    if (typeof s.texture === 'number' && images[s.texture]) {
+      const img = images[s.texture];
       m.map = new THREE.Texture(img);
       m.map.wrapS = m.map.wrapT = THREE.RepeatWrapping;
-      imageUsers.set(img, users);
-      users.push(m.map);
+      imageUsers.get(img).push(m.map);
+      if (img.complete && img.naturalWidth) m.map.needsUpdate = true;
       if (!s.colored) m.color = new THREE.Color(1, 1, 1);
     }
     return m;
@@ -240,8 +275,10 @@
 
   // ---- Bodies: one group per trajectory body, holding its models; its collision shapes in a
   // second group that moves with it. Model bodies are matched to trajectory bodies by key. ----
-  const modelBodyIndex = {};
-  model.bodies.forEach((b, i) => { modelBodyIndex[b.key] = i; });
+  // Keys are the scene's and the CSV's text: every lookup by key goes through a Map (or an object
+  // without a prototype), so that 'constructor' or '__proto__' is a name like any other.
+  const modelBodyIndex = new Map();
+  model.bodies.forEach((b, i) => { modelBodyIndex.set(b.key, i); });
   const visualsOf = model.bodies.map(() => []);
   const geomsOf = model.bodies.map(() => []);
   const staticVisuals = [], staticGeoms = [];
@@ -257,7 +294,7 @@
     }
 
   const bodies = actual.bodies.map((key, i) => {
-    const mi = modelBodyIndex[key];
+    const mi = modelBodyIndex.get(key);
     const group = new THREE.Group();
     group.name = key;
     group.userData.body = i;
@@ -355,7 +392,7 @@
   // Golden ghosts: the golden run's bodies, translucent, with the same models (or shapes).
   const ghostMaterial = new THREE.MeshBasicMaterial({ color: 0x88aaff, transparent: true, opacity: 0.35, depthWrite: false });
   const ghosts = golden ? golden.bodies.map((key, i) => {
-    const mi = modelBodyIndex[key];
+    const mi = modelBodyIndex.get(key);
     const group = new THREE.Group();
     group.name = 'golden:' + key;
     const vis = mi === undefined ? [] : visualsOf[mi];
@@ -400,7 +437,7 @@
   // ---- Cameras: the orbit camera, and the scene's (static, mounted, spotlight, tracking) ----
   const camera = new THREE.PerspectiveCamera(60, 1, 0.05, 5000);
   const controls = new THREE.OrbitControls(camera, renderer.domElement);
-  const cameraState = {};  // per scene camera: tracking position, spotlight's first distance
+  const cameraState = new Map();  // per scene camera: tracking position, spotlight's first distance
   function frameAll() {
     // The default view of the renderer: from +Z and a little above, far enough to see everything.
     const box = new THREE.Box3();
@@ -430,7 +467,7 @@
   }
   function bodyPoseOf(modelIndex, sample = state.sample) {
     const key = modelIndex >= 0 ? model.bodies[modelIndex].key : null;
-    const i = key === null ? undefined : actual.index[key];
+    const i = key === null ? undefined : actual.index.get(key);
     return i === undefined ? null : actual.pose(i, sample);
   }
   // Where a camera looks (its body's position at a sample, else its fixed target).
@@ -462,7 +499,8 @@
     return due === 0 ? st.frames[0] : pull(st.frames[due - 1], targetAt(c, state.sample));
   }
   function placeSceneCamera(c, aspect) {
-    const st = cameraState[c.key] || (cameraState[c.key] = {});
+    if (!cameraState.has(c.key)) cameraState.set(c.key, {});
+    const st = cameraState.get(c.key);
     let va = c.view_angle;
     const bp = bodyPoseOf(c.body);
     const target = bp ? new THREE.Vector3(bp[0], bp[1], bp[2]) : new THREE.Vector3(c.target[0], c.target[1], c.target[2]);
@@ -521,8 +559,8 @@
     highlight.setFromObject(b.group);
     highlight.visible = b.group.visible;
     const p = actual.pose(i, state.sample);
-    let text = b.key + '\n' + (p ? 'position  ' + p.slice(0, 3).map(fmt).join(' ') + ' m\nrotation  ' + p.slice(3).map(fmt).join(' ') + ' (w x y z)' : 'no row at this time');
-    if (compare && compare.errors[b.key]) {
+    let text = b.key + '\n' + (p ? 'position  ' + p.slice(0, 3).map(absolute).map(fmt).join(' ') + ' m\nrotation  ' + p.slice(3).map(fmt).join(' ') + ' (w x y z)' : 'no row at this time');
+    if (compareErrors.has(b.key)) {
       const e = errorSeries(b.key);
       const k = seriesIndexAt(state.time);
       if (k >= 0) text += '\nvs golden  ' + fmt(e.pos[k]) + ' m, ' + fmt(e.rot[k]) + ' rad';
@@ -530,10 +568,13 @@
     $('pose').textContent = text;
     $('pose').classList.remove('muted');
   }
-  const errorCache = {};
+  const errorCache = new Map();
   function errorSeries(key) {
-    if (!errorCache[key]) errorCache[key] = { pos: f32(compare.errors[key].pos), rot: f32(compare.errors[key].rot) };
-    return errorCache[key];
+    if (!errorCache.has(key)) {
+      const e = compareErrors.get(key);
+      errorCache.set(key, { pos: f32(e.pos), rot: f32(e.rot) });
+    }
+    return errorCache.get(key);
   }
   const compareTimes = compare ? f64(compare.times) : new Float64Array(0);
   function seriesIndexAt(t) {
@@ -552,7 +593,7 @@
     const key = i >= 0 ? bodies[i].key : null;
     g.fillStyle = '#555';
     g.font = '11px sans-serif';
-    if (!key || !compare.errors[key]) { g.fillText(key ? 'not in the golden run' : 'select a body', 8, 16); return; }
+    if (!key || !compareErrors.has(key)) { g.fillText(key ? 'not in the golden run' : 'select a body', 8, 16); return; }
     const e = errorSeries(key);
     const n = compareTimes.length;
     if (n === 0) return;
@@ -604,7 +645,7 @@
     const f = new URLSearchParams(location.hash.replace(/^#/, ''));
     if (f.has('camera')) setCamera(f.get('camera'));
     if (f.has('body')) {
-      const i = actual.index[f.get('body')];
+      const i = actual.index.get(f.get('body'));
       if (i === undefined) console.warn('simbob view: no body ' + f.get('body') + ' in the trajectory'); else select(i);
     }
     if (f.has('t')) {
@@ -624,7 +665,9 @@
 
   // ---- Controls of the page ----
   $('title').textContent = data.title;
-  $('scene').textContent = (data.scene ? data.scene + ' \u2014 ' : '') + actual.bodies.length + ' bodies, ' + actual.count + ' samples';
+  const count = (n, one, many) => n + ' ' + (n === 1 ? one : many);
+  $('scene').textContent = (data.scene ? data.scene + ' \u2014 ' : '') + count(actual.bodies.length, 'body', 'bodies') + ', ' +
+    count(actual.count, 'sample', 'samples');
   const camSelect = $('camera');
   camSelect.add(new Option('orbit (drag to turn)', 'orbit'));
   for (const c of model.cameras) camSelect.add(new Option(c.key + ' (' + c.kind + ')', c.key));
@@ -755,30 +798,32 @@
 
   // ---- The test hook (tests/view/): seek, read back the poses shown, render now ----
   const posesOf = (list) => {
-    const out = {};
+    const out = Object.create(null);
     for (const b of list) {
       const o = b.group;
-      out[b.key] = o.visible ? [o.position.x, o.position.y, o.position.z, o.quaternion.w, o.quaternion.x, o.quaternion.y, o.quaternion.z] : null;
+      out[b.key] = o.visible ? [absolute(o.position.x, 0), absolute(o.position.y, 1), absolute(o.position.z, 2), o.quaternion.w, o.quaternion.x, o.quaternion.y, o.quaternion.z] : null;
     }
     return out;
   };
   // The poses the instanced meshes draw: each instanced body's matrix in its batch's first mesh,
   // back through the mesh's place in the body (float32 matrices: not bit-equal to poses()).
   const instancedPoses = () => {
-    const out = {};
+    const out = Object.create(null);
     const m = new THREE.Matrix4(), p = new THREE.Vector3(), q = new THREE.Quaternion(), s = new THREE.Vector3();
     for (const b of bodies) {
       if (!b.batch) continue;
       const part = b.batch.parts[0];
       m.fromArray(part.mesh.instanceMatrix.array, b.batch.members.indexOf(b.group.userData.body) * 16).multiply(part.inverse);
       m.decompose(p, q, s);
-      out[b.key] = s.x === 0 ? null : [p.x, p.y, p.z, q.w, q.x, q.y, q.z];
+      out[b.key] = s.x === 0 ? null : [absolute(p.x, 0), absolute(p.y, 1), absolute(p.z, 2), q.w, q.x, q.y, q.z];
     }
     return out;
   };
   window.simbobView = {
     instancedPoses,
     drawCalls: () => renderer.info.render.calls,
+    // The triangles of each mesh geometry built ("MESH:triangles" or "MESH:hull" -> count).
+    meshTriangles: () => Object.fromEntries([...meshGeometries].map(([k, g]) => [k, g.attributes.position ? g.attributes.position.count / 3 : 0])),
     antialias: ANTIALIAS,
     get ready() { return pendingTextures === 0; },
     seek(t) { state.playing = false; updatePlayButton(); applyTime(t); draw(); return state.time; },
@@ -788,7 +833,7 @@
     goldenPoses: () => posesOf(ghosts),
     camera: () => state.camera,
     setCamera(name) { setCamera(name); draw(); },
-    select(key) { select(actual.index[key]); },
+    select(key) { if (actual.index.has(key)) select(actual.index.get(key)); },
     selected: () => (state.selected >= 0 ? bodies[state.selected].key : null),
     play() { if (!state.playing) $('play').onclick(); },
     playing: () => state.playing,

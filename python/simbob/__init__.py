@@ -7,18 +7,21 @@ The package: the compiled module (simbob._simbob: Simulation and the error class
 
 from . import _simbob
 from ._simbob import (  # noqa: F401
+    ControllerError,
     DivergedError,
     Error,
     InternalError,
     MissingInputError,
     OutputError,
     ProtocolError,
+    RunInterrupted,
     SceneError,
     Simulation,
     UnavailableError,
     UsageError,
     __version__,
     load_plugin,
+    run,
 )
 from .batch import Batch  # noqa: E402,F401
 from .env import Box, SimbobEnv  # noqa: E402,F401
@@ -34,16 +37,19 @@ for _cls in (Simulation, Batch, Box, SimbobEnv):
 __all__ = [
     "Batch",
     "Box",
+    "ControllerError",
     "DivergedError",
     "Error",
     "InternalError",
     "MissingInputError",
     "OutputError",
     "ProtocolError",
+    "RunInterrupted",
     "SceneError",
     "SimbobEnv",
     "Simulation",
     "UnavailableError",
     "UsageError",
     "load_plugin",
+    "run",
 ]

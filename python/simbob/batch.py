@@ -160,8 +160,17 @@ def _serve(sims, first, state, rfd, wfd):
         _send(wfd, reply)
 
 
-def _shutdown(creator, pids, fds):
-    """Closes a Batch's pipes and reaps its workers (kills one that does not end within 2 s)."""
+def _worker_terminated(signum, frame):
+    """A worker's SIGTERM handler: the caller ends a worker in the middle of a call (Ctrl-C) with
+    SIGTERM; the worker leaves the call at its next slice (Simulation.step checks for signals
+    every few ms), ends its worlds (and the programs they started) and exits."""
+    raise SystemExit(70)
+
+
+def _shutdown(creator, pids, fds, terminate=False):
+    """Closes a Batch's pipes and reaps its workers: they end when they see their pipe close
+    (with terminate=True they are sent SIGTERM first: they are inside a call); one that has not
+    ended within 2 s is killed."""
     for fd in fds:
         _PARENT_FDS.discard(fd)
         try:
@@ -170,6 +179,12 @@ def _shutdown(creator, pids, fds):
             pass
     if os.getpid() != creator:  # a copy inherited by another Batch's worker: not its children
         return
+    if terminate:
+        for pid in pids:
+            try:
+                os.kill(pid, signal.SIGTERM)
+            except ProcessLookupError:
+                pass
     deadline = time.monotonic() + 2.0
     for pid in pids:
         while True:
@@ -239,6 +254,12 @@ class Batch:
     to its index (the lowest one when several fail); the other worlds have completed the call.
     A stopped world raises again at every later call until reset().
 
+    A scene whose controller programs simbob starts (Simulation.programs) runs them in the
+    workers: each worker loads its worlds again (their programs become its children) after the
+    worlds loaded here have checked the scene and ended. Ctrl-C (KeyboardInterrupt) during a call
+    raises KeyboardInterrupt, ends the workers and closes the Batch: its worlds had not all
+    finished the call.
+
     Close it with close() (or use `with simbob.Batch(...) as b:`); it is also closed when
     garbage-collected. Use it from one thread at a time (another thread's call meanwhile raises
     UsageError), and create it while no other thread of this process is inside simbob.
@@ -266,6 +287,7 @@ class Batch:
                     first.body_keys, first.joint_keys, first.actuator_keys, first.sensor_keys):
                 raise _usage(f"Batch: world {i}'s overrides change the scene's bodies, joints, actuators "
                              f"or sensors; every world must have the same ones")
+        self._closed_why = "this Batch is closed"
         self.n = n
         self._lock = threading.Lock()
         self.scene = first.scene
@@ -287,31 +309,59 @@ class Batch:
             self._sims = sims
             self._finalizer = None
             return
+        # A world whose scene starts controller programs cannot move to a worker: its programs are
+        # this process's children, talking to this process's sockets, and end with its objects.
+        # Such worlds are ended here (they were loaded to check the scene and the overrides) and
+        # each worker loads its own again, so that their programs are the worker's.
+        reload = None
+        if any(s.programs for s in sims):
+            reload = (scene, per_world, self._seeds, dt)
+            s = first = None
+            sims.clear()  # ends them and their programs, before the workers start their own
         try:
             for lo, hi in self._bounds:
-                self._fork(sims, lo, hi)
+                self._fork(sims, lo, hi, reload)
         finally:
             fds = [fd for p in self._pipes for fd in p]
             self._finalizer = weakref.finalize(self, _shutdown, os.getpid(), list(self._pids), fds)
         del sims
+        if reload is not None:  # each worker replies once it has loaded its worlds (or failed to)
+            self._run_locked("loaded", self._same_for_all(None))
 
-    def _fork(self, sims, lo, hi):
+    def _fork(self, sims, lo, hi, reload):
         down_r, down_w = os.pipe()
         up_r, up_w = os.pipe()
         pid = os.fork()
         if pid == 0:  # the worker: never returns into the caller's code
             status = 0
+            mine = []
             try:
                 signal.signal(signal.SIGINT, signal.SIG_IGN)  # the caller handles Ctrl-C
+                signal.signal(signal.SIGTERM, _worker_terminated)
                 for fd in list(_PARENT_FDS) + [down_w, up_r]:
                     os.close(fd)
-                mine = sims[lo:hi]
-                del sims[:]  # the other workers' worlds
+                if reload is None:
+                    mine = sims[lo:hi]
+                    del sims[:]  # the other workers' worlds
+                else:  # its own worlds, loaded here: their programs are this worker's children
+                    scene, per_world, seeds, dt = reload
+                    try:
+                        mine = [_simbob.Simulation(scene, overrides=per_world[i], seed=seeds[i], dt=dt)
+                                for i in range(lo, hi)]
+                        for j, sim in enumerate(mine):
+                            self._state.publish(lo + j, sim)
+                        reply = ("done", [])
+                    except Exception as e:  # noqa: BLE001 - raised by the caller
+                        reply = ("done", [(lo + len(mine), _pack_exception(e))])
+                    _send(up_w, reply)
                 _serve(mine, lo, self._state, down_r, up_w)
             except BaseException:  # noqa: BLE001
                 status = 70
             finally:
-                os._exit(status)
+                try:
+                    del mine[:]  # its worlds end, and with them the programs they started
+                finally:
+                    os._exit(status)
         os.close(down_r)
         os.close(up_w)
         self._pids.append(pid)
@@ -329,28 +379,46 @@ class Batch:
 
     def _run_locked(self, op, args):
         if self._sims is None and not self._pipes:
-            raise _usage("this Batch is closed")
+            raise _usage(self._closed_why)
+        try:
+            failures = self._call(op, args)
+        except KeyboardInterrupt:
+            # Ctrl-C in the middle of a call: some worlds have finished it, others not (a worker's
+            # reply may still be on its way). The worlds can no longer be stepped together: the
+            # workers are ended (SIGTERM: they leave the call within moments) and the Batch closed.
+            name = {"step": "step", "until": "run_until", "commands": "set_commands", "reset": "reset",
+                    "loaded": "Batch"}[op]
+            self._closed_why = (f"this Batch was closed by KeyboardInterrupt during {name}(): its worlds had "
+                                f"not all finished the call; make a new Batch")
+            self._close(terminate=True)
+            raise
+        if failures:
+            world, packed = min(failures, key=lambda f: f[0])
+            if op == "loaded":
+                self.close()
+            raise _unpack_exception(packed, world)
+
+    def _call(self, op, args):
+        """Sends op to the workers (or runs it here) and returns the failures."""
         if self._sims is not None:
-            failures = _apply(self._sims, 0, self._state, op, args[0])
-        else:
+            return _apply(self._sims, 0, self._state, op, args[0])
+        if op != "loaded":  # "loaded": the workers' first reply, sent once they have loaded their worlds
             for (down, _), a in zip(self._pipes, args):
                 try:
                     _send(down, (op, a))
                 except OSError:  # a worker that has ended: its reply below is the end of its pipe
                     pass
-            failures = []
-            for w, (_, up) in enumerate(self._pipes):
-                reply = _recv(up)
-                if reply is None:
-                    lo, hi = self._bounds[w]
-                    self.close()
-                    raise _simbob.InternalError(
-                        f"Batch: worker {w} (worlds {lo} to {hi - 1}) ended unexpectedly; the Batch is closed",
-                        "Internal")
-                failures.extend(reply[1])
-        if failures:
-            world, packed = min(failures, key=lambda f: f[0])
-            raise _unpack_exception(packed, world)
+        failures = []
+        for w, (_, up) in enumerate(self._pipes):
+            reply = _recv(up)
+            if reply is None:
+                lo, hi = self._bounds[w]
+                self.close()
+                raise _simbob.InternalError(
+                    f"Batch: worker {w} (worlds {lo} to {hi - 1}) ended unexpectedly; the Batch is closed",
+                    "Internal")
+            failures.extend(reply[1])
+        return failures
 
     def _same_for_all(self, arg):
         return [arg] * len(self._bounds)
@@ -428,8 +496,16 @@ class Batch:
 
     def close(self):
         """Ends the workers (idempotent); the last state stays readable."""
+        self._close()
+
+    def _close(self, terminate=False):
         if self._finalizer is not None:
-            self._finalizer()
+            if terminate and self._finalizer.alive:
+                self._finalizer.detach()
+                fds = [fd for p in self._pipes for fd in p]
+                _shutdown(os.getpid(), list(self._pids), fds, terminate=True)
+            else:
+                self._finalizer()
         self._pipes = []
         self._sims = None
 

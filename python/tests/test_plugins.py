@@ -33,3 +33,34 @@ def test_plugin_sensor_reads_like_a_built_in():
         simbob.load_plugin(BEAM)
     with pytest.raises(simbob.MissingInputError, match="cannot load the plug-in"):
         simbob.load_plugin("nowhere.so")
+
+
+ACT_FAILS = os.path.join(os.path.dirname(BINARY), "plugins", "bad_act_fails.so")
+SQUARE_SCENE = os.path.join(SOURCE, "examples", "plugins", "square_robot.xml")
+
+
+@pytest.mark.skipif(not os.path.isfile(ACT_FAILS), reason="build/plugins/bad_act_fails.so is not built")
+def test_a_failing_plugin_controller_raises_controller_error(tmp_path):
+    """The test plug-in's BadController returns an error from act() at t >= 0.5 s: the run stops
+    there with ControllerError (not DivergedError: nothing diverged), exit status 2 as the CLI's,
+    from Simulation and from simbob.run, which keeps the partial trajectory up to 0.5 s."""
+    text = open(SQUARE_SCENE).read()
+    start, end = text.index("<SquareDriver"), text.index("</SquareDriver>") + len("</SquareDriver>")
+    scene = tmp_path / "bad_robot.xml"
+    scene.write_text(text[:start] + '<BadController Key="Bad"/>' + text[end:])
+    line = text[:start].count("\n") + 1
+    simbob.load_plugin(ACT_FAILS)
+    sim = simbob.Simulation(scene)
+    with pytest.raises(simbob.ControllerError) as e:
+        sim.run_until(1.0)
+    assert type(e.value) is simbob.ControllerError
+    assert e.value.kind == "ControllerFailed" and e.value.exit_status == 2
+    assert (e.value.file, e.value.line) == (str(scene), line)
+    assert e.value.message == ("controller 'Bot.Bad' (plug-in 'bad', type 'BadController'): "
+                               "act() failed: act failed on purpose at t=0.5")
+    out = tmp_path / "b.csv"
+    with pytest.raises(simbob.ControllerError):
+        simbob.run(scene, duration=1, out=out)
+    assert not out.exists()
+    rows = (tmp_path / "b.partial.csv").read_text().splitlines()
+    assert rows[-1].split(",")[0] == "0.5"

@@ -389,8 +389,10 @@ def test_controller_exception_is_raised_from_step():
         sim.run_until(1.0)
     assert abs(sim.time - 0.3) < 1e-12
     assert not sim.running
-    with pytest.raises(simbob.DivergedError, match="Python controller"):
+    # The run stopped because a controller failed, not because anything diverged.
+    with pytest.raises(simbob.ControllerError, match="Python controller") as e:
         sim.step()
+    assert e.value.kind == "ControllerFailed" and e.value.exit_status == 2
 
 
 def test_controller_may_not_step_the_simulation():

@@ -17,6 +17,10 @@ r = s["reproducibility"]
 assert "ODE_double_precision" in r["physics"], r
 assert r["precision"] == "double" and r["fp_contract"] == "off", r
 assert isinstance(r["cpu_features"], list) and r["compiler"], r
+import re
+assert re.fullmatch(r"0\.16\.\d+", r["ode_version"]), r
+assert re.fullmatch(r"(gcc|clang) \d.*", r["compiler"]), r
+assert re.fullmatch(r"glibc \d+\.\d+", r["libc"]), r
 PY
   # The checked run writes the same bytes as a plain run.
   "$simbob" run "$repo/scenes/$s.xml" --duration 2 --out "$tmp/$s.plain.csv" --quiet

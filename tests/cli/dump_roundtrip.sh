@@ -7,6 +7,7 @@ cli_setup "$@"
 
 # Imports are relative to the scene file: give the dumped scenes the same neighbours.
 cp -r "$SCENES/parts" parts
+cp -r "$SCENES/meshes" meshes  # and the mesh files (scenes/mesh_drop.xml)
 
 while read -r scene; do
   name=$(basename "$scene" .xml)

@@ -55,6 +55,29 @@ shipped_scenes() {
 # needs_peer SCENE: true if the scene talks to a peer over a socket.
 needs_peer() { grep -q '<RCLocalSocketCommunicator' "$1"; }
 
+# golden_scenes: every scene that has a golden trajectory, one path a line relative to REPO
+# (scenes/NAME.EXT for each golden/NAME.csv). Fails naming a scenes/*.xml without its golden
+# file, or a golden file without exactly one scene of its name. golden_regression.sh and
+# golden_hwcaps.sh both run this list: a new scene with its golden file is in both, unedited.
+golden_scenes() {
+  local f s name
+  local -a found
+  for f in "$REPO"/scenes/*.xml; do
+    name=$(basename "${f%.xml}")
+    [[ -f "$REPO/golden/$name.csv" ]] || fail "no golden/$name.csv for scenes/$name.xml (run scripts/update-golden.sh)"
+  done
+  for f in "$REPO"/golden/*.csv; do
+    name=$(basename "${f%.csv}")
+    found=()
+    for s in "$REPO/scenes/$name".*; do
+      [[ -f "$s" && "$s" != *.sweep.json ]] && found+=("$s")
+    done
+    [[ ${#found[@]} -eq 1 ]] ||
+      fail "golden/$name.csv: ${#found[@]} scenes named scenes/$name.* (expected exactly one: ${found[*]:-none})"
+    printf 'scenes/%s\n' "$(basename "${found[0]}")"
+  done
+}
+
 # ---------------------------------------------------------------- running commands
 # expect_status CODE CMD [ARGS...]
 #   Runs CMD with stdout in $WORK/last.out and stderr in $WORK/last.err (also LAST_OUT and

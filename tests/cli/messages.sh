@@ -53,7 +53,7 @@ expect_status 0 "$SIMBOB" types rcspheregeom --markdown
 expect_match "markdown, any case" "$LAST_OUT" "^## RCSphereGeom \(GeomComponent\)"
 expect_status 64 "$SIMBOB" types RCBoxGeom
 expect_match "unknown type" "$LAST_ERR" \
-  "^simbob: error: unknown component type 'RCBoxGeom' \(did you mean 'RCCuboidGeom'\?\); simbob types lists them all$"
+  "^simbob: error: unknown component type 'RCBoxGeom' \(did you mean 'RCCuboidGeom' or 'RCMeshGeom'\?\); simbob types lists them all$"
 
 check "info prints the version line of --version, git revision included"
 expect_status 0 "$SIMBOB" --version

@@ -6,7 +6,8 @@
 # (simbob_plugin_v1), a type name that is taken, a library without the entry point, an
 # incomplete type and a missing file are one-line errors naming the file (65, 65, 65, 65, 65,
 # 66); plug-in code that fails (create, act, a ref out of range, a sensor's read, a C++
-# exception) stops the run with one line at the scene element (1, the partial kept).
+# exception) stops the run with one line at the scene element (2, a controller failed; the
+# partial kept).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 cli_setup "$@"
@@ -114,7 +115,7 @@ expect_match "dlopen message" "$LAST_ERR" "^nowhere.so: error: cannot load the p
 printf 'not an ELF file\n' >fake.so
 expect_status 66 "$SIMBOB" check "$SCENE" --plugin fake.so
 expect_match "not ELF message" "$LAST_ERR" "^fake.so: error: cannot load the plug-in: "
-check "plug-in code that fails: an error naming the plug-in, never a crash (1 during a run with the partial kept)"
+check "plug-in code that fails: an error naming the plug-in, never a crash (2, a controller failed, during a run with the partial kept)"
 sed '/<SquareDriver/,/<\/SquareDriver>/c\        <BadController Key="Bad"/>' "$SCENE" >bad_robot.xml
 grep -q BadController bad_robot.xml || fail "the controller was not replaced"
 BLINE=$(grep -n '<BadController' bad_robot.xml | cut -d: -f1)
@@ -126,43 +127,43 @@ bad_run() {
   expect_no_file "$1.json"
   expect_eq "no temporary files after $1" "$(ls -a | grep -c '\.tmp\.' || true)" 0
 }
-bad_run create_fails 1
+bad_run create_fails 2
 expect_eq "create message" "$(cat "$LAST_ERR")" "$WHO: create() failed: create failed on purpose"
 expect_file create_fails.partial.csv
-bad_run throw_create 1
+bad_run throw_create 2
 expect_eq "C++ constructor message" "$(cat "$LAST_ERR")" "$WHO: create() failed: constructor failed on purpose"
 for name in act_fails throw_act bad_index neg_index; do
-  bad_run $name 1
+  bad_run $name 2
   expect_file $name.partial.csv
   last=$(tail -n 1 $name.partial.csv | cut -d, -f1)
   expect_eq "$name: the partial ends at the failure" "$last" "0.5"
 done
 expect_eq "set_command(-1) message" "$(cat "$LAST_ERR")" \
   "$WHO: set_command(-1): there is no ref -1 (the type has 0)"
-bad_run bad_index 1
+bad_run bad_index 2
 expect_eq "set_command(99999) message" "$(cat "$LAST_ERR")" \
   "$WHO: set_command(99999): there is no ref 99999 (the type has 0)"
-bad_run act_fails 1
+bad_run act_fails 2
 expect_eq "act message" "$(cat "$LAST_ERR")" "$WHO: act() failed: act failed on purpose at t=0.5"
-bad_run throw_act 1
+bad_run throw_act 2
 expect_eq "C++ act message" "$(cat "$LAST_ERR")" "$WHO: act() failed: act failed on purpose"
-bad_run controller_ray 1
+bad_run controller_ray 2
 expect_eq "cast_ray from a controller" "$(cat "$LAST_ERR")" \
   "$WHO: cast_ray() is for sensors and actuators, not controllers"
 
-check "a plug-in sensor whose read fails stops the run at its scene element (1)"
+check "a plug-in sensor whose read fails stops the run at its scene element (2)"
 sed 's|<RCGenericVelControlledDrive Key="LeftDrive">|<BadSensor Key="Bad"><Period Value="0.1"/></BadSensor>\n&|' "$SCENE" >bad_sensor.xml
 SLINE=$(grep -n '<BadSensor' bad_sensor.xml | cut -d: -f1)
-expect_status 1 "$SIMBOB" run bad_sensor.xml --duration 1 --plugin "$SQUARE" --plugin "$PLUGINS/bad_sensor_fails.so" --out s.csv -q
+expect_status 2 "$SIMBOB" run bad_sensor.xml --duration 1 --plugin "$SQUARE" --plugin "$PLUGINS/bad_sensor_fails.so" --out s.csv -q
 expect_eq "read message" "$(cat "$LAST_ERR")" \
   "bad_sensor.xml:$SLINE: error: sensor 'Bot.Cart.Bad' (plug-in 'bad', type 'BadSensor'): read() failed: read failed on purpose at t=0.5"
 # Nothing acts on the failed reading: the run stops before the instant's grants (and samples).
 expect_eq "the partial ends before the failure" "$(tail -n 1 s.partial.csv | cut -d, -f1)" "0.49"
 
-check "a plug-in actuator whose force is not finite stops the run at its scene element (1)"
+check "a plug-in actuator whose force is not finite stops the run at its scene element (2)"
 sed 's|<RCGenericVelControlledDrive Key="LeftDrive">|<BadActuator Key="Bad"/>\n&|' "$SCENE" >bad_actuator.xml
 ALINE=$(grep -n '<BadActuator' bad_actuator.xml | cut -d: -f1)
-expect_status 1 "$SIMBOB" run bad_actuator.xml --duration 1 --plugin "$SQUARE" --plugin "$PLUGINS/bad_actuator_nan.so" --out a.csv -q
+expect_status 2 "$SIMBOB" run bad_actuator.xml --duration 1 --plugin "$SQUARE" --plugin "$PLUGINS/bad_actuator_nan.so" --out a.csv -q
 expect_eq "apply message" "$(cat "$LAST_ERR")" \
   "bad_actuator.xml:$ALINE: error: actuator 'Bot.Cart.Bad' (plug-in 'bad', type 'BadActuator'): apply() gave a force or torque that is not finite"
 say "ok: plugins"

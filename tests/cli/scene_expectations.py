@@ -368,7 +368,26 @@ def drchubo(c):
     c.below("torso motion over the last second (m)", math.dist(c.at("drchubo.Body_Torso", 9)[1], torso[-1][1]), 0.05)
 
 
-SCENES = {f.__name__: f for f in (pendulum, box_stack, chain, imported_bodies, mechanisms, bounce, robot, flywheel,
+def mesh_drop(c):
+    # The slider slides down the 30 degree ramp (mu 0.3) at a = g (sin 30 - 0.3 cos 30) from rest:
+    # s = a t^2 / 2 along the slope after t. It starts 0.5 mm above the slope (a 10 ms fall, 1 mm
+    # less slid); ODE's friction pyramid and contact softness keep it within 5 mm of that.
+    a = 9.81 * (0.5 - 0.3 * math.cos(math.radians(30)))
+    _, p0, q0 = c.at("Slider", 0.0)
+    _, p, q = c.at("Slider", 0.6)
+    s = 0.5 * a * 0.6**2
+    c.near("slider x after 0.6 s on the slope (m)", p[0] - p0[0], s * math.cos(math.radians(30)), 0.005)
+    c.near("slider drop after 0.6 s on the slope (m)", p0[1] - p[1], s * math.sin(math.radians(30)), 0.005)
+    c.below("slider turn on the slope (it slides flat)", qdist(q, q0), 0.005)
+    # The cube (an STL hull), the crate (COLLADA, cm, Z up) and the pyramid land upright on their
+    # feet: the cube's centre at half its 0.1 m, the others' origins (on their feet) at 0.
+    for key, y in (("Cube", 0.05), ("Crate", 0.0), ("Pyramid", 0.0)):
+        _, p, q = c.at(key, 10)
+        c.near(f"{key} height at rest (m)", p[1], y, 1e-3)
+        c.below(f"{key} tilt at rest", qdist(q, (1, 0, 0, 0)), 5e-3)
+
+
+SCENES = {f.__name__: f for f in (mesh_drop, pendulum, box_stack, chain, imported_bodies, mechanisms, bounce, robot, flywheel,
                                   servo_arm, two_wheel_robot, wall_stop_robot, sliding_box, socket_robot, gallery,
                                   go_to_point_robot, kr5, drchubo)}
 

@@ -79,6 +79,9 @@ expect_error subscribe_key "'subscribe bodies': no body has the key 'Bot.Cart.Ch
 expect_error unescaped_key "'set Bot.Mo': 'tion' is not a finite number" "set Bot.Mo tion 0 0"
 expect_error unknown_key "'set Bot.Motion': no actuator or motion control has that key" "set Bot.Motion 0 0"
 expect_error bad_escape "'set Bot.Mo%2': a '%' not followed by two hex digits" "set Bot.Mo%2 1 2"
+# Issue 31: a bad escape in 'subscribe' is named as such, not as an unknown key.
+expect_error subscribe_bad_escape "'subscribe bodies Bot%2': a '%' not followed by two hex digits" \
+  "version 3" "subscribe bodies Bot%2"
 expect_error bad_number "'set Bot.Mo%20tion': 'fast' is not a finite number" "set Bot.Mo%20tion fast 0"
 expect_error unknown_line "the peer sent 'jump'" "jump"
 expect_error long_line "a line longer than 4096 bytes" "$(head -c 5000 /dev/zero | tr '\0' x)"

@@ -36,7 +36,8 @@ done
 version=$(sed -n 's/^CMAKE_PROJECT_VERSION:[A-Z]*=//p' "$BUILD/CMakeCache.txt")
 [[ "$version" =~ ^[0-9]+\.[0-9]+\.[0-9]+$ ]] || fail "no project version in $BUILD/CMakeCache.txt: '$version'"
 expect_status 0 "$SIMBOB" --version
-version_line=$(cat "$LAST_OUT")
+version_text=$(cat "$LAST_OUT")
+version_line=$(head -n 1 "$LAST_OUT")
 
 # A scene that imports parts/ (so the installed scenes must bring their data files along).
 SCENE=imported_bodies
@@ -187,7 +188,7 @@ mkdir "$WORK/root"
 expect_status 0 dpkg -x "$deb" "$WORK/root"
 R=$WORK/root
 expect_status 0 "$R/usr/bin/simbob" --version
-expect_eq "installed --version" "$(cat "$LAST_OUT")" "$version_line"
+expect_eq "installed --version" "$(cat "$LAST_OUT")" "$version_text"
 [[ "$version_line" =~ ^simbob\ $version\ \(git\ [^\ ]+\)$ ]] || fail "--version prints '$version_line'"
 expect_status 0 "$R/usr/bin/simbob" run "$R/usr/share/simbob/scenes/$SCENE.xml" --duration 1 --quiet --out "$WORK/deb.csv"
 expect_same_file "$WORK/deb.csv" "$WORK/reference.csv"

@@ -17,7 +17,11 @@ version=$(sed -n 's/^CMAKE_PROJECT_VERSION:[A-Z]*=//p' "$BUILD/CMakeCache.txt")
 revision=$(sed -n 's/^ *const char\* const kGitRevision = "\(.*\)";$/\1/p' "$BUILD/generated/version.cpp")
 [[ -n "$version" && -n "$revision" ]] || fail "no version ('$version') or revision ('$revision') in $BUILD"
 expect_status 0 "$SIMBOB" --version
-expect_eq "--version" "$(cat "$LAST_OUT")" "simbob $version (git $revision)"
+expect_eq "--version" "$(head -n 1 "$LAST_OUT")" "simbob $version (git $revision)"
+# Then what the trajectory bytes depend on (docs/ci.md): ODE, the compiler, the C library.
+expect_match "--version's ODE line" "$LAST_OUT" "^ODE 0\.16\.[0-9]+ \(ODE .*ODE_double_precision"
+expect_match "--version's compiler line" "$LAST_OUT" "^compiler (gcc|clang) [0-9]"
+expect_match "--version's C library line" "$LAST_OUT" "^glibc [0-9]+\.[0-9]+$"
 
 if ! command -v git >/dev/null; then
   printf 'SKIP: git is not installed; the revision module cannot be checked\n'

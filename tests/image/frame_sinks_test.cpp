@@ -1,5 +1,5 @@
 // lib/image: PNG sequences, videos through FFmpeg, and the asynchronous sink in front of them.
-#include "simbob/frame_sinks.h"
+#include "simbob/tool/frame_sinks.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -8,9 +8,9 @@
 #include <string>
 
 #include "image_test_util.h"
-#include "simbob/image_compare.h"
-#include "simbob/png.h"
-#include "simbob/video_probe.h"
+#include "simbob/tool/image_compare.h"
+#include "simbob/tool/png.h"
+#include "simbob/tool/video_probe.h"
 
 namespace fs = std::filesystem;
 using simbob::Error;

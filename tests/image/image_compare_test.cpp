@@ -1,5 +1,5 @@
 // lib/image/image_compare.cpp: the tolerance rule of reference-image tests.
-#include "simbob/image_compare.h"
+#include "simbob/tool/image_compare.h"
 
 #include <catch2/catch.hpp>
 

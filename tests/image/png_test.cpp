@@ -1,5 +1,5 @@
 // lib/image/png.cpp: PNG files written atomically and read back as 8-bit RGB from any colour type.
-#include "simbob/png.h"
+#include "simbob/tool/png.h"
 
 #include <png.h>
 #include <unistd.h>

@@ -4,7 +4,7 @@
 #include <cstdlib>
 
 #include "image_test_util.h"
-#include "simbob/frame_sinks.h"
+#include "simbob/tool/frame_sinks.h"
 
 int main(int argc, char** argv) {
   if (argc != 4) {

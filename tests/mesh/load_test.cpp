@@ -1,7 +1,6 @@
 // lib/mesh: loading STL, OBJ and DAE (units, up axis, scale), the cache, hulls and the mass of
 // closed meshes against analytic answers.
-#include <catch2/catch_approx.hpp>
-#include <catch2/catch_test_macros.hpp>
+#include <catch2/catch.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -12,7 +11,7 @@
 #include "simbob/mesh.h"
 
 using namespace simbob;
-using Catch::Approx;
+using scenetest::TempDir;
 
 namespace {
 
@@ -38,8 +37,7 @@ TEST_CASE("mesh: polyhedronMass of a cube and a tetrahedron is the analytic one"
   CHECK(cube.volume == Approx(8).epsilon(1e-12));
   for (size_t k = 0; k < 3; ++k) CHECK(cube.centre[k] == Approx(1).epsilon(1e-12));
   for (size_t i = 0; i < 3; ++i)
-    for (size_t j = 0; j < 3; ++j)
-      CHECK(cube.inertia[i * 3 + j] == Approx(i == j ? 16.0 / 3.0 : 0.0).margin(1e-12));
+    for (size_t j = 0; j < 3; ++j) CHECK(cube.inertia[i * 3 + j] == Approx(i == j ? 16.0 / 3.0 : 0.0).margin(1e-12));
   // Tetrahedron (0,0,0) (a,0,0) (0,a,0) (0,0,a): V = a^3/6, centroid a/4 on each axis; about the
   // origin the covariance is V a^2/10 on the diagonal and V a^2/20 off it (Tonon 2004), so about
   // the centroid I_xx = 2 (V a^2/10 - V a^2/16) and I_xy = -(V a^2/20 - V a^2/16).
@@ -80,8 +78,8 @@ TEST_CASE("mesh: the convex hull of a box's points is six outward quadrilaterals
       const Vec3 a = p(k), b = p(k + 1), c = p(k + 2);
       CHECK(n[0] * a[0] + n[1] * a[1] + n[2] * a[2] == Approx(d).margin(1e-12));
       const Vec3 u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w{c[0] - b[0], c[1] - b[1], c[2] - b[2]};
-      const double turn = n[0] * (u[1] * w[2] - u[2] * w[1]) + n[1] * (u[2] * w[0] - u[0] * w[2]) +
-                          n[2] * (u[0] * w[1] - u[1] * w[0]);
+      const double turn =
+          n[0] * (u[1] * w[2] - u[2] * w[1]) + n[1] * (u[2] * w[0] - u[0] * w[2]) + n[2] * (u[0] * w[1] - u[1] * w[0]);
       CHECK(turn > 0);
     }
     // Outward: the box's centre is behind every face.
@@ -194,7 +192,8 @@ TEST_CASE("mesh: the cache reads each file, scale and up axis once", "[mesh]") {
 
 TEST_CASE("mesh: dart-doc's real STL and DAE files load", "[mesh]") {
   // KR5's binary STL (a file name beside one with spaces), WAM's DAE visual, drchubo's hull STL.
-  for (const std::string f : {"KR5/meshes/base_link.STL", "wam/meshes/wam/wam1.dae", "drchubo/meshes/convhull_NK2.stl"}) {
+  for (const std::string f :
+       {"KR5/meshes/base_link.STL", "wam/meshes/wam/wam1.dae", "drchubo/meshes/convhull_NK2.stl"}) {
     INFO(f);
     const MeshLoad l = loadMesh(kDart + f, {1, 1, 1}, UpAxis::Z);
     REQUIRE(l.ok());

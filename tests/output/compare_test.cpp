@@ -1,4 +1,4 @@
-#include "simbob/compare.h"
+#include "simbob/tool/comparison.h"
 
 #include <unistd.h>
 

@@ -1,11 +1,11 @@
-// CSV (include/simbob/csv.h): what csvField writes, CsvReader reads back unchanged; malformed
+// CSV (include/simbob/tool/csv.h): what csvField writes, CsvReader reads back unchanged; malformed
 // records are named by the line they start on.
 #include <catch2/catch.hpp>
 
 #include <string>
 #include <vector>
 
-#include "simbob/csv.h"
+#include "simbob/tool/csv.h"
 
 using namespace simbob;
 

@@ -1,5 +1,5 @@
 // lib/output/files.cpp: the one whole-file reader (scenes, imports, settings, trajectories).
-#include "simbob/files.h"
+#include "simbob/tool/files.h"
 
 #include <unistd.h>
 

@@ -54,8 +54,8 @@ TEST_CASE("physics: a free STL cube in millimetres scaled by 0.001 comes to rest
   CHECK(m.bodies[0].inertia[1] == Approx(0).margin(1e-12));
   const BodyState s = settle(m, 2.0);
   // Resting contact in ODE sinks by the error the solver leaves per step: with ERP 0.2 and
-  // CFM 1e-10 it is below 1e-5 m for half a kilogram (measured 3e-6); 1e-4 m leaves room.
-  CHECK(s.pose.p[1] == Approx(0.05).margin(1e-4));
+  // CFM 1e-10 well below 1e-5 m for half a kilogram (measured 7e-7 m); 1e-5 m leaves room.
+  CHECK(s.pose.p[1] == Approx(0.05).margin(1e-5));
   CHECK(std::fabs(s.pose.p[0]) < 1e-6);  // a straight drop: no sideways drift
   CHECK(std::fabs(s.pose.q[0]) == Approx(1).margin(1e-6));
   CHECK(std::fabs(s.lin_vel[1]) < 1e-3);
@@ -64,8 +64,9 @@ TEST_CASE("physics: a free STL cube in millimetres scaled by 0.001 comes to rest
 TEST_CASE("physics: the hull of a box-shaped mesh falls and rests like the box primitive", "[physics][mesh]") {
   // The same 0.1 m cube as RCCuboidGeom and as a mesh hull, dropped tilted 20 degrees about X
   // so it lands on an edge and tips over: the free fall is shape-independent, and both
-  // colliders (ODE's box-plane and convex-plane) find the same corners, so the paths agree to
-  // the solver's tolerance: 1 mm in position after the impact, the same resting height.
+  // colliders (ODE's box-plane and convex-plane) find the same corners, so the paths agree but
+  // for rounding, which the impact and the tumble amplify: measured 9e-6 m apart at worst over
+  // the 2 s, checked at 1e-4 m; both rest at the same height.
   const std::string pose = "0 0.3 0 20 0 0";
   auto scene = [&](const std::string& geom) {
     std::string s = dropScene(geom, 0.3);
@@ -73,8 +74,8 @@ TEST_CASE("physics: the hull of a box-shaped mesh falls and rests like the box p
     s.replace(s.find(flat), flat.size(), pose);
     return s;
   };
-  const Model box =
-      mustCompile(scene("<RCCuboidGeom><Width Value=\"0.1\"/><Height Value=\"0.1\"/><Depth Value=\"0.1\"/></RCCuboidGeom>"));
+  const Model box = mustCompile(
+      scene("<RCCuboidGeom><Width Value=\"0.1\"/><Height Value=\"0.1\"/><Depth Value=\"0.1\"/></RCCuboidGeom>"));
   const Model hull = mustCompile(scene(meshGeom("cube_100mm.stl", "0.001 0.001 0.001")));
   CHECK(hull.bodies[0].mass == Approx(box.bodies[0].mass).epsilon(1e-6));
   auto wb = World::create(box, 1);
@@ -87,9 +88,9 @@ TEST_CASE("physics: the hull of a box-shaped mesh falls and rests like the box p
     wh->step(0.001);
     for (size_t k = 0; k < 3; ++k) worst = std::max(worst, std::fabs(wb->body(0).pose.p[k] - wh->body(0).pose.p[k]));
   }
-  CHECK(worst < 1e-3);
-  CHECK(wh->body(0).pose.p[1] == Approx(0.05).margin(1e-4));
-  CHECK(wb->body(0).pose.p[1] == Approx(0.05).margin(1e-4));
+  CHECK(worst < 1e-4);
+  CHECK(wh->body(0).pose.p[1] == Approx(0.05).margin(1e-5));
+  CHECK(wb->body(0).pose.p[1] == Approx(0.05).margin(1e-5));
 }
 
 TEST_CASE("physics: a COLLADA box in centimetres, Z up, lands with its unit and up axis applied", "[physics][mesh]") {

@@ -108,13 +108,20 @@ TEST_CASE("rays: its own body and the bodies joined to it are ignored, other bod
     addJoint(m, JointKind::Hinge, 0, b, {0, 0, -0.3}, {1, 0, 0});
     CHECK(std::fabs(reading(m) - 2.0) < 1e-9);
   }
-  SECTION("a static sensor ignores the static world (its own body) but sees the box") {
+  SECTION("a static sensor skips its own static body and the bodies jointed to it, and sees the rest") {
+    // The carrier's box becomes the sensor's static post, around the sensor's origin.
     m.sensors[0].body = -1;
-    m.geoms.erase(m.geoms.begin());  // the carrier's box (not the sensor's own any more)
-    CHECK(std::fabs(reading(m) - 0.5) < 1e-9);
+    m.sensors[0].static_body = 0;
+    m.geoms[0].body = -1;
+    m.geoms[0].static_body = 0;
+    CHECK(std::fabs(reading(m) - 0.5) < 1e-9);  // not the post: the box
+    addJoint(m, JointKind::Hinge, -1, b, {0, 0, -0.3}, {1, 0, 0});
+    m.joints.back().static_body = 0;
+    CHECK(std::fabs(reading(m) - 2.0) < 1e-9);  // the box hinged to the post: the static wall behind it
+    m.joints.pop_back();
     m.bodies.pop_back();
     m.geoms.pop_back();
-    CHECK(reading(m) == 5.0);
+    CHECK(std::fabs(reading(m) - 2.0) < 1e-9);  // without the box: the static wall (MaxRange before)
   }
 }
 

@@ -1,4 +1,4 @@
-#include "simbob/plot.h"
+#include "simbob/tool/plot.h"
 
 #include <unistd.h>
 

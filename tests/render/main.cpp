@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "simbob/render.h"
+#include "simbob/renderer.h"
 
 int main(int argc, char** argv) {
   const char* gl = std::getenv("SIMBOB_GL");

@@ -9,10 +9,11 @@
 
 #include "simbob/compile.h"
 #include "simbob/graph.h"
-#include "simbob/render.h"
-#include "simbob/run.h"
+#include "simbob/renderer.h"
+#include "simbob/loop.h"
 #include "render/reference_frames.h"
 #include "test_registry.h"
+#include "sim/loop_helpers.h"
 
 using namespace simbob;
 using namespace simbob::test;
@@ -69,7 +70,7 @@ class KeepingSink : public FrameSink {
 RunResult record(const Model& m, Renderer& r, KeepingSink& sink, bool threaded, double duration) {
   std::unique_ptr<FrameDrawer> drawer = threaded ? drawOnRenderThread(r, sink) : drawInline(r, sink);
   Recorder recorder(*drawer, 20, toSimTime(m.settings.min_time_step).value_or(0), static_cast<int>(m.bodies.size()));
-  RunOptions opts;
+  LoopOptions opts;
   opts.duration = duration;
   return runParties(m, opts, {&recorder});
 }

@@ -6,9 +6,9 @@
 #include <cstdlib>
 #include <string>
 
-#include "simbob/image_compare.h"
-#include "simbob/png.h"
-#include "simbob/render.h"
+#include "simbob/tool/image_compare.h"
+#include "simbob/tool/png.h"
+#include "simbob/renderer.h"
 
 namespace simbob::test {
 

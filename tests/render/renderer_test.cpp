@@ -17,9 +17,9 @@
 
 #include "simbob/compile.h"
 #include "simbob/graph.h"
-#include "simbob/image_compare.h"
-#include "simbob/png.h"
-#include "simbob/render.h"
+#include "simbob/tool/image_compare.h"
+#include "simbob/tool/png.h"
+#include "simbob/renderer.h"
 #include "simbob/transform.h"
 #include "simbob/values.h"
 #include "render/reference_frames.h"
@@ -550,6 +550,7 @@ TEST_CASE("collision shapes: drawn when asked, and the default view frames the b
   };
   std::vector<Transform> moved = initialPoses(pendulum);
   moved[0].p = add(moved[0].p, Vec3{3, -2, 1});
+  o.draw_chosen = true;  // exactly what is asked (--draw): models alone show nothing here
   for (bool geoms : {false, true}) {
     o.draw_geoms = geoms;
     o.draw_models = !geoms;
@@ -566,4 +567,49 @@ TEST_CASE("collision shapes: drawn when asked, and the default view frames the b
     CHECK(offBackground(at_start, 60, 45) == geoms);
     CHECK(offBackground(at_moved, 60, 45) == geoms);
   }
+  // Not chosen: a renderer whose models show no body draws the collision shapes instead (the
+  // one place that decides it, for render, recordings, camera sensors and Python alike).
+  RenderOptions unchosen = o;
+  unchosen.draw_chosen = false;
+  unchosen.draw_models = true;
+  unchosen.draw_geoms = false;
+  CHECK(drawFallbackNote(pendulum, unchosen) ==
+        "no body has a model: drawing the collision shapes (--draw geoms; --draw models for the models alone)");
+  CHECK(drawFallbackNote(pendulum, o).empty());
+  Error err;
+  std::unique_ptr<Renderer> r = Renderer::create(pendulum, unchosen, &err);
+  REQUIRE(r);
+  Image fallback;
+  REQUIRE(r->render(initialPoses(pendulum), 0, &fallback) == nullptr);
+  CHECK(offBackground(fallback, 60, 45));
+}
+
+TEST_CASE("meshes: scenes/mesh_drop.xml matches its reference; mesh models and mesh collision shapes are drawn") {
+  // The ramp (a static triangle mesh), the cube (STL), the crate (COLLADA, turned Z-up to Y-up)
+  // and the pyramid (OBJ), drawn from their display lists with one normal per face.
+  const Model m = compileFile("scenes/mesh_drop.xml");
+  REQUIRE(m.meshes.size() == 4);
+  const Image img = draw(m, 320, 240);
+  checkReference(img, "mesh_drop");
+  // Without its mesh models the picture loses them (the comparison can fail).
+  Model bare = m;
+  bare.visuals.erase(std::remove_if(bare.visuals.begin(), bare.visuals.end(),
+                                    [](const VisualDef& v) { return v.shape == VisualDef::Mesh; }),
+                     bare.visuals.end());
+  CHECK_FALSE(imagesMatch(img, draw(bare, 320, 240)));
+  // The collision shapes alone (hulls and the ramp's triangles) look like the models: the
+  // meshes are their own hulls but for the ramp's, drawn in the collision shapes' colours.
+  RenderOptions o;
+  o.width = 320;
+  o.height = 240;
+  o.backend = backend();
+  o.draw_models = false;
+  o.draw_geoms = true;
+  Error err;
+  std::unique_ptr<Renderer> r = Renderer::create(m, o, &err);
+  INFO(err.message);
+  REQUIRE(r);
+  Image shapes;
+  REQUIRE(r->render(initialPoses(m), 0, &shapes) == nullptr);
+  checkReference(shapes, "mesh_drop_geoms");
 }

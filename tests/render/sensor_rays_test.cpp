@@ -12,8 +12,8 @@
 #include "simbob/compile.h"
 #include "simbob/graph.h"
 #include "simbob/physics.h"
-#include "simbob/png.h"
-#include "simbob/render.h"
+#include "simbob/tool/png.h"
+#include "simbob/renderer.h"
 #include "test_registry.h"
 
 using namespace simbob;

@@ -1,4 +1,4 @@
-// Texture files (lib/render/texture_file.cpp): a BMP costs what its header describes, not what
+// Texture files (lib/image/texture_file.cpp): a BMP costs what its header describes, not what
 // the file holds; a file past the cap is refused unread; each file is decoded once per renderer
 // and the decoded images together stay within a budget. The large files are sparse (a header,
 // then a hole): nothing here writes or allocates gigabytes unless the reader does.
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "render/texture_file.h"
+#include "image/texture_file.h"
 
 using namespace simbob;
 namespace fs = std::filesystem;
@@ -78,7 +78,7 @@ TEST_CASE("texture files: a BMP is read as far as its header describes, and a fi
     const std::string p = writeFile(dir.path / "padded.bmp", bmpBytes(16, 16, 77), uintmax_t{1} << 30);
     Image im;
     Error err;
-    REQUIRE(render::readBmp(p, &im, &err));
+    REQUIRE(readBmp(p, &im, &err));
     CHECK(im.width == 16);
     CHECK(im.height == 16);
     CHECK(im.rgb[0] == 77);
@@ -88,7 +88,7 @@ TEST_CASE("texture files: a BMP is read as far as its header describes, and a fi
     const std::string p = writeFile(dir.path / "huge.bmp", bmpBytes(16, 16, 77), uintmax_t{2} << 30);
     Image im;
     Error err;
-    REQUIRE_FALSE(render::readTextureFile(p, &im, &err));
+    REQUIRE_FALSE(readTextureFile(p, &im, &err));
     CHECK(err.kind == ErrorKind::InvalidInput);
     CHECK(err.loc.file == p);
     CHECK(err.message == "texture file of 2147483648 bytes is larger than 1074790400 (a 16384 x 16384 BMP at 32 bits)");
@@ -99,7 +99,7 @@ TEST_CASE("texture files: a BMP is read as far as its header describes, and a fi
     const std::string p = writeFile(dir.path / "truncated.bmp", head, 4096);
     Image im;
     Error err;
-    REQUIRE_FALSE(render::readBmp(p, &im, &err));
+    REQUIRE_FALSE(readBmp(p, &im, &err));
     CHECK(err.kind == ErrorKind::InvalidInput);
     CHECK(err.message == "BMP: file is shorter than its pixels");
     CHECK(peakMiB() - peak0 < 64);
@@ -113,7 +113,7 @@ TEST_CASE("texture files: each file is decoded once however it is spelled, withi
   fs::create_directories(dir.path / "sub");
   const std::string a_again = (dir.path / "sub" / ".." / "." / "a.bmp").string();
 
-  render::TextureFiles files(16 * 16 * 3 + 100);  // room for a, not for a and b
+  TextureFiles files(16 * 16 * 3 + 100);  // room for a, not for a and b
   size_t slot = 9;
   bool fresh = false;
   Image im;

@@ -110,3 +110,24 @@ TEST_CASE("PeerProcess: end() leaves nothing of the group, even a child that ign
   CHECK(gone);
   std::remove(pids.c_str());
 }
+
+TEST_CASE("PeerProcess: the log keeps the head and the tail and names the cut") {
+  const std::string log = tempPath("capped.log");
+  robot::PeerProcess p;
+  // 26 letters and a newline, 40 times (1080 bytes): 100 bytes of head, 50 of tail kept.
+  REQUIRE(p.start({"/bin/sh", "-c", "i=0; while [ $i -lt 40 ]; do echo abcdefghijklmnopqrstuvwxyz; i=$((i+1)); done"},
+                  "", {}, log, 100, 50) == "");
+  p.end(5);
+  std::string line;
+  for (int i = 0; i < 40; ++i) line += "abcdefghijklmnopqrstuvwxyz\n";
+  CHECK(slurp(log) ==
+        line.substr(0, 100) +
+            "\n[simbob: 930 bytes of the controller's output cut here; this log keeps the first 100 bytes "
+            "and the last 50 bytes]\n" +
+            line.substr(line.size() - 50));
+  // Within head + tail nothing is cut.
+  REQUIRE(p.start({"/bin/sh", "-c", "echo 12345"}, "", {}, log, 3, 3) == "");
+  p.end(5);
+  CHECK(slurp(log) == "12345\n");
+  std::remove(log.c_str());
+}

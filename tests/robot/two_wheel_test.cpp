@@ -7,7 +7,7 @@
 
 #include "scene/scene_helpers.h"
 #include "simbob/robot.h"
-#include "simbob/run.h"
+#include "simbob/loop.h"
 #include "simbob/simulation.h"
 
 using namespace simbob;

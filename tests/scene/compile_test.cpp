@@ -1073,15 +1073,18 @@ TEST_CASE("compile: drives become actuators and controllers ControllerDefs, with
   CHECK(m.actuators[2].joint == 1);
   // The schedule's target is lowered first, so it comes before the schedule.
   REQUIRE(m.controllers.size() == 3);
-  CHECK(m.controllers[0].kind == ControllerDef::TwoWheel);
-  CHECK(m.controllers[0].actuators == std::vector<int>{1, 2});
-  CHECK(m.controllers[1].kind == ControllerDef::CommandSchedule);
-  CHECK(m.controllers[1].target == 0);
-  CHECK(m.controllers[1].values == 2);
-  CHECK(m.controllers[1].commands == std::vector<double>{0, 1, 0, 2, 0, 0.5});
-  CHECK(m.controllers[2].kind == ControllerDef::DriveTest);
-  CHECK(m.controllers[2].period == 0.02);
-  CHECK(m.controllers[2].actuators == std::vector<int>{0});
+  REQUIRE(m.controllers[0].kind() == ControllerDef::TwoWheel);
+  CHECK(m.controllers[0].as<TwoWheelDef>().left == 1);
+  CHECK(m.controllers[0].as<TwoWheelDef>().right == 2);
+  REQUIRE(m.controllers[1].kind() == ControllerDef::CommandSchedule);
+  const CommandScheduleDef& schedule = m.controllers[1].as<CommandScheduleDef>();
+  CHECK(schedule.target == 0);
+  CHECK(schedule.actuator == -1);
+  CHECK(schedule.values == 2);
+  CHECK(schedule.commands == std::vector<double>{0, 1, 0, 2, 0, 0.5});
+  REQUIRE(m.controllers[2].kind() == ControllerDef::DriveTest);
+  CHECK(m.controllers[2].as<DriveTestDef>().period == 0.02);
+  CHECK(m.controllers[2].as<DriveTestDef>().drive == 0);
 }
 
 TEST_CASE("compile: command schedule errors name the row", "[scene][compile]") {

@@ -121,10 +121,14 @@ TEST_CASE("errors: an unknown type far from every name suggests the nearest of i
   Result r =
       run(inList("<RCStaticRigidBody Key=\"S\"><Geom><RCBoxGeom/></Geom></RCStaticRigidBody>\n"  // 3
                  "<RCCubeGeom Key=\"M\"/>\n"));                                                  // 4
-  expectExact(r, "bad.xml:3: RCStaticRigidBody 'S': unknown component type 'RCBoxGeom' (did you mean 'RCCuboidGeom'?)");
+  // RCMeshGeom is as near as RCCuboidGeom: both are offered.
+  expectExact(r,
+              "bad.xml:3: RCStaticRigidBody 'S': unknown component type 'RCBoxGeom' (did you mean 'RCCuboidGeom' or "
+              "'RCMeshGeom'?)");
   expectExact(r, "bad.xml:4: unknown component type 'RCCubeGeom' (did you mean 'RCCuboidGeom'?)");
   Result ini = run("ComponentCount = 1\nComponent0.Type = RCBoxGeom\n", Format::Ini, "bad.ini");
-  expectError(ini, "bad.ini:2: ", {"unknown component type 'RCBoxGeom' (did you mean 'RCCuboidGeom'?)"});
+  expectError(ini,
+              "bad.ini:2: ", {"unknown component type 'RCBoxGeom' (did you mean 'RCCuboidGeom' or 'RCMeshGeom'?)"});
 }
 
 TEST_CASE("errors: an unknown controller type says a plug-in may define it", "[scene][errors]") {

@@ -62,6 +62,9 @@ std::string element(const TypeSpec& t, const std::string& construction_key) {
                                                   : "list.xml";
     p += std::string("<File Value=\"") + file + "\"/>";
   }
+  // A type that reads a mesh (File and Scale): the test cube.
+  if (t.import_root.empty() && has("File") && has("Scale"))
+    p += "<File Value=\"" + std::string(SIMBOB_SOURCE_DIR) + "/tests/data/meshes/cube_100mm.stl\"/>";
   switch (t.family) {
     case Family::Body:
       if (has("Original")) p += "<Original Value=\"Ball\"/>";

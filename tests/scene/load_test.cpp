@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "simbob/document_ini.h"
+#include "simbob/tool/document_ini.h"
 #include "test_registry.h"
 #include "scene/scene_helpers.h"
 

@@ -147,8 +147,8 @@ TEST_CASE("plugin types: a plug-in's sensor, actuator and controller compile to 
   CHECK(a.pose.p == Vec3{0.5, 0, 0});
   CHECK(a.numbers == std::vector<double>{4.0});
   REQUIRE(m.controllers.size() == 1);
-  const ControllerDef& c = m.controllers[0];
-  CHECK(c.kind == ControllerDef::Plugin);
+  REQUIRE(m.controllers[0].kind() == ControllerDef::Plugin);
+  const PluginControllerDef& c = m.controllers[0].as<PluginControllerDef>();
   CHECK(c.period == 0.02);
   CHECK(c.refs == std::vector<int>{0, 0, 0});  // actuator 0, sensor 0, body 0
   CHECK(c.ref_kind == std::vector<uint8_t>{0, 1, 2});

@@ -270,7 +270,7 @@ TEST_CASE("registry: family parameters are inherited, first and in order", "[sce
       CHECK(t.params[2].name == "FarClip");
     }
   }
-  CHECK(models == 6);
+  CHECK(models == 7);  // cuboid, plane, ellipsoid, cylinder, cone, mesh, empty
   CHECK(joints == 5);
   CHECK(cameras == 4);
   // Other families have no inherited parameters: a geom starts with its own.

@@ -8,7 +8,8 @@
 
 #include "physics/model_builder.h"
 #include "simbob/physics.h"
-#include "simbob/run.h"
+#include "simbob/loop.h"
+#include "sim/loop_helpers.h"
 
 using namespace simbob;
 using namespace simbob::test;
@@ -53,7 +54,7 @@ TEST_CASE("run: a grant longer than MaxAccessTime stops the run with Unavailable
   Sleeper slow(100 * kMs, std::chrono::milliseconds(300));
   slow.name = "controller 'Bot.Slow'";
   slow.loc = {"robot.xml", 12};
-  RunOptions o;
+  LoopOptions o;
   o.duration = 1.0;
   RunResult r = runParties(m, o, {&slow});
   CHECK(r.status == RunStatus::Failed);
@@ -70,12 +71,12 @@ TEST_CASE("run: a grant longer than MaxAccessTime stops the run with Unavailable
   CHECK(slow.deadline_ahead);
 }
 
-TEST_CASE("run: grants within MaxAccessTime complete; RunOptions overrides the scene's limit", "[sim]") {
+TEST_CASE("run: grants within MaxAccessTime complete; LoopOptions overrides the scene's limit", "[sim]") {
   // The same sleep under the scene default (1 s) completes.
   {
     const Model m = model(1.0);
     Sleeper slow(100 * kMs, std::chrono::milliseconds(20));
-    RunOptions o;
+    LoopOptions o;
     o.duration = 0.3;
     RunResult r = runParties(m, o, {&slow});
     CHECK(r.status == RunStatus::Completed);
@@ -85,7 +86,7 @@ TEST_CASE("run: grants within MaxAccessTime complete; RunOptions overrides the s
   {
     const Model m = model(1.0);
     Sleeper slow(0, std::chrono::milliseconds(300));
-    RunOptions o;
+    LoopOptions o;
     o.duration = 0.3;
     o.max_access_time = 0.05;
     RunResult r = runParties(m, o, {&slow});

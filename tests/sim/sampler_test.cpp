@@ -12,9 +12,10 @@
 #include <string>
 
 #include "physics/model_builder.h"
-#include "simbob/compare.h"
-#include "simbob/run.h"
+#include "simbob/tool/comparison.h"
+#include "simbob/loop.h"
 #include "simbob/trajectory.h"
+#include "sim/loop_helpers.h"
 
 using namespace simbob;
 using namespace simbob::test;
@@ -47,7 +48,7 @@ Trajectory runTo(const Model& m, const std::string& path, bool velocity) {
   Error err;
   std::unique_ptr<TrajectoryWriter> w = TrajectoryWriter::open(path, {m.bodies[0].key}, &err, velocity);
   REQUIRE(w);
-  RunOptions o;
+  LoopOptions o;
   o.duration = 0.5;
   o.sample_interval = 0.01;
   const RunResult r = runModel(m, o, w.get());

@@ -131,7 +131,7 @@ TEST_CASE("simulation: commands, keys and errors are values", "[sim][simulation]
   CHECK(sim->setCommand(left, std::nan("")).kind == ErrorKind::Usage);
 
   Diagnostics d;
-  CHECK_FALSE(Simulation::fromText("<Simulation><Bogus/></Simulation>", "bad.xml", Format::Xml, testRegistry(), {}, d));
+  CHECK_FALSE(Simulation::fromText("<Simulation><Bogus/></Simulation>", "bad.xml", testRegistry(), {}, d));
   REQUIRE_FALSE(d.errors().empty());
   CHECK(d.errors()[0].loc.file == "bad.xml");
   CHECK(d.errors()[0].loc.line == 1);

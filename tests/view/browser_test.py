@@ -18,6 +18,19 @@ CASE is one of
   instanced   300 alike boxes moving and turning: drawn in a few draw calls (one instanced mesh),
               the instance matrices hold the CSV poses, the picture equals the one drawn body by
               body (#inst=0)
+  links       (issue 31, item 1) a gallery written outside sweep folders named like a javascript:
+              URL, or holding '#', '%', '?': each "view" link is a relative path ('./' first,
+              every segment percent-encoded) that opens its case page, and clicking it runs no script
+  far         (issue 31, messages) alike boxes 1,000 km out (x = 999999.0123 m) and at 1e300 m: the
+              page shows the picture it shows near the origin, and what it draws (the instance
+              matrices too) is within 0.1 mm of the CSV 1,000 km out
+  names       (issue 31, item 10) JavaScript's own names as keys: #body=constructor, __proto__,
+              toString, hasOwnProperty, and CSV bodies named constructor and __proto__: the page
+              loads, unknown bodies are ignored, known ones are shown; "1 body, 1 sample"
+  artifacts   `batch --golden --junit --artifacts` (issue #29), driven by tests/cli/ci_reports.sh
+              as  browser_test.py SIMBOB REPO artifacts WORKDIR ARTDIR JUNIT: ARTDIR/index.html
+              links each failed scene's replay page, which shows the golden run as ghosts at its
+              rows and the slider's marker at the time the JUnit failure message reports
 Chromium must start: a browser that cannot is a failure, never a skip.
 """
 import json
@@ -35,6 +48,7 @@ from selenium import webdriver  # noqa: E402
 from chromedriver import LocalService  # noqa: E402
 
 SIMBOB, REPO, CASE, WORK = sys.argv[1:5]
+EXTRA = [os.path.abspath(a) for a in sys.argv[5:]]  # the artifacts case's ARTDIR and JUNIT
 os.makedirs(WORK, exist_ok=True)
 os.chdir(WORK)
 failures = []
@@ -408,6 +422,69 @@ def case_outputs(d):
     print(f'ok: {len(cases)} case pages')
 
 
+def case_artifacts(d):
+    """The failed scenes of a batch's JUnit report, each through the artifacts index to its page."""
+    import re
+    import xml.etree.ElementTree as ET
+    art, junit = EXTRA
+    failed = [c for c in ET.parse(junit).getroot().iter('testcase') if c.find('failure') is not None]
+    if not failed:
+        fail(f'{junit} has no failed test case')
+    for case in failed:
+        name = case.get('name')
+        message = case.find('failure').get('message')
+        m = re.match(r"first divergence at t=(\S+) s, body '([^']+)'", message)
+        if not m:
+            fail(f'{name}: the failure message names no divergence: {message!r}')
+            continue
+        t, body = float(m.group(1)), m.group(2)
+        # From the index, by its link, as a reader would.
+        open_page_plain(d, os.path.join(art, 'index.html'))
+        links = d.find_elements('css selector', f'a[href="./{name}/view.html"]')
+        if len(links) != 1:
+            fail(f'index.html has {len(links)} links to ./{name}/view.html')
+            continue
+        links[0].click()
+        wait_ready(d, f'{name}/view.html')
+        if not d.current_url.endswith(f'/{name}/view.html'):
+            fail(f'the link led to {d.current_url}')
+        shown = d.execute_script('return simbobView.divergence()')
+        if not shown or shown['time'] != t or shown['body'] != body:
+            fail(f'{name}: page divergence {shown}, the JUnit report says t={t} body {body}')
+        marker = d.execute_script("const m = document.getElementById('marker');"
+                                  "return [getComputedStyle(m).display, Number(m.dataset.time)]")
+        if marker != ['block', t]:
+            fail(f'{name}: slider marker {marker}, expected shown at {t}')
+        if not d.execute_script("return document.getElementById('ghosts').checked"):
+            fail(f'{name}: the golden ghosts are not shown')
+        # The failure's text names the golden file, relative to where the batch ran (JUNIT's folder).
+        g = re.search(r'^golden: (.+)$', case.find('failure').text or '', re.M)
+        if not g:
+            fail(f'{name}: the failure text names no golden file')
+            continue
+        golden = read_csv(os.path.join(os.path.dirname(junit), g.group(1)))
+        check_poses(d, golden, [t, sorted(golden)[-1]], f'{name} golden ghosts', hook='goldenPoses')
+        seek(d, t)
+        d.execute_script('simbobView.select(arguments[0])', body)
+        d.save_screenshot(os.path.join(WORK, f'{name}_artifact.png'))
+        check_console(d, f'{name}/view.html')
+        print(f'ok: {name}: ghosts, divergence marked at {t} s ({body})')
+
+
+def open_page_plain(d, path):
+    """A page without the viewer (the artifacts index): loaded, no console error."""
+    d.get('file://' + os.path.abspath(path))
+    check_console(d, path)
+
+
+def wait_ready(d, what):
+    for _ in range(200):
+        if d.execute_script('return !!(window.simbobView && window.simbobView.ready)'):
+            return
+        time.sleep(0.05)
+    fail(f'{what}: the page never became ready')
+
+
 def case_instanced(d):
     n, samples = 300, 50
     scene = 'boxes.xml'
@@ -470,6 +547,201 @@ def case_instanced(d):
     check_console(d, 'instanced')
 
 
+def tiny_sweep(out):
+    """A one-case sweep of sliding_box.xml into the folder `out` (any name), run and gathered."""
+    with open('tiny.sweep.json', 'w') as f:
+        json.dump({'scene': os.path.join(REPO, 'scenes', 'sliding_box.xml'), 'duration': 0.2, 'sample_interval': 0.05,
+                   'vary': [{'param': 'Crate.Material.Friction', 'values': [0.3]}],
+                   'metrics': [{'name': 'stop_x', 'body': 'Crate', 'value': 'x', 'stat': 'final'}]}, f)
+    run('sweep', 'plan', 'tiny.sweep.json', '-o', 'tiny.jsonl')
+    run('sweep', 'run', 'tiny.jsonl', '-j', '1', '-o', out, '-q')
+
+
+def case_links(d):
+    names = ['javascript:self.pwned=7;document.title=%22X%22;void%200%2F%2F', 'hash#x', 'per%41cent', 'what?q=1',
+             'sp ace&amp']
+    for i, name in enumerate(names):
+        tiny_sweep(name)
+        gallery = f'gallery{i}.html'
+        run('sweep', 'gather', name, '--html', gallery, '-q')
+        d.get('file://' + os.path.abspath(gallery))
+        if not d.execute_script('return !!(window.simbobGallery && window.simbobGallery.ready)'):
+            fail(f'{name}: the gallery did not load')
+            continue
+        title = d.title
+        raw = d.execute_script("const a = document.querySelector('#table tbody a'); return a ? a.getAttribute('href') : null")
+        href = d.execute_script("const a = document.querySelector('#table tbody a'); return a ? a.href : null")
+        print(f'{name!r}: link {raw!r} -> {href!r}')
+        if not raw or not raw.startswith('./'):
+            fail(f'{name}: the link {raw!r} does not start with ./')
+        if not href or not href.startswith('file://'):
+            fail(f'{name}: the link resolves to {href!r}, not a file')
+        else:
+            from urllib.parse import unquote, urlsplit
+            parts = urlsplit(href)
+            if parts.query or parts.fragment:
+                fail(f'{name}: the link {href!r} has a query or fragment: part of the name was lost')
+            want = os.path.abspath(os.path.join(name, 'case-0000', 'view.html'))
+            if unquote(parts.path) != want:
+                fail(f'{name}: the link names {unquote(parts.path)!r}, the page is {want!r}')
+        if not raw:
+            continue
+        d.find_element('css selector', '#table tbody a').click()
+        for _ in range(200):
+            if d.execute_script('return !!(window.simbobView && window.simbobView.ready)'):
+                break
+            time.sleep(0.05)
+        else:
+            fail(f'{name}: the case page behind the link did not open (at {d.current_url!r}, title {d.title!r})')
+        pwned = page_js(d, name, 'return window.pwned === undefined ? null : window.pwned')
+        if pwned is not None or d.title == 'X' or d.title == title:
+            fail(f'{name}: the click ran script or went nowhere: pwned={pwned}, title {d.title!r}')
+        check_console(d, f'{name} case page')
+    print('checked: every gallery link opens its case page and runs nothing')
+
+
+def lit_pixels(path):
+    """Pixels of the boxes' orange (the filled shapes' colour, lit): red well above blue."""
+    w, h, ch, rows = read_png(path)
+    return sum(1 for y in range(h) for x in range(0, w * ch, ch) if rows[y][x] - rows[y][x + 2] > 60)
+
+
+def case_far(d):
+    # Four alike boxes (drawn instanced) and nothing static, lit by a directional light: the same
+    # picture wherever the run is (a ground or a point light stays where the scene puts it).
+    n = 4
+    with open('boxes.xml', 'w') as f:
+        f.write('<Simulation><SceneSettings><LightPos Value="1 2 3 0"/></SceneSettings><ComponentList>\n')
+        for i in range(n):
+            f.write(f'<RCMobileRigidBody Key="Box{i}"><Geom><RCCuboidGeom><Width Value="0.2"/><Height Value="0.2"/>'
+                    '<Depth Value="0.2"/></RCCuboidGeom></Geom></RCMobileRigidBody>\n')
+        f.write('</ComponentList></Simulation>\n')
+    base = {'near': 0.0123, 'far': 999999.0123, 'huge': 1e300}
+    shots = {}
+    for name, x0 in base.items():
+        with open(name + '.csv', 'w') as f:
+            f.write('time,body,x,y,z,qw,qx,qy,qz\n')
+            for t in (0, 0.5):
+                for i in range(n):
+                    f.write(f'{t},Box{i},{x0!r},{0.1 + 0.3 * i + t!r},0.25,1,0,0,0\n')
+        run('view', name + '.csv', '--scene', 'boxes.xml', '-o', name + '.html')
+        d.get('about:blank')
+        open_page(d, name + '.html')
+        rows = read_csv(name + '.csv')
+        for t in (0.0, 0.5):
+            seek(d, t)
+            for hook in ('poses', 'instancedPoses'):
+                shown = page_js(d, name, f'return simbobView.{hook}()') or {}
+                for body, row in rows[t].items():
+                    got = shown.get(body)
+                    if got is None or any(v is None for v in got):  # null: hidden, or NaN / infinite
+                        fail(f'{name} t={t} {hook}: {body} is not drawn ({got})')
+                        continue
+                    err = max(abs(g - r) for g, r in zip(got[:3], row[:3]))
+                    if x0 < 1e10 and err > 1e-4:
+                        fail(f'{name} t={t} {hook}: {body} at {got[:3]}, {err:.2e} m from the CSV {row[:3]}')
+        shot = name + '.png'
+        d.find_element('css selector', '#view canvas').screenshot(shot)
+        shots[name] = lit_pixels(shot)
+        check_console(d, name)
+    print(f'lit pixels of the boxes: {shots}')
+    if shots['near'] < 500:
+        fail(f'the boxes near the origin show {shots["near"]} pixels: the view proves little')
+    for name in ('far', 'huge'):
+        if abs(shots[name] - shots['near']) > shots['near'] // 10:
+            fail(f'{name}: {shots[name]} pixels of boxes, {shots["near"]} near the origin: not the same picture')
+
+
+def page_js(d, what, script):
+    """The value of script on the page, or None and a failure where the page throws (blank page)."""
+    try:
+        return d.execute_script(script)
+    except Exception as e:  # noqa: BLE001 -- a page that throws is what is tested
+        fail(f'{what}: {script!r} threw: {str(e).splitlines()[0]}')
+        return None
+
+
+def case_names(d):
+    scene = os.path.join(REPO, 'tests', 'data', 'view', 'colors.xml')
+    run('run', scene, '--duration', '0.2', '--out', 'colors.csv')
+    run('view', 'colors.csv', '--scene', scene, '-o', 'colors.html')
+    for frag in ('body=constructor', 'body=__proto__', 'body=toString', 'body=hasOwnProperty', 'body=valueOf&t=0.1',
+                 'camera=constructor', 'camera=__proto__'):
+        d.get('about:blank')
+        open_page(d, 'colors.html', frag)
+        if page_js(d, frag, 'return simbobView.selected()') is not None:
+            fail(f'#{frag}: a body is selected; an unknown body is ignored')
+        if sorted(page_js(d, frag, 'return simbobView.poses()') or {}) != ['BlueBox', 'GreenBall', 'RedBox']:
+            fail(f'#{frag}: the page does not show the three bodies')
+        print(f'#{frag}: checked')
+    # A trajectory whose bodies are named after Object.prototype's properties (none of them in
+    # the scene), one sample.
+    with open('proto.csv', 'w') as f:
+        f.write('time,body,x,y,z,qw,qx,qy,qz\n0,constructor,1,2,3,1,0,0,0\n0,__proto__,4,5,6,1,0,0,0\n'
+                '0,toString,7,8,9,1,0,0,0\n')
+    run('view', 'proto.csv', '--scene', scene, '-o', 'proto.html')
+    want = {'constructor': [1, 2, 3, 1, 0, 0, 0], '__proto__': [4, 5, 6, 1, 0, 0, 0], 'toString': [7, 8, 9, 1, 0, 0, 0]}
+    for frag in ('', 'body=constructor', 'body=__proto__'):
+        d.get('about:blank')
+        open_page(d, 'proto.html', frag)
+        # As [key, pose] pairs: WebDriver would turn an own '__proto__' key of an object into a prototype.
+        pairs = page_js(d, f'proto.csv #{frag}', 'return Object.entries(simbobView.poses())')
+        shown = dict(pairs) if pairs is not None else None
+        if shown != want:
+            fail(f'proto.csv #{frag}: poses {shown}, expected {want}')
+        selected = page_js(d, f'proto.csv #{frag}', 'return simbobView.selected()')
+        if frag and selected != frag[5:]:
+            fail(f'proto.csv #{frag}: selected {selected}')
+    # Counts in words: one body and one sample are singular.
+    with open('one.csv', 'w') as f:
+        f.write('time,body,x,y,z,qw,qx,qy,qz\n0,RedBox,0,1,0,1,0,0,0\n')
+    run('view', 'one.csv', '--scene', scene, '-o', 'one.html')
+    for page, end in (('one.html', ' 1 body, 1 sample'), ('colors.html', ' 3 bodies, 21 samples')):
+        d.get('about:blank')
+        open_page(d, page)
+        text = page_js(d, page, "return document.getElementById('scene').textContent") or ''
+        if not text.endswith(end):
+            fail(f'{page} says {text!r}, expected "...{end}"')
+    check_console(d, 'names')
+    print('checked: JavaScript names as keys; singular and plural')
+
+
+def case_meshes(d):
+    # scenes/mesh_drop.xml: four meshes, each embedded once and built once as a three.js geometry:
+    # the ramp (8 triangles: three quadrilaterals and two ends), the cube and the crate (12 each),
+    # the pyramid (6). The ramp is a static triangle mesh, the others' geoms are hulls.
+    scene = os.path.join(REPO, 'scenes', 'mesh_drop.xml')
+    run('run', scene, '--duration', '1', '--sample-interval', '0.05', '--out', 'mesh_drop.csv')
+    run('view', 'mesh_drop.csv', '--scene', scene, '-o', 'mesh_drop.html')
+    open_page(d, 'mesh_drop.html')
+    rows = read_csv('mesh_drop.csv')
+    times = sorted(rows)
+    check_poses(d, rows, [times[0], times[-1]], 'mesh_drop')
+    built = d.execute_script('return simbobView.meshTriangles()')
+    want = {'0:triangles': 8, '1:triangles': 12, '2:triangles': 12, '3:triangles': 6}
+    for k, n in want.items():
+        if built.get(k) != n:
+            fail(f'mesh geometry {k}: {built.get(k)} triangles, expected {n} (built: {built})')
+    # The models show in their skins' colours: the jade pyramid, the steel cube, the wooden crate.
+    seek(d, 0)
+    d.save_screenshot('mesh_drop.png')  # the page, as case_scenes takes it; counted inside the canvas
+    r = d.find_element('css selector', '#view canvas').rect
+    w, h, ch, px = read_png('mesh_drop.png')
+    x0, y0 = int(r['x']), int(r['y'])
+    x1, y1 = min(w, x0 + int(r['width'])), min(h, y0 + int(r['height']))
+    def count(pred):
+        return sum(1 for y in range(y0, y1) for x in range(x0 * ch, x1 * ch, ch)
+                   if pred(px[y][x], px[y][x + 1], px[y][x + 2]))
+    jade = count(lambda r, g, b: g > r + 40 and g > b + 20)
+    steel = count(lambda r, g, b: b > r + 40 and g > r + 10)  # the sky is blue too, but as red as green
+    wood = count(lambda r, g, b: r > b + 60 and g > b + 20 and r > g)
+    print(f'mesh_drop: {built}; pixels jade {jade}, steel {steel}, wood {wood} of {w * h}')
+    for name, n in (('pyramid (jade)', jade), ('cube (steel)', steel), ('crate (wood)', wood)):
+        if n < 50:
+            fail(f'the {name} is not seen on the page: {n} pixels')
+    check_console(d, 'mesh_drop')
+
+
 def main():
     try:
         d = browser()
@@ -478,7 +750,8 @@ def main():
     try:
         {'scenes': case_scenes, 'screenshot': case_screenshot, 'golden': case_golden, 'ui': case_ui,
          'gallery': case_gallery, 'instanced': case_instanced,
-         'outputs': case_outputs}[CASE](d)
+         'outputs': case_outputs, 'links': case_links, 'names': case_names, 'far': case_far,
+         'artifacts': case_artifacts, 'meshes': case_meshes}[CASE](d)
     finally:
         d.quit()
     if failures:

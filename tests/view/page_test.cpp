@@ -1,8 +1,10 @@
-#include "simbob/view.h"
+#include "simbob/tool/replay_page.h"
+#include "simbob/mesh.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -121,4 +123,73 @@ TEST_CASE("view page: a missing row is NaN, times are float64") {
   double t1 = 0;
   std::memcpy(&t1, tb.data() + 8, 8);
   CHECK(t1 == 0.1 + 1e-12);
+}
+
+// Issue 31, item 1: the gallery's links are relative paths no browser reads as a scheme, a query,
+// a fragment or an escape.
+TEST_CASE("sweepGalleryHtml: each case's link is './' and percent-encoded segments") {
+  simbob::GalleryCase c{0, "ok", {"0"}, "javascript:self.x=1;void 0//#?%/case-0000/view.html"};
+  simbob::GalleryCase none{1, "failed", {"1"}, ""};
+  const std::string html = simbob::sweepGalleryHtml("t", {"case"}, {c, none});
+  CHECK(html.find(R"("page":"./javascript%3Aself.x%3D1%3Bvoid%200//%23%3F%25/case-0000/view.html")") !=
+        std::string::npos);
+  CHECK(html.find(R"("page":"")") != std::string::npos);  // no page, no link
+  CHECK(html.find("javascript:") == std::string::npos);
+}
+
+TEST_CASE("view page: each mesh is embedded once, float32 positions and uint32 indices; no key without meshes") {
+  // Two visuals and a hull geom of one mesh: its triangles once, its hull once.
+  auto mesh = std::make_shared<simbob::MeshData>();
+  mesh->file = "/some/dir/tet ra.stl";
+  mesh->vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1.5}};
+  mesh->triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  std::string problem;
+  REQUIRE(simbob::convexHull(mesh->vertices, &mesh->hull, &problem));
+  simbob::Model model;
+  model.skins.emplace_back();
+  model.meshes.push_back({mesh, {}});
+  for (int k = 0; k < 2; ++k) {
+    simbob::VisualDef v;
+    v.shape = simbob::VisualDef::Mesh;
+    v.mesh = 0;
+    model.visuals.push_back(v);
+  }
+  simbob::GeomDef g;
+  g.shape = simbob::GeomShape::ConvexHull;
+  g.mesh = 0;
+  model.geoms.push_back(g);
+  Trajectory t;
+  t.addBody("A");
+  t.times = {0};
+  t.finalize();
+  const double p[7] = {0, 0, 0, 1, 0, 0, 0};
+  t.setPose(0, 0, p);
+  simbob::ViewPageInput in;
+  in.model = &model;
+  in.actual = &t;
+  std::string html;
+  simbob::Error err;
+  REQUIRE(simbob::buildViewPage(in, &html, &err));
+  const nlohmann::json d = pageData(html);
+  REQUIRE(d["model"]["meshes"].size() == 1);
+  const nlohmann::json& m = d["model"]["meshes"][0];
+  CHECK(m["file"] == "tet ra.stl");
+  const std::vector<float> pos = floats(m["triangles"]["positions"]);
+  REQUIRE(pos.size() == 12);
+  CHECK(pos[11] == 1.5F);
+  const std::vector<uint8_t> idx = unbase64(m["triangles"]["indices"]);
+  REQUIRE(idx.size() == 12 * 4);
+  uint32_t last = 0;
+  std::memcpy(&last, idx.data() + 11 * 4, 4);
+  CHECK(last == 3);
+  CHECK(floats(m["hull"]["positions"]).size() == 12);      // 4 hull points
+  CHECK(unbase64(m["hull"]["indices"]).size() == 4 * 12);  // 4 triangular faces
+  CHECK(d["model"]["visuals"][1]["mesh"] == 0);
+  CHECK(d["model"]["geoms"][0]["shape"] == "hull");
+  // A model without meshes writes no "meshes" key: its pages stay byte for byte as before.
+  simbob::Model plain;
+  plain.skins.emplace_back();
+  in.model = &plain;
+  REQUIRE(simbob::buildViewPage(in, &html, &err));
+  CHECK_FALSE(pageData(html)["model"].contains("meshes"));
 }

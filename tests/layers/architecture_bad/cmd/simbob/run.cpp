@@ -1,0 +1,2 @@
+// the command
+int main() { return 0; }

@@ -1,0 +1,1 @@
+// a public header named like a cmd file

@@ -272,8 +272,8 @@ void Import::addShapes(int li) {
       // Moving links collide with the mesh's convex hull unless asked; fixed ones with its triangles.
       const bool hull = body >= 0 && c_.get(kCollisions) == 0;
       if (hull && m.hull.empty()) {
-        error(s.shape_line, "link '" + ul.name + "': mesh '" + s.filename + "' has no convex hull (" +
-                                m.hull_problem + "); give the link a primitive <collision>, or Collisions mesh");
+        error(s.shape_line, "link '" + ul.name + "': mesh '" + s.filename + "' has no convex hull (" + m.hull_problem +
+                                "); give the link a primitive <collision>, or Collisions mesh");
         continue;
       }
       ++(hull ? hulls_ : trimeshes_);

@@ -431,8 +431,10 @@ TEST_CASE("urdf import: a free STL cube modelled in millimetres, scale 0.001, co
   const std::string stl = std::string(SIMBOB_SOURCE_DIR) + "/tests/data/meshes/cube_100mm.stl";  // 100 mm, centred
   dir.write("cube.urdf", R"(<robot name="cube"><link name="cube">
   <inertial><mass value="1"/><inertia ixx="0.0016667" ixy="0" ixz="0" iyy="0.0016667" iyz="0" izz="0.0016667"/></inertial>
-  <visual><geometry><mesh filename=")" + stl + R"(" scale="0.001 0.001 0.001"/></geometry></visual>
-  <collision><geometry><mesh filename=")" + stl + R"(" scale="0.001 0.001 0.001"/></geometry></collision>
+  <visual><geometry><mesh filename=")" +
+                             stl + R"(" scale="0.001 0.001 0.001"/></geometry></visual>
+  <collision><geometry><mesh filename=")" +
+                             stl + R"(" scale="0.001 0.001 0.001"/></geometry></collision>
 </link></robot>)");
   const std::string scene = dir.write("cube.xml", R"(<Simulation><ComponentList><RCGround Key="Ground"/>
   <RCImportURDF Key="cube"><File Value="cube.urdf"/>
@@ -459,12 +461,14 @@ TEST_CASE("urdf import: a free STL cube modelled in millimetres, scale 0.001, co
 TEST_CASE("urdf import: the links of one robot do not collide with each other unless SelfCollision", "[urdf]") {
   // 'tip' hangs on 'mid' on 'base' and its box overlaps the base's: CAD shapes of neighbours do.
   TempDir dir;
-  const std::string box = R"(<inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+  const std::string box =
+      R"(<inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
     <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>)";
   dir.write("fold.urdf", R"(<robot name="fold">
   <link name="world"/>
   <joint name="fix" type="fixed"><parent link="world"/><child link="base"/><origin xyz="0 0 1"/></joint>
-  <link name="base">)" + box + R"(</link>
+  <link name="base">)" + box +
+                             R"(</link>
   <joint name="j1" type="continuous"><parent link="base"/><child link="mid"/><origin xyz="0.5 0 0"/><axis xyz="0 0 1"/></joint>
   <link name="mid">)" + box + R"(</link>
   <joint name="j2" type="continuous"><parent link="mid"/><child link="tip"/><origin xyz="-0.4 0 0"/><axis xyz="0 0 1"/></joint>
@@ -472,10 +476,10 @@ TEST_CASE("urdf import: the links of one robot do not collide with each other un
 </robot>)");
   for (bool self : {false, true}) {
     CAPTURE(self);
-    const std::string scene =
-        dir.write("fold.xml", std::string("<Simulation><ComponentList><RCImportURDF Key=\"fold\"><File Value=\"fold.urdf\"/>") +
-                                  "<SelfCollision Value=\"" + (self ? "true" : "false") +
-                                  "\"/></RCImportURDF></ComponentList></Simulation>");
+    const std::string scene = dir.write(
+        "fold.xml", std::string("<Simulation><ComponentList><RCImportURDF Key=\"fold\"><File Value=\"fold.urdf\"/>") +
+                        "<SelfCollision Value=\"" + (self ? "true" : "false") +
+                        "\"/></RCImportURDF></ComponentList></Simulation>");
     Model m;
     Diagnostics d;
     INFO(errorText(d));

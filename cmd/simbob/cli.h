@@ -70,12 +70,12 @@ struct Common {
   bool verbose = false;
   std::string log_file;
   std::string settings;
-  std::vector<std::string> plugins;  ///< --plugin FILE, in order
+  std::vector<std::string> plugins;   ///< --plugin FILE, in order
   std::vector<std::string> packages;  ///< --package NAME=DIR, in order (URDF package:// folders)
-  std::string extension_folder;      ///< the global setting ExtensionFolder (--settings)
-  std::string texture_folder;        ///< TextureFolder of the global settings (relative to the settings file)
-  bool document_ini = false;         ///< DocumentIni of the global settings: read <scene>.ini's cameras
-  bool no_controllers = false;       ///< --no-controllers: refuse scenes that start programs
+  std::string extension_folder;       ///< the global setting ExtensionFolder (--settings)
+  std::string texture_folder;         ///< TextureFolder of the global settings (relative to the settings file)
+  bool document_ini = false;          ///< DocumentIni of the global settings: read <scene>.ini's cameras
+  bool no_controllers = false;        ///< --no-controllers: refuse scenes that start programs
   /// The component types: built once by main (registerBuiltins) and passed down with the options.
   const Registry* registry = nullptr;
 };

@@ -68,7 +68,7 @@ struct GeomDef {
   int material = 0;                         ///< index into Model::materials
   bool sensor = false;                      ///< detects contacts but creates no contact joints
   int mesh = -1;                            ///< ConvexHull, TriMesh: index into Model::meshes
-  int group = -1;  ///< >= 0: never collides with a geom of the same group (the links of one URDF robot)
+  int group = -1;                           ///< >= 0: never collides with its group (one URDF robot's links)
   SourceLoc loc;                            ///< where the geom is written (line 0: not known), for messages
 };
 

@@ -24,7 +24,6 @@ jobs, lib/physics/contacts.cpp and rays.cpp) is p; 1 - p is the serial fraction,
 1 / (1 - p + p / N) the most N threads can give (Amdahl).
 """
 import argparse
-import math
 import os
 import platform
 import random
@@ -89,8 +88,10 @@ def parallel_share(simbob, scene, duration, work):
     total = int(re.search(r"([\d,]+)\s+\(100\.0%\)\s+PROGRAM TOTALS", text)[1].replace(",", ""))
     jobs = 0
     for line in text.splitlines():
-        # The chunk jobs: the lambdas run by WorkerPool::run in contacts.cpp and rays.cpp.
-        if re.search(r"(collideInParallel|readRaysInParallel)\(.*\)::\{lambda", line) and "operator()" in line:
+        # The chunk jobs WorkerPool::run runs (never inlined; contacts.cpp, rays.cpp), every
+        # file:function fragment of them (code inlined from headers is listed apart).
+        if re.search(r"^\s*[\d,]+ \([ \d.]+%\)\s+\S*:simbob::\(anonymous namespace\)::(collideChunk|readSensorChunk)\(",
+                     line):
             jobs += int(line.split()[0].replace(",", ""))
     return total, jobs / total
 

@@ -89,6 +89,25 @@ void broadPhase(WorldImpl& im, dNearCallback* callback) {
   }
 }
 
+// One chunk's pairs into its buffer (a job of the pool; not inlined, so that a profile shows
+// what runs in parallel: bench/threads_bench.py --profile).
+[[gnu::noinline]] void collideChunk(NarrowPhase& np, size_t c, size_t begin, size_t end, size_t most) {
+  std::vector<dContactGeom>& out = np.buffers[c];
+  out.clear();
+  for (size_t i = begin; i < end; ++i) {
+    const auto [g1, g2] = np.pairs[i];
+    if (!statelessCollider(g1) || !statelessCollider(g2)) {
+      np.counts[i] = -1;  // collided when committed, on the stepping thread
+      continue;
+    }
+    const size_t at = out.size();
+    out.resize(at + most);
+    const int got = dCollide(g1, g2, static_cast<int>(most), &out[at], sizeof(dContactGeom));
+    out.resize(at + static_cast<size_t>(std::max(got, 0)));
+    np.counts[i] = std::max(got, 0);
+  }
+}
+
 void collideInParallel(WorldImpl& im) {
   NarrowPhase& np = im.narrow;
   np.pairs.clear();
@@ -100,22 +119,7 @@ void collideInParallel(WorldImpl& im) {
   const size_t most = im.contactBuffer.size();
   np.counts.assign(n, 0);
   if (np.buffers.size() < chunks) np.buffers.resize(chunks);
-  im.pool->run(n, grain, [&](size_t c, size_t begin, size_t end, int) {
-    std::vector<dContactGeom>& out = np.buffers[c];
-    out.clear();
-    for (size_t i = begin; i < end; ++i) {
-      const auto [g1, g2] = np.pairs[i];
-      if (!statelessCollider(g1) || !statelessCollider(g2)) {
-        np.counts[i] = -1;  // collided when committed, on this thread
-        continue;
-      }
-      const size_t at = out.size();
-      out.resize(at + most);
-      const int got = dCollide(g1, g2, static_cast<int>(most), &out[at], sizeof(dContactGeom));
-      out.resize(at + static_cast<size_t>(std::max(got, 0)));
-      np.counts[i] = std::max(got, 0);
-    }
-  });
+  im.pool->run(n, grain, [&](size_t c, size_t begin, size_t end, int) { collideChunk(np, c, begin, end, most); });
   // Where each pair's contacts are: its chunk's buffer, after those of the pairs before it.
   np.first.resize(n);
   for (size_t c = 0; c < chunks; ++c) {

@@ -3,7 +3,6 @@
 #include <cctype>
 #include <cstring>
 #include <set>
-#include <unordered_set>
 #include <string_view>
 #include <pugixml.hpp>
 
@@ -108,7 +107,7 @@ class XmlSource : public Source {
   std::vector<std::pair<std::string, int>> unread() const override {
     std::vector<std::pair<std::string, int>> out;
     for (pugi::xml_node c : node_.children())
-      if (isElement(c) && !read_.count(c.hash_value())) out.emplace_back(c.name(), doc_->lineOf(c));
+      if (isElement(c) && !wasRead(c)) out.emplace_back(c.name(), doc_->lineOf(c));
     return out;
   }
 
@@ -161,8 +160,8 @@ class XmlSource : public Source {
   // reported as a duplicate by the builder.
   pugi::xml_node take(const std::string& name) {
     for (pugi::xml_node c : node_.children()) {
-      if (isElement(c) && name == c.name() && !read_.count(c.hash_value())) {
-        read_.insert(c.hash_value());
+      if (isElement(c) && name == c.name() && !wasRead(c)) {
+        read_.push_back(c.internal_object());
         return c;
       }
     }
@@ -211,9 +210,15 @@ class XmlSource : public Source {
     return typeElement(kids[0]);
   }
 
+  // A child is read at most once per parameter of the type (a few dozen), so a short list
+  // searched in place beats a hash set that allocates for every child read.
+  bool wasRead(const pugi::xml_node& c) const {
+    return std::find(read_.begin(), read_.end(), c.internal_object()) != read_.end();
+  }
+
   std::shared_ptr<XmlDoc> doc_;
   pugi::xml_node node_;
-  std::unordered_set<size_t> read_;  // hash_value() of the children read; membership only, never iterated
+  std::vector<pugi::xml_node_struct*> read_;  // the children read, by take()
 };
 
 // The element left open where a closing tag does not match (or the text ends): the stack of
@@ -281,6 +286,26 @@ bool unclosedElement(std::string_view text, size_t stop, std::string* name, size
   return true;
 }
 
+// The second of two attributes with one name, or none. Elements have a handful of attributes:
+// compared pairwise up to kFewAttributes, through a set beyond (an attack with thousands stays
+// n log n).
+constexpr int kFewAttributes = 8;
+
+pugi::xml_attribute repeatedAttribute(const pugi::xml_node& n) {
+  int count = 0;
+  for (pugi::xml_attribute a = n.first_attribute(); a && count <= kFewAttributes; a = a.next_attribute()) ++count;
+  if (count <= kFewAttributes) {
+    for (pugi::xml_attribute a = n.first_attribute(); a; a = a.next_attribute())
+      for (pugi::xml_attribute b = n.first_attribute(); b != a; b = b.next_attribute())
+        if (std::strcmp(a.name(), b.name()) == 0) return a;
+    return {};
+  }
+  std::set<std::string_view> names;
+  for (pugi::xml_attribute a = n.first_attribute(); a; a = a.next_attribute())
+    if (!names.insert(a.name()).second) return a;
+  return {};
+}
+
 }  // namespace
 
 std::shared_ptr<XmlDoc> parseXml(std::string text, const Registry& reg, std::string* error, int* error_line) {
@@ -336,14 +361,11 @@ std::shared_ptr<XmlDoc> parseXml(std::string text, const Registry& reg, std::str
   while (!stack.empty()) {
     pugi::xml_node n = stack.back();
     stack.pop_back();
-    // Elements have a handful of attributes; a set keeps an attack with thousands linear.
-    std::set<std::string_view> names;
-    for (pugi::xml_attribute a = n.first_attribute(); a; a = a.next_attribute())
-      if (!names.insert(a.name()).second) {
-        *error_line = d->lineOf(n);
-        *error = std::string("malformed XML: attribute '") + a.name() + "' given twice in <" + n.name() + ">";
-        return nullptr;
-      }
+    if (const pugi::xml_attribute a = repeatedAttribute(n)) {
+      *error_line = d->lineOf(n);
+      *error = std::string("malformed XML: attribute '") + a.name() + "' given twice in <" + n.name() + ">";
+      return nullptr;
+    }
     for (pugi::xml_node c : n.children())
       if (isElement(c)) stack.push_back(c);
   }

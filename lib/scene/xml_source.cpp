@@ -51,8 +51,8 @@ class XmlSource : public Source {
     v.line = doc_->lineOf(c);
     pugi::xml_attribute a = c.attribute("Value");
     for (pugi::xml_attribute other : c.attributes()) {
+      if (std::strcmp(other.name(), "Value") == 0) continue;
       const std::string an = other.name();
-      if (an == "Value") continue;
       v.error = attributeError("parameter '" + name + "'", an, {"Value"});
       if (!a && equalsIgnoreCase(an, "Value")) return v;  // <Height value="3"/>: the case is wrong
     }
@@ -160,7 +160,8 @@ class XmlSource : public Source {
   // reported as a duplicate by the builder.
   pugi::xml_node take(const std::string& name) {
     for (pugi::xml_node c : node_.children()) {
-      if (isElement(c) && name == c.name() && !wasRead(c)) {
+      if (isElement(c) && std::strcmp(c.name(), name.c_str()) == 0 && !wasRead(c)) {
+        if (read_.empty()) read_.reserve(kReadReserve);
         read_.push_back(c.internal_object());
         return c;
       }
@@ -182,14 +183,15 @@ class XmlSource : public Source {
       else
         l.error = attributeError(std::string("<") + c.name() + ">", an, {"Ref", "Macro"});
     }
-    std::vector<pugi::xml_node> kids;
+    size_t kids = 0;  // child elements; the first is the component's type element
+    pugi::xml_node first;
     for (pugi::xml_node k : c.children())
-      if (isElement(k)) kids.push_back(k);
+      if (isElement(k) && kids++ == 0) first = k;
     if (!l.error.empty()) return l;
     if (!l.ref.empty() || !l.macro.empty()) {
       if (!l.ref.empty() && !l.macro.empty())
         l.error = std::string("<") + c.name() + "> has both Ref and Macro";
-      else if (!kids.empty())
+      else if (kids > 0)
         l.error = std::string("<") + c.name() + "> with Ref or Macro takes no child elements";
       else if (c.attribute("Ref") && l.ref.empty())
         l.error = std::string("<") + c.name() + ">: empty Ref";
@@ -199,15 +201,15 @@ class XmlSource : public Source {
       l.error = std::string("<") + c.name() + ">: empty Ref";
       return l;
     }
-    if (kids.size() != 1) {
-      if (kids.empty() && !is_param)
+    if (kids != 1) {
+      if (kids == 0 && !is_param)
         l.type = c.name();  // a misspelt type element; the loader names it
       else
         l.error = std::string("<") + c.name() + "> must hold exactly one component element, a Ref or a Macro";
       return l;
     }
     // An unknown type is named by the loader, with the nearest type names.
-    return typeElement(kids[0]);
+    return typeElement(first);
   }
 
   // A child is read at most once per parameter of the type (a few dozen), so a short list
@@ -218,6 +220,7 @@ class XmlSource : public Source {
 
   std::shared_ptr<XmlDoc> doc_;
   pugi::xml_node node_;
+  static constexpr size_t kReadReserve = 8;   // room for the children read without regrowing
   std::vector<pugi::xml_node_struct*> read_;  // the children read, by take()
 };
 

@@ -106,7 +106,7 @@ class XmlSource : public Source {
 
   std::vector<std::pair<std::string, int>> unread() const override {
     std::vector<std::pair<std::string, int>> out;
-    for (pugi::xml_node c : node_.children())
+    for (pugi::xml_node c = node_.first_child(); c; c = c.next_sibling())
       if (isElement(c) && !wasRead(c)) out.emplace_back(c.name(), doc_->lineOf(c));
     return out;
   }
@@ -151,7 +151,7 @@ class XmlSource : public Source {
   }
 
   static pugi::xml_node firstElement(pugi::xml_node n) {
-    for (pugi::xml_node c : n.children())
+    for (pugi::xml_node c = n.first_child(); c; c = c.next_sibling())
       if (isElement(c)) return c;
     return {};
   }
@@ -159,7 +159,7 @@ class XmlSource : public Source {
   // The first not-yet-read child element called `name`; a second one stays unread and is
   // reported as a duplicate by the builder.
   pugi::xml_node take(const std::string& name) {
-    for (pugi::xml_node c : node_.children()) {
+    for (pugi::xml_node c = node_.first_child(); c; c = c.next_sibling()) {
       if (isElement(c) && std::strcmp(c.name(), name.c_str()) == 0 && !wasRead(c)) {
         if (read_.empty()) read_.reserve(kReadReserve);
         read_.push_back(c.internal_object());
@@ -185,7 +185,7 @@ class XmlSource : public Source {
     }
     size_t kids = 0;  // child elements; the first is the component's type element
     pugi::xml_node first;
-    for (pugi::xml_node k : c.children())
+    for (pugi::xml_node k = c.first_child(); k; k = k.next_sibling())
       if (isElement(k) && kids++ == 0) first = k;
     if (!l.error.empty()) return l;
     if (!l.ref.empty() || !l.macro.empty()) {
@@ -295,6 +295,8 @@ bool unclosedElement(std::string_view text, size_t stop, std::string* name, size
 constexpr int kFewAttributes = 8;
 
 pugi::xml_attribute repeatedAttribute(const pugi::xml_node& n) {
+  const pugi::xml_attribute first = n.first_attribute();
+  if (!first || !first.next_attribute()) return {};  // most elements: one attribute or none
   int count = 0;
   for (pugi::xml_attribute a = n.first_attribute(); a && count <= kFewAttributes; a = a.next_attribute()) ++count;
   if (count <= kFewAttributes) {
@@ -369,7 +371,7 @@ std::shared_ptr<XmlDoc> parseXml(std::string text, const Registry& reg, std::str
       *error = std::string("malformed XML: attribute '") + a.name() + "' given twice in <" + n.name() + ">";
       return nullptr;
     }
-    for (pugi::xml_node c : n.children())
+    for (pugi::xml_node c = n.first_child(); c; c = c.next_sibling())
       if (isElement(c)) stack.push_back(c);
   }
   return d;

@@ -83,7 +83,9 @@ void gatherPair(void* data, dGeomID g1, dGeomID g2) {
 /// The broad phase: calls `callback` for the space's pairs in the space's order.
 void broadPhase(WorldImpl& im, dNearCallback* callback) {
   if (dSpaceGetClass(im.space) == dHashSpaceClass) {
-    im.hashPairs.collide(im.space, &im, callback);  // the same pairs in the same order, faster
+    // dHashSpace's pairs in its order, faster (the sweep on the pool's threads, if any).
+    const size_t grain = parallelTestHooks().grain > 0 ? parallelTestHooks().grain : kSweepGrain;
+    im.hashPairs.collide(im.space, &im, callback, im.pool.get(), grain);
   } else {
     dSpaceCollide(im.space, &im, callback);
   }

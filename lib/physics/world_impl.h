@@ -119,12 +119,14 @@ struct RayScene {
 /// more CPU on 2 threads than on one; with 256 it collides inline and a 1,000-box pile still
 /// splits its thousands of pairs.
 constexpr size_t kPairGrain = 256;
+/// Boxes per chunk of the broad phase's sweep at least: a box's sweep is a few box tests.
+constexpr size_t kSweepGrain = 256;
 /// Ray sensors per chunk at least.
 constexpr size_t kRaySensorGrain = 2;
 
 /// Tests only (tests/physics_ode/threads_test.cpp): process-wide switches of the parallel paths.
 struct ParallelTestHooks {
-  size_t grain = 0;             ///< pairs per chunk at least; 0: kPairGrain (1 splits small scenes)
+  size_t grain = 0;             ///< pairs (and swept boxes) per chunk at least; 0: kPairGrain, kSweepGrain
   bool reverse_commit = false;  ///< commit the pairs' contacts last pair first: unordered on purpose
 };
 ParallelTestHooks& parallelTestHooks();

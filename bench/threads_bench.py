@@ -19,9 +19,9 @@ child). Medians and the speed-up against one thread are printed, with the load a
 and after: on a shared machine the wall-clock scaling means little while others run.
 
 --profile adds, per scene, callgrind's instruction counts of a run on 2 threads: the share of
-the instructions spent in the jobs that run in parallel (the narrow phase's and the rays' chunk
-jobs, lib/physics/contacts.cpp and rays.cpp) is p; 1 - p is the serial fraction, and
-1 / (1 - p + p / N) the most N threads can give (Amdahl).
+the instructions spent in the jobs that run in parallel (the broad phase's sweep, the narrow
+phase's and the rays' chunk jobs: lib/physics/broadphase.cpp, contacts.cpp and rays.cpp) is p;
+1 - p is the serial fraction, and 1 / (1 - p + p / N) the most N threads can give (Amdahl).
 """
 import argparse
 import os
@@ -79,7 +79,7 @@ def timed(cmd):
 
 def parallel_share(simbob, scene, duration, work):
     """Instructions of a run on 2 threads, and the share in the parallel chunk jobs (callgrind)."""
-    prof = os.path.join(work, "callgrind.out")
+    prof = os.path.join(work, f"callgrind.{os.path.splitext(os.path.basename(scene))[0]}.out")
     subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={prof}", simbob, "run", scene,
                     "--duration", str(duration), "--threads", "2", "--out", os.path.join(work, "prof.csv"), "-q"],
                    capture_output=True, check=True)
@@ -88,10 +88,11 @@ def parallel_share(simbob, scene, duration, work):
     total = int(re.search(r"([\d,]+)\s+\(100\.0%\)\s+PROGRAM TOTALS", text)[1].replace(",", ""))
     jobs = 0
     for line in text.splitlines():
-        # The chunk jobs WorkerPool::run runs (never inlined; contacts.cpp, rays.cpp), every
-        # file:function fragment of them (code inlined from headers is listed apart).
-        if re.search(r"^\s*[\d,]+ \([ \d.]+%\)\s+\S*:simbob::\(anonymous namespace\)::(collideChunk|readSensorChunk)\(",
-                     line):
+        # The chunk jobs WorkerPool::run runs (never inlined; broadphase.cpp, contacts.cpp,
+        # rays.cpp), every file:function fragment of them (code inlined from headers is listed
+        # apart).
+        if re.search(r"^\s*[\d,]+ \([ \d.]+%\)\s+\S*:simbob::(\(anonymous namespace\)::(collideChunk|readSensorChunk)"
+                     r"|HashSpacePairs::sweep)\(", line):
             jobs += int(line.split()[0].replace(",", ""))
     return total, jobs / total
 

@@ -609,8 +609,8 @@ py::dict pyRun(const py::object& scene, double duration, const py::object& out, 
                uint32_t seed, const py::object& dt, double sample_interval, const std::string& log,
                const py::object& log_out, const std::string& columns, const py::object& record, const py::object& video,
                const py::object& html, const py::object& size, const std::string& camera, const std::string& quality,
-               double fps, bool check_determinism, const py::object& controllers, double peer_timeout,
-               int port_offset, const py::object& threads) {
+               double fps, bool check_determinism, const py::object& controllers, double peer_timeout, int port_offset,
+               const py::object& threads) {
   simbob::RunOptions o;
   o.scene = pathText(scene);
   o.simulation.duration = duration;

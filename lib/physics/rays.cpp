@@ -145,7 +145,7 @@ void gatherRayCandidates(WorldImpl& im, dBodyID own, const Vec3& origin, double 
 
 double castRay(WorldImpl& im, const Vec3& origin, const Vec3& dir, double length) {
   if (!im.ray) im.ray = newRay();
-  const dGeomID ray = aimRay(im.ray, origin, dir, length);
+  dGeomID ray = aimRay(im.ray, origin, dir, length);
   dReal rayBox[6];
   dGeomGetAABB(ray, rayBox);
   double nearest = std::numeric_limits<double>::infinity();

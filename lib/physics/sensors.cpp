@@ -89,8 +89,10 @@ void updateSensors(WorldImpl& im, double h) {
         break;
       case SensorKind::Range:
       case SensorKind::Scanner:
-        if (due && im.pool) rays.push_back(&s);
-        else if (due) readRays(im, s);
+        if (due && im.pool)
+          rays.push_back(&s);
+        else if (due)
+          readRays(im, s);
         break;
       case SensorKind::Imu:
         readImu(im, s, h, due);  // tracks the velocity every step, reads when due

@@ -119,7 +119,9 @@ TEST_CASE("threads: WorkerPool runs every index once, in chunks that depend on n
         });
       for (size_t i = 0; i < n; ++i) CHECK(hits[i] == 3);
       for (size_t c : seen) CHECK(c == 3);
-      CHECK(pool.chunks(n, 4) == (n == 0 ? 0 : threads == 1 ? 1 : std::max<size_t>(1, std::min<size_t>(8 * threads, n / 4))));
+      CHECK(pool.chunks(n, 4) == (n == 0         ? 0
+                                  : threads == 1 ? 1
+                                                 : std::max<size_t>(1, std::min<size_t>(8 * threads, n / 4))));
     }
   }
 }

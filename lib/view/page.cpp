@@ -412,6 +412,9 @@ namespace view {
 /// template only, never in the values put in).
 std::string fill(const std::string& page, const std::vector<std::pair<std::string, std::string>>& values) {
   std::string out;
+  size_t size = page.size();
+  for (const auto& v : values) size += v.second.size();
+  out.reserve(size);  // each marker once, as in simbob's templates: no copies made while it grows
   size_t at = 0;
   while (true) {
     const size_t open = page.find("{{", at);
@@ -516,12 +519,17 @@ bool buildViewPage(const ViewPageInput& in, std::string* html, Error* err) {
     data["golden"] = encodeTrajectory(*in.golden);
     data["compare"] = encodeComparison(*in.actual, *in.golden, in.compare);
   }
-  const std::string page = view::fill(
-      view::kPageHtml, {{"TITLE", view::escapeHtml(data["title"].get<std::string>())},
-                        {"THREE", three + "\n" + orbit},
-                        {"VIEWER", view::kViewerJs},
-                        {"DATA", view::scriptSafe(data.dump(-1, ' ', false, json::error_handler_t::replace))}});
-  *html = page;
+  // The embedded textures and meshes make the data most of the page: at most two copies of it
+  // live at once (the data and its text, the text and the safe text, the safe text and the page).
+  std::vector<std::pair<std::string, std::string>> values;
+  values.emplace_back("TITLE", view::escapeHtml(data["title"].get<std::string>()));
+  values.emplace_back("THREE", three + "\n" + orbit);
+  values.emplace_back("VIEWER", view::kViewerJs);
+  std::string text = data.dump(-1, ' ', false, json::error_handler_t::replace);
+  data = json();
+  values.emplace_back("DATA", view::scriptSafe(text));
+  std::string().swap(text);
+  *html = view::fill(view::kPageHtml, values);
   return true;
 }
 

@@ -472,23 +472,6 @@ std::string scriptSafe(const std::string& s) {
   return out;
 }
 
-std::string relativeLink(const std::string& path) {
-  static const char* const kHex = "0123456789ABCDEF";
-  std::string out = "./";
-  for (char c : path) {
-    const auto u = static_cast<unsigned char>(c);
-    if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || c == '.' ||
-        c == '_' || c == '~' || c == '/') {
-      out += c;
-    } else {
-      out += '%';
-      out += kHex[u >> 4];
-      out += kHex[u & 15];
-    }
-  }
-  return out;
-}
-
 }  // namespace view
 
 std::string threeJsDir() {

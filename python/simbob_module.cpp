@@ -359,13 +359,24 @@ class PyController : public simbob::Party {
   std::optional<Error> failure_;
 };
 
+// The threads keyword (--threads): None is the scene's Threads.
+int threadCount(const py::object& threads) {
+  if (threads.is_none()) return 0;
+  const int n = threads.cast<int>();
+  if (n < 1 || n > simbob::kMaxThreads)
+    raiseUsage("threads must be between 1 and " + std::to_string(simbob::kMaxThreads) + ", got " +
+               py::repr(threads).cast<std::string>());
+  return n;
+}
+
 class PySimulation {
  public:
   PySimulation(const std::string& scene, const py::object& overrides, uint32_t seed, const py::object& dt,
-               const std::string* text) {
+               const py::object& threads, const std::string* text) {
     simbob::SimulationOptions opts;
     opts.overrides = parseOverrides(overrides);
     opts.seed = seed;
+    opts.threads = threadCount(threads);
     if (!dt.is_none()) {
       const py::object real = py::module_::import("numbers").attr("Real");
       double h = std::nan("");
@@ -714,8 +725,8 @@ py::dict pyRun(const py::object& scene, double duration, const py::object& out, 
                uint32_t seed, const py::object& dt, double sample_interval, const std::string& log,
                const py::object& log_out, const std::string& columns, const py::object& record, const py::object& video,
                const py::object& html, const py::object& size, const std::string& camera, const std::string& quality,
-               double fps, bool check_determinism, const py::object& controllers, double peer_timeout,
-               int port_offset) {
+               double fps, bool check_determinism, const py::object& controllers, double peer_timeout, int port_offset,
+               const py::object& threads) {
   simbob::RunOptions o;
   o.scene = pathText(scene);
   o.simulation.duration = duration;
@@ -747,6 +758,7 @@ py::dict pyRun(const py::object& scene, double duration, const py::object& out, 
           (kv.second.is_none() ? std::string() : py::str(kv.second).cast<std::string>()));
   o.simulation.peer_timeout = peer_timeout;
   o.simulation.port_offset = port_offset;
+  o.simulation.threads = threadCount(threads);
   o.simulation.stop = &g_py_stop;
   std::vector<std::string> errors, warnings;
   simbob::RunListener listener;
@@ -817,7 +829,7 @@ or its type names are taken (loading it twice included).)");
         py::arg("columns") = "pose", py::arg("record") = py::none(), py::arg("video") = py::none(),
         py::arg("html") = py::none(), py::arg("size") = py::none(), py::arg("camera") = "", py::arg("quality") = "",
         py::arg("fps") = 30.0, py::arg("check_determinism") = false, py::arg("controllers") = py::none(),
-        py::arg("peer_timeout") = 10.0, py::arg("port_offset") = 0,
+        py::arg("peer_timeout") = 10.0, py::arg("port_offset") = 0, py::arg("threads") = py::none(),
         R"(Runs a scene to `duration` s and writes what `simbob run` writes, byte for byte: the
 trajectory CSV (`out`, default the scene's name with .csv in the current folder), its summary
 (.json beside it), the controllers' log, and, when asked, the run log, the recording and the
@@ -828,7 +840,7 @@ Args mirror `simbob run`'s options: overrides (--set, as for Simulation), seed, 
 log ("joints,sensors,commands") and log_out, columns ("pose" or "pose,velocity"), record (a
 folder of PNG frames), video (.avi or .mp4), html (the replay page), size ("640x480" or (w, h)),
 camera, quality and fps of the recording, check_determinism, controllers ({"KEY": "COMMAND"},
-as --controller), peer_timeout, port_offset.
+as --controller), peer_timeout, port_offset, threads (None: the scene's Threads).
 
 Returns the run summary as a dict. The scene's warnings go to Python's warnings (RuntimeWarning).
 
@@ -854,11 +866,13 @@ Use one Simulation from one thread at a time (another thread's call during a ste
 UsageError). Any number of Simulations may live in one process; each gives the same
 numbers as it would alone.)");
 
-  cls.def(py::init([](const py::object& scene, const py::object& overrides, uint32_t seed, const py::object& dt) {
+  cls.def(py::init([](const py::object& scene, const py::object& overrides, uint32_t seed, const py::object& dt,
+                      const py::object& threads) {
             const std::string path = pathArg(scene, "the scene path");
-            return std::make_unique<PySimulation>(path, overrides, seed, dt, nullptr);
+            return std::make_unique<PySimulation>(path, overrides, seed, dt, threads, nullptr);
           }),
           py::arg("scene"), py::arg("overrides") = py::none(), py::arg("seed") = 0, py::arg("dt") = py::none(),
+          py::arg("threads") = py::none(),
           R"(Loads, checks and compiles a scene file and builds its world at t = 0.
 
 Args:
@@ -870,22 +884,25 @@ Args:
     seed (int): the state ODE's random generator starts from (QuickStep's constraint
         order), 0 to 2**32-1, as `simbob run --seed`.
     dt (float | None): the step in s; None takes the scene's MaxTimeStep.
+    threads (int | None): threads a step may use, 1 to 64, as `simbob run --threads`; every
+        count gives the same numbers. None takes the scene's Threads (default 1).
 
 Raises:
     SceneError: the scene is wrong (e.file, e.line point at the first error; e.errors
         lists every error's one-line form).
     MissingInputError: the file (or a file it imports) cannot be read.
-    UsageError: a malformed override or a dt outside 1e-9 to 1e9 s.
+    UsageError: a malformed override, a dt outside 1e-9 to 1e9 s or threads outside 1 to 64.
 
 The scene's warnings (`simbob check`'s) are in `warnings`.)");
   cls.def_static(
       "from_text",
       [](const std::string& text, const py::object& name, const py::object& overrides, uint32_t seed,
-         const py::object& dt) {
-        return std::make_unique<PySimulation>(pathArg(name, "from_text: the name"), overrides, seed, dt, &text);
+         const py::object& dt, const py::object& threads) {
+        return std::make_unique<PySimulation>(pathArg(name, "from_text: the name"), overrides, seed, dt, threads,
+                                              &text);
       },
       py::arg("text"), py::arg("name") = "scene.xml", py::arg("overrides") = py::none(), py::arg("seed") = 0,
-      py::arg("dt") = py::none(),
+      py::arg("dt") = py::none(), py::arg("threads") = py::none(),
       R"(The same as Simulation(...) from scene text in memory. `name` stands for the file
 in messages and is where relative imports are looked up from; a name ending in .ini reads
 the text as INI, anything else as XML.)");

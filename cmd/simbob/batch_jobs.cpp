@@ -151,6 +151,12 @@ int readManifest(const BatchArgs& a, std::vector<Job>* jobs) {
   int line_no = 0;
   while (std::getline(in, line)) {
     ++line_no;
+    if (line.find('\0') != std::string::npos) {
+      g_log.error({ErrorKind::InvalidInput,
+                   {a.manifest, line_no},
+                   "the line holds a NUL character, which no scene path or option can hold"});
+      return kExitDataErr;
+    }
     size_t hash = line.find('#');
     if (hash != std::string::npos) line.resize(hash);
     std::string err;

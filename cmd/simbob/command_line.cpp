@@ -28,6 +28,10 @@ void addRunOptions(CLI::App* run, RunArgs& ra, Common& common) {
   run->add_option("--sample-interval", ra.run.sample_interval,
                   "Simulated seconds between samples, 1e-9 to 1e9 (default 0.01)");
   run->add_option("--seed", ra.run.simulation.seed, "Seed of ODE's random generator (default 0)");
+  run->add_option("--threads", ra.run.simulation.threads,
+                  "Threads one world's step uses, 1 to 64; the same bytes for every count (default: the scene's "
+                  "Threads, 1)")
+      ->check(CLI::Range(1, 64));
   run->add_flag("--json", ra.json, "Also print the run summary as JSON on stdout");
   run->add_flag("--check-determinism", ra.run.check_determinism,
                 "Run twice in this process; fail naming the first step and body where the runs differ");

@@ -25,6 +25,7 @@ int cmdCheck(const std::string& path, const Common& common, const std::vector<st
   Diagnostics lint;
   lintModel(model, lint, dt);
   checkTextureBudgets(model, common.texture_folder, lint);
+  checkMeshBudget(model, lint);
   size_t programs = 0;
   for (const SocketDef& d : model.sockets) {
     if (d.controller.empty()) continue;

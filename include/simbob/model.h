@@ -370,6 +370,9 @@ bool splitCommandLine(const std::string& line, std::vector<std::string>* words, 
 enum class SpaceKind : uint8_t { Hash, SweepAndPrune, QuadTree, Simple };
 
 /// World and solver settings (SceneSettings in the scene file).
+/// The most threads one world's step uses (SceneSettings Threads, --threads, World::create).
+constexpr int kMaxThreads = 64;
+
 struct SolverSettings {
   Vec3 gravity{0, -9.81, 0};     ///< m/s^2
   double max_time_step = 0.001;  ///< s, the step size (MaxTimeStep; --dt overrides)
@@ -382,6 +385,7 @@ struct SolverSettings {
   bool quickstep = true;         ///< false: dWorldStep (exact LCP)
   SpaceKind space = SpaceKind::Hash;
   bool auto_disable = false;  ///< let ODE disable resting bodies (changes trajectories slightly)
+  int threads = 1;            ///< threads a step may use (Threads; --threads overrides); same bytes for any
 };
 
 struct Model {

@@ -19,10 +19,13 @@ struct SimulationOptions {
   std::vector<Override> overrides;  ///< applied to the scene before compiling (--set)
   uint32_t seed = 0;                ///< ODE's random generator (QuickStep constraint order)
   double dt = 0.0;                  ///< s; 0 = the scene's MaxTimeStep (resolvedStep)
-  double duration = 1e9;            ///< s: the end a run to completion stops at (runToEnd)
-  double max_access_time = 0.0;     ///< s of wall clock one grant may take; 0 = the scene's MaxAccessTime
-  double peer_timeout = 10.0;       ///< s a socket peer may take to connect or answer
-  int port_offset = 0;              ///< added to every RCLocalSocketCommunicator's Port
+  /// Threads one world's step may use, 1 to 64 (--threads); 0 = the scene's SceneSettings
+  /// Threads (default 1). Never changes a result: every thread count gives the same bytes.
+  int threads = 0;
+  double duration = 1e9;         ///< s: the end a run to completion stops at (runToEnd)
+  double max_access_time = 0.0;  ///< s of wall clock one grant may take; 0 = the scene's MaxAccessTime
+  double peer_timeout = 10.0;    ///< s a socket peer may take to connect or answer
+  int port_offset = 0;           ///< added to every RCLocalSocketCommunicator's Port
   /// "KEY=COMMAND": the Controller of communicator KEY, in place of the scene's (run --controller;
   /// paths relative to the current folder; "KEY=" = none, its peer is started by hand).
   std::vector<std::string> controllers;

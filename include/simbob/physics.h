@@ -60,8 +60,12 @@ class World {
  public:
   /// Validates nothing: the Model must come from compile(). `seed` is the starting state of
   /// this World's random generator (dRandSetSeed), which QuickStep uses to reorder constraints.
-  /// Never returns nullptr.
-  static std::unique_ptr<World> create(const Model& model, uint32_t seed);
+  /// `threads` (1 to kMaxThreads; more counts as kMaxThreads) is how many threads a step may
+  /// use: with more than one, the narrow phase and the rays of range sensors and scanners are
+  /// split among threads the World owns, and their results committed in the order one thread
+  /// uses, so every state and reading is the same bits for every thread count
+  /// (docs/performance.md). Never returns nullptr.
+  static std::unique_ptr<World> create(const Model& model, uint32_t seed, int threads = 1);
   ~World();
   World(const World&) = delete;
   World& operator=(const World&) = delete;

@@ -1,6 +1,8 @@
 // HashSpacePairs: dHashSpace's pairs in dHashSpace's order, by a sweep (see broadphase.h).
 #include "broadphase.h"
 
+#include "workers.h"
+
 #include <algorithm>
 #include <climits>
 #include <cmath>
@@ -84,7 +86,7 @@ HashSpacePairs::~HashSpacePairs() {
   if (cleaner_) dGeomDestroy(cleaner_);
 }
 
-void HashSpacePairs::collide(dSpaceID space, void* data, dNearCallback* callback) {
+void HashSpacePairs::collide(dSpaceID space, void* data, dNearCallback* callback, WorkerPool* pool, size_t grain) {
   if (dSpaceGetNumGeoms(space) < 2) return;  // dHashSpace returns before anything else
   // dHashSpace first recomputes the boxes of the geoms that moved and marks them clean, which
   // decides where they go in the space's list the next time they move. The public way to do
@@ -100,7 +102,7 @@ void HashSpacePairs::collide(dSpaceID space, void* data, dNearCallback* callback
     dSpaceCollide(space, data, callback);
     return;
   }
-  findPairs();
+  findPairs(pool, grain);
   for (const Pair& p : pairs_)
     callback(data, hash_[static_cast<size_t>(p.a)].geom, hash_[static_cast<size_t>(p.b)].geom);
   for (const Box& a : hash_) {
@@ -178,18 +180,9 @@ bool HashSpacePairs::gather(dSpaceID space) {
   return true;
 }
 
-void HashSpacePairs::findPairs() {
-  pairs_.clear();
-  const size_t n = hash_.size();
-  const size_t axis = 2 * static_cast<size_t>(sweepAxis(hash_));  // the axis's lower bound in aabb
-  sorted_.resize(n);
-  for (size_t i = 0; i < n; ++i) sorted_[i] = static_cast<int>(i);
-  std::sort(sorted_.begin(), sorted_.end(), [&](int x, int y) {
-    const dReal bx = hash_[static_cast<size_t>(x)].aabb[axis];
-    const dReal by = hash_[static_cast<size_t>(y)].aabb[axis];
-    return bx < by || (bx == by && x < y);
-  });
-  for (size_t i = 0; i < n; ++i) {
+void HashSpacePairs::sweep(size_t axis, size_t begin, size_t end, std::vector<Pair>& out) const {
+  const size_t n = sorted_.size();
+  for (size_t i = begin; i < end; ++i) {
     const int ia = sorted_[i];
     const Box& a = hash_[static_cast<size_t>(ia)];
     for (size_t j = i + 1; j < n; ++j) {
@@ -200,8 +193,34 @@ void HashSpacePairs::findPairs() {
       // Met from the box of the lower level, the earlier one at equal levels.
       const bool aFirst = a.level < b.level || (a.level == b.level && ia < ib);
       Pair p{aFirst ? ia : ib, aFirst ? ib : ia, 0, {}};
-      if (firstMeeting(aFirst ? a : b, aFirst ? b : a, p)) pairs_.push_back(p);
+      if (firstMeeting(aFirst ? a : b, aFirst ? b : a, p)) out.push_back(p);
     }
+  }
+}
+
+void HashSpacePairs::findPairs(WorkerPool* pool, size_t grain) {
+  pairs_.clear();
+  const size_t n = hash_.size();
+  const size_t axis = 2 * static_cast<size_t>(sweepAxis(hash_));  // the axis's lower bound in aabb
+  sorted_.resize(n);
+  for (size_t i = 0; i < n; ++i) sorted_[i] = static_cast<int>(i);
+  std::sort(sorted_.begin(), sorted_.end(), [&](int x, int y) {
+    const dReal bx = hash_[static_cast<size_t>(x)].aabb[axis];
+    const dReal by = hash_[static_cast<size_t>(y)].aabb[axis];
+    return bx < by || (bx == by && x < y);
+  });
+  if (pool) {
+    // Each chunk of the sorted boxes sweeps into its own list; the lists joined in chunk order
+    // are the serial sweep's list, and the sort below orders the pairs totally anyway.
+    const size_t chunks = pool->chunks(n, grain);
+    if (chunkPairs_.size() < chunks) chunkPairs_.resize(chunks);
+    pool->run(n, grain, [&](size_t c, size_t begin, size_t end, int) {
+      chunkPairs_[c].clear();
+      sweep(axis, begin, end, chunkPairs_[c]);
+    });
+    for (size_t c = 0; c < chunks; ++c) pairs_.insert(pairs_.end(), chunkPairs_[c].begin(), chunkPairs_[c].end());
+  } else {
+    sweep(axis, 0, n, pairs_);
   }
   std::sort(pairs_.begin(), pairs_.end(), [](const Pair& x, const Pair& y) {
     if (x.a != y.a) return x.a < y.a;

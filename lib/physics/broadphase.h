@@ -30,9 +30,12 @@
 
 #include <ode/ode.h>
 
+#include <cstddef>
 #include <vector>
 
 namespace simbob {
+
+class WorkerPool;
 
 class HashSpacePairs {
  public:
@@ -42,8 +45,10 @@ class HashSpacePairs {
   ~HashSpacePairs();
 
   /// What dSpaceCollide(space, data, callback) does for a dHashSpace (its levels included): the
-  /// same calls in the same order, and the space left as it would leave it (geoms clean).
-  void collide(dSpaceID space, void* data, dNearCallback* callback);
+  /// same calls in the same order, and the space left as it would leave it (geoms clean). With
+  /// a pool the sweep is split among its threads in chunks of `grain` boxes at least; the pairs
+  /// and their order do not change.
+  void collide(dSpaceID space, void* data, dNearCallback* callback, WorkerPool* pool = nullptr, size_t grain = 256);
 
  private:
   struct Box {
@@ -65,7 +70,9 @@ class HashSpacePairs {
   /// cells do not fit an int or whose bounds are NaN (collide then leaves it to dHashSpace).
   bool gather(dSpaceID space);
   /// The overlapping pairs of hash boxes, in dHashSpace's order.
-  void findPairs();
+  void findPairs(WorkerPool* pool, size_t grain);
+  /// The pairs met sweeping from sorted_[begin, end) (each box against those after it), into out.
+  void sweep(size_t axis, size_t begin, size_t end, std::vector<Pair>& out) const;
   /// Where dHashSpace meets `high` looking from `low` (low's level <= high's): p.level and
   /// p.cell; false if it never does.
   static bool firstMeeting(const Box& low, const Box& high, Pair& p);
@@ -75,6 +82,7 @@ class HashSpacePairs {
   std::vector<Box> big_;
   std::vector<int> sorted_;
   std::vector<Pair> pairs_;
+  std::vector<std::vector<Pair>> chunkPairs_;  ///< each sweep chunk's pairs (with a pool)
 };
 
 }  // namespace simbob

@@ -74,6 +74,10 @@ void createSensors(WorldImpl& im, const Model& model, uint32_t seed) {
 }
 
 void updateSensors(WorldImpl& im, double h) {
+  // With a pool the rays are cast after the loop, sensor by sensor on whichever thread is free:
+  // a ray sensor's reading depends on the poses and its own generator only, not on the others.
+  std::vector<SensorState*>& rays = im.rayScene.due;
+  rays.clear();
   for (SensorState& s : im.sensors) {
     // Due at the first step boundary at or after each multiple of the period (every step without one).
     const int64_t slot = s.period_ns > 0 ? im.time_ns / s.period_ns : im.time_ns;
@@ -85,7 +89,10 @@ void updateSensors(WorldImpl& im, double h) {
         break;
       case SensorKind::Range:
       case SensorKind::Scanner:
-        if (due) readRays(im, s);
+        if (due && im.pool)
+          rays.push_back(&s);
+        else if (due)
+          readRays(im, s);
         break;
       case SensorKind::Imu:
         readImu(im, s, h, due);  // tracks the velocity every step, reads when due
@@ -98,6 +105,7 @@ void updateSensors(WorldImpl& im, double h) {
         break;
     }
   }
+  if (!rays.empty()) readRaysInParallel(im, rays);
 }
 
 }  // namespace simbob

@@ -106,7 +106,7 @@ World::~World() {
   impl_.reset();
 }
 
-std::unique_ptr<World> World::create(const Model& model, uint32_t seed) {
+std::unique_ptr<World> World::create(const Model& model, uint32_t seed, int threads) {
   std::unique_ptr<World> w(new World());
   WorldImpl& im = *w->impl_;
   const SolverSettings& s = model.settings;
@@ -126,6 +126,10 @@ std::unique_ptr<World> World::create(const Model& model, uint32_t seed) {
   if (s.auto_disable) dWorldSetAutoDisableFlag(im.world, 1);
   im.contactGroup = dJointGroupCreate(0);
   im.contactBuffer.resize(static_cast<size_t>(std::max(1, s.max_contacts)));
+  // The narrow phase and the ray sensors' rays run on these threads too (contacts.cpp, rays.cpp);
+  // QuickStep, and everything that draws from ODE's generator or changes ODE's objects, stays
+  // on the stepping thread.
+  if (threads > 1) im.pool = std::make_unique<WorkerPool>(std::min(threads, kMaxThreads));
 
   // Model order within each concern, concerns in this order: the ODE call sequence is part of
   // what makes runs reproducible, so new concerns append here rather than interleave.

@@ -6,7 +6,9 @@
 //   geoms.cpp     the collision space, geoms and their contact data
 //   broadphase.cpp  the default hash space's candidate pairs, in dHashSpace's order (faster)
 //   joints.cpp    joints and joint state (simbob's sign convention)
-//   contacts.cpp  the near callback: contact joints per the material rules of guide 7.1
+//   contacts.cpp  the near callback: contact joints per the material rules of guide 7.1; the
+//                 narrow phase in parallel (--threads), joints committed in the pair order
+//   workers.cpp   WorkerPool: the World's threads beyond the stepping one (--threads)
 //   actuators.cpp drives, servos and velocity drives on hinge and slider joints
 //   sensors.cpp   sensors: their readings on the step grid; proximity sensors (sensor geoms, in a
 //                 space of their own, that only detect) and encoders
@@ -27,11 +29,13 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <utility>
 #include <vector>
 
 #include "simbob/physics.h"
 #include "broadphase.h"
 #include "sensor_noise.h"
+#include "workers.h"
 
 namespace simbob {
 
@@ -89,6 +93,48 @@ struct ActuatorState {
   bool broken = false;         ///< Plugin: it failed (World::failure); never called again
 };
 
+/// The narrow phase's buffers with more than one thread (contacts.cpp), kept from step to step.
+struct NarrowPhase {
+  std::vector<std::pair<dGeomID, dGeomID>> pairs;  ///< this step's pairs, in the broad phase's order
+  std::vector<int> counts;                         ///< contacts of each pair; -1: collided when committed
+  std::vector<std::vector<dContactGeom>> buffers;  ///< each chunk's contacts, in its pairs' order
+  std::vector<const dContactGeom*> first;          ///< each pair's first contact in its chunk's buffer
+};
+
+/// A geom rays may hit, as read before the sensors' rays are cast in parallel (rays.cpp).
+struct RayTarget {
+  dGeomID geom;
+  dBodyID body;
+  dReal aabb[6];
+};
+
+/// Range sensors' and scanners' buffers with more than one thread (rays.cpp).
+struct RayScene {
+  dGeomID cleaner = nullptr;                              ///< collides with nothing: cleans the space
+  std::vector<RayTarget> targets;                         ///< the collision space's geoms, in list order
+  std::vector<dGeomID> rays;                              ///< one ray per thread (dGeomRaySet writes it)
+  std::vector<std::vector<const RayTarget*>> candidates;  ///< per thread: a sensor's candidates
+  std::vector<SensorState*> due;                          ///< this update's ray sensors, in Model order
+};
+
+/// Pairs per chunk at least: fewer are not worth waking a thread for. A box-box dCollide takes
+/// a microsecond or two, a sphere-plane a tenth of that, a wake-up and sleep of a worker tens of
+/// microseconds of CPU: with 32 the 100-robot scanner scene (300 cheap pairs a step) spent 6 %
+/// more CPU on 2 threads than on one; with 256 it collides inline and a 1,000-box pile still
+/// splits its thousands of pairs.
+constexpr size_t kPairGrain = 256;
+/// Boxes per chunk of the broad phase's sweep at least: a box's sweep is a few box tests.
+constexpr size_t kSweepGrain = 256;
+/// Ray sensors per chunk at least.
+constexpr size_t kRaySensorGrain = 2;
+
+/// Tests only (tests/physics_ode/threads_test.cpp): process-wide switches of the parallel paths.
+struct ParallelTestHooks {
+  size_t grain = 0;             ///< pairs (and swept boxes) per chunk at least; 0: kPairGrain, kSweepGrain
+  bool reverse_commit = false;  ///< commit the pairs' contacts last pair first: unordered on purpose
+};
+ParallelTestHooks& parallelTestHooks();
+
 struct WorldImpl {
   dWorldID world = nullptr;
   dSpaceID space = nullptr;
@@ -130,6 +176,11 @@ struct WorldImpl {
   std::string misuse;
   /// The first failure of a plug-in sensor or actuator (World::failure).
   Error failure;
+  /// The threads beyond the stepping one (--threads N > 1); null with one thread, when the
+  /// narrow phase and the sensors run as they always have.
+  std::unique_ptr<WorkerPool> pool;
+  NarrowPhase narrow;  ///< contacts.cpp, with a pool
+  RayScene rayScene;   ///< rays.cpp, with a pool
   /// Run in order at the start of every step (before collision) with the step size in s: where
   /// motors, applied forces and sensors that act every step hook in. Empty today.
   std::vector<std::function<void(WorldImpl&, double)>> beforeStep;
@@ -202,6 +253,8 @@ void gatherRayCandidates(WorldImpl& im, int body, int static_body, const Vec3& o
 double castRay(WorldImpl& im, const Vec3& origin, const Vec3& dir, double length);
 /// Range sensor and laser scanner readings (SensorKind::Range, Scanner) into s.reading.
 void readRays(WorldImpl& im, SensorState& s);
+/// readRays of every sensor in `due`, split among im.pool's threads: the same readings.
+void readRaysInParallel(WorldImpl& im, const std::vector<SensorState*>& due);
 
 // imu.cpp
 /// Tracks the sensor point's velocity every step of `h` s and, when `due`, writes the reading.
@@ -219,5 +272,8 @@ void applyPluginActuator(WorldImpl& im, ActuatorState& a, double h);
 // contacts.cpp
 /// Collides the space and creates this step's contact joints (guide 7.1); counts them in lastContacts.
 void collide(WorldImpl& im);
+/// Whether dCollide with geom g reads only the two geoms (ODE keeps no shared cache for its
+/// class), so that it may run on a worker thread: see contacts.cpp.
+bool statelessCollider(dGeomID g);
 
 }  // namespace simbob

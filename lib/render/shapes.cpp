@@ -254,7 +254,7 @@ void hullPolygons(const GlApi& gl, const ConvexHull& h) {
     const unsigned n = h.polygons[at];
     gl.Normal3d(h.planes[f * 4], h.planes[f * 4 + 1], h.planes[f * 4 + 2]);
     for (unsigned k = 2; k < n; ++k)
-      for (unsigned i : {h.polygons[at + 1], h.polygons[at + k], h.polygons[at + k + 1]})
+      for (size_t i : {h.polygons[at + 1], h.polygons[at + k], h.polygons[at + k + 1]})
         gl.Vertex3d(h.points[i * 3], h.points[i * 3 + 1], h.points[i * 3 + 2]);
     at += 1 + n;
   }

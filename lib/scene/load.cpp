@@ -56,8 +56,30 @@ std::string familiesText(const ParamSpec& p) {
   return s;
 }
 
+// What a message is about: "RCSphereGeom 'Ball.Geom'", or a fixed text such as "<RefList>",
+// or nothing for the scene root. Made into text only when a message needs it: building the
+// text for every component cost more than a bare parse's time per element.
+class What {
+ public:
+  explicit What(std::string fixed) : fixed_(std::move(fixed)) {}
+  /// `qkey` must outlive this.
+  What(const TypeSpec* type, const std::string* qkey) : type_(type), qkey_(qkey) {}
+  std::string str() const {
+    if (!type_) return fixed_;
+    return type_->name + (qkey_->empty() ? std::string() : " '" + *qkey_ + "'");
+  }
+
+ private:
+  std::string fixed_;
+  const TypeSpec* type_ = nullptr;
+  const std::string* qkey_ = nullptr;
+};
+
 // "RCSphereGeom 'Ball.Geom': " before a message; nothing for the scene root.
-std::string prefix(const std::string& what) { return what.empty() ? std::string() : what + ": "; }
+std::string prefix(const What& about) {
+  const std::string what = about.str();
+  return what.empty() ? std::string() : what + ": ";
+}
 
 class Builder {
  public:
@@ -99,9 +121,8 @@ class Builder {
     if (register_key && t->family != Family::Struct) registerKey(index);
     const std::string qkey = scene_.at(index).qkey;
     // The root <Simulation> needs no name in messages: the file:line says where.
-    const std::string what = parent < 0 && t->family == Family::Struct && t->name == "Simulation"
-                                 ? std::string()
-                                 : t->name + (qkey.empty() ? std::string() : " '" + qkey + "'");
+    const What what =
+        parent < 0 && t->family == Family::Struct && t->name == "Simulation" ? What(std::string()) : What(t, &qkey);
 
     for (size_t pi = 0; pi < t->params.size(); ++pi) {
       const ParamSpec& p = t->params[pi];
@@ -172,7 +193,7 @@ class Builder {
 
   /// Every parameter the source gave that type `t` does not take (or took twice), with a "did
   /// you mean" or the list of what it takes.
-  void reportUnread(const TypeSpec& t, const Source& src, const SourceLoc& loc, const std::string& what) {
+  void reportUnread(const TypeSpec& t, const Source& src, const SourceLoc& loc, const What& what) {
     for (const auto& [name, line] : src.unread()) {
       std::vector<std::string> names;
       for (const auto& p : t.params) names.push_back(p.name);
@@ -200,7 +221,7 @@ class Builder {
     const TypeSpec* t = c.type;
     const Slot& file_slot = c.slot("File");
     std::string file = std::get<std::string>(file_slot.value);
-    std::string what = t->name + " '" + c.qkey + "'";
+    const What what(t->name + " '" + c.qkey + "'");
     SourceLoc at = file_slot.set ? file_slot.loc : loc;
     if (file.empty()) {
       diag_.error(at, prefix(what) + "parameter 'File' is required");
@@ -267,14 +288,14 @@ class Builder {
       bool present = false;
       int line = 0;
       for (auto& item : docsrc->list(t->import_root, &present, &line)) {
-        Link l = makeLink(item, holder, item.type, index, scene_.at(index).qkey, path, "<RefList>");
+        Link l = makeLink(item, holder, item.type, index, scene_.at(index).qkey, path, What("<RefList>"));
         if (l.isRef()) diag_.error(l.loc, "<RefList> items must be components, not Refs");
         if (l.comp >= 0) roots.push_back(l.comp);
       }
     } else {
       holder.families = {t->family == Family::Joint ? Family::Joint : Family::Body};
       SourceLink item = docsrc->component(t->import_root);
-      Link l = makeLink(item, holder, item.type, index, scene_.at(index).qkey, path, "<" + t->import_root + ">");
+      Link l = makeLink(item, holder, item.type, index, scene_.at(index).qkey, path, What("<" + t->import_root + ">"));
       if (l.isRef()) diag_.error(l.loc, "<" + t->import_root + "> must hold a component, not a Ref");
       if (l.comp >= 0) roots.push_back(l.comp);
     }
@@ -340,8 +361,7 @@ class Builder {
   void pushFile(const std::string& canon) { import_stack_.push_back(canon); }
 
  private:
-  bool parseInto(const ParamSpec& p, const std::string& text, Value* out, const SourceLoc& loc,
-                 const std::string& what) {
+  bool parseInto(const ParamSpec& p, const std::string& text, Value* out, const SourceLoc& loc, const What& what) {
     ParseResult r = parseParam(p, text);
     if (!r) {
       diag_.error(loc, prefix(what) + r.error);
@@ -390,7 +410,7 @@ class Builder {
   }
 
   Link makeLink(SourceLink& l, const ParamSpec& p, const std::string& default_key, int parent,
-                const std::string& parent_qkey, const FileName& file, const std::string& what) {
+                const std::string& parent_qkey, const FileName& file, const What& what) {
     Link link;
     link.loc = {file, l.line};
     if (!l.error.empty()) {

@@ -3,7 +3,6 @@
 #include <cctype>
 #include <cstring>
 #include <set>
-#include <unordered_set>
 #include <string_view>
 #include <pugixml.hpp>
 
@@ -52,8 +51,8 @@ class XmlSource : public Source {
     v.line = doc_->lineOf(c);
     pugi::xml_attribute a = c.attribute("Value");
     for (pugi::xml_attribute other : c.attributes()) {
+      if (std::strcmp(other.name(), "Value") == 0) continue;
       const std::string an = other.name();
-      if (an == "Value") continue;
       v.error = attributeError("parameter '" + name + "'", an, {"Value"});
       if (!a && equalsIgnoreCase(an, "Value")) return v;  // <Height value="3"/>: the case is wrong
     }
@@ -107,8 +106,8 @@ class XmlSource : public Source {
 
   std::vector<std::pair<std::string, int>> unread() const override {
     std::vector<std::pair<std::string, int>> out;
-    for (pugi::xml_node c : node_.children())
-      if (isElement(c) && !read_.count(c.hash_value())) out.emplace_back(c.name(), doc_->lineOf(c));
+    for (pugi::xml_node c = node_.first_child(); c; c = c.next_sibling())
+      if (isElement(c) && !wasRead(c)) out.emplace_back(c.name(), doc_->lineOf(c));
     return out;
   }
 
@@ -152,7 +151,7 @@ class XmlSource : public Source {
   }
 
   static pugi::xml_node firstElement(pugi::xml_node n) {
-    for (pugi::xml_node c : n.children())
+    for (pugi::xml_node c = n.first_child(); c; c = c.next_sibling())
       if (isElement(c)) return c;
     return {};
   }
@@ -160,9 +159,10 @@ class XmlSource : public Source {
   // The first not-yet-read child element called `name`; a second one stays unread and is
   // reported as a duplicate by the builder.
   pugi::xml_node take(const std::string& name) {
-    for (pugi::xml_node c : node_.children()) {
-      if (isElement(c) && name == c.name() && !read_.count(c.hash_value())) {
-        read_.insert(c.hash_value());
+    for (pugi::xml_node c = node_.first_child(); c; c = c.next_sibling()) {
+      if (isElement(c) && std::strcmp(c.name(), name.c_str()) == 0 && !wasRead(c)) {
+        if (read_.empty()) read_.reserve(kReadReserve);
+        read_.push_back(c.internal_object());
         return c;
       }
     }
@@ -183,14 +183,15 @@ class XmlSource : public Source {
       else
         l.error = attributeError(std::string("<") + c.name() + ">", an, {"Ref", "Macro"});
     }
-    std::vector<pugi::xml_node> kids;
-    for (pugi::xml_node k : c.children())
-      if (isElement(k)) kids.push_back(k);
+    size_t kids = 0;  // child elements; the first is the component's type element
+    pugi::xml_node first;
+    for (pugi::xml_node k = c.first_child(); k; k = k.next_sibling())
+      if (isElement(k) && kids++ == 0) first = k;
     if (!l.error.empty()) return l;
     if (!l.ref.empty() || !l.macro.empty()) {
       if (!l.ref.empty() && !l.macro.empty())
         l.error = std::string("<") + c.name() + "> has both Ref and Macro";
-      else if (!kids.empty())
+      else if (kids > 0)
         l.error = std::string("<") + c.name() + "> with Ref or Macro takes no child elements";
       else if (c.attribute("Ref") && l.ref.empty())
         l.error = std::string("<") + c.name() + ">: empty Ref";
@@ -200,20 +201,27 @@ class XmlSource : public Source {
       l.error = std::string("<") + c.name() + ">: empty Ref";
       return l;
     }
-    if (kids.size() != 1) {
-      if (kids.empty() && !is_param)
+    if (kids != 1) {
+      if (kids == 0 && !is_param)
         l.type = c.name();  // a misspelt type element; the loader names it
       else
         l.error = std::string("<") + c.name() + "> must hold exactly one component element, a Ref or a Macro";
       return l;
     }
     // An unknown type is named by the loader, with the nearest type names.
-    return typeElement(kids[0]);
+    return typeElement(first);
+  }
+
+  // A child is read at most once per parameter of the type (a few dozen), so a short list
+  // searched in place beats a hash set that allocates for every child read.
+  bool wasRead(const pugi::xml_node& c) const {
+    return std::find(read_.begin(), read_.end(), c.internal_object()) != read_.end();
   }
 
   std::shared_ptr<XmlDoc> doc_;
   pugi::xml_node node_;
-  std::unordered_set<size_t> read_;  // hash_value() of the children read; membership only, never iterated
+  static constexpr size_t kReadReserve = 8;   // room for the children read without regrowing
+  std::vector<pugi::xml_node_struct*> read_;  // the children read, by take()
 };
 
 // The element left open where a closing tag does not match (or the text ends): the stack of
@@ -281,6 +289,28 @@ bool unclosedElement(std::string_view text, size_t stop, std::string* name, size
   return true;
 }
 
+// The second of two attributes with one name, or none. Elements have a handful of attributes:
+// compared pairwise up to kFewAttributes, through a set beyond (an attack with thousands stays
+// n log n).
+constexpr int kFewAttributes = 8;
+
+pugi::xml_attribute repeatedAttribute(const pugi::xml_node& n) {
+  const pugi::xml_attribute first = n.first_attribute();
+  if (!first || !first.next_attribute()) return {};  // most elements: one attribute or none
+  int count = 0;
+  for (pugi::xml_attribute a = n.first_attribute(); a && count <= kFewAttributes; a = a.next_attribute()) ++count;
+  if (count <= kFewAttributes) {
+    for (pugi::xml_attribute a = n.first_attribute(); a; a = a.next_attribute())
+      for (pugi::xml_attribute b = n.first_attribute(); b != a; b = b.next_attribute())
+        if (std::strcmp(a.name(), b.name()) == 0) return a;
+    return {};
+  }
+  std::set<std::string_view> names;
+  for (pugi::xml_attribute a = n.first_attribute(); a; a = a.next_attribute())
+    if (!names.insert(a.name()).second) return a;
+  return {};
+}
+
 }  // namespace
 
 std::shared_ptr<XmlDoc> parseXml(std::string text, const Registry& reg, std::string* error, int* error_line) {
@@ -336,15 +366,12 @@ std::shared_ptr<XmlDoc> parseXml(std::string text, const Registry& reg, std::str
   while (!stack.empty()) {
     pugi::xml_node n = stack.back();
     stack.pop_back();
-    // Elements have a handful of attributes; a set keeps an attack with thousands linear.
-    std::set<std::string_view> names;
-    for (pugi::xml_attribute a = n.first_attribute(); a; a = a.next_attribute())
-      if (!names.insert(a.name()).second) {
-        *error_line = d->lineOf(n);
-        *error = std::string("malformed XML: attribute '") + a.name() + "' given twice in <" + n.name() + ">";
-        return nullptr;
-      }
-    for (pugi::xml_node c : n.children())
+    if (const pugi::xml_attribute a = repeatedAttribute(n)) {
+      *error_line = d->lineOf(n);
+      *error = std::string("malformed XML: attribute '") + a.name() + "' given twice in <" + n.name() + ">";
+      return nullptr;
+    }
+    for (pugi::xml_node c = n.first_child(); c; c = c.next_sibling())
       if (isElement(c)) stack.push_back(c);
   }
   return d;

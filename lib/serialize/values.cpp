@@ -463,6 +463,7 @@ std::optional<double> parseNumber(std::string_view text, bool allow_infinite) {
 
 std::optional<std::vector<double>> parseNumberList(std::string_view text, std::string* error, bool allow_infinite) {
   std::vector<double> out;
+  out.reserve(6);  // a pose's six numbers without growing (one allocation instead of four)
   size_t i = 0;
   while (i < text.size()) {
     if (isSeparator(text[i])) {

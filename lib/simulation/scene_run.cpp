@@ -50,6 +50,8 @@ std::string runOptionsProblem(const RunOptions& o) {
   if (p.empty()) p = clockTimeProblem("--sample-interval", o.sample_interval);
   if (p.empty() && !(s.peer_timeout >= 0.001 && s.peer_timeout <= 86400))
     p = "--peer-timeout must be between 0.001 and 86400 s, got " + formatNumber(s.peer_timeout);
+  if (p.empty() && (s.threads < 0 || s.threads > kMaxThreads))
+    p = "--threads must be between 1 and " + std::to_string(kMaxThreads) + ", got " + std::to_string(s.threads);
   if (p.empty() && (s.port_offset < -65535 || s.port_offset > 65535))
     p = "--port-offset must be between -65535 and 65535, got " + std::to_string(s.port_offset);
   if (p.empty() && !o.html.empty() && isStreamOutput(trajectoryPath(o)))
@@ -300,11 +302,17 @@ const RunOutcome& Run::finish() {
   return outcome_;
 }
 
-// --check-determinism: the run again, in this process. "identical", or where the runs part; an
-// interrupt of the second run is the run's interrupt ("" then: not a difference).
+// --check-determinism: the run again, in this process, with another thread count (1 after a run
+// on several threads, else 2): the bytes must not depend on it either. "identical", or where
+// the runs part; an interrupt of the second run is the run's interrupt ("" then: not a difference).
 std::string Run::secondRun(RunResult* r) {
-  note(RunNote::Debug, "determinism check: running the scene a second time");
-  DeterminismCheck c = checkDeterminism(model_, opts_.simulation, opts_.sample_interval, *first_,
+  SimulationOptions second = opts_.simulation;
+  const int threads = second.threads > 0 ? second.threads : model_.settings.threads;
+  second.threads = threads == 1 ? 2 : 1;
+  note(RunNote::Debug, "determinism check: running the scene a second time, on " +
+                           countOf(static_cast<size_t>(second.threads), "thread", "threads") + " (the first on " +
+                           std::to_string(threads) + ")");
+  DeterminismCheck c = checkDeterminism(model_, second, opts_.sample_interval, *first_,
                                         [this](double t, const double*) { last_sample_ = t; });
   if (c.second.status == RunStatus::Interrupted) {
     r->status = RunStatus::Interrupted;

@@ -79,12 +79,17 @@ bool parseManifest(const std::string& text, const std::string& path, std::vector
         throw std::runtime_error("case " + std::to_string(c.index) + " where case " + std::to_string(cases->size()) +
                                  " was expected (cases are numbered from 0, one per line)");
       c.scene = field(j, "scene").get<std::string>();
+      if (c.scene.find('\0') != std::string::npos)
+        throw std::runtime_error("'scene' holds a NUL character (\\u0000), which no file name can hold");
       c.duration = seconds(j, "duration");
       if (j.contains("dt")) c.dt = seconds(j, "dt");
       c.sample_interval = seconds(j, "sample_interval");
       c.seed = static_cast<uint32_t>(wholeNumber(j, "seed", 0, 4294967295.0));
       for (const auto& [k, v] : field(j, "vary").items()) c.vary.emplace_back(k, v.get<std::string>());
       c.set = field(j, "set").get<std::vector<std::string>>();
+      for (const std::string& set : c.set)
+        if (set.find('\0') != std::string::npos)
+          throw std::runtime_error("a 'set' entry holds a NUL character (\\u0000), which no command line can pass");
       for (const auto& m : field(j, "metrics"))
         c.metrics.push_back({field(m, "name").get<std::string>(), field(m, "body").get<std::string>(),
                              field(m, "value").get<std::string>(), field(m, "stat").get<std::string>()});

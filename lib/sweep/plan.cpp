@@ -189,6 +189,10 @@ bool sweepScene(const std::string& text, const std::string& path, std::string* s
     return false;
   }
   *scene = j["scene"].get<std::string>();
+  if (scene->find('\0') != std::string::npos) {
+    *err = {ErrorKind::InvalidInput, {path, 0}, "'scene' holds a NUL character (\\u0000), which no file name can hold"};
+    return false;
+  }
   return true;
 }
 

@@ -20,8 +20,4 @@ std::string escapeHtml(const std::string& s);
 /// Text for inside a <script> element: never "</script" nor "<!--" (every '<' as \u003c, which
 /// JSON reads back as '<').
 std::string scriptSafe(const std::string& s);
-/// A relative path ('/'-separated) as a link a page may assign to a.href: "./" first and every
-/// segment percent-encoded (all but A-Z a-z 0-9 - . _ ~), so that no name reads as a scheme
-/// ("javascript:..."), a query ('?'), a fragment ('#') or an escape ('%').
-std::string relativeLink(const std::string& path);
 }  // namespace simbob::view

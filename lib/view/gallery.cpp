@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "simbob/tool/replay_page.h"
+#include "simbob/tool/test_report.h"
 #include "view/assets.h"
 
 namespace simbob {
@@ -19,7 +20,7 @@ std::string sweepGalleryHtml(const std::string& title, const std::vector<std::st
     j["cases"].push_back({{"index", c.index},
                           {"status", c.status},
                           {"fields", c.fields},
-                          {"page", c.page.empty() ? "" : view::relativeLink(c.page)}});
+                          {"page", c.page.empty() ? "" : relativeLink(c.page)}});
   return view::fill(view::kGalleryHtml,
                     {{"TITLE", view::escapeHtml(title)},
                      {"DATA", view::scriptSafe(j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace))}});

@@ -191,31 +191,55 @@ class PageTextures {
   std::vector<std::string> urls_;  ///< by slot: TextureFiles counts distinct files from 0
 };
 
-/// Largest total of mesh data one page embeds (base64 characters): beyond it a browser takes
-/// seconds to parse the page (docs/meshes.md).
-constexpr size_t kMaxPageMeshChars = size_t{64} << 20;
-
-/// Each mesh of the Model once: {file, triangles: {positions (float32 base64, x y z per vertex),
-/// indices (uint32 base64, 3 per triangle)}, hull: the same for its hull's faces as triangles}.
-/// The triangles go in only when a visual or a TriMesh geom draws them, the hull only when a
-/// ConvexHull geom does.
-bool encodeMeshes(const Model& m, json* out, Error* err) {
-  std::vector<uint8_t> use(m.meshes.size(), 0);  // 1 triangles, 2 hull
+/// What a page embeds of each mesh of the Model: 1 its triangles (a visual or a TriMesh geom
+/// draws them), 2 its hull (a ConvexHull geom draws it), 3 both, 0 nothing.
+std::vector<uint8_t> pageMeshParts(const Model& m) {
+  std::vector<uint8_t> use(m.meshes.size(), 0);
   for (const VisualDef& v : m.visuals)
     if (v.shape == VisualDef::Mesh) use[static_cast<size_t>(v.mesh)] |= 1;
   for (const GeomDef& g : m.geoms)
     if (!g.sensor && g.mesh >= 0) use[static_cast<size_t>(g.mesh)] |= g.shape == GeomShape::ConvexHull ? 2 : 1;
+  return use;
+}
+
+/// The base64 characters the `parts` of mesh d take in a page, as encodeMeshes writes them:
+/// float32 positions (3 a vertex) and uint32 indices (3 a triangle; a hull face of k points is
+/// k - 2 triangles).
+size_t pageMeshChars(const MeshData& d, uint8_t parts) {
+  auto b64 = [](size_t bytes) { return (bytes + 2) / 3 * 4; };
+  size_t chars = 0;
+  if (parts & 1) chars += b64(d.vertices.size() * 3 * 4) + b64(d.triangles.size() * 3 * 4);
+  if (parts & 2) {
+    size_t triangles = 0;
+    for (size_t at = 0; at < d.hull.polygons.size(); at += 1 + d.hull.polygons[at])
+      if (d.hull.polygons[at] > 2) triangles += d.hull.polygons[at] - 2;
+    chars += b64(d.hull.points.size() * 4) + b64(triangles * 3 * 4);
+  }
+  return chars;
+}
+
+/// Each mesh of the Model once: {file, triangles: {positions (float32 base64, x y z per vertex),
+/// indices (uint32 base64, 3 per triangle)}, hull: the same for its hull's faces as triangles}.
+/// The triangles go in only when a visual or a TriMesh geom draws them, the hull only when a
+/// ConvexHull geom does. Past kMaxPageMeshChars it refuses, naming the mesh, before encoding it.
+bool encodeMeshes(const Model& m, json* out, Error* err) {
+  const std::vector<uint8_t> use = pageMeshParts(m);
   *out = json::array();
   size_t chars = 0;
   for (size_t i = 0; i < m.meshes.size(); ++i) {
     const MeshData& d = *m.meshes[i].data;
+    chars += pageMeshChars(d, use[i]);
+    if (chars > kMaxPageMeshChars) {
+      *err = {ErrorKind::InvalidInput,
+              {d.file, 0},
+              "the scene's meshes would put more than " + std::to_string(kMaxPageMeshChars >> 20) +
+                  " MiB into the replay page (the limit; docs/meshes.md): use coarser meshes for the page"};
+      return false;
+    }
     const size_t slash = d.file.find_last_of('/');
     json j = {{"file", slash == std::string::npos ? d.file : d.file.substr(slash + 1)}};
     auto put = [&](const char* name, const std::vector<float>& pos, const std::vector<uint32_t>& idx) {
-      json part = {{"positions", base64Le(pos)}, {"indices", base64Le(idx)}};
-      chars +=
-          part["positions"].get_ref<const std::string&>().size() + part["indices"].get_ref<const std::string&>().size();
-      j[name] = std::move(part);
+      j[name] = {{"positions", base64Le(pos)}, {"indices", base64Le(idx)}};
     };
     if (use[i] & 1) {
       std::vector<float> pos;
@@ -234,13 +258,6 @@ bool encodeMeshes(const Model& m, json* out, Error* err) {
         for (unsigned k = 2; k < d.hull.polygons[at]; ++k)
           idx.insert(idx.end(), {d.hull.polygons[at + 1], d.hull.polygons[at + k], d.hull.polygons[at + k + 1]});
       put("hull", pos, idx);
-    }
-    if (chars > kMaxPageMeshChars) {
-      *err = {ErrorKind::InvalidInput,
-              {d.file, 0},
-              "the scene's meshes would put more than " + std::to_string(kMaxPageMeshChars >> 20) +
-                  " MiB into the replay page (the limit; docs/meshes.md): use coarser meshes for the page"};
-      return false;
     }
     out->push_back(std::move(j));
   }
@@ -346,6 +363,20 @@ bool readThree(const std::string& rel, std::string* text, Error* err) {
 
 }  // namespace
 
+void checkMeshBudget(const Model& m, Diagnostics& d) {
+  const std::vector<uint8_t> use = pageMeshParts(m);
+  size_t chars = 0;
+  for (size_t i = 0; i < m.meshes.size(); ++i) {
+    const size_t before = chars;
+    chars += pageMeshChars(*m.meshes[i].data, use[i]);
+    if (before <= kMaxPageMeshChars && chars > kMaxPageMeshChars)
+      d.warning(m.meshes[i].loc, "mesh " + m.meshes[i].data->file + ": the scene's meshes come to " +
+                                     std::to_string((chars + (1 << 20) - 1) >> 20) +
+                                     " MiB of page data, more than the " + std::to_string(kMaxPageMeshChars >> 20) +
+                                     " MiB a replay page embeds (view and --html will refuse; docs/meshes.md)");
+  }
+}
+
 void checkTextureBudgets(const Model& m, const std::string& texture_folder, Diagnostics& d) {
   std::vector<std::string> seen;
   uint64_t total = 0;
@@ -381,6 +412,9 @@ namespace view {
 /// template only, never in the values put in).
 std::string fill(const std::string& page, const std::vector<std::pair<std::string, std::string>>& values) {
   std::string out;
+  size_t size = page.size();
+  for (const auto& v : values) size += v.second.size();
+  out.reserve(size);  // each marker once, as in simbob's templates: no copies made while it grows
   size_t at = 0;
   while (true) {
     const size_t open = page.find("{{", at);
@@ -438,23 +472,6 @@ std::string scriptSafe(const std::string& s) {
   return out;
 }
 
-std::string relativeLink(const std::string& path) {
-  static const char* const kHex = "0123456789ABCDEF";
-  std::string out = "./";
-  for (char c : path) {
-    const auto u = static_cast<unsigned char>(c);
-    if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || c == '.' ||
-        c == '_' || c == '~' || c == '/') {
-      out += c;
-    } else {
-      out += '%';
-      out += kHex[u >> 4];
-      out += kHex[u & 15];
-    }
-  }
-  return out;
-}
-
 }  // namespace view
 
 std::string threeJsDir() {
@@ -485,12 +502,17 @@ bool buildViewPage(const ViewPageInput& in, std::string* html, Error* err) {
     data["golden"] = encodeTrajectory(*in.golden);
     data["compare"] = encodeComparison(*in.actual, *in.golden, in.compare);
   }
-  const std::string page = view::fill(
-      view::kPageHtml, {{"TITLE", view::escapeHtml(data["title"].get<std::string>())},
-                        {"THREE", three + "\n" + orbit},
-                        {"VIEWER", view::kViewerJs},
-                        {"DATA", view::scriptSafe(data.dump(-1, ' ', false, json::error_handler_t::replace))}});
-  *html = page;
+  // The embedded textures and meshes make the data most of the page: at most two copies of it
+  // live at once (the data and its text, the text and the safe text, the safe text and the page).
+  std::vector<std::pair<std::string, std::string>> values;
+  values.emplace_back("TITLE", view::escapeHtml(data["title"].get<std::string>()));
+  values.emplace_back("THREE", three + "\n" + orbit);
+  values.emplace_back("VIEWER", view::kViewerJs);
+  std::string text = data.dump(-1, ' ', false, json::error_handler_t::replace);
+  data = json();
+  values.emplace_back("DATA", view::scriptSafe(text));
+  std::string().swap(text);
+  *html = view::fill(view::kPageHtml, values);
   return true;
 }
 

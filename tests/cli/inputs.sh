@@ -92,4 +92,30 @@ cp two.jsonl sb/submit.sh
 expect_refused "sweep sbatch whose script would replace the manifest it reads" \
   "^simbob: error: the script sb/submit.sh is the manifest sb/submit.sh: an output must not overwrite an input$" \
   "$SIMBOB" sweep sbatch sb/submit.sh -o sb
+check "a NUL in a manifest's scene path or --set is refused (65 at its line), never cut short at the NUL"
+# Before, batch and sweep run ran scenes/pendulum.xml for 'scenes/pendulum.xml\0.ini' and batch wrote
+# its trajectory as OUT/pendulum.xml (the OS ends the name at the NUL), exit 0.
+printf 'scenes/pendulum.xml\0.ini --duration 0.1\n' >nul.txt
+expect_status 65 "$SIMBOB" batch --manifest nul.txt -o nul-batch -j 1 -q
+expect_eq "batch manifest" "$(cat "$LAST_ERR")" \
+  "nul.txt:1: error: the line holds a NUL character, which no scene path or option can hold"
+expect_no_file nul-batch
+case0='{"case":0,"scene":"scenes/pendulum.xml%s","duration":0.1,"dt":0.001,"sample_interval":0.01,"seed":0,"vary":{},"set":[%s],"metrics":[]}\n'
+# shellcheck disable=SC2059
+printf "$case0" '\u0000.ini' '' >nul-scene.jsonl
+expect_status 65 "$SIMBOB" sweep run nul-scene.jsonl -o nul-sweep -j 1 -q
+expect_eq "sweep manifest scene" "$(cat "$LAST_ERR")" \
+  "nul-scene.jsonl:1: error: not a sweep case: 'scene' holds a NUL character (\\u0000), which no file name can hold"
+expect_no_file nul-sweep
+# shellcheck disable=SC2059
+printf "$case0" '' '"Pendulum.Hinge.Bob.Mass=1\u0000"' >nul-set.jsonl
+expect_status 65 "$SIMBOB" sweep run nul-set.jsonl -o nul-sweep -j 1 -q
+expect_eq "sweep manifest set" "$(cat "$LAST_ERR")" \
+  "nul-set.jsonl:1: error: not a sweep case: a 'set' entry holds a NUL character (\\u0000), which no command line can pass"
+expect_no_file nul-sweep
+printf '{"scene": "scenes/pendulum.xml\\u0000.ini", "duration": 0.1}\n' >nul-plan.json
+expect_status 65 "$SIMBOB" sweep plan nul-plan.json -o nul-plan.jsonl
+expect_eq "sweep plan scene" "$(cat "$LAST_ERR")" \
+  "nul-plan.json: error: 'scene' holds a NUL character (\\u0000), which no file name can hold"
+expect_no_file nul-plan.jsonl
 say "ok: inputs"

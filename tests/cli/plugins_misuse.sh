@@ -52,7 +52,7 @@ SENSE="misuse.xml:$(line_of MisuseSensor): error: sensor 'Bot.Cart.Sense' (plug-
 ACT="misuse.xml:$(line_of MisuseActuator): error: actuator 'Bot.Cart.Act' (plug-in 'misuse', type 'MisuseActuator')"
 
 # misuse DEFINITION MESSAGE: the plug-in built with -DDEFINITION stops a 1 s run with MESSAGE (exit
-# 1), the partial trajectory ends at 0.5 s or just before, no temporary file is left behind, and
+# 2), the partial trajectory ends at 0.5 s or just before, no temporary file is left behind, and
 # the sensor log holds only finite numbers.
 misuse() {
   local def=$1 want=$2

@@ -93,6 +93,11 @@ expect_status 0 "$SIMBOB" run room.xml --duration 0.02 --out room.csv --log sens
 expect_readings room.log.csv Fixed.Mount.Range/distance=1.5 \
   Fixed.Mount.Scan/range0=0.9 Fixed.Mount.Scan/range1=3 Fixed.Mount.Scan/range2=1.5 Fixed.Mount.Scan/range3=2
 
+check "the same readings when the sensors are read on 3 threads (lib/physics/rays.cpp's parallel path)"
+expect_status 0 "$SIMBOB" run room.xml --duration 0.02 --threads 3 --out room3.csv --log sensors -q
+expect_same_file room.log.csv room3.log.csv
+expect_same_file room.csv room3.csv
+
 if command -v cc >/dev/null; then
   check "a plug-in sensor's cast_ray from the same post reads the same wall"
   cc -std=c99 -shared -fPIC -I "$REPO/include" "$REPO/examples/plugins/beam_sensor.c" -o beam.so

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "physics/broadphase.h"
+#include "physics/workers.h"
 
 namespace {
 
@@ -86,13 +87,15 @@ void move(Scene& s, std::mt19937_64& rng, double step) {
 }
 
 /// Checks `steps` times that HashSpacePairs calls exactly what dSpaceCollide calls; returns the
-/// number of calls seen (so a scene where nothing meets cannot pass unnoticed).
-size_t compare(Scene& s, std::mt19937_64& rng, int steps, double step) {
+/// number of calls seen (so a scene where nothing meets cannot pass unnoticed). With a pool, the
+/// sweep is split among its threads in chunks of `grain` boxes.
+size_t compare(Scene& s, std::mt19937_64& rng, int steps, double step, simbob::WorkerPool* pool = nullptr,
+               size_t grain = 256) {
   simbob::HashSpacePairs pairs;
   size_t seen = 0;
   for (int k = 0; k < steps; ++k) {
     Calls ours, odes;
-    pairs.collide(s.space, &ours, &record);  // first: it leaves the geoms clean, as ODE would
+    pairs.collide(s.space, &ours, &record, pool, grain);  // first: it leaves the geoms clean, as ODE would
     dSpaceCollide(s.space, &odes, &record);
     REQUIRE(ours.size() == odes.size());
     for (size_t i = 0; i < ours.size(); ++i) {
@@ -128,6 +131,22 @@ TEST_CASE("HashSpacePairs reports dHashSpace's pairs in dHashSpace's order", "[b
       }
     }
     CHECK(compare(s, rng, 10, 0.3) > 150);
+  }
+}
+
+// --threads N: the sweep split into chunks (of one box, so that 150 geoms make many) on 2 and 3
+// threads finds the same calls in the same order.
+TEST_CASE("HashSpacePairs with its sweep split among threads reports dHashSpace's pairs in order", "[broadphase]") {
+  Ode ode;
+  for (int threads : {2, 3}) {
+    simbob::WorkerPool pool(threads);
+    for (uint64_t seed = 1; seed <= 10; ++seed) {
+      INFO(threads << " threads, seed " << seed);
+      std::mt19937_64 rng(seed);
+      Scene s;
+      build(s, rng, 150, seed % 2 ? 3.0 : 30.0);
+      CHECK(compare(s, rng, 10, 0.3, &pool, 1) > 150);
+    }
   }
 }
 

@@ -193,3 +193,61 @@ TEST_CASE("view page: each mesh is embedded once, float32 positions and uint32 i
   REQUIRE(simbob::buildViewPage(in, &html, &err));
   CHECK_FALSE(pageData(html)["model"].contains("meshes"));
 }
+
+TEST_CASE(
+    "view page: check warns at the mesh that takes the page's mesh data past its limit, and the page refuses it") {
+  // Base64 of float32 positions and uint32 indices: 16 characters a vertex and 16 a triangle. A
+  // visual draws each mesh's triangles (no hull). `big` alone is exactly the limit, 64 MiB.
+  auto small = std::make_shared<simbob::MeshData>();
+  small->file = "small.stl";
+  small->vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  small->triangles = {{0, 1, 2}};
+  auto big = std::make_shared<simbob::MeshData>();
+  big->file = "big.stl";
+  big->vertices = small->vertices;
+  big->triangles.resize(simbob::kMaxPageMeshChars / 16 - 3);  // the limit, with its 3 vertices
+  auto model = [](const std::vector<std::shared_ptr<simbob::MeshData>>& meshes) {
+    simbob::Model m;
+    m.skins.emplace_back();
+    for (const auto& mesh : meshes) {
+      m.meshes.push_back({mesh, {"scene.xml", static_cast<int>(m.meshes.size()) + 10}});
+      simbob::VisualDef v;
+      v.shape = simbob::VisualDef::Mesh;
+      v.mesh = static_cast<int>(m.meshes.size()) - 1;
+      m.visuals.push_back(v);
+    }
+    return m;
+  };
+  simbob::Diagnostics d;
+  simbob::checkMeshBudget(model({big}), d);
+  CHECK(d.warnings().empty());  // at the limit: allowed
+  CHECK(d.errors().empty());
+
+  // The small mesh first, then the big one: 32 characters past the limit, at the big mesh.
+  const simbob::Model both = model({small, big});
+  simbob::checkMeshBudget(both, d);
+  REQUIRE(d.warnings().size() == 1);
+  CHECK(d.errors().empty());
+  CHECK(d.warnings()[0].loc.line == 11);
+  CHECK(d.warnings()[0].message ==
+        "mesh big.stl: the scene's meshes come to 65 MiB of page data, more than the 64 MiB a replay page embeds (view "
+        "and --html will refuse; docs/meshes.md)");
+
+  Trajectory t;
+  t.addBody("A");
+  t.times = {0};
+  t.finalize();
+  const double p[7] = {0, 0, 0, 1, 0, 0, 0};
+  t.setPose(0, 0, p);
+  simbob::ViewPageInput in;
+  in.model = &both;
+  in.actual = &t;
+  std::string html;
+  simbob::Error err;
+  REQUIRE_FALSE(simbob::buildViewPage(in, &html, &err));
+  CHECK(err.kind == simbob::ErrorKind::InvalidInput);
+  CHECK(err.loc.file.str() == "big.stl");
+  CHECK(err.message ==
+        "the scene's meshes would put more than 64 MiB into the replay page (the limit; docs/meshes.md): use coarser "
+        "meshes for the page");
+}

@@ -38,6 +38,15 @@ constexpr size_t kMaxPageTextureBytes = size_t{256} << 20;
 /// kMaxPageTextureBytes (view and --html would refuse it), or past the renderer's budget.
 void checkTextureBudgets(const Model& m, const std::string& texture_folder, Diagnostics& d);
 
+/// The mesh data a page embeds together (base64 characters of float32 positions and uint32
+/// indices, each mesh once): beyond it a browser takes seconds to parse the page (docs/meshes.md).
+constexpr size_t kMaxPageMeshChars = size_t{64} << 20;
+
+/// What `check` says of a scene's meshes: a warning where the first use of the mesh that takes
+/// the page's mesh data past kMaxPageMeshChars is written (view and --html would refuse it),
+/// counted as the page counts it.
+void checkMeshBudget(const Model& m, Diagnostics& d);
+
 /// Builds the page's HTML. Each texture file is embedded once, as the renderer reads it
 /// (decoded, then as PNG), within kMaxPageTextureBytes. Errors: MissingInput when three.js or a
 /// texture file cannot be found (naming the file and, for three.js, the package), InvalidInput

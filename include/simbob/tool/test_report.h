@@ -82,8 +82,10 @@ std::string summaryMarkdown(const TestSuiteReport& suite);
 /// message and a link to each artifact that has one (percent-encoded, prefixed "./").
 std::string artifactsIndexHtml(const TestSuiteReport& suite);
 
-/// A relative link for a page: each path segment percent-encoded (everything but A-Z a-z 0-9
-/// - . _ ~), prefixed "./" so that a name like "a:b" is never read as a scheme.
+/// A relative path ('/'-separated) as a link a page may assign to a.href (the artifacts' index,
+/// the sweep gallery): "./" first and every segment percent-encoded (all but A-Z a-z 0-9 - . _ ~),
+/// so that no name reads as a scheme ("javascript:..."), a query ('?'), a fragment ('#') or an
+/// escape ('%').
 std::string relativeLink(const std::string& path);
 
 /// Text as it may appear in XML (and HTML): & < > " ' as entities; control characters, invalid

@@ -307,7 +307,7 @@ class Builder {
   /// problem at its line in the URDF) and kept in Scene::urdf for the compile step; its links,
   /// and its drives when Drives asks for them, become placeholder components keyed
   /// IMPORTKEY.link and IMPORTKEY.joint, so that Refs (cameras, sensors, schedules) reach them.
-  void readUrdf(int index, const std::string& path, const SourceLoc& at, const std::string& what) {
+  void readUrdf(int index, const std::string& path, const SourceLoc& at, const What& what) {
     std::string text, err;
     bool too_large = false;
     auto pre = preloaded_.find(path);

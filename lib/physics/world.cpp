@@ -93,6 +93,8 @@ WorldImpl::~WorldImpl() {
   if (sensorSpace) dSpaceDestroy(sensorSpace);
   if (ray) dGeomDestroy(ray);
   if (rayReach) dGeomDestroy(rayReach);
+  for (dGeomID r : rayScene.rays) dGeomDestroy(r);  // the threads' rays (rays.cpp), in no space
+  if (rayScene.cleaner) dGeomDestroy(rayScene.cleaner);
   for (dTriMeshDataID d : triMeshData)  // after their geoms
     if (d) dGeomTriMeshDataDestroy(d);
   if (world) dWorldDestroy(world);

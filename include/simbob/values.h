@@ -180,6 +180,9 @@ void appendNumber(std::string& out, double d);
 /// numbers people read in messages; negative zero is "0". Never locale-dependent.
 std::string formatApprox(double d);
 
+/// Text for an XML attribute value or element text (or HTML): & < > " written as entities.
+std::string escapeXml(const std::string& s);
+
 /// formatNumber for a number in a message: negative zero (-1e-320 * 1e-10, a rotated zero) is
 /// written "0", a sign that means nothing to the reader.
 std::string formatReadable(double d);

@@ -588,30 +588,6 @@ void checkCycles(const Scene& scene, Diagnostics& diag) {
   }
 }
 
-/// XML text with its special characters escaped (a key or a file name inside an attribute).
-std::string xmlEscape(const std::string& s) {
-  std::string out;
-  for (char ch : s) {
-    switch (ch) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += ch;
-    }
-  }
-  return out;
-}
-
 /// A bare URDF is a scene of its own (docs/urdf.md): a ground plane at the robot's z = 0 and one
 /// RCImportURDF keyed by the robot's name, so that both ways share one path.
 std::string urdfScene(const std::string& name, const std::string& text) {
@@ -620,8 +596,8 @@ std::string urdfScene(const std::string& name, const std::string& text) {
   if (doc.load_buffer(text.data(), text.size())) robot = doc.document_element().attribute("name").value();
   robot = urdfKey(robot.empty() ? "robot" : robot);
   const std::string ground = robot == "Ground" ? "Floor" : "Ground";
-  return "<Simulation><ComponentList><RCGround Key=\"" + ground + "\"/><RCImportURDF Key=\"" + xmlEscape(robot) +
-         "\"><File Value=\"" + xmlEscape(std::filesystem::path(name).filename().string()) +
+  return "<Simulation><ComponentList><RCGround Key=\"" + ground + "\"/><RCImportURDF Key=\"" + escapeXml(robot) +
+         "\"><File Value=\"" + escapeXml(std::filesystem::path(name).filename().string()) +
          "\"/><AboveGround Value=\"true\"/></RCImportURDF></ComponentList></Simulation>";
 }
 

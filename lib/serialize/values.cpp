@@ -408,6 +408,30 @@ std::string formatNumber(double d) {
 
 std::string formatReadable(double d) { return formatNumber(d == 0 ? 0.0 : d); }
 
+std::string escapeXml(const std::string& s) {
+  std::string out;
+  out.reserve(s.size());
+  for (char ch : s) {
+    switch (ch) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += ch;
+    }
+  }
+  return out;
+}
+
 std::string formatApprox(double d) {
   if (d == 0) d = 0.0;
   char buf[32];

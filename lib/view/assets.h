@@ -15,8 +15,6 @@ extern const char* const kGalleryHtml;  ///< lib/view/gallery.html
 /// The template with each `{{NAME}}` marker replaced by its value (markers are looked for in the
 /// template only, never in the values put in); a marker without a value stays as it is.
 std::string fill(const std::string& page, const std::vector<std::pair<std::string, std::string>>& values);
-/// Text for an HTML element or attribute: & < > " escaped.
-std::string escapeHtml(const std::string& s);
 /// Text for inside a <script> element: never "</script" nor "<!--" (every '<' as \u003c, which
 /// JSON reads back as '<').
 std::string scriptSafe(const std::string& s);

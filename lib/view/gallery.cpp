@@ -6,6 +6,7 @@
 
 #include "simbob/tool/replay_page.h"
 #include "simbob/tool/test_report.h"
+#include "simbob/values.h"
 #include "view/assets.h"
 
 namespace simbob {
@@ -22,7 +23,7 @@ std::string sweepGalleryHtml(const std::string& title, const std::vector<std::st
                           {"fields", c.fields},
                           {"page", c.page.empty() ? "" : relativeLink(c.page)}});
   return view::fill(view::kGalleryHtml,
-                    {{"TITLE", view::escapeHtml(title)},
+                    {{"TITLE", escapeXml(title)},
                      {"DATA", view::scriptSafe(j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace))}});
 }
 

@@ -15,6 +15,7 @@
 #include "simbob/tool/files.h"
 #include "simbob/tool/png.h"
 #include "simbob/tool/replay_page.h"
+#include "simbob/values.h"
 #include "view/assets.h"
 
 namespace simbob {
@@ -436,29 +437,6 @@ std::string fill(const std::string& page, const std::vector<std::pair<std::strin
   return out;
 }
 
-std::string escapeHtml(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 // Script text must not contain "</script" (nor "<!--"): JSON escapes '<' as \u003c.
 std::string scriptSafe(const std::string& s) {
   std::string out;
@@ -505,7 +483,7 @@ bool buildViewPage(const ViewPageInput& in, std::string* html, Error* err) {
   // The embedded textures and meshes make the data most of the page: at most two copies of it
   // live at once (the data and its text, the text and the safe text, the safe text and the page).
   std::vector<std::pair<std::string, std::string>> values;
-  values.emplace_back("TITLE", view::escapeHtml(data["title"].get<std::string>()));
+  values.emplace_back("TITLE", escapeXml(data["title"].get<std::string>()));
   values.emplace_back("THREE", three + "\n" + orbit);
   values.emplace_back("VIEWER", view::kViewerJs);
   std::string text = data.dump(-1, ' ', false, json::error_handler_t::replace);

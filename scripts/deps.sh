@@ -34,6 +34,7 @@ TEST_PACKAGES=(
   chromium chromium-driver python3-selenium  # view pages driven in headless Chromium (tests/view/)
   libxml2-utils         # xmllint validates the JUnit reports against tests/ci/junit.xsd (docs/ci.md)
   python3-yaml          # tests/ci/recipes.py reads the CI recipes (.github/workflows, .gitlab-ci.yml)
+  ccache                # test.sh's two builds reuse what an earlier run on this machine compiled (scripts/build.sh)
   dart-doc              # real URDF robots with STL and DAE meshes (/usr/share/doc/dart/data/urdf; tests/urdf, tests/mesh)
 )
 

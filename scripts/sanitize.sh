@@ -22,7 +22,16 @@ export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 # Leaks of third-party libraries that simbob cannot free (each explained in the file).
 export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan.supp:print_suppressions=0}"
 
+# Line tables are all a sanitizer's stack trace needs (file:line per frame): full debug info
+# would double this build's compile and link time. ccache as in scripts/build.sh.
+launcher=()
+if command -v ccache >/dev/null; then
+  export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}"
+  launcher=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+fi
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only -DNDEBUG" \
+  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only -DNDEBUG" "${launcher[@]}" \
   -DSIMBOB_SANITIZE=ON -DSIMBOB_FUZZ=ON -DSIMBOB_WERROR=ON "$@" >/dev/null
 if ! grep -q '^CMAKE_CXX_COMPILER_ID:INTERNAL=Clang\|^CMAKE_CXX_COMPILER:.*clang' build-fuzz/CMakeCache.txt; then
   echo "sanitize: build-fuzz was configured with another compiler; remove build-fuzz and rerun" >&2

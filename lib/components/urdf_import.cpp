@@ -79,6 +79,7 @@ class Import {
     return p ? ctx_.modelKey(*p) : key_ + "." + urdfKey(name);
   }
   void checkInertia();
+  double lowestPoint(const UrdfShape& s, const Transform& t);
   void raiseAboveGround();
   void addBodies();
   void addShapes(int li);
@@ -125,6 +126,7 @@ Built Import::lower(const Transform* parent) {
   checkInertia();
   if (!ok_) return Built{};
   if (c_.get(kAboveGround)) raiseAboveGround();
+  if (!ok_) return Built{};
   addBodies();
   for (size_t li = 0; li < robot_.links.size(); ++li) addShapes(static_cast<int>(li));
   addJoints();
@@ -196,31 +198,64 @@ void Import::checkInertia() {
                     (more.empty() ? "" : " (so do " + more + ")"));
 }
 
+/// The lowest y (m) of a collision shape placed at `t` in the scene: a box's lowest corner, a
+/// sphere's centre less its radius, a cylinder's lowest rim point, a mesh's lowest vertex
+/// (+infinity for a mesh that could not be read, refused already).
+double Import::lowestPoint(const UrdfShape& s, const Transform& t) {
+  double lowest = std::numeric_limits<double>::infinity();
+  auto reach = [&](const Vec3& local) { lowest = std::min(lowest, add(t.p, rotate(t.q, local))[1]); };
+  switch (s.kind) {
+    case UrdfShape::Box:
+      for (int k = 0; k < 8; ++k)
+        reach({k & 1 ? s.size[0] / 2 : -s.size[0] / 2, k & 2 ? s.size[1] / 2 : -s.size[1] / 2,
+               k & 4 ? s.size[2] / 2 : -s.size[2] / 2});
+      return lowest;
+    case UrdfShape::Sphere:
+      return t.p[1] - s.size[0];
+    case UrdfShape::Cylinder: {  // axis along the shape's z: each end's circle dips r sin(tilt)
+      const double ay = rotate(t.q, Vec3{0, 0, 1})[1];
+      const double rim = s.size[0] * std::sqrt(std::max(0.0, 1 - ay * ay));
+      return t.p[1] - std::abs(ay) * s.size[1] / 2 - rim;
+    }
+    case UrdfShape::Mesh: {
+      const int mi = meshOf(s);
+      if (mi < 0) return lowest;
+      for (const Vec3& v : ctx_.model.meshes[static_cast<size_t>(mi)].data->vertices) reach(v);
+      return lowest;
+    }
+  }
+  return lowest;
+}
+
 /// AboveGround (a bare robot.urdf): a floating robot whose collision shapes reach below y = 0 is
-/// raised until the lowest touches it, rather than started inside the ground.
+/// raised until the lowest touches it, rather than started inside the ground. A robot fixed to
+/// the world is not raised (its base is bolted where the file puts it): one whose moving links
+/// start more than 1 mm inside the ground is refused at the deepest link's line, as ODE would
+/// tear it apart at the first step (KR5's file lays its arm along URDF +Y, in the ground).
 void Import::raiseAboveGround() {
   const int root_body = plan_.link_body[static_cast<size_t>(robot_.root)];
-  if (root_body < 0 || plan_.bodies[static_cast<size_t>(root_body)].fixed) return;
+  const bool fixed = root_body < 0 || plan_.bodies[static_cast<size_t>(root_body)].fixed;
   double lowest = std::numeric_limits<double>::infinity();
-  for (size_t li = 0; li < robot_.links.size(); ++li)
+  size_t deepest = 0;
+  for (size_t li = 0; li < robot_.links.size(); ++li) {
+    const int body = plan_.link_body[li];
+    if (fixed && (body < 0 || plan_.bodies[static_cast<size_t>(body)].fixed)) continue;
     for (const UrdfShape& s : robot_.links[li].collisions) {
-      Vec3 half = scale(s.size, 0.5);  // the shape's bounding box about its origin
-      Transform box;
-      if (s.kind == UrdfShape::Sphere) half = {s.size[0], s.size[0], s.size[0]};
-      if (s.kind == UrdfShape::Cylinder) half = {s.size[0], s.size[0], s.size[1] / 2};
-      if (s.kind == UrdfShape::Mesh) {  // the bounds of its vertices
-        const int mi = meshOf(s);
-        if (mi < 0) continue;
-        const MeshData& m = *ctx_.model.meshes[static_cast<size_t>(mi)].data;
-        half = scale(sub(m.hi, m.lo), 0.5);
-        box.p = scale(add(m.hi, m.lo), 0.5);
-      }
-      const Transform t = urdfToScene(place_, compose(compose(plan_.link_global[li], s.origin), box));
-      for (int k = 0; k < 8; ++k) {
-        const Vec3 corner{k & 1 ? half[0] : -half[0], k & 2 ? half[1] : -half[1], k & 4 ? half[2] : -half[2]};
-        lowest = std::min(lowest, add(t.p, rotate(t.q, corner))[1]);
+      const double y = lowestPoint(s, urdfToScene(place_, compose(plan_.link_global[li], s.origin)));
+      if (y < lowest) {
+        lowest = y;
+        deepest = li;
       }
     }
+  }
+  if (fixed) {
+    if (lowest < -0.001)
+      error(robot_.links[deepest].line,
+            "link '" + robot_.links[deepest].name + "' of a robot fixed to the world starts " + formatApprox(-lowest) +
+                " m inside the ground: a robot fixed to the world is not raised; place it with RCImportURDF's "
+                "Pose in a scene (is the file's up axis +Z?)");
+    return;
+  }
   if (!(lowest < 0)) return;
   place_.p[1] -= lowest;
   note(robot_.line, "the robot is raised " + formatApprox(-lowest) +

@@ -151,6 +151,12 @@ struct WorldImpl {
   /// a TriMesh geom uses (built on first use, destroyed after the geoms).
   std::vector<std::shared_ptr<const MeshData>> meshes;
   std::vector<dTriMeshDataID> triMeshData;
+  /// A hull whose mesh frame origin lies outside it, moved for ODE (geoms.cpp), per mesh.
+  struct OdeHull {
+    std::vector<double> planes, points;
+    Vec3 shift{0, 0, 0};  ///< the mean of its vertices in the mesh frame: the moved hull's origin
+  };
+  std::vector<OdeHull> odeHulls;
   std::vector<dJointID> joints;
   std::vector<JointInfo> jointInfo;
   std::vector<ActuatorState> actuators;

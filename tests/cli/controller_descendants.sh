@@ -40,6 +40,20 @@ none_left() {
   rm -f setsid.pid jobctl.pid popen.pid
 }
 
+# wait_running NAME: until the controller has started its descendants and the run NAME steps (its
+# trajectory's temporary file has rows: the peer connected and sent commands); fails after 60 s.
+# (The controller's log stays empty while it runs: Python buffers the client's output.)
+wait_running() {
+  local _ tmp
+  for _ in $(seq 1200); do
+    for tmp in "$1".csv.tmp.*; do
+      [[ -s popen.pid && -s $tmp ]] && return 0
+    done
+    sleep 0.05
+  done
+  fail "$1: the run did not start stepping with its controller within 60 s"
+}
+
 check "a run that completes (0): nothing the controller started is left"
 expect_status 0 "$SIMBOB" run "$SCENE" --duration 2 --out ok.csv -q --controller "$KEY=./spawner.sh ok" --peer-timeout 60
 none_left "exit 0"
@@ -52,8 +66,7 @@ for sig in TERM INT; do
   check "SIG$sig during the run: nothing the controller started is left"
   "$SIMBOB" run "$SCENE" --duration 100000 --out sig.csv -q --controller "$KEY=./spawner.sh wait" --peer-timeout 60 2>sig.err &
   run=$!
-  for _ in $(seq 1200); do [[ -s popen.pid && -s sig.controller.log ]] && break; sleep 0.05; done
-  sleep 0.5
+  wait_running sig
   kill -$sig $run
   status=0
   wait $run || status=$?
@@ -66,8 +79,7 @@ done
 check "simbob SIGKILLed: nothing the controller started is left within 10 s"
 "$SIMBOB" run "$SCENE" --duration 100000 --out kill.csv -q --controller "$KEY=./spawner.sh wait" --peer-timeout 60 2>kill.err &
 run=$!
-for _ in $(seq 1200); do [[ -s popen.pid && -s kill.controller.log ]] && break; sleep 0.05; done
-sleep 0.5
+wait_running kill
 kill -KILL $run
 wait $run || true
 # The keeper gives them 1 s after simbob is gone, then SIGKILL: at most a few s on a busy machine.

@@ -67,9 +67,26 @@ expect_match "wam" "$LAST_ERR" "note: robot 'wam': 9 links"
 expect_status 64 "$SIMBOB" check "$DART/wam/wam.urdf" --package herb_description
 expect_match "usage" "$LAST_ERR" "error: --package herb_description: expected NAME=DIR"
 
-check "KR5 (a space in the file name): effort=\"0\" named at each <limit> line"
-expect_status 0 "$SIMBOB" check "$DART/KR5/KR5 sixx R650.urdf"
-expect_match "kr5" "$LAST_ERR" "note: robot 'KR5sixxR650WP_description': 8 links \(6 moving bodies, 1 lumped\), 7 joints \(1 fixed, 6 revolute\)"
+check "KR5 bare: fixed to the world with its arm along URDF +Y, in the ground: refused at the deepest link's line"
+# A robot fixed to the world is not raised (AboveGround raises floating robots only); started
+# 0.169 m inside the ground ODE would tear it apart at the first step (exit 1 at t = 0.04 s).
+expect_status 65 "$SIMBOB" run "$DART/KR5/KR5 sixx R650.urdf" --duration 1 --out kr5_bare.csv
+expect_eq "refusal" "$(cat "$LAST_ERR")" \
+  "$DART/KR5/KR5 sixx R650.urdf:107: error: link 'bicep' of a robot fixed to the world starts 0.169 m inside the ground: a robot fixed to the world is not raised; place it with RCImportURDF's Pose in a scene (is the file's up axis +Z?)"
+expect_no_file kr5_bare.csv
+
+check "KR5 (a space in the file name) stood up in a scene: its summary, and effort=\"0\" named at each <limit> line"
+cat >kr5_up.xml <<XML
+<Simulation><ComponentList><RCGround Key="Ground"/>
+  <RCImportURDF Key="kr5"><File Value="$DART/KR5/KR5 sixx R650.urdf"/>
+    <Pose><RCGlobalCoordinates><Pose Value="0 0.5 0 90 0 0"/></RCGlobalCoordinates></Pose>
+    <Drives Value="position"/><MaxForce Value="500"/></RCImportURDF>
+</ComponentList></Simulation>
+XML
+expect_status 0 "$SIMBOB" check kr5_up.xml
+expect_match "kr5" "$LAST_ERR" "note: robot 'KR5sixxR650WP_description': 8 links \(6 moving bodies, 1 lumped\), 7 joints \(1 fixed, 6 revolute\), 6 drives"
+expect_eq "effort notes" "$(grep -c 'effort="0" (what exporters write when nobody set it): its drive takes MaxForce 500 N m' "$LAST_ERR")" 6
+expect_match "first effort note" "$LAST_ERR" "R650.urdf:101: note: joint 'shoulder_yaw': effort=\"0\""
 
 check "an RCImportURDF in a scene, twice; a schedule commands a drive by its Ref IMPORTKEY.joint"
 cat >arm.urdf <<'EOF'

@@ -311,15 +311,32 @@ TEST_CASE("urdf dart-doc: wam's package://herb_description is refused at its lin
   CHECK(m.joints.size() == 7);
 }
 
-TEST_CASE("urdf dart-doc: KR5 (a space in its name, root link 'world') loads fixed to the world", "[urdf][dart]") {
+TEST_CASE("urdf dart-doc: KR5 bare is refused at its deepest link's line: its arm lies in the ground", "[urdf][dart]") {
+  // The file lays the arm along URDF +Y; a robot fixed to the world is not raised.
+  Model m;
+  Diagnostics d;
+  CHECK(!loadDart("KR5/KR5 sixx R650.urdf", &m, d));
+  CHECK(firstError(d) == kDart +
+                             "/KR5/KR5 sixx R650.urdf:107: link 'bicep' of a robot fixed to the world starts 0.169 m "
+                             "inside the ground: a robot fixed to the world is not raised; place it with "
+                             "RCImportURDF's Pose in a scene (is the file's up axis +Z?)");
+  CHECK(d.errors().size() == 1);
+}
+
+TEST_CASE("urdf dart-doc: KR5 (a space in its name, root link 'world') imported stood up loads fixed to the world",
+          "[urdf][dart]") {
+  const std::string scene = std::string("<Simulation><ComponentList><RCGround Key=\"Ground\"/>") +
+                            "<RCImportURDF Key=\"kr5\"><File Value=\"" + kDart + "/KR5/KR5 sixx R650.urdf\"/>" +
+                            "<Pose><RCGlobalCoordinates><Pose Value=\"0 0.5 0 90 0 0\"/></RCGlobalCoordinates></Pose>" +
+                            "</RCImportURDF></ComponentList></Simulation>";
   Model m;
   Diagnostics d;
   INFO(errorText(d));
-  REQUIRE(loadDart("KR5/KR5 sixx R650.urdf", &m, d));
+  REQUIRE(compileText(scene, "kr5.xml", &m, d));
   CHECK(m.bodies.size() == 6);  // base_link is fixed to 'world'
   CHECK(m.joints.size() == 6);
   REQUIRE(m.frames.size() == 1);
-  CHECK(m.frames[0].key == "KR5sixxR650WP_description.base_link");
+  CHECK(m.frames[0].key == "kr5.base_link");
   CHECK(m.frames[0].body == -1);
 }
 

@@ -14,9 +14,8 @@ if [[ " $* " != *" -DSIMBOB_TESTS="* ]] &&
 fi
 # With ccache (scripts/deps.sh test installs it) a rebuild on this machine, from any checkout of
 # the project (CCACHE_BASEDIR), compiles only what changed.
-if command -v ccache >/dev/null; then
-  export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}"
-  args=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache "${args[@]}")
-fi
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}"
+read -r -a launcher <<<"$(bash scripts/ccache-args.sh)"
+args=("${launcher[@]}" "${args[@]}")
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${args[@]}" >/dev/null
 cmake --build build -j"$(nproc)"

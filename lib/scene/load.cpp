@@ -361,7 +361,7 @@ class Builder {
   void pushFile(const std::string& canon) { import_stack_.push_back(canon); }
 
  private:
-  bool parseInto(const ParamSpec& p, const std::string& text, Value* out, const SourceLoc& loc, const What& what) {
+  bool parseInto(const ParamSpec& p, std::string_view text, Value* out, const SourceLoc& loc, const What& what) {
     ParseResult r = parseParam(p, text);
     if (!r) {
       diag_.error(loc, prefix(what) + r.error);
@@ -506,8 +506,10 @@ void resolveRefs(Scene& scene, Diagnostics& diag) {
         if (!l.isRef()) return;
         auto it = scene.by_qkey.find(l.ref.str());
         if (it == scene.by_qkey.end()) {
-          if (keys.empty())
+          if (keys.empty()) {  // in key order, so that the nearest of equals is always the same
             for (const auto& [k, i] : scene.by_qkey) keys.push_back(k);
+            std::sort(keys.begin(), keys.end());
+          }
           std::string near = didYouMean(l.ref.str(), keys);
           diag.error(l.loc, c.type->name + " '" + c.qkey + "': Ref '" + l.ref + "' names no component" +
                                 (near.empty() ? "" : " (did you mean '" + near + "'?)"));

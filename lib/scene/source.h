@@ -40,8 +40,8 @@ struct SourceLink {
 struct SourceValue {
   bool present = false;
   int line = 0;
-  std::string text;
-  std::string error;  ///< e.g. element without Value attribute
+  std::string_view text;  ///< into the document, which outlives the Source (no copy per value)
+  std::string error;      ///< e.g. element without Value attribute
 };
 
 /// Parameters of one component or struct in a file. Each accessor marks what it read, so that

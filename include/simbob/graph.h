@@ -131,7 +131,7 @@ struct Scene {
   std::unordered_map<std::string, int> by_qkey;
   std::vector<std::string> files;                   ///< every file read (scene first, then imports)
   std::set<int> load_failed;  ///< components with a load error in them (compile stays quiet on them)
-  std::string content_hash;   ///< FNV-1a 64 of all files' bytes, hex
+  std::string content_hash;   ///< hash of all files' bytes (fnv1a64w, docs/formats.md), hex
   /// RCImportURDF component -> the robot read from its File (lib/urdf), shared by copies.
   std::map<int, std::shared_ptr<const UrdfRobot>> urdf;
 

@@ -579,7 +579,7 @@ TEST_CASE("registry: the nearest type names of an unknown one", "[scene][registr
 
 TEST_CASE("registry: NameTable finds every name added, keeps the first of equal names", "[scene][registry]") {
   NameTable t;
-  CHECK(t.find("") == -1);  // empty table
+  CHECK(t.find("") == -1);                                                       // empty table
   for (int i = 0; i < 1000; ++i) REQUIRE(t.add("Name" + std::to_string(i), i));  // grows past its first size
   for (int i = 0; i < 1000; ++i) CHECK(t.find("Name" + std::to_string(i)) == i);
   CHECK_FALSE(t.add("Name7", 99));

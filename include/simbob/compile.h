@@ -51,7 +51,7 @@ struct LoadRequest {
 /// What loading read and found.
 struct LoadReport {
   std::vector<std::string> files;  ///< every file read: the scene first, then its imports
-  std::string content_hash;        ///< FNV-1a 64 of their bytes, hex
+  std::string content_hash;        ///< hash of their bytes (fnv1a64w, docs/formats.md), hex
   Diagnostics diagnostics;         ///< every error (file:line) and warning
 };
 

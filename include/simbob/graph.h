@@ -6,6 +6,7 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "simbob/error.h"
@@ -121,13 +122,16 @@ struct Component {
 struct Scene {
   std::string path;  ///< the scene file as given
   std::vector<Component> comps;
-  int settings = -1;                                ///< SceneSettings struct component
-  std::vector<Link> cameras;                        ///< CameraList
-  std::vector<Link> components;                     ///< ComponentList
-  std::map<std::string, int, std::less<>> by_qkey;  ///< fully qualified key -> component
-  std::vector<std::string> files;                   ///< every file read (scene first, then imports)
-  std::set<int> load_failed;  ///< components with a load error in them (compile stays quiet on them)
-  std::string content_hash;   ///< FNV-1a 64 of all files' bytes, hex
+  int settings = -1;             ///< SceneSettings struct component
+  std::vector<Link> cameras;     ///< CameraList
+  std::vector<Link> components;  ///< ComponentList
+  /// Fully qualified key -> component. Hashed: a large scene's keys share long prefixes
+  /// ("Box123.Pose"), which made every insertion into a sorted map compare them 19 times over.
+  /// Unordered: whoever lists the keys (a "did you mean") sorts them first.
+  std::unordered_map<std::string, int> by_qkey;
+  std::vector<std::string> files;  ///< every file read (scene first, then imports)
+  std::set<int> load_failed;       ///< components with a load error in them (compile stays quiet on them)
+  std::string content_hash;        ///< hash of all files' bytes (fnv1a64w, docs/formats.md), hex
   /// RCImportURDF component -> the robot read from its File (lib/urdf), shared by copies.
   std::map<int, std::shared_ptr<const UrdfRobot>> urdf;
 

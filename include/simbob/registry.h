@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "simbob/name_table.h"
 #include "simbob/values.h"
 
 namespace simbob {
@@ -130,12 +131,12 @@ struct TypeSpec {
   /// Same, ignoring ASCII case (INI keys are case-insensitive).
   int paramIndexIgnoreCase(std::string_view name) const;
   /// Indexes `params` by name (Registry::add does, once they are final), so that the two
-  /// lookups above take log time: a plug-in type may have thousands of parameters, and reading
+  /// lookups above take constant time (the case-insensitive one log time): a plug-in type may have thousands of parameters, and reading
   /// every one of them by name must not take quadratic time.
   void indexParams();
 
  private:
-  std::map<std::string, int, std::less<>> by_name_;        ///< name -> first index (indexParams)
+  NameTable by_name_;                                      ///< name -> first index (indexParams)
   std::map<std::string, int, std::less<>> by_lower_name_;  ///< ASCII-lowercased name -> first index
   size_t indexed_ = 0;                                     ///< params.size() when indexed (0: not)
 };
@@ -196,7 +197,8 @@ class Registry {
   std::vector<MacroSpec> macros_;
   std::vector<std::string> problems_;
   std::map<Family, std::vector<ParamSpec>> family_params_;
-  std::map<std::string, size_t, std::less<>> by_name_;  // names and aliases -> index
+  std::map<std::string, size_t, std::less<>> by_name_;  // names and aliases -> index, in name order
+  NameTable by_name_hashed_;                            // the same, for find()
 };
 
 /// Registers every built-in family into `r` (explicit registration, no static initialisers);

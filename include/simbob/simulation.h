@@ -34,7 +34,7 @@ namespace simbob {
 /// What the run summary says of a run beyond its model and result.
 struct RunSummaryInput {
   std::string scene;       ///< the scene path as given
-  std::string scene_hash;  ///< FNV-1a 64 of the scene and its imports (hex)
+  std::string scene_hash;  ///< hash of the scene and its imports (fnv1a64w, docs/formats.md), hex
   double duration = 0;     ///< s asked for
   double sample_interval = 0;
   uint32_t seed = 0;

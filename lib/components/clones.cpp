@@ -3,6 +3,8 @@
 // Both lower the source body and then move all it created rigidly to their own Pose. Inside a
 // clone, keys are renamed from the original's prefix to the clone's; a clone of a clone renames
 // twice (innermost first), so every copy has keys of its own.
+#include <algorithm>
+
 #include "compile/context.h"
 #include "components/bodies.h"
 #include "components/families.h"
@@ -169,6 +171,7 @@ Built lowerClone(CompileContext& ctx, const Component& c, const Transform* paren
     std::vector<std::string> keys;
     for (const auto& [k, i] : ctx.scene.by_qkey)
       if (ctx.at(i).type->family == Family::Body && k != c.qkey) keys.push_back(k);
+    std::sort(keys.begin(), keys.end());  // by_qkey is unordered: the nearest of equals by key order
     std::string near = didYouMean(original, keys);
     ctx.errorAt(slot, c,
                 "parameter 'Original' '" + original + "' names no body" +

@@ -97,6 +97,7 @@ bool applyOverrides(Scene& scene, const std::vector<Override>& overrides, Diagno
       std::vector<std::string> keys;
       keys.reserve(scene.by_qkey.size());
       for (const auto& kv : scene.by_qkey) keys.push_back(kv.first);
+      std::sort(keys.begin(), keys.end());  // by_qkey is unordered: the nearest of equals by key order
       const std::string near = didYouMean(o.key, keys);
       diag.error(at, "no component '" + quoteInput(o.key) + "' in " + scene.path +
                          (near.empty() ? "" : " (did you mean '" + near + "'?)"));

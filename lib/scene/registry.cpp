@@ -55,7 +55,7 @@ void TypeSpec::indexParams() {
   by_name_.clear();
   by_lower_name_.clear();
   for (size_t i = 0; i < params.size(); ++i) {
-    by_name_.emplace(params[i].name, static_cast<int>(i));  // emplace keeps the first of equal names
+    by_name_.add(params[i].name, static_cast<int>(i));  // keeps the first of equal names
     by_lower_name_.emplace(lowerAscii(params[i].name), static_cast<int>(i));
   }
   indexed_ = params.size();
@@ -63,8 +63,7 @@ void TypeSpec::indexParams() {
 
 int TypeSpec::paramIndex(std::string_view n) const {
   if (indexed_ != 0 && indexed_ == params.size()) {
-    auto it = by_name_.find(n);
-    return it == by_name_.end() ? -1 : it->second;
+    return by_name_.find(n);
   }
   for (size_t i = 0; i < params.size(); ++i)
     if (params[i].name == n) return static_cast<int>(i);
@@ -105,7 +104,10 @@ bool Registry::add(TypeSpec spec) {
   if (it != family_params_.end()) spec.params.insert(spec.params.begin(), it->second.begin(), it->second.end());
   spec.indexParams();
   size_t index = types_.size();
-  for (const auto& n : names) by_name_[n] = index;
+  for (const auto& n : names) {
+    by_name_[n] = index;
+    by_name_hashed_.add(n, static_cast<int>(index));
+  }
   types_.push_back(std::move(spec));
   return true;
 }
@@ -120,8 +122,8 @@ bool Registry::addMacro(MacroSpec macro) {
 }
 
 const TypeSpec* Registry::find(std::string_view name) const {
-  auto it = by_name_.find(name);
-  return it == by_name_.end() ? nullptr : &types_[it->second];
+  const int index = by_name_hashed_.find(name);
+  return index < 0 ? nullptr : &types_[static_cast<size_t>(index)];
 }
 
 const TypeSpec* Registry::findIgnoreCase(std::string_view name) const {

@@ -24,15 +24,17 @@ inline std::string listItemName(const std::string& list_name) {
   return list_name;
 }
 
-/// What a component-valued entry says: an inline type element, a Ref, or a Macro.
+/// What a component-valued entry says: an inline type element, a Ref, or a Macro. The texts are
+/// views into the document, which outlives the Sources and links read from it: no string is
+/// made for every entry of a large scene.
 struct SourceLink {
   bool present = false;
   int line = 0;
-  std::string type;  ///< inline component's type name
-  std::string key;
+  std::string_view type;  ///< inline component's type name
+  std::string_view key;
   bool has_key = false;
-  std::string ref;
-  std::string macro;
+  std::string_view ref;
+  std::string_view macro;
   std::unique_ptr<Source> body;  ///< inline component's parameters
   std::string error;             ///< malformed entry (e.g. two type elements)
 };
@@ -40,8 +42,8 @@ struct SourceLink {
 struct SourceValue {
   bool present = false;
   int line = 0;
-  std::string text;
-  std::string error;  ///< e.g. element without Value attribute
+  std::string_view text;  ///< into the document, which outlives the Source (no copy per value)
+  std::string error;      ///< e.g. element without Value attribute
 };
 
 /// Parameters of one component or struct in a file. Each accessor marks what it read, so that

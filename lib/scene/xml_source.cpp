@@ -17,10 +17,23 @@ struct XmlDoc {
   std::vector<size_t> newlines;  // offsets of '\n', for offset -> line
   const Registry* reg = nullptr;
 
+  // Sources ask for lines in about document order: look a few lines on from the last answer
+  // before searching them all (a binary search over 50,000 lines for each element otherwise).
   int lineOf(const pugi::xml_node& n) const {
-    auto off = static_cast<size_t>(n.offset_debug());
-    return static_cast<int>(std::upper_bound(newlines.begin(), newlines.end(), off) - newlines.begin()) + 1;
+    const auto off = static_cast<size_t>(n.offset_debug());
+    size_t i = hint_;
+    if (i > 0 && newlines[i - 1] > off) i = 0;  // behind the last answer: search from the top
+    for (int step = 0; step < kLookAhead && i < newlines.size() && newlines[i] <= off; ++step) ++i;
+    if (i < newlines.size() && newlines[i] <= off)
+      i = static_cast<size_t>(std::upper_bound(newlines.begin() + static_cast<ptrdiff_t>(i), newlines.end(), off) -
+                              newlines.begin());
+    hint_ = i;
+    return static_cast<int>(i) + 1;
   }
+
+ private:
+  static constexpr int kLookAhead = 8;
+  mutable size_t hint_ = 0;  // lines before the last offset asked about
 };
 
 namespace {
@@ -106,8 +119,8 @@ class XmlSource : public Source {
 
   std::vector<std::pair<std::string, int>> unread() const override {
     std::vector<std::pair<std::string, int>> out;
-    for (pugi::xml_node c = node_.first_child(); c; c = c.next_sibling())
-      if (isElement(c) && !wasRead(c)) out.emplace_back(c.name(), doc_->lineOf(c));
+    for (const Child& k : children())
+      if (!k.read) out.emplace_back(pugi::xml_node(k.node).name(), doc_->lineOf(pugi::xml_node(k.node)));
     return out;
   }
 
@@ -117,8 +130,8 @@ class XmlSource : public Source {
     l.line = doc_->lineOf(t);
     l.type = t.name();
     for (pugi::xml_attribute a : t.attributes()) {
-      std::string an = a.name();
-      if (an == "Key") {
+      const char* an = a.name();
+      if (std::strcmp(an, "Key") == 0) {
         l.key = a.value();
         l.has_key = true;
       } else {
@@ -157,16 +170,41 @@ class XmlSource : public Source {
   }
 
   // The first not-yet-read child element called `name`; a second one stays unread and is
-  // reported as a duplicate by the builder.
+  // reported as a duplicate by the builder. The builder asks for every parameter of the type,
+  // most of them absent: the children's names are hashed once, and each question compares
+  // hashes before names.
   pugi::xml_node take(const std::string& name) {
-    for (pugi::xml_node c = node_.first_child(); c; c = c.next_sibling()) {
-      if (isElement(c) && std::strcmp(c.name(), name.c_str()) == 0 && !wasRead(c)) {
-        if (read_.empty()) read_.reserve(kReadReserve);
-        read_.push_back(c.internal_object());
-        return c;
-      }
+    const uint32_t h = nameHash(name.c_str());
+    for (Child& k : children()) {
+      if (k.read || k.hash != h) continue;
+      const pugi::xml_node c(k.node);
+      if (std::strcmp(c.name(), name.c_str()) != 0) continue;
+      k.read = true;
+      return c;
     }
     return {};
+  }
+
+  struct Child {
+    pugi::xml_node_struct* node;
+    uint32_t hash;
+    bool read;  ///< taken by a parameter
+  };
+
+  static uint32_t nameHash(const char* s) {
+    uint32_t h = 2166136261u;  // FNV-1a, 32 bits: element names are short
+    for (; *s; ++s) h = (h ^ static_cast<unsigned char>(*s)) * 16777619u;
+    return h;
+  }
+
+  // The child elements, listed on the first question.
+  std::vector<Child>& children() const {
+    if (!listed_) {
+      listed_ = true;
+      for (pugi::xml_node c = node_.first_child(); c; c = c.next_sibling())
+        if (isElement(c)) children_.push_back({c.internal_object(), nameHash(c.name()), false});
+    }
+    return children_;
   }
 
   // An element standing for a component: Ref or Macro attribute, or exactly one type element.
@@ -175,10 +213,10 @@ class XmlSource : public Source {
     l.present = true;
     l.line = doc_->lineOf(c);
     for (pugi::xml_attribute a : c.attributes()) {
-      std::string an = a.name();
-      if (an == "Ref")
+      const char* an = a.name();
+      if (std::strcmp(an, "Ref") == 0)
         l.ref = a.value();
-      else if (an == "Macro")
+      else if (std::strcmp(an, "Macro") == 0)
         l.macro = a.value();
       else
         l.error = attributeError(std::string("<") + c.name() + ">", an, {"Ref", "Macro"});
@@ -212,16 +250,10 @@ class XmlSource : public Source {
     return typeElement(first);
   }
 
-  // A child is read at most once per parameter of the type (a few dozen), so a short list
-  // searched in place beats a hash set that allocates for every child read.
-  bool wasRead(const pugi::xml_node& c) const {
-    return std::find(read_.begin(), read_.end(), c.internal_object()) != read_.end();
-  }
-
   std::shared_ptr<XmlDoc> doc_;
   pugi::xml_node node_;
-  static constexpr size_t kReadReserve = 8;   // room for the children read without regrowing
-  std::vector<pugi::xml_node_struct*> read_;  // the children read, by take()
+  mutable bool listed_ = false;
+  mutable std::vector<Child> children_;  // child elements in order, and which were read
 };
 
 // The element left open where a closing tag does not match (or the text ends): the stack of

@@ -48,7 +48,7 @@ nlohmann::ordered_json runSummary(const Model& model, const RunResult& r, const 
   nlohmann::ordered_json summary;
   summary["simbob_version"] = SIMBOB_VERSION;
   summary["scene"] = in.scene;
-  summary["scene_hash"] = "fnv1a64:" + in.scene_hash;
+  summary["scene_hash"] = "fnv1a64w:" + in.scene_hash;
   summary["status"] = runStatusName(r.status);
   summary["dt"] = r.dt;
   summary["duration"] = in.duration;

@@ -391,6 +391,18 @@ TEST_CASE("errors: dangling Ref with did-you-mean", "[scene][errors]") {
   CHECK(r.diag.errors().size() == 3);
 }
 
+// by_qkey is a hash table: of keys equally near a misspelt Ref, the message names the first in
+// key order, whatever order the table holds them in. "Mat2" and "Mat8" are both one edit from
+// "Mat5"; with 200 more keys the table's order is not the keys' order.
+TEST_CASE("errors: dangling Ref names the first of equally near keys in key order", "[scene][errors]") {
+  std::string list;
+  for (int i = 0; i < 200; ++i) list += "<RCGenericMaterial Key=\"Other" + std::to_string(i) + "\"/>";
+  Result r = run(inList(list + "<RCGenericMaterial Key=\"Mat8\"/><RCGenericMaterial Key=\"Mat2\"/>\n" +
+                        "<RCStaticRigidBody Key=\"S\"><Material Ref=\"Mat5\"/></RCStaticRigidBody>\n"));  // 4
+  CHECK_FALSE(r.loaded);
+  expectExact(r, "bad.xml:4: RCStaticRigidBody 'S': Ref 'Mat5' names no component (did you mean 'Mat2'?)");
+}
+
 TEST_CASE("errors: Ref to the wrong kind of component", "[scene][errors]") {
   Result r =
       run(inList("<RCMobileRigidBody Key=\"Ball\"><Geom><RCSphereGeom/></Geom>"

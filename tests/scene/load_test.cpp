@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 
 #include "simbob/tool/document_ini.h"
@@ -279,6 +280,42 @@ TEST_CASE("load: a scene without settings, cameras or components", "[scene][load
   CHECK(s.at(s.settings).get(ValueParam<double>{"MaxTimeStep"}) == 0.001);
   CHECK(s.files == std::vector<std::string>{"test.xml"});
   CHECK(s.content_hash.size() == 16);
+}
+
+// The content hash (docs/formats.md, "fnv1a64w") is pinned: a summary's scene_hash must not
+// change between builds or hosts for the same bytes. Values computed by hand from the definition
+// (FNV-1a's step over little-endian 8-byte words, h ^= h >> 32 after each, the tail byte-wise).
+TEST_CASE("load: the content hash of known bytes", "[scene][load]") {
+  auto hashOf = [](const std::string& text) {
+    Scene s;
+    Diagnostics d;
+    REQUIRE(loadSceneFromText(text, "test.xml", Format::Xml, testRegistry(), &s, d));
+    return s.content_hash;
+  };
+  auto reference = [](const std::string& bytes) {
+    uint64_t h = 1469598103934665603ull;
+    size_t i = 0;
+    for (; i + 8 <= bytes.size(); i += 8) {
+      uint64_t w = 0;
+      for (int k = 7; k >= 0; --k) w = (w << 8) | static_cast<unsigned char>(bytes[i + static_cast<size_t>(k)]);
+      h = (h ^ w) * 1099511628211ull;
+      h ^= h >> 32;
+    }
+    for (; i < bytes.size(); ++i) h = (h ^ static_cast<unsigned char>(bytes[i])) * 1099511628211ull;
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+    return std::string(hex);
+  };
+  const std::string text = "<Simulation/>";  // one word and five tail bytes
+  CHECK(hashOf(text) == reference(text));
+  CHECK(hashOf(text) == "f97199525c9dcf19");
+  // A change in a word's high byte (which FNV's multiply alone would keep out of the low bits) changes it.
+  // Byte 23 is the high byte of the third word.
+  const std::string a = "<Simulation><!--abcdefgh--></Simulation>", b = "<Simulation><!--abcdefgX--></Simulation>";
+  CHECK(a[23] == 'h');
+  CHECK(hashOf(a) == reference(a));
+  CHECK(hashOf(a) != hashOf(b));
+  CHECK(hashOf("<Simulation/> ") != hashOf(text));
 }
 
 // ---------------------------------------------------------------------------------- INI (4.1)

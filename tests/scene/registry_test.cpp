@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "test_registry.h"
+#include "simbob/name_table.h"
 #include "simbob/registry.h"
 #include "simbob/values.h"
 
@@ -574,4 +575,35 @@ TEST_CASE("registry: the nearest type names of an unknown one", "[scene][registr
   CHECK(reg.suggestTypes("Zzzzzzzzzzzz").empty());
   CHECK(reg.unknownTypeMessage("Zzzzzzzzzzzz", true) ==
         "unknown component type 'Zzzzzzzzzzzz'; if a plug-in defines it, load the plug-in with --plugin FILE");
+}
+
+TEST_CASE("registry: NameTable finds every name added, keeps the first of equal names", "[scene][registry]") {
+  NameTable t;
+  CHECK(t.find("") == -1);                                                       // empty table
+  for (int i = 0; i < 1000; ++i) REQUIRE(t.add("Name" + std::to_string(i), i));  // grows past its first size
+  for (int i = 0; i < 1000; ++i) CHECK(t.find("Name" + std::to_string(i)) == i);
+  CHECK_FALSE(t.add("Name7", 99));
+  CHECK(t.find("Name7") == 7);
+  CHECK(t.find("Name1000") == -1);
+  CHECK(t.find("name7") == -1);  // exact case
+  NameTable copy = t;            // holds its own names
+  t.clear();
+  CHECK(t.find("Name7") == -1);
+  CHECK(copy.find("Name7") == 7);
+  CHECK(copy.size() == 1000);
+}
+
+TEST_CASE("registry: every type and alias is found by name, and its parameters by theirs", "[scene][registry]") {
+  const Registry& reg = testRegistry();
+  for (const TypeSpec& t : reg.types()) {
+    CHECK(reg.find(t.name) == &t);
+    for (const std::string& a : t.aliases) CHECK(reg.find(a) == &t);
+    for (size_t i = 0; i < t.params.size(); ++i) {
+      const int at = t.paramIndex(t.params[i].name);
+      REQUIRE(at >= 0);
+      CHECK(t.params[static_cast<size_t>(at)].name == t.params[i].name);  // the first of equal names
+      CHECK(static_cast<size_t>(at) <= i);
+    }
+  }
+  CHECK(reg.find("RCMobileRigidBodyy") == nullptr);
 }

@@ -1,0 +1,69 @@
+// A hash table from names to small integers, built once and read often: the registry's types
+// and each type's parameters. Looked up by string_view without making a std::string, and
+// copyable (it holds its own names), unlike a map keyed by views into the table it indexes.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace simbob {
+
+class NameTable {
+ public:
+  /// Adds `name` -> `value`; keeps the first value of a name added twice. Returns whether added.
+  bool add(std::string_view name, int value) {
+    if (find(name) >= 0) return false;
+    if ((entries_.size() + 1) * 2 > slots_.size()) grow();
+    entries_.push_back({std::string(name), value});
+    place(static_cast<int32_t>(entries_.size() - 1));
+    return true;
+  }
+
+  /// The value of `name`, or -1.
+  int find(std::string_view name) const {
+    if (slots_.empty()) return -1;
+    const size_t mask = slots_.size() - 1;
+    for (size_t i = hash(name) & mask;; i = (i + 1) & mask) {
+      const int32_t e = slots_[i];
+      if (e < 0) return -1;
+      if (entries_[static_cast<size_t>(e)].first == name) return entries_[static_cast<size_t>(e)].second;
+    }
+  }
+
+  void clear() {
+    entries_.clear();
+    slots_.clear();
+  }
+  size_t size() const { return entries_.size(); }
+
+  /// FNV-1a of the name's bytes: names are short, so a simple hash is the fast one.
+  static uint64_t hash(std::string_view s) {
+    uint64_t h = 1469598103934665603ull;
+    for (unsigned char c : s) {
+      h ^= c;
+      h *= 1099511628211ull;
+    }
+    return h ^ (h >> 29);
+  }
+
+ private:
+  void place(int32_t e) {
+    const size_t mask = slots_.size() - 1;
+    size_t i = hash(entries_[static_cast<size_t>(e)].first) & mask;
+    while (slots_[i] >= 0) i = (i + 1) & mask;
+    slots_[i] = e;
+  }
+  // Open addressing at most half full: a miss ends at the first empty slot within a few probes.
+  void grow() {
+    slots_.assign(slots_.empty() ? 16 : slots_.size() * 2, -1);
+    for (size_t e = 0; e < entries_.size(); ++e) place(static_cast<int32_t>(e));
+  }
+
+  std::vector<std::pair<std::string, int>> entries_;
+  std::vector<int32_t> slots_;  ///< index into entries_, -1 empty; size a power of two
+};
+
+}  // namespace simbob

@@ -105,8 +105,12 @@ void createActuators(WorldImpl& im, const Model& model) {
     const double zero = im.jointInfo[ji].zero;
     const double lo = a.motor_sign < 0 ? zero - d.max_pos : d.min_pos - zero;
     const double hi = a.motor_sign < 0 ? zero - d.min_pos : d.max_pos - zero;
-    if (std::isfinite(lo)) setParam(im.joints[ji], kind, dParamLoStop, lo);
-    if (std::isfinite(hi)) setParam(im.joints[ji], kind, dParamHiStop, hi);
+    if (kind == JointKind::Hinge) {
+      setHingeStops(im, ji, lo, hi);  // carried by a motor of simbob's (joints.cpp)
+    } else {
+      if (std::isfinite(lo)) setParam(im.joints[ji], kind, dParamLoStop, lo);
+      if (std::isfinite(hi)) setParam(im.joints[ji], kind, dParamHiStop, hi);
+    }
   }
   if (!im.actuators.empty())
     im.beforeStep.push_back([](WorldImpl& w, double h) {

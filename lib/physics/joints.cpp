@@ -11,11 +11,13 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 // ODE's reading of a hinge angle or slider position: body 1 (the parent) relative to body 2
-// (the child), zero when the axis was set -- up to rounding. 0 for joints without an axis.
-double odePosition(dJointID j, JointKind kind) {
-  switch (kind) {
+// (the child), zero when the axis was set -- up to rounding. 0 for joints without an axis. A
+// hinge's angle is read as dJointGetHingeAngle reads it, but with a correctly rounded atan2
+// (hinge_angle.cpp): the same bits on every CPU.
+double odePosition(dJointID j, const JointInfo& info) {
+  switch (info.kind) {
     case JointKind::Hinge:
-      return dJointGetHingeAngle(j);
+      return hingeAngle(info.hinge);
     case JointKind::Slider:
       return dJointGetSliderPosition(j);
     case JointKind::BallSocket:
@@ -86,7 +88,10 @@ void createJoints(WorldImpl& im, const Model& model) {
     }
     im.joints.push_back(j);
     // A pure read (changes no ODE state): the start pose is zero exactly, not up to rounding.
-    im.jointInfo.push_back({jd.kind, odePosition(j, jd.kind)});
+    JointInfo info{jd.kind, 0.0};
+    if (jd.kind == JointKind::Hinge) info.hinge = hingeFrame(j, jd.axis);
+    info.zero = odePosition(j, info);
+    im.jointInfo.push_back(info);
     if (jd.kind == JointKind::Hinge && jd.body1 < 0 && jd.body2 >= 0) im.jointInfo.back().motor_sign = 1.0;
   }
   createJointDynamics(im, model);
@@ -101,36 +106,13 @@ void setJointParam(dJointID j, JointKind kind, int param, double value) {
     dJointSetSliderParam(j, param, value);
 }
 
-/// A hinge stop beyond +-pi (URDF limits such as +-6.25 rad): ODE compares its stops with the
-/// angle wrapped into [-pi, pi], so each step the stops are set in the turn the unwrapped angle
-/// is in -- a stop outside that turn is left open until the angle reaches its turn.
-struct WideStops {
-  size_t joint;
-  double lo, hi;  ///< rad, in ODE's motor frame, unwrapped (-inf, inf: none)
-};
-
-void setWideStops(WorldImpl& im, const WideStops& w) {
-  const JointInfo& info = im.jointInfo[w.joint];
-  // The unwrapped angle in ODE's motor frame (the frame of the stops, see createJointDynamics).
-  const double a = info.motor_sign < 0 ? info.zero - info.total : info.total - info.zero;
-  const double turn = 2 * kPi * std::floor((a + kPi) / (2 * kPi));
-  const double lo = w.lo - turn, hi = w.hi - turn;
-  dJointID j = im.joints[w.joint];
-  // Open first, so that lo <= hi holds at every moment.
-  dJointSetHingeParam(j, dParamLoStop, -dInfinity);
-  dJointSetHingeParam(j, dParamHiStop, hi <= kPi ? hi : dInfinity);
-  dJointSetHingeParam(j, dParamLoStop, lo >= -kPi ? lo : -dInfinity);
-}
-
 /// Damping (explicit: a force against the velocity of the step before) and mimic joints (the
 /// joint's motor drives it to multiplier q_leader + offset, closing the gap within kMimicSteps
 /// steps, with the leader's velocity fed forward). Copies of the JointDefs: the World may outlive
 /// the Model it was made from.
-void jointDynamics(WorldImpl& im, const std::vector<WideStops>& wide,
-                   const std::vector<std::pair<size_t, JointDef>>& damped,
+void jointDynamics(WorldImpl& im, const std::vector<std::pair<size_t, JointDef>>& damped,
                    const std::vector<std::pair<size_t, JointDef>>& mimics, double h) {
   constexpr double kMimicSteps = 5;
-  for (const WideStops& w : wide) setWideStops(im, w);
   for (const auto& [i, jd] : damped) {
     const double f = -jd.damping * wrappedJointState(im, static_cast<int>(i)).velocity;
     if (jd.kind == JointKind::Hinge)
@@ -150,19 +132,54 @@ void jointDynamics(WorldImpl& im, const std::vector<WideStops>& wide,
 
 }  // namespace
 
+// ODE's hinge tests its own stops with libm's atan2 inside dWorldStep (getInfo1), and while a
+// joint rests on a stop, the last bit of that angle reaches the stop row's error: the bytes would
+// depend on the CPU. So a hinge's stops are carried by an angular motor in user mode on the same
+// bodies and axis: ODE tests its stops against the angle simbob hands it before every step (its
+// own, correctly rounded reading, unwrapped), with the same limit row as the hinge's own (ODE's
+// addLimot). The hinge keeps its motor (drives, friction, mimics): at a stop, motor and stop are
+// two rows of the solver, not ODE's one row with the motor's force added by hand.
+void setHingeStops(WorldImpl& im, size_t i, double lo, double hi) {
+  JointInfo& info = im.jointInfo[i];
+  if (!info.stops) {
+    if (!std::isfinite(lo) && !std::isfinite(hi)) return;
+    info.stops = dJointCreateAMotor(im.world, nullptr);
+    // In ODE's order: body0 first, so that the motor is not reversed and its axis is the hinge's.
+    dJointAttach(info.stops, info.hinge.body0, info.hinge.body1);
+    dJointSetAMotorMode(info.stops, dAMotorUser);
+    dJointSetAMotorNumAxes(info.stops, 1);
+    dVector3 axis;
+    dMultiply0_331(axis, dBodyGetRotation(info.hinge.body0), info.hinge.axis1);
+    dJointSetAMotorAxis(info.stops, 0, 1, axis[0], axis[1], axis[2]);
+    im.stopJoints.push_back(i);
+  }
+  // Open first, so that lo <= hi holds at every moment (ODE ignores a stop that would break it).
+  dJointSetAMotorParam(info.stops, dParamLoStop, -dInfinity);
+  dJointSetAMotorParam(info.stops, dParamHiStop, hi);
+  dJointSetAMotorParam(info.stops, dParamLoStop, lo);
+  dJointSetAMotorAngle(info.stops, 0, info.motor_sign < 0 ? info.zero - info.total : info.total - info.zero);
+}
+
+void updateHingeStops(WorldImpl& im) {
+  for (size_t i : im.stopJoints) {
+    const JointInfo& info = im.jointInfo[i];
+    // The unwrapped angle in ODE's motor frame, the frame of the stops: hingeAngleInternal's
+    // sense, zero where ODE's reading was zero.
+    dJointSetAMotorAngle(info.stops, 0, info.motor_sign < 0 ? info.zero - info.total : info.total - info.zero);
+  }
+}
+
 void createJointDynamics(WorldImpl& im, const Model& model) {
   std::vector<std::pair<size_t, JointDef>> damped, mimics;
-  std::vector<WideStops> wide;
   for (size_t i = 0; i < model.joints.size(); ++i) {
     const JointDef& jd = model.joints[i];
     if (jd.kind != JointKind::Hinge && jd.kind != JointKind::Slider) continue;
     const JointInfo& info = im.jointInfo[i];
-    // Stops in ODE's frame, as createActuators sets a drive's (ODE's hinge stops work within +-pi).
+    // Stops in ODE's frame, as createActuators sets a drive's.
     const double lo = info.motor_sign < 0 ? info.zero - jd.hi_stop : jd.lo_stop - info.zero;
     const double hi = info.motor_sign < 0 ? info.zero - jd.lo_stop : jd.hi_stop - info.zero;
-    if (jd.kind == JointKind::Hinge && ((std::isfinite(lo) && lo < -kPi) || (std::isfinite(hi) && hi > kPi))) {
-      wide.push_back({i, lo, hi});
-      setWideStops(im, wide.back());
+    if (jd.kind == JointKind::Hinge) {
+      setHingeStops(im, i, lo, hi);
     } else {
       if (std::isfinite(lo)) setJointParam(im.joints[i], jd.kind, dParamLoStop, lo);
       if (std::isfinite(hi)) setJointParam(im.joints[i], jd.kind, dParamHiStop, hi);
@@ -174,9 +191,8 @@ void createJointDynamics(WorldImpl& im, const Model& model) {
     if (jd.damping > 0) damped.emplace_back(i, jd);
     if (jd.mimic >= 0) mimics.emplace_back(i, jd);
   }
-  if (wide.empty() && damped.empty() && mimics.empty()) return;
-  im.beforeStep.push_back(
-      [wide, damped, mimics](WorldImpl& w, double h) { jointDynamics(w, wide, damped, mimics, h); });
+  if (damped.empty() && mimics.empty()) return;
+  im.beforeStep.push_back([damped, mimics](WorldImpl& w, double h) { jointDynamics(w, damped, mimics, h); });
 }
 
 double jointSeparation(const WorldImpl& im, int i) {
@@ -204,7 +220,7 @@ JointState wrappedJointState(const WorldImpl& im, int i) {
   // ODE measures body 1 (parent) relative to body 2 (child), and handles a null body by
   // swapping internally and flipping the sign; simbob measures the child relative to the parent.
   JointState s;
-  s.position = info.zero - odePosition(j, info.kind);
+  s.position = info.zero - odePosition(j, info);
   s.velocity = -odeRate(j, info.kind);
   if (info.kind == JointKind::Hinge) {
     // ODE wraps into [-pi, pi]; subtracting the zero may step just outside it.

@@ -147,6 +147,7 @@ void World::step(double h) {
   WorldImpl& im = *impl_;
   InUse busy(im.stepping);  // before the section: a refused call must not wait for the mutex
   OdeSection ode(im.rng);
+  updateHingeStops(im);
   for (const auto& hook : im.beforeStep) hook(im, h);
   collide(im);
   if (im.quickstep) {

@@ -51,6 +51,15 @@ struct GeomInfo {
   int group;            ///< GeomDef::group: >= 0, no contacts within it
 };
 
+/// What a hinge keeps to read its angle as ODE does (hinge_angle.cpp): its bodies in ODE's order,
+/// their relative rotation when the axis was set and the axis in body0's frame.
+struct HingeFrame {
+  dBodyID body0 = nullptr, body1 = nullptr;
+  dQuaternion q_initial{1, 0, 0, 0};
+  dVector3 axis1{1, 0, 0, 0};
+  bool reverse = false;  ///< ODE's dJOINT_REVERSE: attached with a null first body
+};
+
 /// What joint state needs beyond the ODE joint: its kind and ODE's reading at the start pose.
 struct JointInfo {
   JointKind kind;
@@ -59,6 +68,10 @@ struct JointInfo {
   double last = 0.0;   ///< Hinge: the wrapped angle (rad) when total was last updated
   /// The sense of ODE's motor and stops against simbob's (ActuatorState::motor_sign).
   double motor_sign = -1.0;
+  HingeFrame hinge{};  ///< Hinge: how its angle is read (hinge_angle.cpp)
+  /// Hinge with a stop: the angular motor in user mode that carries its stops (joints.cpp,
+  /// setHingeStops), given simbob's own reading of the angle before every step; null otherwise.
+  dJointID stops = nullptr;
 };
 
 /// A sensor: its definition, its reading and what computing the next one needs (World::sensorReading).
@@ -159,6 +172,7 @@ struct WorldImpl {
   std::vector<OdeHull> odeHulls;
   std::vector<dJointID> joints;
   std::vector<JointInfo> jointInfo;
+  std::vector<size_t> stopJoints;  ///< hinges whose stops a motor carries (JointInfo::stops), in creation order
   std::vector<ActuatorState> actuators;
   std::vector<SensorState> sensors;
   HashSpacePairs hashPairs;            ///< broadphase.h: the default space's pairs, faster
@@ -227,9 +241,21 @@ JointState wrappedJointState(const WorldImpl& im, int i);
 /// Adds each hinge's change of angle over the last step to its total (after every step; a hinge
 /// must turn less than half a turn per step).
 void updateJointTotals(WorldImpl& im);
+/// Sets hinge joint i's stops, in ODE's motor frame (see createJointDynamics) and unwrapped: a
+/// stop may lie beyond +-pi (URDF limits such as +-6.25 rad). -inf / inf: none on that side.
+void setHingeStops(WorldImpl& im, size_t i, double lo, double hi);
+/// Hands every hinge's stop motor the hinge's current angle (before every step).
+void updateHingeStops(WorldImpl& im);
 /// Distance (m) between where joint i's anchor is on its first and on its second body; 0 for
 /// joints without a shared anchor (slider, fixed).
 double jointSeparation(const WorldImpl& im, int i);
+
+// hinge_angle.cpp
+HingeFrame hingeFrame(dJointID j, const Vec3& axis);
+/// dJointGetHingeAngle's reading, computed as ODE does but with the correctly rounded crAtan2.
+double hingeAngle(const HingeFrame& f);
+/// The same before ODE's sign flip for a reversed joint: the angle ODE's own stops test.
+double hingeAngleInternal(const HingeFrame& f);
 
 // actuators.cpp
 /// Sets each actuator's stops and appends the per-step drive action to beforeStep.

@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "robot/controllers.h"
+#include "simbob/cr_atan2.h"
 #include "simbob/physics.h"
 
 namespace simbob::robot {
@@ -47,7 +48,7 @@ class GoToPoint : public Party {
     const double qw = pose.q[0], qx = pose.q[1], qy = pose.q[2], qz = pose.q[3];
     const double fx = 1 - 2 * (qy * qy + qz * qz);
     const double fz = 2 * (qx * qz - qw * qy);
-    double e = std::atan2(-dz, dx) - std::atan2(-fz, fx);
+    double e = crAtan2(-dz, dx) - crAtan2(-fz, fx);
     if (e > kPi) e -= 2 * kPi;
     if (e <= -kPi) e += 2 * kPi;
     const double w = std::clamp(kGain * e, -turn_rate_, turn_rate_);

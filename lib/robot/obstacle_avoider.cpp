@@ -18,6 +18,7 @@
 #include <cmath>
 
 #include "robot/controllers.h"
+#include "simbob/cr_atan2.h"
 #include "simbob/physics.h"
 #include "simbob/transform.h"
 
@@ -32,7 +33,7 @@ class ObstacleAvoider : public Party {
     for (int i : sensors_) {
       const SensorDef& s = model.sensors[static_cast<size_t>(i)];
       const Vec3 d = rotate(s.pose.q, Vec3{0, 0, -1});
-      const double b = std::atan2(-d[2], d[0]);
+      const double b = crAtan2(-d[2], d[0]);
       cos_.push_back(std::cos(b));
       sin_.push_back(std::sin(b));
       max_range_.push_back(s.max_range);

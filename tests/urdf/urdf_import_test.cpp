@@ -363,7 +363,7 @@ TEST_CASE("urdf dart-doc: KR5 with position drives holds every joint at 0 and re
   CHECK(sim->world().joint(j).position == Approx(0.5).margin(1e-3));
 }
 
-TEST_CASE("urdf import: a revolute stop beyond 180 degrees holds (ODE's stops see wrapped angles)", "[urdf]") {
+TEST_CASE("urdf import: a revolute stop beyond 180 degrees holds (the stops see the unwrapped angle)", "[urdf]") {
   TempDir dir;
   dir.write("turn.urdf", R"(<robot name="turn">
   <link name="world"/>

@@ -9,7 +9,7 @@ cli_setup "$@"
 # (scenes/socket_robot.xml, 4 mobile bodies, needs its peer: tests/cli/socket.sh runs and checks it.)
 declare -A MOBILE=([pendulum]=1 [box_stack]=6 [chain]=5 [imported_bodies]=3 [mechanisms]=6 [bounce]=3 [robot]=4
   [two_wheel_robot]=4 [wall_stop_robot]=4 [flywheel]=1 [servo_arm]=1
-  [sliding_box]=1 [gallery]=2 [go_to_point_robot]=4 [mesh_drop]=4)
+  [sliding_box]=1 [gallery]=2 [go_to_point_robot]=4 [mesh_drop]=4 [kr5]=7 [drchubo]=52)
 
 count=0
 while read -r scene; do

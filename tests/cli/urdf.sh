@@ -123,12 +123,7 @@ turned = 2 * math.acos(min(1.0, abs(sum(a * b for a, b in zip(q0, q1)))))
 # The drive turns at the URDF's 1 rad/s to within 50 ms of the target and settles on it by 2 s.
 assert abs(turned - 1.0) < 1e-3, turned
 PY
-# examples/urdf: the KR5 holding and reaching with position drives, DRC-Hubo dropped with passive
-# joints (Debian's dart-doc meshes). Not golden scenes: their last bits depend on libm's
-# CPU-specific variants (GLIBC_TUNABLES hwcaps), so tests/cli/golden_hwcaps.sh could not hold them.
-for name in kr5 drchubo; do
-  check "examples/urdf/$name.xml: runs 10 s and moves as its comment says"
-  expect_status 0 "$SIMBOB" run "$REPO/examples/urdf/$name.xml" --duration 10 --out "$name.csv" -q
-  python3 "$CLI_DIR/scene_expectations.py" "$name" "$name.csv" || fail "$name: physical expectations"
-done
+# scenes/kr5.xml (position drives holding and reaching) and scenes/drchubo.xml (dropped with
+# passive joints) are golden scenes: tests/cli/scenes.sh checks their motion, golden_regression
+# and golden_hwcaps their bytes.
 say "ok"

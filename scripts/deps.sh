@@ -18,6 +18,7 @@ RUN_PACKAGES=(
   libjs-three           # three.js, inlined into `simbob view` pages at run time (lib/view)
   liburdfdom-dev        # URDF robots (lib/urdf; brings liburdfdom-headers-dev, libtinyxml-dev, libconsole-bridge-dev)
   libassimp-dev libqhull-dev  # mesh files (STL, OBJ, DAE) and their convex hulls (lib/mesh)
+  libmpfr-dev           # correctly rounded sin, cos and log: the same bits on every CPU (lib/compile/cr_math.cpp)
 )
 TEST_PACKAGES=(
   catch2                # unit tests

@@ -1,4 +1,4 @@
-// crAtan2 (include/simbob/cr_atan2.h): atan2 correctly rounded, from IEEE operations alone.
+// crAtan2 (include/simbob/cr_math.h): atan2 correctly rounded, from IEEE operations alone.
 //
 // The argument is reduced to q = min(|y|, |x|) / max(|y|, |x|) in [0, 1], then to
 // u = (q - c) / (1 + q c) with c = k / 64 the nearest table point, |u| <= 1/128, so that
@@ -7,7 +7,7 @@
 // units of 2^-104 relative, and the sum is rounded to double once at the end. That gives the
 // correctly rounded result unless the exact value lies within about 2^-100 relative of a midpoint
 // between two doubles; the test checks 200,000 arguments against 300-bit values.
-#include "simbob/cr_atan2.h"
+#include "simbob/cr_math.h"
 
 #include <cmath>
 
@@ -168,8 +168,8 @@ double crAtan2(double y, double x) {
       num = std::ldexp(num, -e);
       den = std::ldexp(den, -e);
     }
-    const DD q = div({num, 0}, {den, 0});  // in [2^-60, 1]
-    const int k = static_cast<int>(q.hi * 64 + 0.5);  // the nearest k / 64 (q >= 0)
+    const DD q = div({num, 0}, {den, 0});             // in [2^-60, 1]
+    const int k = static_cast<int>(std::lround(q.hi * 64));  // the nearest k / 64
     const double c = k / 64.0;
     const DD u = div(add(q, {-c, 0}), add({1, 0}, mul(q, {c, 0})));
     const DD z = mul(u, u);

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "compile/eigen.h"
+#include "simbob/cr_math.h"
 
 namespace simbob {
 
@@ -38,15 +39,23 @@ Quat quatMul(const Quat& a, const Quat& b) {
 
 Quat quatConj(const Quat& q) { return toQuat(toEigen(q).conjugate()); }
 
-Quat quatAxisAngle(const Vec3& axis, double rad) {
-  return toQuat(Eigen::Quaterniond(Eigen::AngleAxisd(rad, toEigen(axis))));
+namespace {
+// Eigen's AngleAxis to quaternion (w = cos(angle / 2), v = sin(angle / 2) axis, the axis as given),
+// with correctly rounded sin and cos (cr_math.h): libm's give other bits on other CPUs for a few
+// angles, and an initial rotation's last bit reaches the whole trajectory.
+Eigen::Quaterniond fromAxisAngle(double rad, const Eigen::Vector3d& axis) {
+  const double half = 0.5 * rad, s = crSin(half);
+  return {crCos(half), s * axis[0], s * axis[1], s * axis[2]};
 }
+}  // namespace
+
+Quat quatAxisAngle(const Vec3& axis, double rad) { return toQuat(fromAxisAngle(rad, toEigen(axis))); }
 
 Quat quatFromEulerDeg(const Triple& abc) {
   const double d = kPi / 180.0;
-  const Eigen::Quaterniond qx(Eigen::AngleAxisd(abc[0] * d, Eigen::Vector3d::UnitX()));
-  const Eigen::Quaterniond qy(Eigen::AngleAxisd(abc[1] * d, Eigen::Vector3d::UnitY()));
-  const Eigen::Quaterniond qz(Eigen::AngleAxisd(abc[2] * d, Eigen::Vector3d::UnitZ()));
+  const Eigen::Quaterniond qx = fromAxisAngle(abc[0] * d, Eigen::Vector3d::UnitX());
+  const Eigen::Quaterniond qy = fromAxisAngle(abc[1] * d, Eigen::Vector3d::UnitY());
+  const Eigen::Quaterniond qz = fromAxisAngle(abc[2] * d, Eigen::Vector3d::UnitZ());
   return toQuat(qz * (qy * qx));
 }
 
@@ -66,7 +75,7 @@ Quat quatZTo(const Vec3& d) {
   const Eigen::Vector3d axis = z.cross(e);
   const double n = axis.norm();
   // axis * (1 / n), not axis / n: the rounding of the formula this replaced.
-  return toQuat(Eigen::Quaterniond(Eigen::AngleAxisd(std::atan2(n, c), axis * (1.0 / n))));
+  return toQuat(fromAxisAngle(crAtan2(n, c), axis * (1.0 / n)));
 }
 
 // --- rigid transforms ---

@@ -59,9 +59,10 @@ void piecesOf(CompileContext& ctx, const ModelPart& p, std::vector<Piece>* out) 
       Piece e{at({0, 0, 0}), std::max({s.size[0], s.size[1], s.size[2]})};
       // Exact half-extents along the body axes: sqrt(sum_j (R_ij r_j)^2).
       Mat3 r = toMatrix(p.frame.q);
-      for (size_t i = 0; i < 3; ++i)
-        e.ext[i] = std::sqrt(std::pow(r[i * 3] * s.size[0], 2) + std::pow(r[i * 3 + 1] * s.size[1], 2) +
-                             std::pow(r[i * 3 + 2] * s.size[2], 2));
+      for (size_t i = 0; i < 3; ++i) {
+        const double x = r[i * 3] * s.size[0], y = r[i * 3 + 1] * s.size[1], z = r[i * 3 + 2] * s.size[2];
+        e.ext[i] = std::sqrt(x * x + y * y + z * z);
+      }
       out->push_back(e);
       return;
     }

@@ -14,7 +14,7 @@ extern "C" {
 #include <libqhull_r/qhull_ra.h>
 }
 
-#include "simbob/cr_atan2.h"
+#include "simbob/cr_math.h"
 #include "simbob/mesh.h"
 
 namespace simbob {
@@ -67,8 +67,7 @@ void addFacet(qhT* qh, facetT* facet, const std::vector<double>& coords, std::ma
     const Vec3 r = rel(id);
     // crAtan2: libm's atan2 rounds a few angles differently on other CPUs, and two vertices a
     // last bit apart would sort the other way round there.
-    around.emplace_back(crAtan2(r[0] * w[0] + r[1] * w[1] + r[2] * w[2], r[0] * u[0] + r[1] * u[1] + r[2] * u[2]),
-                        id);
+    around.emplace_back(crAtan2(r[0] * w[0] + r[1] * w[1] + r[2] * w[2], r[0] * u[0] + r[1] * u[1] + r[2] * u[2]), id);
   }
   std::sort(around.begin(), around.end());
   hull->planes.insert(hull->planes.end(), {n[0], n[1], n[2], -facet->offset});

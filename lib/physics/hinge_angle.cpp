@@ -6,7 +6,7 @@
 // bits (checked when this was written, over every step of the servo and URDF scenes).
 #include <cmath>
 
-#include "simbob/cr_atan2.h"
+#include "simbob/cr_math.h"
 #include "world_impl.h"
 
 namespace simbob {

@@ -107,11 +107,8 @@ void readingsOf(SensorState& s, const Transform& f, const Cast& cast) {
     s.reading[0] = rayReading(s, cast(rotate(f.q, Vec3{0, 0, -1})));
     return;
   }
-  for (int k = 0; k < d.rays; ++k) {
-    const double a = scannerRayAngle(d, k);
-    const Vec3 local{-std::sin(a), 0, -std::cos(a)};
-    s.reading[static_cast<size_t>(k)] = rayReading(s, cast(rotate(f.q, local)));
-  }
+  for (int k = 0; k < d.rays; ++k)
+    s.reading[static_cast<size_t>(k)] = rayReading(s, cast(rotate(f.q, s.ray_dirs[static_cast<size_t>(k)])));
 }
 
 /// The reach box of gatherRayCandidates: ODE's box of an axis-aligned box of side 2 * half.

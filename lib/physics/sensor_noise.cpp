@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "simbob/cr_math.h"
+
 namespace simbob {
 
 namespace {
@@ -40,11 +42,12 @@ double SensorNoise::gaussian(double sigma) {
   // Box-Muller: u1 in (0, 1] so that the logarithm is finite.
   const double u1 = 1.0 - uniform();
   const double u2 = uniform();
-  const double r = std::sqrt(-2.0 * std::log(u1));
+  // Correctly rounded log, sin and cos (cr_math.h): libm's differ between CPUs for a few draws.
+  const double r = std::sqrt(-2.0 * crLog(u1));
   const double phi = 2.0 * M_PI * u2;
-  spare_ = r * std::sin(phi);
+  spare_ = r * crSin(phi);
   has_spare_ = true;
-  return sigma * r * std::cos(phi);
+  return sigma * r * crCos(phi);
 }
 
 }  // namespace simbob

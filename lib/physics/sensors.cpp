@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "simbob/cr_math.h"
 #include "simbob/transform.h"
 #include "world_impl.h"
 
@@ -68,6 +69,11 @@ void createSensors(WorldImpl& im, const Model& model, uint32_t seed) {
     if (d.period > 0) s.period_ns = std::max<int64_t>(1, std::llround(d.period * 1e9));
     for (int gi : d.geoms) s.geoms.push_back(im.geoms[static_cast<size_t>(gi)]);
     if (d.kind == SensorKind::Plugin) createPluginSensor(im, s);
+    if (d.kind == SensorKind::Scanner)
+      for (int k = 0; k < d.rays; ++k) {
+        const double a = scannerRayAngle(d, k);
+        s.ray_dirs.push_back({-crSin(a), 0, -crCos(a)});
+      }
     im.sensors.push_back(std::move(s));
   }
   if (!im.sensors.empty()) updateSensors(im, 0.0);

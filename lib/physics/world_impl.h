@@ -85,6 +85,7 @@ struct SensorState {
   int64_t last_slot = -1;               ///< the period index (time / period) of the last update
   std::vector<dGeomID> geoms;           ///< Proximity: in WorldImpl::sensorSpace, never in the collision space
   bool touching = false;                ///< Proximity: one of its geoms touched another body at the last update
+  std::vector<Vec3> ray_dirs;           ///< Scanner: each ray's direction in the sensor frame (crSin, crCos: set once)
   Vec3 prev_vel{0, 0, 0};               ///< Imu: global velocity of the sensor point after the previous step
   bool has_prev = false;                ///< Imu: prev_vel is set (false at creation)
   std::shared_ptr<void> user;           ///< Plugin: its instance (destroyed by the plug-in's destroy())

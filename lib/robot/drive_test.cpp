@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "robot/controllers.h"
+#include "simbob/cr_math.h"
 #include "simbob/physics.h"
 
 namespace simbob::robot {
@@ -16,7 +17,7 @@ class DriveTest : public Party {
   explicit DriveTest(const DriveTestDef& c) : drive_(c.drive), variation_(c.variation), tick_(c.period) {}
   SimTime first() override { return 0; }
   SimTime onGrant(SimTime now, World& world) override {
-    world.setCommand(drive_, std::sin(2 * kPi * variation_ * toSeconds(now) / 60));
+    world.setCommand(drive_, crSin(2 * kPi * variation_ * toSeconds(now) / 60));
     return tick_.next(now);
   }
 

@@ -12,7 +12,7 @@
 #include <cmath>
 
 #include "robot/controllers.h"
-#include "simbob/cr_atan2.h"
+#include "simbob/cr_math.h"
 #include "simbob/physics.h"
 
 namespace simbob::robot {
@@ -52,7 +52,7 @@ class GoToPoint : public Party {
     if (e > kPi) e -= 2 * kPi;
     if (e <= -kPi) e += 2 * kPi;
     const double w = std::clamp(kGain * e, -turn_rate_, turn_rate_);
-    const double v = speed_ * std::max(0.0, std::cos(e));
+    const double v = speed_ * std::max(0.0, crCos(e));
     motion_->setMotion(v, w, world);
     return tick_.next(now);
   }

@@ -18,7 +18,7 @@
 #include <cmath>
 
 #include "robot/controllers.h"
-#include "simbob/cr_atan2.h"
+#include "simbob/cr_math.h"
 #include "simbob/physics.h"
 #include "simbob/transform.h"
 
@@ -34,8 +34,8 @@ class ObstacleAvoider : public Party {
       const SensorDef& s = model.sensors[static_cast<size_t>(i)];
       const Vec3 d = rotate(s.pose.q, Vec3{0, 0, -1});
       const double b = crAtan2(-d[2], d[0]);
-      cos_.push_back(std::cos(b));
-      sin_.push_back(std::sin(b));
+      cos_.push_back(crCos(b));
+      sin_.push_back(crSin(b));
       max_range_.push_back(s.max_range);
       min_range_.push_back(std::min(s.min_range, 0.999 * s.max_range));
     }

@@ -20,7 +20,7 @@
 #include <cmath>
 
 #include "robot/controllers.h"
-#include "simbob/cr_atan2.h"
+#include "simbob/cr_math.h"
 #include "simbob/physics.h"
 #include "simbob/transform.h"
 
@@ -43,12 +43,12 @@ class WallFollower : public Party {
     const double deg = kPi / 180;
     for (int k = 0; k < s.rays; ++k) {
       const double a = scannerRayAngle(s, k);
-      const Vec3 d = rotate(s.pose.q, Vec3{-std::sin(a), 0, -std::cos(a)});
+      const Vec3 d = rotate(s.pose.q, Vec3{-crSin(a), 0, -crCos(a)});
       const double b = crAtan2(-d[2], d[0]);
       if (sigma_ * b >= 45 * deg && sigma_ * b <= 170 * deg) side_rays_.push_back(k);
       if (std::fabs(b) < 25 * deg) {
         front_rays_.push_back(k);
-        front_cos_.push_back(std::cos(b));
+        front_cos_.push_back(crCos(b));
       }
     }
     max_range_ = s.max_range;

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes tests/data/cr_atan2.txt: arguments of atan2 and their correctly rounded values, computed
 with mpmath at 300 bits (Debian's python3-mpmath; a maintainer's tool, not run by the tests).
-tests/compile/cr_atan2_test.cpp checks simbob's crAtan2 against every line.
+tests/compile/cr_math_test.cpp checks simbob's crAtan2 against every line.
 
 Each line: y x atan2(y, x), as C99 hexadecimal floats. The arguments: the two of docs/ci.md where
 glibc's FMA and generic atan2 differ, points on circles of every quadrant (a hinge's quaternion

@@ -17,9 +17,10 @@ struct Mpfr53 {
     mpfr_init2(x, 53);
     mpfr_init2(r, 53);
   }
-  ~Mpfr53() {
+  ~Mpfr53() {  // at the thread's end: also MPFR's per-thread caches (the constants sin needs)
     mpfr_clear(x);
     mpfr_clear(r);
+    mpfr_free_cache2(MPFR_FREE_LOCAL_CACHE);
   }
   Mpfr53(const Mpfr53&) = delete;
   Mpfr53& operator=(const Mpfr53&) = delete;

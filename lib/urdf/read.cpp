@@ -11,13 +11,36 @@
 #include <filesystem>
 #include <mutex>
 #include <pugixml.hpp>
+#include <locale>
 #include <set>
+#include <sstream>
 
+#include "simbob/cr_math.h"
 #include "simbob/values.h"
 #include "urdf/paths.h"
 #include "urdf/urdf.h"
 
 namespace simbob {
+
+// urdfdom's Rotation::setFromRPY and normalize (urdf_model/pose.h), term for term, but with the
+// correctly rounded crSin and crCos: urdfdom's own calls go to libm, whose CPU-specific variants
+// round a few angles differently (docs/ci.md, "Hinge angles and libm's atan2").
+Quat quatFromRpy(double roll, double pitch, double yaw) {
+  const double phi = roll / 2.0, the = pitch / 2.0, psi = yaw / 2.0;
+  const double sphi = crSin(phi), cphi = crCos(phi), sthe = crSin(the), cthe = crCos(the);
+  const double spsi = crSin(psi), cpsi = crCos(psi);
+  double x = sphi * cthe * cpsi - cphi * sthe * spsi;
+  double y = cphi * sthe * cpsi + sphi * cthe * spsi;
+  double z = cphi * cthe * spsi - sphi * sthe * cpsi;
+  double w = cphi * cthe * cpsi + sphi * sthe * spsi;
+  const double n = std::sqrt(x * x + y * y + z * z + w * w);
+  if (n == 0.0) return {1, 0, 0, 0};
+  x /= n;
+  y /= n;
+  z /= n;
+  w /= n;
+  return {w, x, y, z};
+}
 
 namespace {
 
@@ -110,10 +133,27 @@ bool finite(const Transform& t) {
   return true;
 }
 
-Transform toTransform(const urdf::Pose& p) {
+// The transform of an <origin> as urdfdom parsed it into p; `element` holds the <origin> (a
+// <joint>, <visual>, <collision> or <inertial>). Its rotation is computed again from the rpy
+// text, read as urdfdom reads it (space-separated, the C locale), with quatFromRpy.
+Transform toTransform(const urdf::Pose& p, const pugi::xml_node& element) {
   Transform t;
   t.p = {p.position.x, p.position.y, p.position.z};
   t.q = {p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z};
+  const pugi::xml_attribute rpy = element.child("origin").attribute("rpy");
+  if (!rpy) return t;
+  std::istringstream in(rpy.value());
+  in.imbue(std::locale::classic());
+  double v[3];
+  int n = 0;
+  std::string piece;
+  while (in >> piece) {
+    std::istringstream one(piece);
+    one.imbue(std::locale::classic());
+    if (n == 3 || !(one >> v[n])) return t;  // urdfdom refused it, or read it otherwise: keep its value
+    ++n;
+  }
+  if (n == 3) t.q = quatFromRpy(v[0], v[1], v[2]);
   return t;
 }
 
@@ -267,7 +307,7 @@ bool Reader::resolveFile(const std::string& name, int line, const char* what, st
 
 bool Reader::readShape(const pugi::xml_node& x, const urdf::Geometry& g, const urdf::Pose& origin, UrdfShape* out) {
   out->line = lineOf(x);
-  out->origin = toTransform(origin);
+  out->origin = toTransform(origin, x);
   if (!finite(out->origin)) {
     error(x.child("origin") ? lineOf(x.child("origin")) : out->line, "<origin> must be finite");
     return false;
@@ -343,7 +383,7 @@ bool Reader::readLink(const pugi::xml_node& x, const urdf::Link& u) {
     i.line = lineOf(in);
     i.mass_line = in.child("mass") ? lineOf(in.child("mass")) : i.line;
     i.inertia_line = in.child("inertia") ? lineOf(in.child("inertia")) : i.line;
-    i.origin = toTransform(u.inertial->origin);
+    i.origin = toTransform(u.inertial->origin, in);
     if (!finite(i.origin)) {
       error(in.child("origin") ? lineOf(in.child("origin")) : i.line, "<origin> must be finite");
       ok = false;
@@ -407,7 +447,7 @@ bool Reader::readJoint(const pugi::xml_node& x, const urdf::Joint& u, const std:
   }
   j.parent = links.at(u.parent_link_name);
   j.child = links.at(u.child_link_name);
-  j.origin = toTransform(u.parent_to_joint_origin_transform);
+  j.origin = toTransform(u.parent_to_joint_origin_transform, x);
   if (!finite(j.origin)) {
     error(x.child("origin") ? lineOf(x.child("origin")) : j.line, "<origin> must be finite");
     return false;

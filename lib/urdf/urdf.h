@@ -157,5 +157,8 @@ UrdfPlan planUrdf(const UrdfRobot& robot, bool fixed_base);
 Transform urdfToScene(const Transform& place, const Transform& t);
 /// The same for a direction.
 Vec3 urdfDirToScene(const Transform& place, const Vec3& v);
+/// An <origin rpy="roll pitch yaw"> as a quaternion: urdfdom's formula, term for term, with
+/// correctly rounded sin and cos (read.cpp).
+Quat quatFromRpy(double roll, double pitch, double yaw);
 
 }  // namespace simbob

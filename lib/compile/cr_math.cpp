@@ -39,8 +39,12 @@ double correctlyRounded(Fn fn, double v) {
 
 }  // namespace
 
-double crSin(double x) { return std::isfinite(x) ? correctlyRounded(mpfr_sin, x) : std::sin(x); }
-double crCos(double x) { return std::isfinite(x) ? correctlyRounded(mpfr_cos, x) : std::cos(x); }
+// Zero (most Euler angles in a scene) is exact and needs no MPFR: sin(+-0) = +-0, cos(0) = 1.
+double crSin(double x) { return std::isfinite(x) && x != 0 ? correctlyRounded(mpfr_sin, x) : std::sin(x); }
+double crCos(double x) {
+  if (x == 0) return 1.0;
+  return std::isfinite(x) ? correctlyRounded(mpfr_cos, x) : std::cos(x);
+}
 double crLog(double x) { return std::isfinite(x) && x > 0 ? correctlyRounded(mpfr_log, x) : std::log(x); }
 
 }  // namespace simbob

@@ -40,7 +40,7 @@ void act(WorldImpl& im, size_t i, double h) {
   const size_t ji = static_cast<size_t>(d.joint);
   dJointID j = im.joints[ji];
   const JointKind kind = im.jointInfo[ji].kind;
-  const JointState s = wrappedJointState(im, d.joint);  // as ODE's stops see it, in [-pi, pi]
+  const JointState s = wrappedJointState(im, d.joint);  // in [-pi, pi], as servos always read it
   switch (d.kind) {
     case ActuatorDef::Drive: {
       // Pushing along the motion fades with speed; braking (against it) never does.

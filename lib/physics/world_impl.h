@@ -236,8 +236,8 @@ void createJoints(WorldImpl& im, const Model& model);
 void createJointDynamics(WorldImpl& im, const Model& model);
 /// Joint i's state in simbob's convention (see World::joint): a hinge's total angle, unwrapped.
 JointState jointState(const WorldImpl& im, int i);
-/// The same with a hinge's angle wrapped into [-pi, pi], as ODE reads it (the actuators' input:
-/// servos and stops work on it, as they always have).
+/// The same with a hinge's angle wrapped into [-pi, pi], as dJointGetHingeAngle reads it (the
+/// actuators' input: servos work on it, as they always have; stops see the unwrapped total).
 JointState wrappedJointState(const WorldImpl& im, int i);
 /// Adds each hinge's change of angle over the last step to its total (after every step; a hinge
 /// must turn less than half a turn per step).

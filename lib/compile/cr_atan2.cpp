@@ -168,7 +168,7 @@ double crAtan2(double y, double x) {
       num = std::ldexp(num, -e);
       den = std::ldexp(den, -e);
     }
-    const DD q = div({num, 0}, {den, 0});             // in [2^-60, 1]
+    const DD q = div({num, 0}, {den, 0});                    // in [2^-60, 1]
     const int k = static_cast<int>(std::lround(q.hi * 64));  // the nearest k / 64
     const double c = k / 64.0;
     const DD u = div(add(q, {-c, 0}), add({1, 0}, mul(q, {c, 0})));

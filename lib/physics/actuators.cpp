@@ -40,12 +40,11 @@ void act(WorldImpl& im, size_t i, double h) {
   const size_t ji = static_cast<size_t>(d.joint);
   dJointID j = im.joints[ji];
   const JointKind kind = im.jointInfo[ji].kind;
-  const JointState s = wrappedJointState(im, d.joint);  // in [-pi, pi], as servos always read it
   switch (d.kind) {
     case ActuatorDef::Drive: {
       // Pushing along the motion fades with speed; braking (against it) never does.
-      const double u = a.command;
-      const double fade = u * s.velocity > 0 ? stallFactor(std::fabs(s.velocity), d.max_velocity, d.stall) : 1.0;
+      const double u = a.command, velocity = jointVelocity(im, d.joint);
+      const double fade = u * velocity > 0 ? stallFactor(std::fabs(velocity), d.max_velocity, d.stall) : 1.0;
       a.effort = u * d.max_power * fade;
       if (kind == JointKind::Hinge)
         dJointAddHingeTorque(j, -a.effort);
@@ -54,7 +53,8 @@ void act(WorldImpl& im, size_t i, double h) {
       break;
     }
     case ActuatorDef::Servo: {
-      double error = a.command - s.position;
+      // The angle wrapped into [-pi, pi], as servos have always read it.
+      double error = a.command - wrappedJointState(im, d.joint).position;
       // A hinge without both stops may turn either way: take the shorter way round.
       if (kind == JointKind::Hinge && !(std::isfinite(d.min_pos) && std::isfinite(d.max_pos)))
         error = std::remainder(error, 2 * kPi);
@@ -69,8 +69,9 @@ void act(WorldImpl& im, size_t i, double h) {
       break;
     case ActuatorDef::Effort: {
       // URDF's velocity limit: no push along the motion at or beyond it (braking always works).
-      const bool along = a.command * s.velocity > 0;
-      a.effort = along && std::fabs(s.velocity) >= d.max_velocity ? 0.0 : a.command;
+      const double velocity = jointVelocity(im, d.joint);
+      const bool along = a.command * velocity > 0;
+      a.effort = along && std::fabs(velocity) >= d.max_velocity ? 0.0 : a.command;
       if (kind == JointKind::Hinge)
         dJointAddHingeTorque(j, -a.effort);
       else

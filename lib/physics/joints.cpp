@@ -114,7 +114,7 @@ void jointDynamics(WorldImpl& im, const std::vector<std::pair<size_t, JointDef>>
                    const std::vector<std::pair<size_t, JointDef>>& mimics, double h) {
   constexpr double kMimicSteps = 5;
   for (const auto& [i, jd] : damped) {
-    const double f = -jd.damping * wrappedJointState(im, static_cast<int>(i)).velocity;
+    const double f = -jd.damping * jointVelocity(im, static_cast<int>(i));
     if (jd.kind == JointKind::Hinge)
       dJointAddHingeTorque(im.joints[i], -f);
     else
@@ -139,6 +139,14 @@ void jointDynamics(WorldImpl& im, const std::vector<std::pair<size_t, JointDef>>
 // own, correctly rounded reading, unwrapped), with the same limit row as the hinge's own (ODE's
 // addLimot). The hinge keeps its motor (drives, friction, mimics): at a stop, motor and stop are
 // two rows of the solver, not ODE's one row with the motor's force added by hand.
+namespace {
+// A hinge's unwrapped angle in ODE's motor frame, the frame of its stops: hingeAngleInternal's
+// sense, zero where ODE's reading was zero.
+double stopFrameAngle(const JointInfo& info) {
+  return info.motor_sign < 0 ? info.zero - info.total : info.total - info.zero;
+}
+}  // namespace
+
 void setHingeStops(WorldImpl& im, size_t i, double lo, double hi) {
   JointInfo& info = im.jointInfo[i];
   if (!info.stops) {
@@ -157,16 +165,11 @@ void setHingeStops(WorldImpl& im, size_t i, double lo, double hi) {
   dJointSetAMotorParam(info.stops, dParamLoStop, -dInfinity);
   dJointSetAMotorParam(info.stops, dParamHiStop, hi);
   dJointSetAMotorParam(info.stops, dParamLoStop, lo);
-  dJointSetAMotorAngle(info.stops, 0, info.motor_sign < 0 ? info.zero - info.total : info.total - info.zero);
+  dJointSetAMotorAngle(info.stops, 0, stopFrameAngle(info));
 }
 
 void updateHingeStops(WorldImpl& im) {
-  for (size_t i : im.stopJoints) {
-    const JointInfo& info = im.jointInfo[i];
-    // The unwrapped angle in ODE's motor frame, the frame of the stops: hingeAngleInternal's
-    // sense, zero where ODE's reading was zero.
-    dJointSetAMotorAngle(info.stops, 0, info.motor_sign < 0 ? info.zero - info.total : info.total - info.zero);
-  }
+  for (size_t i : im.stopJoints) dJointSetAMotorAngle(im.jointInfo[i].stops, 0, stopFrameAngle(im.jointInfo[i]));
 }
 
 void createJointDynamics(WorldImpl& im, const Model& model) {
@@ -214,6 +217,11 @@ double jointSeparation(const WorldImpl& im, int i) {
   return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
 }
 
+double jointVelocity(const WorldImpl& im, int i) {
+  // ODE's rate is body 1 relative to body 2: the sign flips to simbob's child-relative-to-parent.
+  return -odeRate(im.joints[static_cast<size_t>(i)], im.jointInfo[static_cast<size_t>(i)].kind);
+}
+
 JointState wrappedJointState(const WorldImpl& im, int i) {
   dJointID j = im.joints[static_cast<size_t>(i)];
   const JointInfo& info = im.jointInfo[static_cast<size_t>(i)];
@@ -221,7 +229,7 @@ JointState wrappedJointState(const WorldImpl& im, int i) {
   // swapping internally and flipping the sign; simbob measures the child relative to the parent.
   JointState s;
   s.position = info.zero - odePosition(j, info);
-  s.velocity = -odeRate(j, info.kind);
+  s.velocity = jointVelocity(im, i);
   if (info.kind == JointKind::Hinge) {
     // ODE wraps into [-pi, pi]; subtracting the zero may step just outside it.
     if (s.position > kPi) s.position -= 2 * kPi;

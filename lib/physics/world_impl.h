@@ -239,6 +239,9 @@ JointState jointState(const WorldImpl& im, int i);
 /// The same with a hinge's angle wrapped into [-pi, pi], as dJointGetHingeAngle reads it (the
 /// actuators' input: servos work on it, as they always have; stops see the unwrapped total).
 JointState wrappedJointState(const WorldImpl& im, int i);
+/// Joint i's velocity alone (rad/s or m/s), simbob's sign: what a drive needs, without the
+/// angle's reading.
+double jointVelocity(const WorldImpl& im, int i);
 /// Adds each hinge's change of angle over the last step to its total (after every step; a hinge
 /// must turn less than half a turn per step).
 void updateJointTotals(WorldImpl& im);

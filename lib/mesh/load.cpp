@@ -1,20 +1,20 @@
-// Mesh files through assimp. assimp 5.2's COLLADA importer already applies the file's
-// <unit meter> and turns its up_axis to +Y in the root node's transform (checked by
-// tests/mesh/load_test.cpp on a Z-up centimetre box), so the vertices are taken with their node
-// transforms and nothing here scales or turns a COLLADA file again (dart#287). STL and OBJ carry
-// no unit or up axis: their numbers are the caller's.
-#include <assimp/Importer.hpp>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
-
+// Mesh files: assimp reads them in the module libsimbob_mesh.so (assimp_read.cpp, opened on the
+// first mesh), and the rest is done here: limits, the up-axis turn and scale, bounds, closedness,
+// masses and the convex hull. STL and OBJ carry no unit or up axis: their numbers are the
+// caller's.
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <unordered_map>
+#include <mutex>
 
+#include "mesh/mesh_module.h"
 #include "simbob/mesh.h"
+#include "simbob/tool/platform.h"
+
+// Weak: defined only where assimp_read.cpp is linked in (the Python module); null elsewhere.
+extern "C" const simbob::MeshModule* simbob_mesh_module() __attribute__((weak));
 
 namespace simbob {
 
@@ -23,56 +23,6 @@ namespace {
 Error meshError(ErrorKind kind, const std::string& path, std::string message) {
   return Error{kind, SourceLoc{FileName(path), 0}, std::move(message)};
 }
-
-struct VertexHash {
-  size_t operator()(const Vec3& v) const {
-    size_t h = 0;
-    for (double x : v) h = h * 1000003u ^ std::hash<double>()(x);
-    return h;
-  }
-};
-
-// Triangles of every mesh under `node`, vertices through the node transforms (float in assimp,
-// composed in double), identical positions merged in order of first use.
-struct Collector {
-  std::vector<Vec3> vertices;
-  std::vector<std::array<uint32_t, 3>> triangles;
-  std::unordered_map<Vec3, uint32_t, VertexHash> index;
-  size_t degenerate = 0;
-
-  uint32_t vertex(const Vec3& p) {
-    auto [it, added] = index.emplace(p, static_cast<uint32_t>(vertices.size()));
-    if (added) vertices.push_back(p);
-    return it->second;
-  }
-
-  void collect(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent) {
-    const aiMatrix4x4 m = parent * node->mTransformation;
-    for (unsigned i = 0; i < node->mNumMeshes; ++i) {
-      const aiMesh* mesh = scene->mMeshes[node->mMeshes[i]];
-      std::vector<uint32_t> ids(mesh->mNumVertices);
-      for (unsigned k = 0; k < mesh->mNumVertices; ++k) {
-        const aiVector3D& v = mesh->mVertices[k];
-        Vec3 p;
-        for (unsigned r = 0; r < 3; ++r)  // + 0.0 turns -0 into 0, so both merge (their hashes differ)
-          p[r] = static_cast<double>(m[r][0]) * v.x + static_cast<double>(m[r][1]) * v.y +
-                 static_cast<double>(m[r][2]) * v.z + static_cast<double>(m[r][3]) + 0.0;
-        ids[k] = vertex(p);
-      }
-      for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-        const aiFace& face = mesh->mFaces[f];
-        if (face.mNumIndices != 3) continue;  // points and lines bound nothing
-        const std::array<uint32_t, 3> t{ids[face.mIndices[0]], ids[face.mIndices[1]], ids[face.mIndices[2]]};
-        if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
-          ++degenerate;
-          continue;
-        }
-        triangles.push_back(t);
-      }
-    }
-    for (unsigned c = 0; c < node->mNumChildren; ++c) collect(scene, node->mChildren[c], m);
-  }
-};
 
 // Every edge used once in each direction: the triangles close a volume, wound consistently.
 bool isClosed(const std::vector<std::array<uint32_t, 3>>& triangles) {
@@ -105,6 +55,32 @@ std::vector<Vec3> hullPoints(const ConvexHull& h) {
 
 std::string count(size_t n) { return std::to_string(n); }
 
+/// The module's table, or nullptr with `why` set. A program that links assimp_read.cpp in (the
+/// Python module) has simbob_mesh_module() itself; others open libsimbob_mesh.so.
+const MeshModule* meshModule(std::string* why) {
+  static std::once_flag once;
+  static const MeshModule* module = nullptr;
+  static std::string error;
+  std::call_once(once, [] {
+    const MeshModule* m = nullptr;
+    if (&simbob_mesh_module != nullptr) {
+      m = simbob_mesh_module();
+    } else {
+      std::string not_found;
+      m = static_cast<const MeshModule*>(
+          openSimbobModule("libsimbob_mesh.so", "SIMBOB_MESH_MODULE", "simbob_mesh_module", &not_found));
+      if (!m) error = "reading meshes needs libsimbob_mesh.so (assimp): " + not_found;
+    }
+    if (m && m->abi != kMeshModuleAbi) {
+      error = "libsimbob_mesh.so is not this build's mesh module (of another ABI)";
+      m = nullptr;
+    }
+    module = m;
+  });
+  if (!module) *why = error;
+  return module;
+}
+
 }  // namespace
 
 MeshLoad loadMesh(const std::string& path, const Vec3& scale, UpAxis up) {
@@ -122,41 +98,39 @@ MeshLoad loadMesh(const std::string& path, const Vec3& scale, UpAxis up) {
       return out;
     }
   }
-  Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate);
-  if (!scene || !scene->mRootNode) {
+  std::string why;
+  const MeshModule* module = meshModule(&why);
+  if (!module) {
+    out.error = meshError(ErrorKind::MissingInput, path, why);
+    return out;
+  }
+  MeshFile file;
+  if (!module->read(path, kMaxMeshTriangles, &file)) {
+    out.error = meshError(ErrorKind::InvalidInput, path, "not a mesh assimp can read: " + file.error);
+    return out;
+  }
+  if (file.faces > kMaxMeshTriangles) {
     out.error = meshError(ErrorKind::InvalidInput, path,
-                          std::string("not a mesh assimp can read: ") + importer.GetErrorString());
+                          "has " + count(file.faces) + " triangles, more than the limit of " + count(kMaxMeshTriangles));
     return out;
   }
-  size_t faces = 0;
-  for (unsigned i = 0; i < scene->mNumMeshes; ++i) faces += scene->mMeshes[i]->mNumFaces;
-  if (faces > kMaxMeshTriangles) {
+  if (file.vertices.size() > kMaxMeshVertices) {
     out.error = meshError(ErrorKind::InvalidInput, path,
-                          "has " + count(faces) + " triangles, more than the limit of " + count(kMaxMeshTriangles));
+                          "has " + count(file.vertices.size()) + " vertices, more than the limit of " +
+                              count(kMaxMeshVertices));
     return out;
   }
-  Collector c;
-  c.collect(scene, scene->mRootNode, aiMatrix4x4());
-  if (c.vertices.size() > kMaxMeshVertices) {
-    out.error =
-        meshError(ErrorKind::InvalidInput, path,
-                  "has " + count(c.vertices.size()) + " vertices, more than the limit of " + count(kMaxMeshVertices));
-    return out;
-  }
-  if (c.triangles.empty()) {
+  if (file.triangles.empty()) {
     out.error = meshError(ErrorKind::InvalidInput, path, "holds no triangles");
     return out;
   }
-  aiString format;
-  const bool collada = scene->mMetaData && scene->mMetaData->Get("SourceAsset_Format", format) &&
-                       std::strstr(format.C_Str(), "Collada") != nullptr;
+  const bool collada = file.collada;
   auto data = std::make_shared<MeshData>();
   data->file = path;
   data->scale = scale;
   data->up = up;
-  data->vertices = std::move(c.vertices);
-  data->triangles = std::move(c.triangles);
+  data->vertices = std::move(file.vertices);
+  data->triangles = std::move(file.triangles);
   for (Vec3& v : data->vertices) {
     // assimp left a COLLADA file Y-up; a Z-up caller turns it by +90 degrees about X.
     if (collada && up == UpAxis::Z) v = {v[0], -v[2], v[1]};

@@ -1,8 +1,13 @@
 #include "simbob/tool/platform.h"
 
+#include <dlfcn.h>
 #include <gnu/libc-version.h>
+#include <unistd.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <vector>
 
 namespace simbob {
 
@@ -29,4 +34,45 @@ std::string cpuModel() {
   return "unknown";
 }
 
+namespace {
+std::string exeDir() {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string() : exe.parent_path().string();
+}
+}  // namespace
+
+const void* openSimbobModule(const char* file_name, const char* env, const char* entry, std::string* why) {
+  std::vector<std::string> candidates;
+  if (const char* e = std::getenv(env); e && *e) {
+    candidates.emplace_back(e);
+  } else {
+    const std::string dir = exeDir();
+    for (const char* rel : {"/", "/../", "/../lib/simbob/"}) candidates.push_back(dir + rel + file_name);
+  }
+  std::string tried;
+  for (const std::string& path : candidates) {
+    if (::access(path.c_str(), F_OK) != 0) {
+      tried += (tried.empty() ? "" : ", ") + path;
+      continue;
+    }
+    void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle) {
+      *why = std::string("cannot load ") + file_name + ": " + ::dlerror();
+      return nullptr;
+    }
+    using Entry = const void* (*)();
+    auto fn = reinterpret_cast<Entry>(::dlsym(handle, entry));
+    const void* table = fn ? fn() : nullptr;
+    if (!table) {
+      *why = path + " is not one of simbob's modules (" + entry + " missing)";
+      return nullptr;
+    }
+    return table;
+  }
+  *why = std::string(file_name) + " not found at " + tried;
+  return nullptr;
+}
+
 }  // namespace simbob
+

@@ -17,3 +17,16 @@ std::string libcVersion();
 std::string cpuModel();
 
 }  // namespace simbob
+
+namespace simbob {
+
+/// Opens one of simbob's own on-demand modules (libsimbob_video.so, libsimbob_mesh.so): the
+/// libraries behind them (FFmpeg, assimp) are loaded only by a run that needs them, so every
+/// other run starts without their relocations and memory. `env`, when set and not empty, names
+/// the file; otherwise the module is looked for beside the executable, one folder up (tests and
+/// benchmarks in the build tree), and in ../lib/simbob (an installed simbob). Returns what the
+/// module's `entry` function returns (called once), or nullptr with `why` set. Thread-safe for
+/// different modules; callers keep the result (see video_loader.cpp).
+const void* openSimbobModule(const char* file_name, const char* env, const char* entry, std::string* why);
+
+}  // namespace simbob

@@ -191,6 +191,8 @@ class Builder {
             if (i == kEstimateAfter) reserveComponents(comps_before, i, items.size());
             const std::string default_key(items[i].type);
             slot.list.push_back(makeLink(items[i], p, default_key, index, qkey, loc.file, what));
+            items[i].body.reset();
+            src->forget(items[i]);
           }
           break;
         }

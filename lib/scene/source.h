@@ -37,6 +37,7 @@ struct SourceLink {
   std::string_view macro;
   std::unique_ptr<Source> body;  ///< inline component's parameters
   std::string error;             ///< malformed entry (e.g. two type elements)
+  const void* entry = nullptr;   ///< where the entry is in its document, for Source::forget
 };
 
 struct SourceValue {
@@ -61,6 +62,11 @@ class Source {
   virtual std::vector<std::pair<std::string, int>> unread() const = 0;
   /// Whether parameter names match case-insensitively (INI) or exactly (XML).
   virtual bool ignoresCase() const = 0;
+  /// The builder is done with list item `item` (one of list()'s, with its body gone): the source
+  /// may free what it holds of it. The XML source drops the item's elements, so that a large
+  /// scene's document shrinks while its graph grows instead of both peaking together. The
+  /// texts of the item's views stay valid (they are in the document's text).
+  virtual void forget(const SourceLink& item) { (void)item; }
 };
 
 class Registry;

@@ -84,6 +84,12 @@ class XmlSource : public Source {
     return linkFrom(c, true);
   }
 
+  void forget(const SourceLink& item) override {
+    if (!item.entry) return;
+    pugi::xml_node n(static_cast<pugi::xml_node_struct*>(const_cast<void*>(item.entry)));
+    n.parent().remove_child(n);
+  }
+
   std::vector<SourceLink> list(const std::string& name, bool* present, int* line) override {
     std::vector<SourceLink> items;
     pugi::xml_node c = take(name);
@@ -106,6 +112,7 @@ class XmlSource : public Source {
       } else {
         items.push_back(linkFrom(item, false));
       }
+      items.back().entry = item.internal_object();
     }
     return items;
   }

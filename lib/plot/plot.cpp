@@ -1,4 +1,4 @@
-#include "simbob/tool/plot.h"
+#include "plot_module.h"  // (relative, as in the module's own build)
 
 #include "simbob/tool/files.h"
 #include "simbob/values.h"
@@ -21,12 +21,6 @@
 
 namespace simbob {
 namespace {
-
-// Tableau-like palette: distinct hues that stay readable on white and print in grey.
-constexpr PlotColor kPalette[kMaxPlotBodies] = {
-    {31, 119, 180},  {255, 127, 14}, {44, 160, 44},   {214, 39, 40},
-    {148, 103, 189}, {140, 86, 75},  {227, 119, 194}, {23, 190, 207},
-};
 
 constexpr int kMinWidth = 200;
 constexpr int kMinHeight = 300;
@@ -628,7 +622,6 @@ std::unordered_map<std::string, size_t> bodyIndex(const Trajectory& tr) {
 
 }  // namespace
 
-PlotColor plotColor(size_t i) { return kPalette[i % kMaxPlotBodies]; }
 
 namespace {
 
@@ -667,7 +660,7 @@ bool selectBodies(const Trajectory& actual, const PlotOptions& options, std::vec
 
 }  // namespace
 
-bool plotTrajectory(const Trajectory& actual, const Trajectory* golden, const PlotOptions& options,
+bool cairoPlotTrajectory(const Trajectory& actual, const Trajectory* golden, const PlotOptions& options,
                     const std::string& out_path, Error* err) {
   const std::string ext = lowerExtension(out_path);
   Format format;
@@ -779,3 +772,9 @@ bool plotTrajectory(const Trajectory& actual, const Trajectory* golden, const Pl
 }
 
 }  // namespace simbob
+
+namespace {
+const simbob::PlotModule kModule{simbob::kPlotModuleAbi, simbob::cairoPlotTrajectory};
+}  // namespace
+
+extern "C" const simbob::PlotModule* simbob_plot_module() { return &kModule; }

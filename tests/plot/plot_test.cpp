@@ -2,7 +2,8 @@
 
 #include <unistd.h>
 
-// <cairo/cairo.h>: simbob_plot links cairo privately, so its include directory is not ours.
+// <cairo/cairo.h>: the test links cairo itself to decode the plots (simbob opens it in
+// libsimbob_plot.so), through pkg-config, whose include directory is the parent of ours.
 #include <cairo/cairo.h>
 
 #include <algorithm>

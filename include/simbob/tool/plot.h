@@ -44,7 +44,14 @@ struct PlotColor {
 };
 
 /// The line colour of the i-th plotted body (fixed palette, cycles after kMaxPlotBodies).
-PlotColor plotColor(size_t i);
+inline PlotColor plotColor(size_t i) {
+  // Tableau-like palette: distinct hues that stay readable on white and print in grey.
+  constexpr PlotColor kPalette[kMaxPlotBodies] = {
+      {31, 119, 180},  {255, 127, 14}, {44, 160, 44},   {214, 39, 40},
+      {148, 103, 189}, {140, 86, 75},  {227, 119, 194}, {23, 190, 207},
+  };
+  return kPalette[i % kMaxPlotBodies];
+}
 
 /// Plots `actual` (solid lines) and, when `golden` is not null and has samples, the golden
 /// trajectory (dashed, same colour per body) into out_path. The format comes from the
@@ -56,7 +63,8 @@ PlotColor plotColor(size_t i);
 /// (with a "did you mean" suggestion), too many bodies, a size out of range or too small for
 /// the layout, or an empty actual trajectory; ErrorKind::CannotCreate (loc.file = out_path)
 /// when the file cannot be created; ErrorKind::IoError when writing it fails;
-/// ErrorKind::Internal when cairo fails.
+/// ErrorKind::Internal when cairo fails; ErrorKind::MissingInput when libsimbob_plot.so (cairo,
+/// opened on the first plot) is not there.
 bool plotTrajectory(const Trajectory& actual, const Trajectory* golden, const PlotOptions& options,
                     const std::string& out_path, Error* err);
 

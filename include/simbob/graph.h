@@ -103,19 +103,19 @@ struct Component {
   /// component's type does not have is a programming error: throws std::logic_error naming both.
   template <class T>
   const T& get(ValueParam<T> p) const {
-    return std::get<T>(typedSlot(p.name).value);
+    return std::get<T>(typedSlot(p).value);
   }
   uint32_t get(EnumParam p) const;
-  const Link& get(LinkParam p) const { return typedSlot(p.name).link; }
-  const std::vector<Link>& get(ListParam p) const { return typedSlot(p.name).list; }
+  const Link& get(LinkParam p) const { return typedSlot(p).link; }
+  const std::vector<Link>& get(ListParam p) const { return typedSlot(p).list; }
   /// The slot behind a typed name (its source line, whether it was set).
   template <class P>
   const Slot& slotOf(P p) const {
-    return typedSlot(p.name);
+    return typedSlot(p);
   }
 
  private:
-  const Slot& typedSlot(const char* name) const;
+  const Slot& typedSlot(const ParamName& p) const;
 };
 
 /// A whole scene: components in document order (imports appended as they are read).

@@ -23,10 +23,12 @@ class NameTable {
   }
 
   /// The value of `name`, or -1.
-  int find(std::string_view name) const {
+  int find(std::string_view name) const { return find(name, hash(name)); }
+  /// Same, with `h` == hash(name) computed before (at compile time for a typed parameter name).
+  int find(std::string_view name, uint64_t h) const {
     if (slots_.empty()) return -1;
     const size_t mask = slots_.size() - 1;
-    for (size_t i = hash(name) & mask;; i = (i + 1) & mask) {
+    for (size_t i = h & mask;; i = (i + 1) & mask) {
       const int32_t e = slots_[i];
       if (e < 0) return -1;
       if (entries_[static_cast<size_t>(e)].first == name) return entries_[static_cast<size_t>(e)].second;
@@ -40,10 +42,10 @@ class NameTable {
   size_t size() const { return entries_.size(); }
 
   /// FNV-1a of the name's bytes: names are short, so a simple hash is the fast one.
-  static uint64_t hash(std::string_view s) {
+  static constexpr uint64_t hash(std::string_view s) {
     uint64_t h = 1469598103934665603ull;
-    for (unsigned char c : s) {
-      h ^= c;
+    for (char c : s) {
+      h ^= static_cast<unsigned char>(c);
       h *= 1099511628211ull;
     }
     return h ^ (h >> 29);

@@ -77,21 +77,28 @@ ParseResult parseParam(const ParamSpec& p, std::string_view text);
 /// Typed names of parameters. A family file declares each parameter once as one of these and
 /// builds both its table entry and every read from it (`c.get(kWidth)`), so a misspelled name
 /// does not compile, and a read returns the type the table stores.
-template <class T>
-struct ValueParam {
+/// What the four kinds share: the name, and its hash in the types' name tables, computed once
+/// (at compile time for the family files' constants), not at every read.
+struct ParamName {
+  constexpr explicit ParamName(const char* n) : name(n), hash(NameTable::hash(n)) {}
   const char* name;
+  uint64_t hash;
+};
+template <class T>
+struct ValueParam : ParamName {
+  using ParamName::ParamName;
 };
 /// An Enum or Bitmask parameter; reads give the value (or bits).
-struct EnumParam {
-  const char* name;
+struct EnumParam : ParamName {
+  using ParamName::ParamName;
 };
 /// One component (inline, Ref or Macro) or a Struct group; reads give the Link.
-struct LinkParam {
-  const char* name;
+struct LinkParam : ParamName {
+  using ParamName::ParamName;
 };
 /// A list of components; reads give the Links in document order.
-struct ListParam {
-  const char* name;
+struct ListParam : ParamName {
+  using ParamName::ParamName;
 };
 
 struct PluginType;  // simbob/plugin.h
@@ -128,6 +135,8 @@ struct TypeSpec {
 
   /// Index of the parameter called `name` (exact case), or -1.
   int paramIndex(std::string_view name) const;
+  /// Same for a typed name, with its hash computed before.
+  int paramIndex(const ParamName& p) const;
   /// Same, ignoring ASCII case (INI keys are case-insensitive).
   int paramIndexIgnoreCase(std::string_view name) const;
   /// Indexes `params` by name (Registry::add does, once they are final), so that the two

@@ -25,13 +25,13 @@ Slot& Component::slot(std::string_view param) {
   int i = type->paramIndex(param);
   return slots.at(static_cast<size_t>(i));
 }
-const Slot& Component::typedSlot(const char* name) const {
-  int i = type->paramIndex(name);
-  if (i < 0) throw std::logic_error("internal: " + type->name + " has no parameter '" + name + "'");
+const Slot& Component::typedSlot(const ParamName& p) const {
+  int i = type->paramIndex(p);
+  if (i < 0) throw std::logic_error("internal: " + type->name + " has no parameter '" + p.name + "'");
   return slots[static_cast<size_t>(i)];
 }
 uint32_t Component::get(EnumParam p) const {
-  const Value& v = typedSlot(p.name).value;
+  const Value& v = typedSlot(p).value;
   if (auto* e = std::get_if<EnumValue>(&v)) return e->value;
   return std::get<BitmaskValue>(v).bits;
 }

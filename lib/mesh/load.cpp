@@ -110,14 +110,15 @@ MeshLoad loadMesh(const std::string& path, const Vec3& scale, UpAxis up) {
     return out;
   }
   if (file.faces > kMaxMeshTriangles) {
-    out.error = meshError(ErrorKind::InvalidInput, path,
-                          "has " + count(file.faces) + " triangles, more than the limit of " + count(kMaxMeshTriangles));
+    out.error =
+        meshError(ErrorKind::InvalidInput, path,
+                  "has " + count(file.faces) + " triangles, more than the limit of " + count(kMaxMeshTriangles));
     return out;
   }
   if (file.vertices.size() > kMaxMeshVertices) {
-    out.error = meshError(ErrorKind::InvalidInput, path,
-                          "has " + count(file.vertices.size()) + " vertices, more than the limit of " +
-                              count(kMaxMeshVertices));
+    out.error = meshError(
+        ErrorKind::InvalidInput, path,
+        "has " + count(file.vertices.size()) + " vertices, more than the limit of " + count(kMaxMeshVertices));
     return out;
   }
   if (file.triangles.empty()) {

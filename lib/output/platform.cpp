@@ -75,4 +75,3 @@ const void* openSimbobModule(const char* file_name, const char* env, const char*
 }
 
 }  // namespace simbob
-

@@ -622,7 +622,6 @@ std::unordered_map<std::string, size_t> bodyIndex(const Trajectory& tr) {
 
 }  // namespace
 
-
 namespace {
 
 /// The bodies to plot, in legend order: those named (at most kMaxPlotBodies), or the first
@@ -661,7 +660,7 @@ bool selectBodies(const Trajectory& actual, const PlotOptions& options, std::vec
 }  // namespace
 
 bool cairoPlotTrajectory(const Trajectory& actual, const Trajectory* golden, const PlotOptions& options,
-                    const std::string& out_path, Error* err) {
+                         const std::string& out_path, Error* err) {
   const std::string ext = lowerExtension(out_path);
   Format format;
   if (ext == ".png") {

@@ -7,6 +7,7 @@
 #include <set>
 #include <string>
 #include <unordered_map>
+#include <variant>
 #include <vector>
 
 #include "simbob/error.h"
@@ -75,13 +76,46 @@ struct Link {
 };
 
 /// The value of one parameter of one component. Every parameter of every component has one,
-/// so it is kept small (144 bytes): file names are shared, Ref/Macro text is out of line.
+/// so it is kept small (88 bytes; it was 144 when it held a value, a link and a list side by
+/// side): a slot holds what its parameter's kind needs, file names are shared, Ref/Macro text
+/// is out of line.
 struct Slot {
-  Value value;             ///< Value params (the default when !set)
-  Link link;               ///< Component and Struct params
-  std::vector<Link> list;  ///< List params
   SourceLoc loc;
   bool set = false;  ///< written in the file (else the default applies)
+
+  /// Value params (the default when !set). Read on a slot of another kind: an empty Value.
+  const Value& value() const {
+    const Value* v = std::get_if<Value>(&payload_);
+    return v ? *v : emptyValue();
+  }
+  /// Component and Struct params. Read on a slot of another kind: an empty Link.
+  const Link& link() const {
+    const Link* l = std::get_if<Link>(&payload_);
+    return l ? *l : emptyLink();
+  }
+  /// List params. Read on a slot of another kind: an empty list.
+  const std::vector<Link>& list() const {
+    const auto* l = std::get_if<std::vector<Link>>(&payload_);
+    return l ? *l : emptyList();
+  }
+  /// For writing: the slot becomes one of that kind (an empty one if it held another kind).
+  Value& value() { return holding<Value>(); }
+  Link& link() { return holding<Link>(); }
+  std::vector<Link>& list() { return holding<std::vector<Link>>(); }
+  /// The link or list when the slot holds one, else nullptr (walks over every parameter).
+  Link* linkIf() { return std::get_if<Link>(&payload_); }
+  std::vector<Link>* listIf() { return std::get_if<std::vector<Link>>(&payload_); }
+
+ private:
+  template <class T>
+  T& holding() {
+    if (T* t = std::get_if<T>(&payload_)) return *t;
+    return payload_.emplace<T>();
+  }
+  static const Value& emptyValue();
+  static const Link& emptyLink();
+  static const std::vector<Link>& emptyList();
+  std::variant<Value, Link, std::vector<Link>> payload_;
 };
 
 struct Component {
@@ -103,11 +137,11 @@ struct Component {
   /// component's type does not have is a programming error: throws std::logic_error naming both.
   template <class T>
   const T& get(ValueParam<T> p) const {
-    return std::get<T>(typedSlot(p).value);
+    return std::get<T>(typedSlot(p).value());
   }
   uint32_t get(EnumParam p) const;
-  const Link& get(LinkParam p) const { return typedSlot(p).link; }
-  const std::vector<Link>& get(ListParam p) const { return typedSlot(p).list; }
+  const Link& get(LinkParam p) const { return typedSlot(p).link(); }
+  const std::vector<Link>& get(ListParam p) const { return typedSlot(p).list(); }
   /// The slot behind a typed name (its source line, whether it was set).
   template <class P>
   const Slot& slotOf(P p) const {

@@ -29,8 +29,8 @@ void markInside(CompileContext& ctx, int ci) {
     if (!ctx.clone.inside.insert(i).second) continue;
     const Component& c = ctx.at(i);
     for (const Slot& s : c.slots) {
-      if (s.link.comp >= 0 && !s.link.isRef()) todo.push_back(s.link.comp);
-      for (const Link& l : s.list)
+      if (s.link().comp >= 0 && !s.link().isRef()) todo.push_back(s.link().comp);
+      for (const Link& l : s.list())
         if (l.comp >= 0 && !l.isRef()) todo.push_back(l.comp);
     }
     for (int k : c.imported) todo.push_back(k);

@@ -91,7 +91,7 @@ void lowerJoint(CompileContext& ctx, int ji, const Built& parent, const Link* po
     if (c.imported.empty()) return;  // the import failed and was reported
     const Slot& ps = c.slotOf(kPose);
     const Slot& bs = c.slotOf(kBody);
-    lowerJoint(ctx, c.imported[0], parent, ps.set ? &ps.link : pose_override, bs.set ? &bs.link : body_override);
+    lowerJoint(ctx, c.imported[0], parent, ps.set ? &ps.link() : pose_override, bs.set ? &bs.link() : body_override);
     return;
   }
   Transform frame;

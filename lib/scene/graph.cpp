@@ -10,6 +10,19 @@
 
 namespace simbob {
 
+const Value& Slot::emptyValue() {
+  static const Value v;
+  return v;
+}
+const Link& Slot::emptyLink() {
+  static const Link l;
+  return l;
+}
+const std::vector<Link>& Slot::emptyList() {
+  static const std::vector<Link> l;
+  return l;
+}
+
 namespace {
 const Slot& missingSlot() {
   static const Slot s;
@@ -31,7 +44,7 @@ const Slot& Component::typedSlot(const ParamName& p) const {
   return slots[static_cast<size_t>(i)];
 }
 uint32_t Component::get(EnumParam p) const {
-  const Value& v = typedSlot(p).value;
+  const Value& v = typedSlot(p).value();
   if (auto* e = std::get_if<EnumValue>(&v)) return e->value;
   return std::get<BitmaskValue>(v).bits;
 }
@@ -64,31 +77,31 @@ class Walker {
       if (!s.set && !fill_) continue;
       switch (p.kind) {
         case ParamKind::Value:
-          em_.value(p.name, formatValue(p.type, s.value, p.table));
+          em_.value(p.name, formatValue(p.type, s.value(), p.table));
           break;
         case ParamKind::Component:
-          if (s.link.isRef()) {
-            em_.reference(p.name, "Ref", s.link.ref);
-          } else if (!s.link.macro.empty()) {
-            em_.reference(p.name, "Macro", s.link.macro);
-          } else if (s.link.comp >= 0) {
-            const Component& child = scene_.at(s.link.comp);
+          if (s.link().isRef()) {
+            em_.reference(p.name, "Ref", s.link().ref);
+          } else if (!s.link().macro.empty()) {
+            em_.reference(p.name, "Macro", s.link().macro);
+          } else if (s.link().comp >= 0) {
+            const Component& child = scene_.at(s.link().comp);
             em_.beginComponent(p.name, child.type->name, child.has_key ? &child.key : nullptr);
-            body(s.link.comp);
+            body(s.link().comp);
             em_.end();
           }
           break;
         case ParamKind::Struct:
-          if (s.link.comp >= 0) {
+          if (s.link().comp >= 0) {
             em_.beginStruct(p.name);
-            body(s.link.comp);
+            body(s.link().comp);
             em_.end();
           }
           break;
         case ParamKind::List:
-          em_.beginList(p.name, s.list.size());
-          for (size_t i = 0; i < s.list.size(); ++i) {
-            const Link& l = s.list[i];
+          em_.beginList(p.name, s.list().size());
+          for (size_t i = 0; i < s.list().size(); ++i) {
+            const Link& l = s.list()[i];
             if (l.isRef()) {
               em_.listReference(i, "Ref", l.ref);
             } else if (!l.macro.empty()) {

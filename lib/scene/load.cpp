@@ -144,13 +144,13 @@ class Builder {
       slot.loc = loc;
       switch (p.kind) {
         case ParamKind::Value: {
-          slot.value = p.default_value;
+          slot.value() = p.default_value;
           SourceValue v = src ? src->value(p.name) : SourceValue{};
           if (v.present) {
             slot.loc = {loc.file, v.line};
             if (!v.error.empty()) {
               diag_.error(slot.loc, prefix(what) + v.error);
-            } else if (parseInto(p, v.text, &slot.value, slot.loc, what)) {
+            } else if (parseInto(p, v.text, &slot.value(), slot.loc, what)) {
               slot.set = true;
             }
           }
@@ -161,9 +161,9 @@ class Builder {
           if (l.present) {
             slot.set = true;
             slot.loc = {loc.file, l.line};
-            slot.link = makeLink(l, p, p.name, index, qkey, loc.file, what);
+            slot.link() = makeLink(l, p, p.name, index, qkey, loc.file, what);
           } else if (!p.default_type.empty()) {
-            slot.link.comp = sharedDefault(p.default_type);
+            slot.link().comp = sharedDefault(p.default_type);
           }
           break;
         }
@@ -172,11 +172,11 @@ class Builder {
           std::unique_ptr<Source> s = src ? src->structure(p.name, &line) : nullptr;
           const TypeSpec* st = reg_.find(p.struct_type);
           slot.loc = {loc.file, line};
-          slot.link.comp = build(st, s.get(), p.name, false, index, qkey, slot.loc);
+          slot.link().comp = build(st, s.get(), p.name, false, index, qkey, slot.loc);
           // An empty <SceneSettings/> sets nothing (and INI cannot even write it): set only
           // when a member is.
-          if (s && slot.link.comp >= 0)
-            for (const Slot& member : scene_.at(slot.link.comp).slots) slot.set = slot.set || member.set;
+          if (s && slot.link().comp >= 0)
+            for (const Slot& member : scene_.at(slot.link().comp).slots) slot.set = slot.set || member.set;
           break;
         }
         case ParamKind::List: {
@@ -185,12 +185,13 @@ class Builder {
           std::vector<SourceLink> items = src ? src->list(p.name, &present, &line) : std::vector<SourceLink>{};
           slot.set = present;
           slot.loc = {loc.file, line};
-          slot.list.reserve(items.size());
+          std::vector<Link>& list = slot.list();
+          list.reserve(items.size());
           const size_t comps_before = scene_.comps.size();
           for (size_t i = 0; i < items.size(); ++i) {
             if (i == kEstimateAfter) reserveComponents(comps_before, i, items.size());
             const std::string default_key(items[i].type);
-            slot.list.push_back(makeLink(items[i], p, default_key, index, qkey, loc.file, what));
+            list.push_back(makeLink(items[i], p, default_key, index, qkey, loc.file, what));
             items[i].body.reset();
             src->forget(items[i]);
           }
@@ -236,7 +237,7 @@ class Builder {
     const Component& c = scene_.at(index);
     const TypeSpec* t = c.type;
     const Slot& file_slot = c.slot("File");
-    std::string file = std::get<std::string>(file_slot.value);
+    std::string file = std::get<std::string>(file_slot.value());
     const What what(t->name + " '" + c.qkey + "'");
     SourceLoc at = file_slot.set ? file_slot.loc : loc;
     if (file.empty()) {
@@ -340,7 +341,7 @@ class Builder {
     UrdfPackages packages;
     const Slot& ps = c.slot("Packages");
     std::string problem;
-    if (!parseUrdfPackages(std::get<std::string>(ps.value), &packages, &problem)) {
+    if (!parseUrdfPackages(std::get<std::string>(ps.value()), &packages, &problem)) {
       diag_.error(ps.loc, prefix(what) + "parameter 'Packages': " + problem);
       return;
     }
@@ -353,7 +354,7 @@ class Builder {
     for (const std::string& f : robot->files) scene_.files.push_back(f);
     scene_.urdf[index] = robot;
     const std::string qkey = c.qkey;
-    const TypeSpec* drive = reg_.find(urdfDriveType(std::get<EnumValue>(c.slot("Drives").value).value));
+    const TypeSpec* drive = reg_.find(urdfDriveType(std::get<EnumValue>(c.slot("Drives").value()).value));
     std::vector<int> made;
     std::set<std::string> names;
     for (const UrdfLink& l : robot->links) {
@@ -540,8 +541,9 @@ void resolveRefs(Scene& scene, Diagnostics& diag) {
         }
         l.comp = it->second;
       };
-      resolve(c.slots[pi].link);
-      for (auto& l : c.slots[pi].list) resolve(l);
+      if (Link* l = c.slots[pi].linkIf()) resolve(*l);
+      if (std::vector<Link>* items = c.slots[pi].listIf())
+        for (auto& l : *items) resolve(l);
     }
   }
 }
@@ -567,7 +569,7 @@ void checkCycles(const Scene& scene, Diagnostics& diag) {
       while (!next && f.slot < c.slots.size()) {
         const Slot& s = c.slots[f.slot];
         const std::vector<Link>* items = nullptr;
-        if (c.type->params[f.slot].kind == ParamKind::List) items = &s.list;
+        if (c.type->params[f.slot].kind == ParamKind::List) items = &s.list();
         if (items) {
           if (f.item < items->size())
             next = &(*items)[f.item++];
@@ -577,7 +579,7 @@ void checkCycles(const Scene& scene, Diagnostics& diag) {
           }
         } else {
           if (f.item == 0) {
-            next = &s.link;
+            next = &s.link();
             f.item = 1;
           } else {
             ++f.slot;
@@ -666,16 +668,16 @@ bool loadFromText(std::string text, const std::string& name, Format format, cons
   }
   int top = b.build(reg.find("Simulation"), root.get(), "", false, -1, "", {name, root->line()});
   const Component& sim = scene->at(top);
-  scene->settings = sim.slot("SceneSettings").link.comp;
-  scene->cameras = sim.slot("CameraList").list;
-  scene->components = sim.slot("ComponentList").list;
+  scene->settings = sim.slot("SceneSettings").link().comp;
+  scene->cameras = sim.slot("CameraList").list();
+  scene->components = sim.slot("ComponentList").list();
   if (!diag.ok()) return false;
   resolveRefs(*scene, diag);
   if (!diag.ok()) return false;
   checkCycles(*scene, diag);
   // The lists above were copied before Refs were resolved.
-  scene->cameras = sim.slot("CameraList").list;
-  scene->components = sim.slot("ComponentList").list;
+  scene->cameras = sim.slot("CameraList").list();
+  scene->components = sim.slot("ComponentList").list();
   return diag.ok();
 }
 

@@ -47,7 +47,7 @@ class Resolver {
     if (pi < 0) return -1;
     const ParamKind kind = pc.type->params[static_cast<size_t>(pi)].kind;
     if (kind != ParamKind::Component && kind != ParamKind::Struct) return -1;
-    const Link& l = pc.slots[static_cast<size_t>(pi)].link;
+    const Link& l = pc.slots[static_cast<size_t>(pi)].link();
     if (l.comp < 0) return -1;
     if (l.isRef() || scene_.at(l.comp).parent == parent) return l.comp;
     // A left-out parameter's default is one component shared by every body that left it out:
@@ -58,7 +58,7 @@ class Resolver {
     copy.parent = parent;
     scene_.comps.push_back(std::move(copy));
     const int index = static_cast<int>(scene_.comps.size() - 1);
-    scene_.at(parent).slots[static_cast<size_t>(pi)].link.comp = index;
+    scene_.at(parent).slots[static_cast<size_t>(pi)].link().comp = index;
     scene_.by_qkey.emplace(key, index);
     return index;
   }
@@ -130,7 +130,7 @@ bool applyOverrides(Scene& scene, const std::vector<Override>& overrides, Diagno
       continue;
     }
     Slot& slot = c.slots[static_cast<size_t>(pi)];
-    slot.value = std::move(*r.value);
+    slot.value() = std::move(*r.value);
     slot.set = true;
     slot.loc = at;
   }

@@ -69,7 +69,7 @@ TEST_CASE("load: XML value parameters, set flags and defaults", "[scene][load]")
   CHECK(ss.get(ValueParam<double>{"MaxTimeStep"}) == 0.002);
   CHECK(ss.get(EnumParam{"Solver"}) == 1);  // enum keys are case-insensitive
   CHECK(ss.get(ValueParam<int64_t>{"SolverIterations"}) == 50);
-  CHECK(std::get<Color>(ss.slot("ClearColor").value) == Color{{0.1, 0.2, 0.3, 1}, true});
+  CHECK(std::get<Color>(ss.slot("ClearColor").value()) == Color{{0.1, 0.2, 0.3, 1}, true});
   // Unset parameters keep their defaults and are marked unset.
   CHECK_FALSE(ss.slot("ERP").set);
   CHECK(ss.get(ValueParam<double>{"ERP"}) == 0.2);
@@ -97,11 +97,11 @@ TEST_CASE("load: XML value parameters, set flags and defaults", "[scene][load]")
   CHECK(egg.get(ValueParam<double>{"RadiusX"}) == 1.5);
   CHECK(egg.get(ValueParam<double>{"RadiusY"}) == 0.5);
   const Component& red = comp(s, "Red");
-  CHECK(std::get<Color>(red.slot("Color").value) == Color{{1, 0, 0, 1}, true});
-  CHECK_FALSE(std::get<Color>(red.slot("Ambient").value).valid);
+  CHECK(std::get<Color>(red.slot("Color").value()) == Color{{1, 0, 0, 1}, true});
+  CHECK_FALSE(std::get<Color>(red.slot("Ambient").value()).valid);
   CHECK(red.get(EnumParam{"ColorMode"}) == 3);
   const Component& box = comp(s, "Box");
-  CHECK(std::get<Cuboid>(box.slot("Cuboid").value) == Cuboid{{-1, -2, -3}, {1, 2, 3}});
+  CHECK(std::get<Cuboid>(box.slot("Cuboid").value()) == Cuboid{{-1, -2, -3}, {1, 2, 3}});
   CHECK(box.get(EnumParam{"SideMask"}) == (4u | 8u));
   // String escapes of 4.3: \t is a tab, \\ a backslash.
   CHECK(comp(s, "Wood").get(ValueParam<std::string>{"Texture"}) == "wood\tgrain\\1.bmp");

@@ -129,10 +129,10 @@ inline void requireSameGraph(const Scene& a, const Scene& b) {
       const Slot& s = x.slots[p];
       const Slot& t = y.slots[p];
       CHECK(s.set == t.set);
-      CHECK(s.value == t.value);
-      CHECK(sameLink(s.link, t.link));
-      REQUIRE(s.list.size() == t.list.size());
-      for (size_t k = 0; k < s.list.size(); ++k) CHECK(sameLink(s.list[k], t.list[k]));
+      CHECK(s.value() == t.value());
+      CHECK(sameLink(s.link(), t.link()));
+      REQUIRE(s.list().size() == t.list().size());
+      for (size_t k = 0; k < s.list().size(); ++k) CHECK(sameLink(s.list()[k], t.list()[k]));
     }
   }
 }

@@ -65,6 +65,15 @@ void checkUniqueKeys(CompileContext& ctx) {
 
 bool compileScene(const Scene& scene, Model* model, Diagnostics& diag) {
   *model = Model{};
+  // Room for a body per body component and a geom per geom component, the usual count: a large
+  // scene's body list would otherwise double near its end and hold both copies at the peak.
+  size_t body_comps = 0, geom_comps = 0;
+  for (const Component& c : scene.comps) {
+    body_comps += c.type->family == Family::Body;
+    geom_comps += c.type->family == Family::Geom;
+  }
+  model->bodies.reserve(body_comps);
+  model->geoms.reserve(geom_comps);
   CompileContext ctx(scene, *model, diag);
   lowerSettings(ctx, scene.settings);
   // [0]: the registry's defaults, for geoms made without a material (none today: every body

@@ -65,15 +65,16 @@ void checkUniqueKeys(CompileContext& ctx) {
 
 bool compileScene(const Scene& scene, Model* model, Diagnostics& diag) {
   *model = Model{};
-  // Room for a body per body component and a geom per geom component, the usual count: a large
-  // scene's body list would otherwise double near its end and hold both copies at the peak.
+  // Room for a body per body component and a geom per geom component, the usual count, and a
+  // little more (a ground's plane is a geom without a component): a large scene's lists would
+  // otherwise double near their end and hold both copies at the peak.
   size_t body_comps = 0, geom_comps = 0;
   for (const Component& c : scene.comps) {
     body_comps += c.type->family == Family::Body;
     geom_comps += c.type->family == Family::Geom;
   }
-  model->bodies.reserve(body_comps);
-  model->geoms.reserve(geom_comps);
+  model->bodies.reserve(body_comps + body_comps / 32 + 16);
+  model->geoms.reserve(geom_comps + geom_comps / 32 + 16);
   CompileContext ctx(scene, *model, diag);
   lowerSettings(ctx, scene.settings);
   // [0]: the registry's defaults, for geoms made without a material (none today: every body

@@ -2,9 +2,6 @@
 // of every element (urdfdom keeps none) and for what urdfdom drops without a word (unknown
 // elements and attributes, <transmission>, <gazebo>, <calibration>, <safety_controller>), which
 // become UrdfRobot::ignored, named once each.
-#include <console_bridge/console.h>
-#include <urdf_parser/urdf_parser.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -17,8 +14,13 @@
 
 #include "simbob/cr_math.h"
 #include "simbob/values.h"
+#include "simbob/tool/platform.h"
 #include "urdf/paths.h"
 #include "urdf/urdf.h"
+#include "urdf/urdf_module.h"
+
+// Weak: defined only where urdfdom_parse.cpp is linked in (the Python module); null elsewhere.
+extern "C" const simbob::UrdfModule* simbob_urdf_module() __attribute__((weak));
 
 namespace simbob {
 
@@ -44,34 +46,30 @@ Quat quatFromRpy(double roll, double pitch, double yaw) {
 
 namespace {
 
-/// urdfdom reports through console_bridge, process-wide: its messages are collected here while
-/// one parse runs (under a lock) instead of going to stderr.
-class Collect : public console_bridge::OutputHandler {
- public:
-  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
-    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR && first.empty()) first = text;
-  }
-  std::string first;
-};
-
-urdf::ModelInterfaceSharedPtr parseWithUrdfdom(const std::string& text, std::string* message) {
-  static std::mutex mutex;
-  std::lock_guard<std::mutex> lock(mutex);
-  Collect collect;
-  console_bridge::useOutputHandler(&collect);
-  const console_bridge::LogLevel level = console_bridge::getLogLevel();
-  console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_ERROR);
-  urdf::ModelInterfaceSharedPtr model;
-  try {
-    model = urdf::parseURDF(text);
-  } catch (const std::exception& e) {
-    collect.first = e.what();
-    model.reset();
-  }
-  console_bridge::setLogLevel(level);
-  console_bridge::restorePreviousOutputHandler();
-  *message = collect.first;
-  return model;
+/// The module's table, or nullptr with `why` set. A program that links urdfdom_parse.cpp in (the
+/// Python module) has simbob_urdf_module() itself; others open libsimbob_urdf.so.
+const UrdfModule* urdfModule(std::string* why) {
+  static std::once_flag once;
+  static const UrdfModule* module = nullptr;
+  static std::string error;
+  std::call_once(once, [] {
+    const UrdfModule* m = nullptr;
+    if (&simbob_urdf_module != nullptr) {
+      m = simbob_urdf_module();
+    } else {
+      std::string not_found;
+      m = static_cast<const UrdfModule*>(
+          openSimbobModule("libsimbob_urdf.so", "SIMBOB_URDF_MODULE", "simbob_urdf_module", &not_found));
+      if (!m) error = "reading URDF needs libsimbob_urdf.so (urdfdom): " + not_found;
+    }
+    if (m && m->abi != kUrdfModuleAbi) {
+      error = "libsimbob_urdf.so is not this build's URDF module (of another ABI)";
+      m = nullptr;
+    }
+    module = m;
+  });
+  if (!module) *why = error;
+  return module;
 }
 
 class Reader {
@@ -505,7 +503,12 @@ std::shared_ptr<const UrdfRobot> Reader::read() {
     return nullptr;
   }
   std::string message;
-  urdf::ModelInterfaceSharedPtr model = parseWithUrdfdom(text_, &message);
+  const UrdfModule* urdfdom = urdfModule(&message);
+  if (!urdfdom) {
+    error(robot_->line, message, ErrorKind::MissingInput);
+    return nullptr;
+  }
+  urdf::ModelInterfaceSharedPtr model = urdfdom->parse(text_, &message);
   if (!model) {
     error(urdfdomLine(message), "not a valid URDF: " + (message.empty() ? "urdfdom refused it" : message));
     return nullptr;

@@ -131,10 +131,10 @@ tr ',|' '\n\n' <<<"$depends" | sed 's/(.*)//; s/^ *//; s/ *$//' | sed '/^$/d' | 
 if grep -E -- '-(dev|dbg)$' "$WORK/depends"; then fail "Depends names a development package"; fi
 # The packages that own the libraries the binary needs (NEEDED entries, resolved by ldd).
 # The binary and the modules it opens on demand (libsimbob_video.so: FFmpeg, libsimbob_mesh.so:
-# assimp, libsimbob_plot.so: cairo) all count.
+# assimp, libsimbob_plot.so: cairo, libsimbob_urdf.so: urdfdom) all count.
 # And the Python module, when there is one (it links no libpython: the interpreter provides it).
 ELVES=("$SIMBOB")
-for module in video mesh plot; do
+for module in video mesh plot urdf; do
   ELVES+=("$(dirname "$SIMBOB")/libsimbob_$module.so")
   [[ -f "${ELVES[-1]}" ]] || fail "no $module module beside the binary: ${ELVES[-1]}"
 done
@@ -197,11 +197,12 @@ expect_eq "installed --version" "$(cat "$LAST_OUT")" "$version_text"
 expect_status 0 "$R/usr/bin/simbob" run "$R/usr/share/simbob/scenes/$SCENE.xml" --duration 1 --quiet --out "$WORK/deb.csv"
 expect_same_file "$WORK/deb.csv" "$WORK/reference.csv"
 expect_eq "scene in the installed run's summary" "$(json_get "$WORK/deb.json" 'j["scene"]')" "$R/usr/share/simbob/scenes/$SCENE.xml"
-check "the unpacked binary opens its modules from /usr/lib/simbob: a mesh scene and a plot"
-for module in video mesh plot; do
+check "the unpacked binary opens its modules from /usr/lib/simbob: a mesh scene, a URDF scene and a plot"
+for module in video mesh plot urdf; do
   grep -qxF "/usr/lib/simbob/libsimbob_$module.so" "$WORK/contents" || fail "the package lacks libsimbob_$module.so"
 done
 expect_status 0 "$R/usr/bin/simbob" check "$R/usr/share/simbob/scenes/mesh_drop.xml"
+expect_status 0 "$R/usr/bin/simbob" check "$R/usr/share/simbob/scenes/kr5.xml"
 expect_status 0 "$R/usr/bin/simbob" plot "$WORK/deb.csv" --out "$WORK/deb.png"
 [[ -s "$WORK/deb.png" ]] || fail "the installed plot wrote no $WORK/deb.png"
 if [[ -n "$PYMOD" ]]; then

@@ -2,6 +2,7 @@
 // every Ref resolved to a component index. Knows nothing of ODE.
 #pragma once
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <set>
@@ -118,15 +119,37 @@ struct Slot {
   std::variant<Value, Link, std::vector<Link>> payload_;
 };
 
+/// Component indices that are usually none (an import's roots): one pointer, shared between
+/// copies and on the heap only when set, so that every component stays small.
+class RareIndices {
+ public:
+  RareIndices() = default;
+  RareIndices& operator=(std::vector<int> v) {
+    p_ = v.empty() ? nullptr : std::make_shared<const std::vector<int>>(std::move(v));
+    return *this;
+  }
+  bool empty() const { return !p_; }
+  size_t size() const { return p_ ? p_->size() : 0; }
+  int operator[](size_t i) const { return (*p_)[i]; }
+  const int* begin() const { return p_ ? p_->data() : nullptr; }
+  const int* end() const { return p_ ? p_->data() + p_->size() : nullptr; }
+  friend bool operator==(const RareIndices& a, const RareIndices& b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin());
+  }
+
+ private:
+  std::shared_ptr<const std::vector<int>> p_;
+};
+
 struct Component {
   const TypeSpec* type = nullptr;
   std::string key;       ///< Key attribute, or the parameter name it stands in
-  bool has_key = false;  ///< Key was written in the file
   std::string qkey;      ///< fully qualified key
   int parent = -1;       ///< owning component (-1: top level of the scene or an import root)
+  bool has_key = false;  ///< Key was written in the file
   SourceLoc loc;
-  std::vector<Slot> slots;    ///< parallel to type->params
-  std::vector<int> imported;  ///< roots read from this component's File (imports)
+  std::vector<Slot> slots;  ///< parallel to type->params
+  RareIndices imported;     ///< roots read from this component's File (imports)
 
   /// The slot of parameter `param` (generic walks: loader, writers). Lowering code reads
   /// through the typed names instead: `get(kWidth)`.

@@ -17,8 +17,8 @@ const VideoModule* videoModule(std::string* why) {
   static std::string error;
   std::call_once(once, [] {
     std::string not_found;
-    const auto* m = static_cast<const VideoModule*>(
-        openSimbobModule("libsimbob_video.so", "SIMBOB_VIDEO_MODULE", "simbob_video_module", &not_found));
+    const auto* m =
+        openModuleTable<VideoModule>("libsimbob_video.so", "SIMBOB_VIDEO_MODULE", "simbob_video_module", &not_found);
     if (!m) {
       error = "video output needs libsimbob_video.so (FFmpeg): " + not_found;
     } else if (m->abi != kVideoModuleAbi) {

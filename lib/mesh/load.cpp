@@ -67,8 +67,7 @@ const MeshModule* meshModule(std::string* why) {
       m = simbob_mesh_module();
     } else {
       std::string not_found;
-      m = static_cast<const MeshModule*>(
-          openSimbobModule("libsimbob_mesh.so", "SIMBOB_MESH_MODULE", "simbob_mesh_module", &not_found));
+      m = openModuleTable<MeshModule>("libsimbob_mesh.so", "SIMBOB_MESH_MODULE", "simbob_mesh_module", &not_found);
       if (!m) error = "reading meshes needs libsimbob_mesh.so (assimp): " + not_found;
     }
     if (m && m->abi != kMeshModuleAbi) {

@@ -42,7 +42,7 @@ std::string exeDir() {
 }
 }  // namespace
 
-const void* openSimbobModule(const char* file_name, const char* env, const char* entry, std::string* why) {
+void* openSimbobModule(const char* file_name, const char* env, const char* entry, std::string* why) {
   std::vector<std::string> candidates;
   if (const char* e = std::getenv(env); e && *e) {
     candidates.emplace_back(e);
@@ -61,14 +61,9 @@ const void* openSimbobModule(const char* file_name, const char* env, const char*
       *why = std::string("cannot load ") + file_name + ": " + ::dlerror();
       return nullptr;
     }
-    using Entry = const void* (*)();
-    auto fn = reinterpret_cast<Entry>(::dlsym(handle, entry));
-    const void* table = fn ? fn() : nullptr;
-    if (!table) {
-      *why = path + " is not one of simbob's modules (" + entry + " missing)";
-      return nullptr;
-    }
-    return table;
+    void* symbol = ::dlsym(handle, entry);
+    if (!symbol) *why = path + " is not one of simbob's modules (" + entry + " missing)";
+    return symbol;
   }
   *why = std::string(file_name) + " not found at " + tried;
   return nullptr;

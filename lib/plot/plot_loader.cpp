@@ -14,8 +14,8 @@ bool plotTrajectory(const Trajectory& actual, const Trajectory* golden, const Pl
   static std::string error;
   std::call_once(once, [] {
     std::string not_found;
-    const auto* m = static_cast<const PlotModule*>(
-        openSimbobModule("libsimbob_plot.so", "SIMBOB_PLOT_MODULE", "simbob_plot_module", &not_found));
+    const auto* m =
+        openModuleTable<PlotModule>("libsimbob_plot.so", "SIMBOB_PLOT_MODULE", "simbob_plot_module", &not_found);
     if (!m)
       error = "plotting needs libsimbob_plot.so (cairo): " + not_found;
     else if (m->abi != kPlotModuleAbi)

@@ -58,8 +58,7 @@ const UrdfModule* urdfModule(std::string* why) {
       m = simbob_urdf_module();
     } else {
       std::string not_found;
-      m = static_cast<const UrdfModule*>(
-          openSimbobModule("libsimbob_urdf.so", "SIMBOB_URDF_MODULE", "simbob_urdf_module", &not_found));
+      m = openModuleTable<UrdfModule>("libsimbob_urdf.so", "SIMBOB_URDF_MODULE", "simbob_urdf_module", &not_found);
       if (!m) error = "reading URDF needs libsimbob_urdf.so (urdfdom): " + not_found;
     }
     if (m && m->abi != kUrdfModuleAbi) {

@@ -20,13 +20,25 @@ std::string cpuModel();
 
 namespace simbob {
 
-/// Opens one of simbob's own on-demand modules (libsimbob_video.so, libsimbob_mesh.so): the
-/// libraries behind them (FFmpeg, assimp) are loaded only by a run that needs them, so every
-/// other run starts without their relocations and memory. `env`, when set and not empty, names
-/// the file; otherwise the module is looked for beside the executable, one folder up (tests and
-/// benchmarks in the build tree), and in ../lib/simbob (an installed simbob). Returns what the
-/// module's `entry` function returns (called once), or nullptr with `why` set. Thread-safe for
-/// different modules; callers keep the result (see video_loader.cpp).
-const void* openSimbobModule(const char* file_name, const char* env, const char* entry, std::string* why);
+/// Opens one of simbob's own on-demand modules (libsimbob_video.so, libsimbob_mesh.so, ...): the
+/// libraries behind them (FFmpeg, assimp, cairo, urdfdom) are loaded only by a run that needs
+/// them, so every other run starts without their relocations and memory. `env`, when set and not
+/// empty, names the file; otherwise the module is looked for beside the executable, one folder up
+/// (tests and benchmarks in the build tree), and in ../lib/simbob (an installed simbob). Returns
+/// the address of the module's function `entry`, or nullptr with `why` set. Callers keep what
+/// they get (see openModuleTable).
+void* openSimbobModule(const char* file_name, const char* env, const char* entry, std::string* why);
+
+/// The table a module's `entry` function (`extern "C" const Table* entry()`) returns, or nullptr
+/// with `why` set. The function is called through its own type (UBSan's -fsanitize=function
+/// checks that).
+template <class Table>
+const Table* openModuleTable(const char* file_name, const char* env, const char* entry, std::string* why) {
+  void* symbol = openSimbobModule(file_name, env, entry, why);
+  if (!symbol) return nullptr;
+  const Table* table = reinterpret_cast<const Table* (*)()>(symbol)();
+  if (!table) *why = std::string(file_name) + ": " + entry + " gave no table";
+  return table;
+}
 
 }  // namespace simbob

@@ -25,11 +25,7 @@ fi
 
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
-# use_tls=0: clang 14's LeakSanitizer crashes at exit ("Tracer caught signal 11") reading the
-# thread-local storage of a library opened with dlopen in a process with several threads
-# (assimp's, through libsimbob_mesh.so, in the render tests). Without TLS as roots it can only
-# report more, never fewer: an allocation reachable from TLS alone would be called a leak.
-export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan.supp:print_suppressions=0:use_tls=0}"
+export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan.supp:print_suppressions=0}"
 cd build-fuzz
 status=0
 ctest -L fuzz --output-on-failure -j"$(nproc)" || status=$?

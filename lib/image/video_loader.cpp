@@ -1,7 +1,6 @@
 // makeVideoSink, videoEncoderFor and probeVideo open libsimbob_video.so (FFmpeg) the first time
 // they are called: beside the executable, one folder up (tests and benchmarks in the build tree),
 // or in ../lib/simbob (an installed simbob). SIMBOB_VIDEO_MODULE names the file explicitly.
-#include <mutex>
 
 #include "image/video_module.h"
 #include "simbob/tool/platform.h"
@@ -12,23 +11,8 @@ namespace {
 
 /// The module's table, or nullptr with `why` set.
 const VideoModule* videoModule(std::string* why) {
-  static std::once_flag once;
-  static const VideoModule* module = nullptr;
-  static std::string error;
-  std::call_once(once, [] {
-    std::string not_found;
-    const auto* m =
-        openModuleTable<VideoModule>("libsimbob_video.so", "SIMBOB_VIDEO_MODULE", "simbob_video_module", &not_found);
-    if (!m) {
-      error = "video output needs libsimbob_video.so (FFmpeg): " + not_found;
-    } else if (m->abi != kVideoModuleAbi) {
-      error = "libsimbob_video.so is not this build's video module (of another ABI)";
-    } else {
-      module = m;
-    }
-  });
-  if (!module && why) *why = error;
-  return module;
+  return simbobModule<VideoModule>("libsimbob_video.so", "SIMBOB_VIDEO_MODULE", "simbob_video_module", kVideoModuleAbi,
+                                   "video output needs libsimbob_video.so (FFmpeg)", nullptr, why);
 }
 
 }  // namespace

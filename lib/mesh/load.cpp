@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <mutex>
 
 #include "mesh/mesh_module.h"
 #include "simbob/mesh.h"
@@ -58,26 +57,8 @@ std::string count(size_t n) { return std::to_string(n); }
 /// The module's table, or nullptr with `why` set. A program that links assimp_read.cpp in (the
 /// Python module) has simbob_mesh_module() itself; others open libsimbob_mesh.so.
 const MeshModule* meshModule(std::string* why) {
-  static std::once_flag once;
-  static const MeshModule* module = nullptr;
-  static std::string error;
-  std::call_once(once, [] {
-    const MeshModule* m = nullptr;
-    if (&simbob_mesh_module != nullptr) {
-      m = simbob_mesh_module();
-    } else {
-      std::string not_found;
-      m = openModuleTable<MeshModule>("libsimbob_mesh.so", "SIMBOB_MESH_MODULE", "simbob_mesh_module", &not_found);
-      if (!m) error = "reading meshes needs libsimbob_mesh.so (assimp): " + not_found;
-    }
-    if (m && m->abi != kMeshModuleAbi) {
-      error = "libsimbob_mesh.so is not this build's mesh module (of another ABI)";
-      m = nullptr;
-    }
-    module = m;
-  });
-  if (!module) *why = error;
-  return module;
+  return simbobModule<MeshModule>("libsimbob_mesh.so", "SIMBOB_MESH_MODULE", "simbob_mesh_module", kMeshModuleAbi,
+                                  "reading meshes needs libsimbob_mesh.so (assimp)", &simbob_mesh_module, why);
 }
 
 }  // namespace

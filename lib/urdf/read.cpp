@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <mutex>
 #include <pugixml.hpp>
 #include <locale>
 #include <set>
@@ -49,26 +48,8 @@ namespace {
 /// The module's table, or nullptr with `why` set. A program that links urdfdom_parse.cpp in (the
 /// Python module) has simbob_urdf_module() itself; others open libsimbob_urdf.so.
 const UrdfModule* urdfModule(std::string* why) {
-  static std::once_flag once;
-  static const UrdfModule* module = nullptr;
-  static std::string error;
-  std::call_once(once, [] {
-    const UrdfModule* m = nullptr;
-    if (&simbob_urdf_module != nullptr) {
-      m = simbob_urdf_module();
-    } else {
-      std::string not_found;
-      m = openModuleTable<UrdfModule>("libsimbob_urdf.so", "SIMBOB_URDF_MODULE", "simbob_urdf_module", &not_found);
-      if (!m) error = "reading URDF needs libsimbob_urdf.so (urdfdom): " + not_found;
-    }
-    if (m && m->abi != kUrdfModuleAbi) {
-      error = "libsimbob_urdf.so is not this build's URDF module (of another ABI)";
-      m = nullptr;
-    }
-    module = m;
-  });
-  if (!module) *why = error;
-  return module;
+  return simbobModule<UrdfModule>("libsimbob_urdf.so", "SIMBOB_URDF_MODULE", "simbob_urdf_module", kUrdfModuleAbi,
+                                  "reading URDF needs libsimbob_urdf.so (urdfdom)", &simbob_urdf_module, why);
 }
 
 class Reader {

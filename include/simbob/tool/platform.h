@@ -2,6 +2,7 @@
 // reports (docs/ci.md says which of these the trajectory bytes depend on).
 #pragma once
 
+#include <mutex>
 #include <string>
 
 namespace simbob {
@@ -25,20 +26,38 @@ namespace simbob {
 /// them, so every other run starts without their relocations and memory. `env`, when set and not
 /// empty, names the file; otherwise the module is looked for beside the executable, one folder up
 /// (tests and benchmarks in the build tree), and in ../lib/simbob (an installed simbob). Returns
-/// the address of the module's function `entry`, or nullptr with `why` set. Callers keep what
-/// they get (see openModuleTable).
+/// the address of the module's function `entry`, or nullptr with `why` set. See simbobModule.
 void* openSimbobModule(const char* file_name, const char* env, const char* entry, std::string* why);
 
-/// The table a module's `entry` function (`extern "C" const Table* entry()`) returns, or nullptr
-/// with `why` set. The function is called through its own type (UBSan's -fsanitize=function
-/// checks that).
+/// The table of one module, opened on the first call and remembered (thread-safe): `entry` is
+/// the module's `extern "C" const Table* entry()`, called through its own type (UBSan's
+/// -fsanitize=function checks that); `linked`, when not null, is that function linked into this
+/// program (the Python module links some modules' code in), taken instead of opening the file.
+/// A table of another `abi` is refused. Nullptr with `why` set ("<needs>: <why not>").
 template <class Table>
-const Table* openModuleTable(const char* file_name, const char* env, const char* entry, std::string* why) {
-  void* symbol = openSimbobModule(file_name, env, entry, why);
-  if (!symbol) return nullptr;
-  const Table* table = reinterpret_cast<const Table* (*)()>(symbol)();
-  if (!table) *why = std::string(file_name) + ": " + entry + " gave no table";
-  return table;
+const Table* simbobModule(const char* file_name, const char* env, const char* entry, int abi, const char* needs,
+                          const Table* (*linked)(), std::string* why) {
+  static std::once_flag once;
+  static const Table* module = nullptr;
+  static std::string error;
+  std::call_once(once, [&] {
+    const Table* table = nullptr;
+    std::string not_found;
+    if (linked) {
+      table = linked();
+    } else if (void* symbol = openSimbobModule(file_name, env, entry, &not_found)) {
+      table = reinterpret_cast<const Table* (*)()>(symbol)();
+      if (!table) not_found = std::string(file_name) + ": " + entry + " gave no table";
+    }
+    if (!table)
+      error = std::string(needs) + ": " + not_found;
+    else if (table->abi != abi)
+      error = std::string(file_name) + " is not this build's module (of another ABI)";
+    else
+      module = table;
+  });
+  if (!module && why) *why = error;
+  return module;
 }
 
 }  // namespace simbob

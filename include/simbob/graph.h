@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <map>
 #include <memory>
+#include <new>
 #include <set>
 #include <string>
-#include <unordered_map>
 #include <variant>
 #include <vector>
 
@@ -77,55 +77,128 @@ struct Link {
 };
 
 /// The value of one parameter of one component. Every parameter of every component has one,
-/// so it is kept small (88 bytes; it was 144 when it held a value, a link and a list side by
-/// side): a slot holds what its parameter's kind needs, file names are shared, Ref/Macro text
-/// is out of line.
+/// so it is kept small (80 bytes; it was 144 when it held a value, a link and a list side by
+/// side): a slot holds what its parameter's kind needs, in one union whose tag shares a word
+/// with `set`; file names are shared, Ref/Macro text is out of line.
 struct Slot {
   SourceLoc loc;
   bool set = false;  ///< written in the file (else the default applies)
 
+  Slot() { new (&value_) Value(); }
+  Slot(const Slot& o) : loc(o.loc), set(o.set) { construct(o); }
+  Slot(Slot&& o) noexcept : loc(std::move(o.loc)), set(o.set) { construct(std::move(o)); }
+  Slot& operator=(const Slot& o) {
+    if (this != &o) {
+      Slot copy(o);
+      *this = std::move(copy);
+    }
+    return *this;
+  }
+  Slot& operator=(Slot&& o) noexcept {
+    if (this != &o) {
+      destroy();
+      loc = std::move(o.loc);
+      set = o.set;
+      construct(std::move(o));
+    }
+    return *this;
+  }
+  ~Slot() { destroy(); }
+
   /// Value params (the default when !set). Read on a slot of another kind: an empty Value.
-  const Value& value() const {
-    const Value* v = std::get_if<Value>(&payload_);
-    return v ? *v : emptyValue();
-  }
+  const Value& value() const { return kind_ == Kind::Value ? value_ : emptyValue(); }
   /// Component and Struct params. Read on a slot of another kind: an empty Link.
-  const Link& link() const {
-    const Link* l = std::get_if<Link>(&payload_);
-    return l ? *l : emptyLink();
-  }
+  const Link& link() const { return kind_ == Kind::Link ? link_ : emptyLink(); }
   /// List params. Read on a slot of another kind: an empty list.
-  const std::vector<Link>& list() const {
-    const auto* l = std::get_if<std::vector<Link>>(&payload_);
-    return l ? *l : emptyList();
-  }
+  const std::vector<Link>& list() const { return kind_ == Kind::List ? list_ : emptyList(); }
   /// For writing: the slot becomes one of that kind (an empty one if it held another kind).
-  Value& value() { return holding<Value>(); }
-  Link& link() { return holding<Link>(); }
-  std::vector<Link>& list() { return holding<std::vector<Link>>(); }
+  Value& value() {
+    if (kind_ != Kind::Value) become(Kind::Value);
+    return value_;
+  }
+  Link& link() {
+    if (kind_ != Kind::Link) become(Kind::Link);
+    return link_;
+  }
+  std::vector<Link>& list() {
+    if (kind_ != Kind::List) become(Kind::List);
+    return list_;
+  }
   /// The link or list when the slot holds one, else nullptr (walks over every parameter).
-  Link* linkIf() { return std::get_if<Link>(&payload_); }
-  std::vector<Link>* listIf() { return std::get_if<std::vector<Link>>(&payload_); }
+  Link* linkIf() { return kind_ == Kind::Link ? &link_ : nullptr; }
+  std::vector<Link>* listIf() { return kind_ == Kind::List ? &list_ : nullptr; }
 
  private:
-  template <class T>
-  T& holding() {
-    if (T* t = std::get_if<T>(&payload_)) return *t;
-    return payload_.emplace<T>();
+  enum class Kind : uint8_t { Value, Link, List };
+  void destroy() {
+    switch (kind_) {
+      case Kind::Value:
+        value_.~Value();
+        break;
+      case Kind::Link:
+        link_.~Link();
+        break;
+      case Kind::List:
+        list_.~vector();
+        break;
+    }
+  }
+  void become(Kind k) {
+    destroy();
+    kind_ = k;
+    switch (k) {
+      case Kind::Value:
+        new (&value_) Value();
+        break;
+      case Kind::Link:
+        new (&link_) Link();
+        break;
+      case Kind::List:
+        new (&list_) std::vector<Link>();
+        break;
+    }
+  }
+  template <class S>
+  void construct(S&& o) {  // this holds nothing yet
+    kind_ = o.kind_;
+    switch (kind_) {
+      case Kind::Value:
+        new (&value_) Value(std::forward<S>(o).value_);
+        break;
+      case Kind::Link:
+        new (&link_) Link(std::forward<S>(o).link_);
+        break;
+      case Kind::List:
+        new (&list_) std::vector<Link>(std::forward<S>(o).list_);
+        break;
+    }
   }
   static const Value& emptyValue();
   static const Link& emptyLink();
   static const std::vector<Link>& emptyList();
-  std::variant<Value, Link, std::vector<Link>> payload_;
+  Kind kind_ = Kind::Value;
+  union {
+    Value value_;
+    Link link_;
+    std::vector<Link> list_;
+  };
 };
 
-/// Component indices that are usually none (an import's roots): one pointer, shared between
-/// copies and on the heap only when set, so that every component stays small.
+/// Component indices that are usually none (an import's roots): one pointer, on the heap only
+/// when set, so that every component stays small.
 class RareIndices {
  public:
   RareIndices() = default;
+  RareIndices(const RareIndices& o) : p_(o.p_ ? std::make_unique<std::vector<int>>(*o.p_) : nullptr) {}
+  RareIndices(RareIndices&& o) noexcept = default;
+  RareIndices& operator=(const RareIndices& o) {
+    if (this != &o) p_ = o.p_ ? std::make_unique<std::vector<int>>(*o.p_) : nullptr;
+    return *this;
+  }
+  RareIndices& operator=(RareIndices&& o) noexcept = default;
+  ~RareIndices() = default;
   RareIndices& operator=(std::vector<int> v) {
-    p_ = v.empty() ? nullptr : std::make_shared<const std::vector<int>>(std::move(v));
+    p_ = v.empty() ? nullptr : std::make_unique<std::vector<int>>(std::move(v));
     return *this;
   }
   bool empty() const { return !p_; }
@@ -138,18 +211,30 @@ class RareIndices {
   }
 
  private:
-  std::shared_ptr<const std::vector<int>> p_;
+  std::unique_ptr<std::vector<int>> p_;
 };
 
+/// One component of the graph: 96 bytes and its slots, so that a 20,000-body scene's 100,000
+/// components stay small beside the file they come from.
 struct Component {
   const TypeSpec* type = nullptr;
-  std::string key;       ///< Key attribute, or the parameter name it stands in
   std::string qkey;      ///< fully qualified key
   int parent = -1;       ///< owning component (-1: top level of the scene or an import root)
-  bool has_key = false;  ///< Key was written in the file
+  uint32_t key_at : 31;  ///< where key() starts in qkey
+  bool has_key : 1;      ///< Key was written in the file
   SourceLoc loc;
   std::vector<Slot> slots;  ///< parallel to type->params
   RareIndices imported;     ///< roots read from this component's File (imports)
+
+  Component() : key_at(0), has_key(false) {}
+  /// The Key attribute, or the parameter name it stands in: the last part of qkey (not stored
+  /// twice). Empty for a component that takes its parent's key.
+  std::string key() const { return qkey.substr(key_at); }
+  /// qkey becomes `parent_qkey`.`key` (either alone when the other is empty), key() `key`.
+  void setKey(const std::string& parent_qkey, const std::string& key) {
+    qkey = parent_qkey.empty() ? key : (key.empty() ? parent_qkey : parent_qkey + "." + key);
+    key_at = static_cast<uint32_t>(qkey.size() - key.size());
+  }
 
   /// The slot of parameter `param` (generic walks: loader, writers). Lowering code reads
   /// through the typed names instead: `get(kWidth)`.
@@ -175,6 +260,27 @@ struct Component {
   const Slot& typedSlot(const ParamName& p) const;
 };
 
+/// Fully qualified key -> component: an open-addressing table of component indices, hashed by
+/// the components' own qkey strings, so that the keys are not stored twice. A large scene's
+/// map of strings took 45 bytes and an allocation per component; this takes 8 bytes at most.
+/// A key's component must keep its qkey while it is in the table.
+class KeyIndex {
+ public:
+  /// The component keyed `qkey`, or -1.
+  int find(std::string_view qkey, const std::vector<Component>& comps) const;
+  /// Adds comps[index] by its qkey. Returns -1, or the component that has that key already (and
+  /// then adds nothing).
+  int insert(int index, const std::vector<Component>& comps);
+  size_t size() const { return size_; }
+  /// The components in the table, in no particular order.
+  std::vector<int> indices() const;
+
+ private:
+  void grow(const std::vector<Component>& comps);
+  std::vector<int32_t> slots_;  ///< component index + 1, 0 empty; size a power of two, at most half full
+  size_t size_ = 0;
+};
+
 /// A whole scene: components in document order (imports appended as they are read).
 struct Scene {
   std::string path;  ///< the scene file as given
@@ -182,10 +288,8 @@ struct Scene {
   int settings = -1;             ///< SceneSettings struct component
   std::vector<Link> cameras;     ///< CameraList
   std::vector<Link> components;  ///< ComponentList
-  /// Fully qualified key -> component. Hashed: a large scene's keys share long prefixes
-  /// ("Box123.Pose"), which made every insertion into a sorted map compare them 19 times over.
-  /// Unordered: whoever lists the keys (a "did you mean") sorts them first.
-  std::unordered_map<std::string, int> by_qkey;
+  /// Fully qualified key -> component (see KeyIndex); use find(), addKey(), sortedKeys().
+  KeyIndex by_qkey;
   std::vector<std::string> files;  ///< every file read (scene first, then imports)
   std::set<int> load_failed;       ///< components with a load error in them (compile stays quiet on them)
   std::string content_hash;        ///< hash of all files' bytes (fnv1a64w, docs/formats.md), hex
@@ -194,6 +298,12 @@ struct Scene {
 
   const Component& at(int i) const { return comps[static_cast<size_t>(i)]; }
   Component& at(int i) { return comps[static_cast<size_t>(i)]; }
+  /// The component with fully qualified key `qkey`, or -1.
+  int find(std::string_view qkey) const { return by_qkey.find(qkey, comps); }
+  /// Makes component `i` findable by its qkey; returns -1, or the component that has the key.
+  int addKey(int i) { return by_qkey.insert(i, comps); }
+  /// Every key, sorted (for "did you mean": of equally near keys the first in key order).
+  std::vector<std::string> sortedKeys() const;
 };
 
 enum class Format { Xml, Ini };

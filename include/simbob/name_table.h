@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
-#include <utility>
 #include <vector>
 
 namespace simbob {
@@ -17,7 +16,7 @@ class NameTable {
   bool add(std::string_view name, int value) {
     if (find(name) >= 0) return false;
     if ((entries_.size() + 1) * 2 > slots_.size()) grow();
-    entries_.push_back({std::string(name), value});
+    entries_.push_back({std::string(name), value, hash(name)});
     place(static_cast<int32_t>(entries_.size() - 1));
     return true;
   }
@@ -31,7 +30,9 @@ class NameTable {
     for (size_t i = h & mask;; i = (i + 1) & mask) {
       const int32_t e = slots_[i];
       if (e < 0) return -1;
-      if (entries_[static_cast<size_t>(e)].first == name) return entries_[static_cast<size_t>(e)].second;
+      // The whole hashes first: a probe past another name costs one compare, not a memcmp.
+      const Entry& entry = entries_[static_cast<size_t>(e)];
+      if (entry.hash == h && entry.name == name) return entry.value;
     }
   }
 
@@ -54,7 +55,7 @@ class NameTable {
  private:
   void place(int32_t e) {
     const size_t mask = slots_.size() - 1;
-    size_t i = hash(entries_[static_cast<size_t>(e)].first) & mask;
+    size_t i = entries_[static_cast<size_t>(e)].hash & mask;
     while (slots_[i] >= 0) i = (i + 1) & mask;
     slots_[i] = e;
   }
@@ -64,7 +65,12 @@ class NameTable {
     for (size_t e = 0; e < entries_.size(); ++e) place(static_cast<int32_t>(e));
   }
 
-  std::vector<std::pair<std::string, int>> entries_;
+  struct Entry {
+    std::string name;
+    int value;
+    uint64_t hash;
+  };
+  std::vector<Entry> entries_;
   std::vector<int32_t> slots_;  ///< index into entries_, -1 empty; size a power of two
 };
 

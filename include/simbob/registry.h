@@ -80,8 +80,10 @@ ParseResult parseParam(const ParamSpec& p, std::string_view text);
 /// What the four kinds share: the name, and its hash in the types' name tables, computed once
 /// (at compile time for the family files' constants), not at every read.
 struct ParamName {
-  constexpr explicit ParamName(const char* n) : name(n), hash(NameTable::hash(n)) {}
+  constexpr explicit ParamName(const char* n) : name(n), size(std::string_view(n).size()), hash(NameTable::hash(n)) {}
+  std::string_view view() const { return {name, size}; }
   const char* name;
+  size_t size;  ///< of name, counted once (a read compares the name, not strlen's it again)
   uint64_t hash;
 };
 template <class T>

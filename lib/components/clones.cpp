@@ -161,16 +161,16 @@ Built lowerClone(CompileContext& ctx, const Component& c, const Transform* paren
     ctx.errorAt(slot, c, "parameter 'Original' is required (the fully qualified key of the body to copy)");
     return Built{};
   }
-  auto f = ctx.scene.by_qkey.find(original);
-  if (f != ctx.scene.by_qkey.end() && f->second == ctx.indexOf(c)) {
+  const int f = ctx.scene.find(original);
+  if (f >= 0 && f == ctx.indexOf(c)) {
     // Not a misspelling: no "did you mean" another body.
     ctx.errorAt(slot, c, "parameter 'Original' '" + original + "' names the clone itself; a clone cannot copy itself");
     return Built{};
   }
-  if (f == ctx.scene.by_qkey.end() || ctx.at(f->second).type->family != Family::Body) {
+  if (f < 0 || ctx.at(f).type->family != Family::Body) {
     std::vector<std::string> keys;
-    for (const auto& [k, i] : ctx.scene.by_qkey)
-      if (ctx.at(i).type->family == Family::Body && k != c.qkey) keys.push_back(k);
+    for (int i : ctx.scene.by_qkey.indices())
+      if (ctx.at(i).type->family == Family::Body && ctx.at(i).qkey != c.qkey) keys.push_back(ctx.at(i).qkey);
     std::sort(keys.begin(), keys.end());  // by_qkey is unordered: the nearest of equals by key order
     std::string near = didYouMean(original, keys);
     ctx.errorAt(slot, c,
@@ -178,7 +178,7 @@ Built lowerClone(CompileContext& ctx, const Component& c, const Transform* paren
                     (near.empty() ? "" : " (did you mean '" + near + "'?)"));
     return Built{};
   }
-  return rigidCopy(ctx, c, f->second, parent, c.get(kPose), Link{}, true);
+  return rigidCopy(ctx, c, f, parent, c.get(kPose), Link{}, true);
 }
 
 }  // namespace simbob

@@ -70,9 +70,8 @@ class Import {
   const UrdfLink& link(int i) const { return robot_.links[static_cast<size_t>(i)]; }
   /// The placeholder component of a link or a drive (the loader made it), or null.
   const Component* placeholder(const std::string& name) const {
-    auto it = ctx_.scene.by_qkey.find(c_.qkey + "." + urdfKey(name));
-    return it == ctx_.scene.by_qkey.end() || ctx_.at(it->second).parent != ctx_.indexOf(c_) ? nullptr
-                                                                                            : &ctx_.at(it->second);
+    const int i = ctx_.scene.find(c_.qkey + "." + urdfKey(name));
+    return i < 0 || ctx_.at(i).parent != ctx_.indexOf(c_) ? nullptr : &ctx_.at(i);
   }
   std::string keyOf(const std::string& name) const {
     const Component* p = placeholder(name);

@@ -5,6 +5,7 @@
 #include "scene/source.h"
 
 #include <pugixml.hpp>
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 
@@ -29,6 +30,56 @@ const Slot& missingSlot() {
   return s;
 }
 }  // namespace
+
+int KeyIndex::find(std::string_view qkey, const std::vector<Component>& comps) const {
+  if (slots_.empty()) return -1;
+  const size_t mask = slots_.size() - 1;
+  for (size_t i = NameTable::hash(qkey) & mask;; i = (i + 1) & mask) {
+    const int32_t e = slots_[i];
+    if (e == 0) return -1;
+    if (comps[static_cast<size_t>(e - 1)].qkey == qkey) return e - 1;
+  }
+}
+
+int KeyIndex::insert(int index, const std::vector<Component>& comps) {
+  const std::string& qkey = comps[static_cast<size_t>(index)].qkey;
+  if ((size_ + 1) * 2 > slots_.size()) grow(comps);
+  const size_t mask = slots_.size() - 1;
+  size_t i = NameTable::hash(qkey) & mask;
+  for (; slots_[i] != 0; i = (i + 1) & mask)
+    if (comps[static_cast<size_t>(slots_[i] - 1)].qkey == qkey) return slots_[i] - 1;
+  slots_[i] = index + 1;
+  ++size_;
+  return -1;
+}
+
+void KeyIndex::grow(const std::vector<Component>& comps) {
+  std::vector<int32_t> old = std::move(slots_);
+  slots_.assign(old.empty() ? 64 : old.size() * 2, 0);
+  const size_t mask = slots_.size() - 1;
+  for (int32_t e : old) {
+    if (e == 0) continue;
+    size_t i = NameTable::hash(comps[static_cast<size_t>(e - 1)].qkey) & mask;
+    while (slots_[i] != 0) i = (i + 1) & mask;
+    slots_[i] = e;
+  }
+}
+
+std::vector<int> KeyIndex::indices() const {
+  std::vector<int> out;
+  out.reserve(size_);
+  for (int32_t e : slots_)
+    if (e != 0) out.push_back(e - 1);
+  return out;
+}
+
+std::vector<std::string> Scene::sortedKeys() const {
+  std::vector<std::string> keys;
+  keys.reserve(by_qkey.size());
+  for (int i : by_qkey.indices()) keys.push_back(at(i).qkey);
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
 
 const Slot& Component::slot(std::string_view param) const {
   int i = type->paramIndex(param);
@@ -86,7 +137,8 @@ class Walker {
             em_.reference(p.name, "Macro", s.link().macro);
           } else if (s.link().comp >= 0) {
             const Component& child = scene_.at(s.link().comp);
-            em_.beginComponent(p.name, child.type->name, child.has_key ? &child.key : nullptr);
+            const std::string key = child.key();
+            em_.beginComponent(p.name, child.type->name, child.has_key ? &key : nullptr);
             body(s.link().comp);
             em_.end();
           }
@@ -108,7 +160,8 @@ class Walker {
               em_.listReference(i, "Macro", l.macro);
             } else if (l.comp >= 0) {
               const Component& child = scene_.at(l.comp);
-              em_.listItem(i, child.type->name, child.has_key ? &child.key : nullptr);
+              const std::string key = child.key();
+              em_.listItem(i, child.type->name, child.has_key ? &key : nullptr);
               body(l.comp);
               em_.end();
             }

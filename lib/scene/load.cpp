@@ -101,7 +101,8 @@ class Builder {
 
   // Build one component of type t from src; returns its index. `loc` is taken by value on
   // purpose: callers pass slots of components that building more components moves.
-  int build(const TypeSpec* t, Source* src, std::string key, bool has_key, int parent, const std::string& parent_qkey,
+  int build(const TypeSpec* t, Source* src, const std::string& key, bool has_key, int parent,
+            const std::string& parent_qkey,
             SourceLoc loc,  // NOLINT(performance-unnecessary-value-param)
             bool register_key = true) {
     if (too_big_) return -1;
@@ -124,9 +125,8 @@ class Builder {
     {
       Component c;
       c.type = t;
-      c.key = std::move(key);
+      c.setKey(parent_qkey, key);
       c.has_key = has_key;
-      c.qkey = parent_qkey.empty() ? c.key : (c.key.empty() ? parent_qkey : parent_qkey + "." + c.key);
       c.parent = parent;
       c.loc = loc;
       c.slots.resize(t->params.size());
@@ -405,10 +405,10 @@ class Builder {
       duplicates_.insert(index);
       return;
     }
-    auto [it, inserted] = scene_.by_qkey.emplace(c.qkey, index);
-    if (!inserted) {
+    const int earlier = scene_.addKey(index);
+    if (earlier >= 0) {
       duplicates_.insert(index);
-      const Component& first = scene_.at(it->second);
+      const Component& first = scene_.at(earlier);
       diag_.error(c.loc, c.type->name + ": duplicate key '" + c.qkey + "' (first used at " + first.loc.file + ":" +
                              std::to_string(first.loc.line) + "); give it a different Key" +
                              (c.has_key ? ""
@@ -522,24 +522,22 @@ void resolveRefs(Scene& scene, Diagnostics& diag) {
       const ParamSpec& p = c.type->params[pi];
       auto resolve = [&](Link& l) {
         if (!l.isRef()) return;
-        auto it = scene.by_qkey.find(l.ref.str());
-        if (it == scene.by_qkey.end()) {
-          if (keys.empty()) {  // in key order, so that the nearest of equals is always the same
-            for (const auto& [k, i] : scene.by_qkey) keys.push_back(k);
-            std::sort(keys.begin(), keys.end());
-          }
+        const int target_index = scene.find(l.ref.str());
+        if (target_index < 0) {
+          // In key order, so that the nearest of equals is always the same.
+          if (keys.empty()) keys = scene.sortedKeys();
           std::string near = didYouMean(l.ref.str(), keys);
           diag.error(l.loc, c.type->name + " '" + c.qkey + "': Ref '" + l.ref + "' names no component" +
                                 (near.empty() ? "" : " (did you mean '" + near + "'?)"));
           return;
         }
-        const Component& target = scene.at(it->second);
+        const Component& target = scene.at(target_index);
         if (!familyAccepted(p, target.type->family)) {
           diag.error(l.loc, c.type->name + " '" + c.qkey + "': Ref '" + l.ref + "' names a " + target.type->name +
                                 ", parameter '" + p.name + "' needs a " + familiesText(p));
           return;
         }
-        l.comp = it->second;
+        l.comp = target_index;
       };
       if (Link* l = c.slots[pi].linkIf()) resolve(*l);
       if (std::vector<Link>* items = c.slots[pi].listIf())

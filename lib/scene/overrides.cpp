@@ -24,8 +24,8 @@ std::string what(const Component& c, const std::string& key) {
 /// dot, is the key of a camera component.
 bool namesCamera(const Scene& scene, const std::string& key) {
   for (size_t end = key.size(); end != std::string::npos && end > 0; end = key.rfind('.', end - 1)) {
-    auto it = scene.by_qkey.find(key.substr(0, end));
-    if (it != scene.by_qkey.end() && scene.at(it->second).type->family == Family::Camera) return true;
+    const int i = scene.find(std::string_view(key).substr(0, end));
+    if (i >= 0 && scene.at(i).type->family == Family::Camera) return true;
   }
   return false;
 }
@@ -37,7 +37,7 @@ class Resolver {
   /// The component KEY names, or -1. Follows component-valued parameters from the longest
   /// known prefix, so `Crate.Material` reaches a Ref's target or (a copy of) a default.
   int resolve(const std::string& key) {
-    if (auto it = scene_.by_qkey.find(key); it != scene_.by_qkey.end()) return it->second;
+    if (const int i = scene_.find(key); i >= 0) return i;
     const size_t dot = key.rfind('.');
     const int parent = dot == std::string::npos ? rootIndex(scene_) : resolve(key.substr(0, dot));
     if (parent < 0) return -1;
@@ -53,13 +53,13 @@ class Resolver {
     // A left-out parameter's default is one component shared by every body that left it out:
     // give this one a copy of its own, so the override reaches it alone.
     Component copy = scene_.at(l.comp);
-    copy.key = name;
     copy.qkey = key;
+    copy.key_at = static_cast<uint32_t>(key.size() - name.size());
     copy.parent = parent;
     scene_.comps.push_back(std::move(copy));
     const int index = static_cast<int>(scene_.comps.size() - 1);
     scene_.at(parent).slots[static_cast<size_t>(pi)].link().comp = index;
-    scene_.by_qkey.emplace(key, index);
+    scene_.addKey(index);
     return index;
   }
 
@@ -94,10 +94,8 @@ bool applyOverrides(Scene& scene, const std::vector<Override>& overrides, Diagno
     const SourceLoc at{o.place, o.line};
     const int index = resolver.resolve(o.key);
     if (index < 0) {
-      std::vector<std::string> keys;
-      keys.reserve(scene.by_qkey.size());
-      for (const auto& kv : scene.by_qkey) keys.push_back(kv.first);
-      std::sort(keys.begin(), keys.end());  // by_qkey is unordered: the nearest of equals by key order
+      // In key order: of equally near keys, the first.
+      const std::vector<std::string> keys = scene.sortedKeys();
       const std::string near = didYouMean(o.key, keys);
       diag.error(at, "no component '" + quoteInput(o.key) + "' in " + scene.path +
                          (near.empty() ? "" : " (did you mean '" + near + "'?)"));

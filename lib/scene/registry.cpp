@@ -71,8 +71,8 @@ int TypeSpec::paramIndex(std::string_view n) const {
 }
 
 int TypeSpec::paramIndex(const ParamName& p) const {
-  if (indexed_ != 0 && indexed_ == params.size()) return by_name_.find(p.name, p.hash);
-  return paramIndex(std::string_view(p.name));
+  if (indexed_ != 0 && indexed_ == params.size()) return by_name_.find(p.view(), p.hash);
+  return paramIndex(p.view());
 }
 
 int TypeSpec::paramIndexIgnoreCase(std::string_view n) const {

@@ -1,5 +1,6 @@
 // XML format (guide 4.2) as a Source: <Name Value=".."/>, type elements with Key, Ref, Macro.
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cstring>
 #include <set>
@@ -204,14 +205,31 @@ class XmlSource : public Source {
     return h;
   }
 
-  // The child elements, listed on the first question.
-  std::vector<Child>& children() const {
+  // The child elements, listed on the first question. Most elements have a few: those stay in
+  // the Source itself, so that listing them allocates nothing (a vector grown child by child
+  // cost two or three allocations for every component of a large scene).
+  struct Children {
+    Child* first;
+    Child* last;
+    Child* begin() const { return first; }
+    Child* end() const { return last; }
+  };
+  Children children() const {
     if (!listed_) {
       listed_ = true;
-      for (pugi::xml_node c = node_.first_child(); c; c = c.next_sibling())
-        if (isElement(c)) children_.push_back({c.internal_object(), nameHash(c.name()), false});
+      for (pugi::xml_node c = node_.first_child(); c; c = c.next_sibling()) {
+        if (!isElement(c)) continue;
+        const Child k{c.internal_object(), nameHash(c.name()), false};
+        if (count_ < kInlineChildren) {
+          inline_[count_++] = k;
+          continue;
+        }
+        if (more_.empty()) more_.assign(inline_.begin(), inline_.end());
+        more_.push_back(k);
+      }
     }
-    return children_;
+    if (!more_.empty()) return {more_.data(), more_.data() + more_.size()};
+    return {inline_.data(), inline_.data() + count_};
   }
 
   // An element standing for a component: Ref or Macro attribute, or exactly one type element.
@@ -259,8 +277,13 @@ class XmlSource : public Source {
 
   std::shared_ptr<XmlDoc> doc_;
   pugi::xml_node node_;
+  static constexpr size_t kInlineChildren = 6;
   mutable bool listed_ = false;
-  mutable std::vector<Child> children_;  // child elements in order, and which were read
+  // Child elements in order, and which were read: in inline_ up to kInlineChildren, all of them
+  // in more_ beyond.
+  mutable size_t count_ = 0;
+  mutable std::array<Child, kInlineChildren> inline_{};
+  mutable std::vector<Child> more_;
 };
 
 // The element left open where a closing tag does not match (or the text ends): the stack of

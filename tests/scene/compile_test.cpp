@@ -1298,9 +1298,9 @@ TEST_CASE("compile: two bodies with one key are an error at compile time", "[sce
   // Before, a duplicate body key (what clones of clones made) passed `check` and stopped `run`
   // only when the CSV writer met it. Clones no longer make one, so force one into the graph.
   Scene s = mustLoad(scene(mobile("A", globalPose("0 1 0 0 0 0")) + "\n" + mobile("B", globalPose("0 2 0 0 0 0"))));
-  auto it = s.by_qkey.find("B");
-  REQUIRE(it != s.by_qkey.end());
-  s.at(it->second).qkey = "A";
+  const int b = s.find("B");
+  REQUIRE(b >= 0);
+  s.at(b).qkey = "A";
   Model m;
   Diagnostics d;
   CHECK_FALSE(compileScene(s, &m, d));

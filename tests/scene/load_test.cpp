@@ -130,8 +130,8 @@ TEST_CASE("load: component parameters inline, by Ref and by Macro", "[scene][loa
   const Link& mat = ball.get(LinkParam{"Material"});
   CHECK(mat.ref == "Rubber");
   CHECK(mat.isRef());
-  CHECK(mat.comp == s.by_qkey.at("Rubber"));
-  CHECK(s.by_qkey.count("Ball.Material") == 0);
+  CHECK(mat.comp == s.find("Rubber"));
+  CHECK(s.find("Ball.Material") < 0);
   CHECK(ball.slot("Material").set);
   // Macro: a component of the macro's type, keyed like an inline component without Key.
   const Link& geom = ball.get(LinkParam{"Geom"});
@@ -140,7 +140,7 @@ TEST_CASE("load: component parameters inline, by Ref and by Macro", "[scene][loa
   REQUIRE(geom.comp >= 0);
   CHECK(s.at(geom.comp).type->name == "RCEmptyGeom");
   CHECK(s.at(geom.comp).qkey == "Ball.Geom");
-  CHECK(s.at(geom.comp).parent == s.by_qkey.at("Ball"));
+  CHECK(s.at(geom.comp).parent == s.find("Ball"));
   CHECK(s.at(ball.get(LinkParam{"Model"}).comp).type->name == "RCEmptyModel");
   CHECK(s.at(ball.get(LinkParam{"Motion"}).comp).type->name == "RCGlobalMotion");
   // Inline.
@@ -161,10 +161,10 @@ TEST_CASE("load: component parameters inline, by Ref and by Macro", "[scene][loa
   // An inline component with a Key is known under it; a Ref names any keyed component.
   const Component& wall = comp(s, "Wall");
   CHECK(comp(s, "Wall.Shape").get(ValueParam<double>{"Width"}) == 3);
-  CHECK(wall.get(LinkParam{"Geom"}).comp == s.by_qkey.at("Wall.Shape"));
-  CHECK(s.by_qkey.count("Wall.Geom") == 0);
-  CHECK(wall.get(LinkParam{"Pose"}).comp == s.by_qkey.at("Ball.Pose"));
-  CHECK(s.by_qkey.count("Wall.Pose") == 0);
+  CHECK(wall.get(LinkParam{"Geom"}).comp == s.find("Wall.Shape"));
+  CHECK(s.find("Wall.Geom") < 0);
+  CHECK(wall.get(LinkParam{"Pose"}).comp == s.find("Ball.Pose"));
+  CHECK(s.find("Wall.Pose") < 0);
 }
 
 TEST_CASE("load: list items as type elements, wrappers around a type element, and Refs", "[scene][load]") {
@@ -194,12 +194,37 @@ TEST_CASE("load: list items as type elements, wrappers around a type element, an
   CHECK(s.at(kids[0].comp).qkey == "M.RCEllipsoidModel");
   CHECK(s.at(kids[1].comp).qkey == "M.Cone");
   CHECK(kids[2].ref == "Other");
-  CHECK(kids[2].comp == s.by_qkey.at("Other"));
+  CHECK(kids[2].comp == s.find("Other"));
   CHECK(kids[3].macro == "NoModel");
   CHECK(s.at(kids[3].comp).type->name == "RCEmptyModel");
   CHECK(s.at(kids[3].comp).qkey == "M.RCEmptyModel");
   CHECK(comp(s, "M").slot("ChildList").set);
-  CHECK(comp(s, "M.Cone").parent == s.by_qkey.at("M"));
+  CHECK(comp(s, "M.Cone").parent == s.find("M"));
+}
+
+// The key index holds component indices and compares the components' own keys: every key
+// added is found again through the table's growth (64 slots, doubled at half full), a second
+// component with a key already taken is refused with the first one's index, and a key that
+// shares a prefix or a hash bucket with others is not mistaken for them.
+TEST_CASE("load: the key index finds every key through its growth and refuses a second", "[scene][load]") {
+  std::vector<Component> comps(1000);
+  for (size_t i = 0; i < comps.size(); ++i) comps[i].qkey = "Box" + std::to_string(i) + ".Pose";
+  KeyIndex index;
+  for (int i = 0; i < 1000; ++i) REQUIRE(index.insert(i, comps) == -1);
+  CHECK(index.size() == 1000);
+  for (int i = 0; i < 1000; ++i) CHECK(index.find("Box" + std::to_string(i) + ".Pose", comps) == i);
+  CHECK(index.find("Box1000.Pose", comps) == -1);
+  CHECK(index.find("Box1", comps) == -1);
+  CHECK(index.find("", comps) == -1);
+  comps.emplace_back();
+  comps.back().qkey = "Box7.Pose";
+  CHECK(index.insert(1000, comps) == 7);
+  CHECK(index.size() == 1000);
+  std::vector<int> all = index.indices();
+  std::sort(all.begin(), all.end());
+  REQUIRE(all.size() == 1000);
+  for (int i = 0; i < 1000; ++i) CHECK(all[static_cast<size_t>(i)] == i);
+  CHECK(KeyIndex().find("A", comps) == -1);
 }
 
 TEST_CASE("load: fully qualified keys of nested components", "[scene][load]") {
@@ -229,22 +254,22 @@ TEST_CASE("load: fully qualified keys of nested components", "[scene][load]") {
        {"Robot", "Robot.Base", "Robot.Base.Geom", "Robot.Shoulder", "Robot.Shoulder.Arm", "Robot.Shoulder.Arm.Upper",
         "Robot.Shoulder.Arm.RCBallSocketJoint", "Robot.Shoulder.Arm.RCBallSocketJoint.Hand", "Robot.Motor"}) {
     INFO(k);
-    CHECK(s.by_qkey.count(k) == 1);
+    CHECK(s.find(k) >= 0);
   }
   // Left-out parameters take one shared default component per type, which has no key.
   for (const char* k :
        {"Robot.Base.Pose", "Robot.Base.Inertia", "Robot.Shoulder.Arm.RCBallSocketJoint.Hand.Material"}) {
     INFO(k);
-    CHECK(s.by_qkey.count(k) == 0);
+    CHECK(s.find(k) < 0);
   }
   // The joint's Pose has no default: nothing is created for it.
-  CHECK(s.by_qkey.count("Robot.Shoulder.Pose") == 0);
-  CHECK(comp(s, "Robot.Motor").get(LinkParam{"Joint"}).comp == s.by_qkey.at("Robot.Shoulder"));
+  CHECK(s.find("Robot.Shoulder.Pose") < 0);
+  CHECK(comp(s, "Robot.Motor").get(LinkParam{"Joint"}).comp == s.find("Robot.Shoulder"));
   // by_qkey and the components agree; parents are the owning components.
-  for (const auto& [k, i] : s.by_qkey) CHECK(s.at(i).qkey == k);
+  for (const std::string& k : s.sortedKeys()) CHECK(s.at(s.find(k)).qkey == k);
   const Component& hand = comp(s, "Robot.Shoulder.Arm.RCBallSocketJoint.Hand");
   CHECK(s.at(hand.parent).qkey == "Robot.Shoulder.Arm.RCBallSocketJoint");
-  CHECK(hand.key == "Hand");
+  CHECK(hand.key() == "Hand");
 }
 
 TEST_CASE("load: CameraList with RC names and the guide's aliases", "[scene][load]") {
@@ -268,7 +293,7 @@ TEST_CASE("load: CameraList with RC names and the guide's aliases", "[scene][loa
   CHECK(front.get(ValueParam<double>{"FarClip"}) == 1000);
   const Component& chase = s.at(s.cameras[1].comp);
   CHECK(chase.type->name == "RCTrackingCamera");
-  CHECK(chase.get(LinkParam{"Body"}).comp == s.by_qkey.at("Ball"));
+  CHECK(chase.get(LinkParam{"Body"}).comp == s.find("Ball"));
   CHECK(chase.get(ValueParam<double>{"Distance"}) == 3);
 }
 
@@ -394,11 +419,11 @@ Key = Other
 
   CHECK(comp(s, "Ball.Geom").type->name == "RCSphereGeom");
   CHECK(comp(s, "Ball.Geom").get(ValueParam<double>{"Radius"}) == 0.25);
-  CHECK(comp(s, "Ball").get(LinkParam{"Material"}).comp == s.by_qkey.at("Rubber"));
+  CHECK(comp(s, "Ball").get(LinkParam{"Material"}).comp == s.find("Rubber"));
   CHECK(s.at(s.settings).get(ValueParam<Triple>{"Gravity"}) == Triple{0, 0, -9.81});
   CHECK(s.at(s.at(s.settings).get(LinkParam{"FogSettings"}).comp).get(EnumParam{"Mode"}) == 1);
   CHECK(comp(s, "M.Cone").get(ValueParam<double>{"Radius"}) == 2);
-  CHECK(comp(s, "M").get(ListParam{"ChildList"})[1].comp == s.by_qkey.at("Other"));
+  CHECK(comp(s, "M").get(ListParam{"ChildList"})[1].comp == s.find("Other"));
   // Quotes keep leading and trailing blanks and allow empty values.
   const Component& skin = comp(s, " padded key ");
   CHECK(skin.slot("Texture").set);
@@ -572,20 +597,20 @@ TEST_CASE("load: RCImportBody, RCImportJoint and RCImportRefList read their file
   CHECK(s.at(mats.imported[1]).qkey == "Materials.Red");
   CHECK(s.at(mats.imported[2]).qkey == "Materials.Crate");  // wrapper element around a type element
   CHECK(comp(s, "Materials.Rubber").get(ValueParam<double>{"Friction"}) == 1.5);
-  CHECK(comp(s, "Materials.Rubber").parent == s.by_qkey.at("Materials"));
+  CHECK(comp(s, "Materials.Rubber").parent == s.find("Materials"));
   CHECK(comp(s, "Materials.Rubber").loc.file == (fx.dir.path() / "lib/materials.xml").string());
   CHECK(comp(s, "Materials.Rubber").loc.line == 3);
 
   const Component& b1 = comp(s, "Ball1");
   REQUIRE(b1.imported.size() == 1);
-  CHECK(b1.imported[0] == s.by_qkey.at("Ball1.Ball"));
+  CHECK(b1.imported[0] == s.find("Ball1.Ball"));
   CHECK(comp(s, "Ball1.Ball.Geom").get(ValueParam<double>{"Radius"}) == 0.1);
   // The same file imported twice gives two independent copies.
-  CHECK(s.by_qkey.count("Ball2.Ball") == 1);
-  CHECK(s.by_qkey.at("Ball2.Ball") != s.by_qkey.at("Ball1.Ball"));
+  CHECK(s.find("Ball2.Ball") >= 0);
+  CHECK(s.find("Ball2.Ball") != s.find("Ball1.Ball"));
   // Refs into an imported RefList, from the scene and from another import.
-  CHECK(comp(s, "Floor").get(LinkParam{"Material"}).comp == s.by_qkey.at("Materials.Rubber"));
-  CHECK(comp(s, "Ball1.Ball").get(LinkParam{"Material"}).comp == s.by_qkey.at("Materials.Rubber"));
+  CHECK(comp(s, "Floor").get(LinkParam{"Material"}).comp == s.find("Materials.Rubber"));
+  CHECK(comp(s, "Ball1.Ball").get(LinkParam{"Material"}).comp == s.find("Materials.Rubber"));
 
   const Component& j = comp(s, "Arm.J");
   REQUIRE(j.imported.size() == 1);

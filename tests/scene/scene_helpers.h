@@ -57,10 +57,10 @@ inline Model mustCompile(const std::string& text, Format format = Format::Xml, c
 
 /// The component with fully qualified key `qkey`; fails the test if absent.
 inline const Component& comp(const Scene& s, const std::string& qkey) {
-  auto it = s.by_qkey.find(qkey);
+  const int i = s.find(qkey);
   INFO("qualified key '" << qkey << "'");
-  REQUIRE(it != s.by_qkey.end());
-  return s.at(it->second);
+  REQUIRE(i >= 0);
+  return s.at(i);
 }
 
 /// A fresh directory under the system temp directory, removed on destruction.
@@ -112,13 +112,14 @@ inline void requireSameGraph(const Scene& a, const Scene& b) {
   for (size_t i = 0; i < a.components.size(); ++i) CHECK(sameLink(a.components[i], b.components[i]));
   REQUIRE(a.cameras.size() == b.cameras.size());
   for (size_t i = 0; i < a.cameras.size(); ++i) CHECK(sameLink(a.cameras[i], b.cameras[i]));
-  CHECK(a.by_qkey == b.by_qkey);
+  CHECK(a.sortedKeys() == b.sortedKeys());
+  for (const std::string& k : a.sortedKeys()) CHECK(a.find(k) == b.find(k));
   for (size_t i = 0; i < a.comps.size(); ++i) {
     const Component& x = a.comps[i];
     const Component& y = b.comps[i];
     INFO("component " << i << " '" << x.qkey << "' (" << x.type->name << ")");
     REQUIRE(x.type == y.type);
-    CHECK(x.key == y.key);
+    CHECK(x.key() == y.key());
     CHECK(x.has_key == y.has_key);
     CHECK(x.qkey == y.qkey);
     CHECK(x.parent == y.parent);

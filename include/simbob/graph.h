@@ -272,11 +272,13 @@ class KeyIndex {
   /// then adds nothing).
   int insert(int index, const std::vector<Component>& comps);
   size_t size() const { return size_; }
+  /// Room for `n` keys without growing (a large list reserves for the rest of its items).
+  void reserve(size_t n, const std::vector<Component>& comps);
   /// The components in the table, in no particular order.
   std::vector<int> indices() const;
 
  private:
-  void grow(const std::vector<Component>& comps);
+  void rehash(size_t slots, const std::vector<Component>& comps);
   std::vector<int32_t> slots_;  ///< component index + 1, 0 empty; size a power of two, at most half full
   size_t size_ = 0;
 };

@@ -43,7 +43,7 @@ int KeyIndex::find(std::string_view qkey, const std::vector<Component>& comps) c
 
 int KeyIndex::insert(int index, const std::vector<Component>& comps) {
   const std::string& qkey = comps[static_cast<size_t>(index)].qkey;
-  if ((size_ + 1) * 2 > slots_.size()) grow(comps);
+  if ((size_ + 1) * 2 > slots_.size()) rehash(slots_.empty() ? 64 : slots_.size() * 2, comps);
   const size_t mask = slots_.size() - 1;
   size_t i = NameTable::hash(qkey) & mask;
   for (; slots_[i] != 0; i = (i + 1) & mask)
@@ -53,9 +53,16 @@ int KeyIndex::insert(int index, const std::vector<Component>& comps) {
   return -1;
 }
 
-void KeyIndex::grow(const std::vector<Component>& comps) {
+void KeyIndex::reserve(size_t n, const std::vector<Component>& comps) {
+  size_t slots = slots_.empty() ? 64 : slots_.size();
+  while (n * 2 > slots) slots *= 2;
+  if (slots > slots_.size()) rehash(slots, comps);
+}
+
+// Every key hashed again into `slots` slots (a power of two).
+void KeyIndex::rehash(size_t slots, const std::vector<Component>& comps) {
   std::vector<int32_t> old = std::move(slots_);
-  slots_.assign(old.empty() ? 64 : old.size() * 2, 0);
+  slots_.assign(slots, 0);
   const size_t mask = slots_.size() - 1;
   for (int32_t e : old) {
     if (e == 0) continue;

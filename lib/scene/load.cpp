@@ -396,6 +396,7 @@ class Builder {
     const size_t per_item = (scene_.comps.size() - comps_before + done - 1) / done;
     const size_t want = scene_.comps.size() + per_item * (total - done) * 5 / 4;
     scene_.comps.reserve(std::min(want, scene_.comps.size() + text_bytes_ / kMinComponentBytes));
+    scene_.by_qkey.reserve(scene_.comps.capacity(), scene_.comps);
   }
 
   void registerKey(int index) {

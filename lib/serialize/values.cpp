@@ -57,12 +57,14 @@ NumStatus parseNumberImpl(std::string_view text, bool allow_infinite, double& ou
     negative = s.front() == '-';
     s.remove_prefix(1);
   }
-  if (equalsIgnoreCase(s, "Infinite")) {
+  // Most numbers start with a digit: the words below need no look then.
+  const bool word = !s.empty() && !isDigit(s.front()) && s.front() != '.';
+  if (word && equalsIgnoreCase(s, "Infinite")) {
     if (!allow_infinite) return NumStatus::InfiniteNotAllowed;
     out = negative ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
     return NumStatus::Ok;
   }
-  if (equalsIgnoreCase(s, "nan")) return NumStatus::NotANumberValue;
+  if (word && equalsIgnoreCase(s, "nan")) return NumStatus::NotANumberValue;
   // from_chars would also take "inf", "nan" and a second sign; the guide allows only digit or '.'.
   if (s.empty() || !(isDigit(s.front()) || s.front() == '.')) return NumStatus::NotNumber;
   double d = 0;

@@ -86,7 +86,7 @@ struct Slot {
 
   Slot() { new (&value_) Value(); }
   Slot(const Slot& o) : loc(o.loc), set(o.set) { construct(o); }
-  Slot(Slot&& o) noexcept : loc(std::move(o.loc)), set(o.set) { construct(std::move(o)); }
+  Slot(Slot&& o) noexcept : loc(o.loc), set(o.set) { construct(std::move(o)); }
   Slot& operator=(const Slot& o) {
     if (this != &o) {
       Slot copy(o);
@@ -97,7 +97,7 @@ struct Slot {
   Slot& operator=(Slot&& o) noexcept {
     if (this != &o) {
       destroy();
-      loc = std::move(o.loc);
+      loc = o.loc;
       set = o.set;
       construct(std::move(o));
     }

@@ -463,10 +463,12 @@ class Linter {
         if (b.lo[0] > a.hi[0] - kOverlap) break;
         // The boxes' depth first: in a grid every body of a column shares the sweep's x range,
         // and the tests below cost more than this one that rejects nearly all of those pairs.
+        // The axes across the sweep first (z, y, x): a column's bodies part there, after one.
         const bool spheres = a.g->shape == GeomShape::Sphere && b.g->shape == GeomShape::Sphere;
         double depth = 1e300;
         if (!spheres) {
-          for (int k = 0; k < 3; ++k) depth = std::min(depth, std::min(a.hi[k], b.hi[k]) - std::max(a.lo[k], b.lo[k]));
+          for (int k = 2; k >= 0 && depth > kOverlap; --k)
+            depth = std::min(depth, std::min(a.hi[k], b.hi[k]) - std::max(a.lo[k], b.lo[k]));
           if (depth <= kOverlap) continue;
         }
         if (a.g->body == b.g->body || (a.g->body < 0 && b.g->body < 0)) continue;

@@ -140,22 +140,27 @@ class Builder {
 
     for (size_t pi = 0; pi < t->params.size(); ++pi) {
       const ParamSpec& p = t->params[pi];
+      if (p.kind == ParamKind::Value) {
+        // Values build no components (which could move this one): written in place, the
+        // default copied only when the file does not give a good value.
+        Slot& slot = scene_.at(index).slots[pi];
+        slot.loc = loc;
+        SourceValue v = src ? src->value(p.name) : SourceValue{};
+        if (v.present) {
+          slot.loc = {loc.file, v.line};
+          if (!v.error.empty())
+            diag_.error(slot.loc, prefix(what) + v.error);
+          else
+            slot.set = parseInto(p, v.text, &slot.value(), slot.loc, what);
+        }
+        if (!slot.set) slot.value() = p.default_value;
+        continue;
+      }
       Slot slot;
       slot.loc = loc;
       switch (p.kind) {
-        case ParamKind::Value: {
-          slot.value() = p.default_value;
-          SourceValue v = src ? src->value(p.name) : SourceValue{};
-          if (v.present) {
-            slot.loc = {loc.file, v.line};
-            if (!v.error.empty()) {
-              diag_.error(slot.loc, prefix(what) + v.error);
-            } else if (parseInto(p, v.text, &slot.value(), slot.loc, what)) {
-              slot.set = true;
-            }
-          }
+        case ParamKind::Value:
           break;
-        }
         case ParamKind::Component: {
           SourceLink l = src ? src->component(p.name) : SourceLink{};
           if (l.present) {

@@ -11,9 +11,6 @@ namespace simbob {
 
 namespace {
 
-// Separators of a numerical value list (guide 4.3).
-constexpr std::string_view kListSeparators = " \t,;\\()";
-
 // Exhaustive bitmask search is 2^n; above this many candidate keys fall back to greedy.
 constexpr size_t kMaxExhaustiveKeys = 20;
 
@@ -23,7 +20,22 @@ bool isDigit(char c) { return c >= '0' && c <= '9'; }
 
 bool isHexDigit(char c) { return isDigit(c) || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F'); }
 
-bool isSeparator(char c) { return kListSeparators.find(c) != std::string_view::npos; }
+// Separators of a numerical value list (guide 4.3): blank, tab, ',', ';', '\\', '(' and ')'.
+// Asked of every character of every list value: a switch, not a search of a string of them.
+bool isSeparator(char c) {
+  switch (c) {
+    case ' ':
+    case '\t':
+    case ',':
+    case ';':
+    case '\\':
+    case '(':
+    case ')':
+      return true;
+    default:
+      return false;
+  }
+}
 
 char lowerAscii(char c) { return (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c; }
 

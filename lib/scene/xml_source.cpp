@@ -50,6 +50,8 @@ std::string attributeError(const std::string& where, const std::string& an, std:
   return where + ": unknown attribute '" + an + "'";
 }
 
+// Attributes are walked with first_attribute()/next_attribute(): pugixml's attribute ranges
+// cost four calls into the library per attribute, for every element of a large scene.
 class XmlSource : public Source {
  public:
   XmlSource(std::shared_ptr<XmlDoc> doc, pugi::xml_node node) : doc_(std::move(doc)), node_(node) {}
@@ -64,7 +66,7 @@ class XmlSource : public Source {
     v.present = true;
     v.line = doc_->lineOf(c);
     pugi::xml_attribute a = c.attribute("Value");
-    for (pugi::xml_attribute other : c.attributes()) {
+    for (pugi::xml_attribute other = c.first_attribute(); other; other = other.next_attribute()) {
       if (std::strcmp(other.name(), "Value") == 0) continue;
       const std::string an = other.name();
       v.error = attributeError("parameter '" + name + "'", an, {"Value"});
@@ -137,7 +139,7 @@ class XmlSource : public Source {
     l.present = true;
     l.line = doc_->lineOf(t);
     l.type = t.name();
-    for (pugi::xml_attribute a : t.attributes()) {
+    for (pugi::xml_attribute a = t.first_attribute(); a; a = a.next_attribute()) {
       const char* an = a.name();
       if (std::strcmp(an, "Key") == 0) {
         l.key = a.value();
@@ -240,7 +242,7 @@ class XmlSource : public Source {
     SourceLink l;
     l.present = true;
     l.line = doc_->lineOf(c);
-    for (pugi::xml_attribute a : c.attributes()) {
+    for (pugi::xml_attribute a = c.first_attribute(); a; a = a.next_attribute()) {
       const char* an = a.name();
       if (std::strcmp(an, "Ref") == 0)
         l.ref = a.value();

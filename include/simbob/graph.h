@@ -257,7 +257,12 @@ struct Component {
   }
 
  private:
-  const Slot& typedSlot(const ParamName& p) const;
+  const Slot& typedSlot(const ParamName& p) const {
+    const int i = type->paramIndex(p);
+    if (i < 0) missingParam(p);
+    return slots[static_cast<size_t>(i)];
+  }
+  [[noreturn]] void missingParam(const ParamName& p) const;
 };
 
 /// Fully qualified key -> component: an open-addressing table of component indices, hashed by

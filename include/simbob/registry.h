@@ -137,8 +137,12 @@ struct TypeSpec {
 
   /// Index of the parameter called `name` (exact case), or -1.
   int paramIndex(std::string_view name) const;
-  /// Same for a typed name, with its hash computed before.
-  int paramIndex(const ParamName& p) const;
+  /// Same for a typed name, with its hash computed before. Inline: the compile step reads
+  /// every component's parameters through it, hundreds of thousands of times in a large scene.
+  int paramIndex(const ParamName& p) const {
+    if (indexed_ != 0 && indexed_ == params.size()) return by_name_.find(p.view(), p.hash);
+    return paramIndex(p.view());
+  }
   /// Same, ignoring ASCII case (INI keys are case-insensitive).
   int paramIndexIgnoreCase(std::string_view name) const;
   /// Indexes `params` by name (Registry::add does, once they are final), so that the two

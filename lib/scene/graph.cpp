@@ -96,10 +96,8 @@ Slot& Component::slot(std::string_view param) {
   int i = type->paramIndex(param);
   return slots.at(static_cast<size_t>(i));
 }
-const Slot& Component::typedSlot(const ParamName& p) const {
-  int i = type->paramIndex(p);
-  if (i < 0) throw std::logic_error("internal: " + type->name + " has no parameter '" + p.name + "'");
-  return slots[static_cast<size_t>(i)];
+void Component::missingParam(const ParamName& p) const {
+  throw std::logic_error("internal: " + type->name + " has no parameter '" + p.name + "'");
 }
 uint32_t Component::get(EnumParam p) const {
   const Value& v = typedSlot(p).value();

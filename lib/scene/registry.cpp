@@ -70,11 +70,6 @@ int TypeSpec::paramIndex(std::string_view n) const {
   return -1;
 }
 
-int TypeSpec::paramIndex(const ParamName& p) const {
-  if (indexed_ != 0 && indexed_ == params.size()) return by_name_.find(p.view(), p.hash);
-  return paramIndex(p.view());
-}
-
 int TypeSpec::paramIndexIgnoreCase(std::string_view n) const {
   if (indexed_ != 0 && indexed_ == params.size()) {
     auto it = by_lower_name_.find(lowerAscii(n));

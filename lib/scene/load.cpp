@@ -159,7 +159,7 @@ class Builder {
       Slot slot;
       slot.loc = loc;
       switch (p.kind) {
-        case ParamKind::Value:
+        case ParamKind::Value:  // filled in place above
           break;
         case ParamKind::Component: {
           SourceLink l = src ? src->component(p.name) : SourceLink{};

@@ -31,23 +31,25 @@ const Slot& missingSlot() {
 }
 }  // namespace
 
+namespace {
+// Where `qkey` is in a key index's slots, or the empty slot where it would go: the one probe
+// loop of find, insert and rehash.
+size_t probe(const std::vector<int32_t>& slots, std::string_view qkey, const std::vector<Component>& comps) {
+  const size_t mask = slots.size() - 1;
+  size_t i = NameTable::hash(qkey) & mask;
+  while (slots[i] != 0 && comps[static_cast<size_t>(slots[i] - 1)].qkey != qkey) i = (i + 1) & mask;
+  return i;
+}
+}  // namespace
+
 int KeyIndex::find(std::string_view qkey, const std::vector<Component>& comps) const {
-  if (slots_.empty()) return -1;
-  const size_t mask = slots_.size() - 1;
-  for (size_t i = NameTable::hash(qkey) & mask;; i = (i + 1) & mask) {
-    const int32_t e = slots_[i];
-    if (e == 0) return -1;
-    if (comps[static_cast<size_t>(e - 1)].qkey == qkey) return e - 1;
-  }
+  return slots_.empty() ? -1 : slots_[probe(slots_, qkey, comps)] - 1;
 }
 
 int KeyIndex::insert(int index, const std::vector<Component>& comps) {
-  const std::string& qkey = comps[static_cast<size_t>(index)].qkey;
   if ((size_ + 1) * 2 > slots_.size()) rehash(slots_.empty() ? 64 : slots_.size() * 2, comps);
-  const size_t mask = slots_.size() - 1;
-  size_t i = NameTable::hash(qkey) & mask;
-  for (; slots_[i] != 0; i = (i + 1) & mask)
-    if (comps[static_cast<size_t>(slots_[i] - 1)].qkey == qkey) return slots_[i] - 1;
+  const size_t i = probe(slots_, comps[static_cast<size_t>(index)].qkey, comps);
+  if (slots_[i] != 0) return slots_[i] - 1;
   slots_[i] = index + 1;
   ++size_;
   return -1;
@@ -63,13 +65,8 @@ void KeyIndex::reserve(size_t n, const std::vector<Component>& comps) {
 void KeyIndex::rehash(size_t slots, const std::vector<Component>& comps) {
   std::vector<int32_t> old = std::move(slots_);
   slots_.assign(slots, 0);
-  const size_t mask = slots_.size() - 1;
-  for (int32_t e : old) {
-    if (e == 0) continue;
-    size_t i = NameTable::hash(comps[static_cast<size_t>(e - 1)].qkey) & mask;
-    while (slots_[i] != 0) i = (i + 1) & mask;
-    slots_[i] = e;
-  }
+  for (int32_t e : old)
+    if (e != 0) slots_[probe(slots_, comps[static_cast<size_t>(e - 1)].qkey, comps)] = e;  // keys are distinct
 }
 
 std::vector<int> KeyIndex::indices() const {

@@ -53,8 +53,7 @@ class Resolver {
     // A left-out parameter's default is one component shared by every body that left it out:
     // give this one a copy of its own, so the override reaches it alone.
     Component copy = scene_.at(l.comp);
-    copy.qkey = key;
-    copy.key_at = static_cast<uint32_t>(key.size() - name.size());
+    copy.setKey(dot == std::string::npos ? std::string() : key.substr(0, dot), name);  // qkey == key
     copy.parent = parent;
     scene_.comps.push_back(std::move(copy));
     const int index = static_cast<int>(scene_.comps.size() - 1);

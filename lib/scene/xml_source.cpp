@@ -65,13 +65,25 @@ class XmlSource : public Source {
     if (!c) return v;
     v.present = true;
     v.line = doc_->lineOf(c);
-    pugi::xml_attribute a = c.attribute("Value");
-    for (pugi::xml_attribute other = c.first_attribute(); other; other = other.next_attribute()) {
-      if (std::strcmp(other.name(), "Value") == 0) continue;
-      const std::string an = other.name();
-      v.error = attributeError("parameter '" + name + "'", an, {"Value"});
-      if (!a && equalsIgnoreCase(an, "Value")) return v;  // <Height value="3"/>: the case is wrong
+    // One walk over the attributes: the (first) Value attribute, the first other one that is
+    // "Value" in another case, and the last other one, whose message stands otherwise.
+    pugi::xml_attribute a;
+    const char* miscased = nullptr;
+    const char* other = nullptr;
+    for (pugi::xml_attribute at = c.first_attribute(); at; at = at.next_attribute()) {
+      const char* an = at.name();
+      if (std::strcmp(an, "Value") == 0) {
+        if (!a) a = at;
+        continue;
+      }
+      if (!miscased && equalsIgnoreCase(an, "Value")) miscased = an;
+      other = an;
     }
+    if (!a && miscased) {  // <Height value="3"/>: the case is wrong
+      v.error = attributeError("parameter '" + name + "'", miscased, {"Value"});
+      return v;
+    }
+    if (other) v.error = attributeError("parameter '" + name + "'", other, {"Value"});
     if (!a) {
       v.error = "parameter '" + name + "' needs a Value attribute";
       return v;
@@ -184,7 +196,7 @@ class XmlSource : public Source {
   // most of them absent: the children's names are hashed once, and each question compares
   // hashes before names.
   pugi::xml_node take(const std::string& name) {
-    const uint32_t h = nameHash(name.c_str());
+    const uint32_t h = nameHash(name.data(), name.size());
     for (Child& k : children()) {
       if (k.read || k.hash != h) continue;
       const pugi::xml_node c(k.node);
@@ -203,8 +215,7 @@ class XmlSource : public Source {
 
   // A parameter's name by its length and three of its letters: names that share them cost a
   // strcmp more, and hashing every letter of every name asked for cost more than that.
-  static uint32_t nameHash(const char* s) {
-    const size_t n = std::strlen(s);
+  static uint32_t nameHash(const char* s, size_t n) {
     if (n == 0) return 0;
     const auto at = [s](size_t i) { return static_cast<uint32_t>(static_cast<unsigned char>(s[i])); };
     return static_cast<uint32_t>(n & 0xff) | at(0) << 8 | at(n / 2) << 16 | at(n - 1) << 24;
@@ -224,7 +235,7 @@ class XmlSource : public Source {
       listed_ = true;
       for (pugi::xml_node c = node_.first_child(); c; c = c.next_sibling()) {
         if (!isElement(c)) continue;
-        const Child k{c.internal_object(), nameHash(c.name()), false};
+        const Child k{c.internal_object(), nameHash(c.name(), std::strlen(c.name())), false};
         if (count_ < kInlineChildren) {
           inline_[count_++] = k;
           continue;

@@ -2,6 +2,7 @@
 #include "simbob/values.h"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -499,9 +500,15 @@ std::optional<double> parseNumber(std::string_view text, bool allow_infinite) {
   return d;
 }
 
-std::optional<std::vector<double>> parseNumberList(std::string_view text, std::string* error, bool allow_infinite) {
-  std::vector<double> out;
-  out.reserve(6);  // a pose's six numbers without growing (one allocation instead of four)
+namespace {
+
+// The elements of a numerical value list, in order, each checked as a number. The first
+// `capacity` go to `out`; the count is of all of them (an arity message names it). False with
+// the message of the first bad element. Every value type's list fits in 16 numbers: the scene's
+// values are read without a heap allocation each.
+bool scanNumberList(std::string_view text, bool allow_infinite, double* out, size_t capacity, size_t* count,
+                    std::string* error) {
+  size_t n = 0;
   size_t i = 0;
   while (i < text.size()) {
     if (isSeparator(text[i])) {
@@ -515,11 +522,23 @@ std::optional<std::vector<double>> parseNumberList(std::string_view text, std::s
     NumStatus st = parseNumberImpl(element, allow_infinite, d);
     if (st != NumStatus::Ok) {
       if (error) *error = numberError(st, element, true);
-      return std::nullopt;
+      return false;
     }
-    out.push_back(d);
+    if (n < capacity) out[n] = d;
+    ++n;
     i = j;
   }
+  *count = n;
+  return true;
+}
+
+}  // namespace
+
+std::optional<std::vector<double>> parseNumberList(std::string_view text, std::string* error, bool allow_infinite) {
+  size_t count = 0;
+  if (!scanNumberList(text, allow_infinite, nullptr, 0, &count, error)) return std::nullopt;
+  std::vector<double> out(count);
+  scanNumberList(text, allow_infinite, out.data(), count, &count, nullptr);
   return out;
 }
 
@@ -595,23 +614,25 @@ ParseResult parseValue(ValueType t, std::string_view text, const EnumTable* tabl
   }
 
   // Everything below is a numerical value list with a type-specific arity.
-  std::string error;
-  std::optional<std::vector<double>> list = parseNumberList(text, &error, inf);
-  if (!list) return fail(error);
-  const std::vector<double>& n = *list;
-  const size_t count = n.size();
+  constexpr size_t kMaxListNumbers = 16;  // a Matrix's; more is an arity error for every type
+  std::array<double, kMaxListNumbers> n{};
+  size_t count = 0;
+  {
+    std::string error;
+    if (!scanNumberList(text, inf, n.data(), n.size(), &count, &error)) return fail(error);
+  }
 
   switch (t) {
     case ValueType::Triple: {
       if (count < 1 || count > 3) return fail(arityError("1 to 3", "Triple", count));
       Triple v{0, 0, 0};
-      std::copy(n.begin(), n.end(), v.begin());
+      std::copy(n.begin(), n.begin() + count, v.begin());
       return ok(v);
     }
     case ValueType::Vector: {
       if (count != 3 && count != 4) return fail(arityError("3 or 4", "Vector", count));
       Vector4 v;
-      std::copy(n.begin(), n.end(), v.v.begin());
+      std::copy(n.begin(), n.begin() + count, v.v.begin());
       return ok(v);
     }
     case ValueType::Quaternion: {
@@ -620,14 +641,14 @@ ParseResult parseValue(ValueType t, std::string_view text, const EnumTable* tabl
         return fail("a Quaternion must not be all zero (it describes no orientation)");
       }
       Quaternion q;
-      std::copy(n.begin(), n.end(), q.q.begin());
+      std::copy(n.begin(), n.begin() + count, q.q.begin());
       return ok(q);
     }
     case ValueType::Pose: {
       if (count != 6) return fail(arityError("6", "Pose", count));
       Pose p;
       std::copy(n.begin(), n.begin() + 3, p.pos.begin());
-      std::copy(n.begin() + 3, n.end(), p.euler_deg.begin());
+      std::copy(n.begin() + 3, n.begin() + count, p.euler_deg.begin());
       return ok(p);
     }
     case ValueType::Matrix: {
@@ -641,7 +662,7 @@ ParseResult parseValue(ValueType t, std::string_view text, const EnumTable* tabl
           for (size_t c = 0; c < 3; ++c) m.m[r * 4 + c] = n[r * 3 + c];
         }
       } else if (count == 12 || count == 16) {
-        std::copy(n.begin(), n.end(), m.m.begin());
+        std::copy(n.begin(), n.begin() + count, m.m.begin());
       } else {
         return fail("matrix needs 3, 9, 12 or 16 numbers, got " + decimalString(count));
       }
@@ -651,7 +672,7 @@ ParseResult parseValue(ValueType t, std::string_view text, const EnumTable* tabl
       if (count != 6) return fail(arityError("6", "Cuboid", count));
       Cuboid c;
       std::copy(n.begin(), n.begin() + 3, c.a.begin());
-      std::copy(n.begin() + 3, n.end(), c.b.begin());
+      std::copy(n.begin() + 3, n.begin() + count, c.b.begin());
       return ok(c);
     }
     case ValueType::Color: {
@@ -659,7 +680,7 @@ ParseResult parseValue(ValueType t, std::string_view text, const EnumTable* tabl
         return fail("expected 3 or 4 numbers (or 'invalid') for a Color, got " + decimalString(count));
       }
       Color c;
-      std::copy(n.begin(), n.end(), c.rgba.begin());
+      std::copy(n.begin(), n.begin() + count, c.rgba.begin());
       for (double x : c.rgba) {
         if (!(x >= 0.0 && x <= 1.0)) {
           return fail("color component " + formatNumber(x) + " is outside [0, 1]");

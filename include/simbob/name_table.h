@@ -1,5 +1,5 @@
 // A hash table from names to small integers, built once and read often: the registry's types
-// and each type's parameters. Looked up by string_view without making a std::string, and
+// and each type's parameters, the compile step's model keys. Looked up by string_view without making a std::string, and
 // copyable (it holds its own names), unlike a map keyed by views into the table it indexes.
 #pragma once
 
@@ -14,26 +14,27 @@ class NameTable {
  public:
   /// Adds `name` -> `value`; keeps the first value of a name added twice. Returns whether added.
   bool add(std::string_view name, int value) {
-    if (find(name) >= 0) return false;
-    if ((entries_.size() + 1) * 2 > slots_.size()) grow();
-    entries_.push_back({std::string(name), value, hash(name)});
-    place(static_cast<int32_t>(entries_.size() - 1));
+    const uint64_t h = hash(name);
+    if (entry(name, h) >= 0) return false;
+    append(name, value, h);
     return true;
+  }
+  /// Maps `name` to `value`, adding the name or replacing the value it had.
+  void set(std::string_view name, int value) {
+    const uint64_t h = hash(name);
+    const int32_t e = entry(name, h);
+    if (e >= 0)
+      entries_[static_cast<size_t>(e)].value = value;
+    else
+      append(name, value, h);
   }
 
   /// The value of `name`, or -1.
   int find(std::string_view name) const { return find(name, hash(name)); }
   /// Same, with `h` == hash(name) computed before (at compile time for a typed parameter name).
   int find(std::string_view name, uint64_t h) const {
-    if (slots_.empty()) return -1;
-    const size_t mask = slots_.size() - 1;
-    for (size_t i = h & mask;; i = (i + 1) & mask) {
-      const int32_t e = slots_[i];
-      if (e < 0) return -1;
-      // The whole hashes first: a probe past another name costs one compare, not a memcmp.
-      const Entry& entry = entries_[static_cast<size_t>(e)];
-      if (entry.hash == h && entry.name == name) return entry.value;
-    }
+    const int32_t e = entry(name, h);
+    return e < 0 ? -1 : entries_[static_cast<size_t>(e)].value;
   }
 
   void clear() {
@@ -53,6 +54,23 @@ class NameTable {
   }
 
  private:
+  // The index in entries_ of `name` (whose hash is `h`), or -1.
+  int32_t entry(std::string_view name, uint64_t h) const {
+    if (slots_.empty()) return -1;
+    const size_t mask = slots_.size() - 1;
+    for (size_t i = h & mask;; i = (i + 1) & mask) {
+      const int32_t e = slots_[i];
+      if (e < 0) return -1;
+      // The whole hashes first: a probe past another name costs one compare, not a memcmp.
+      const Entry& en = entries_[static_cast<size_t>(e)];
+      if (en.hash == h && en.name == name) return e;
+    }
+  }
+  void append(std::string_view name, int value, uint64_t h) {
+    if ((entries_.size() + 1) * 2 > slots_.size()) grow();
+    entries_.push_back({std::string(name), value, h});
+    place(static_cast<int32_t>(entries_.size() - 1));
+  }
   void place(int32_t e) {
     const size_t mask = slots_.size() - 1;
     size_t i = entries_[static_cast<size_t>(e)].hash & mask;

@@ -4,8 +4,6 @@
 // originals join to exist outside the copy), then the cameras, then whole-model checks.
 #include "simbob/compile.h"
 
-#include <map>
-
 #include "compile/context.h"
 
 namespace simbob {
@@ -50,11 +48,10 @@ void lowerComponentList(CompileContext& ctx) {
 
 /// Every body and joint of the Model needs a key of its own: the trajectory names bodies by it.
 void checkUniqueKeys(CompileContext& ctx) {
-  std::map<std::string, size_t> seen;
+  NameTable seen;
   for (size_t i = 0; i < ctx.model.bodies.size(); ++i) {
     const BodyDef& b = ctx.model.bodies[i];
-    auto [it, fresh] = seen.emplace(b.key, i);
-    if (!fresh)
+    if (!seen.add(b.key, static_cast<int>(i)))
       ctx.diag.error(b.loc, "two bodies get the key '" + b.key +
                                 "' (the second from here); give the copy a Key of "
                                 "its own");

@@ -14,14 +14,8 @@ std::string CompileContext::modelKey(const Component& c) const {
   return key;
 }
 
-int CompileContext::bodyIndex(const std::string& model_key) const {
-  auto it = body_index_.find(model_key);
-  return it == body_index_.end() ? -1 : it->second;
-}
+int CompileContext::bodyIndex(const std::string& model_key) const { return body_index_.find(model_key); }
 
-int CompileContext::jointIndex(const std::string& model_key) const {
-  auto it = joint_index_.find(model_key);
-  return it == joint_index_.end() ? -1 : it->second;
-}
+int CompileContext::jointIndex(const std::string& model_key) const { return joint_index_.find(model_key); }
 
 }  // namespace simbob

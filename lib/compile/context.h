@@ -12,6 +12,7 @@
 #include "simbob/graph.h"
 #include "simbob/mesh.h"
 #include "simbob/model.h"
+#include "simbob/name_table.h"
 
 namespace simbob {
 
@@ -34,6 +35,60 @@ struct GeomTarget {
   int material = 0;                  ///< Model::materials index
   const Link* model = nullptr;       ///< the owner's Model (for model-derived geoms)
   int static_body = -1;              ///< body == -1: the owner's number among the static bodies
+};
+
+/// Bodies already lowered, by component index. A slot per component up to the highest asked
+/// for, instead of a map: a tree node per body cost an allocation and a walk of the tree each.
+class BuiltMemo {
+ public:
+  const Built* find(int comp) const {
+    const auto c = static_cast<size_t>(comp);
+    return c < at_.size() && at_[c] >= 0 ? &built_[static_cast<size_t>(at_[c])].second : nullptr;
+  }
+  void set(int comp, const Built& b) {
+    const auto c = static_cast<size_t>(comp);
+    if (c >= at_.size()) at_.resize(c + 1, -1);
+    if (at_[c] >= 0) {
+      built_[static_cast<size_t>(at_[c])].second = b;
+      return;
+    }
+    at_[c] = static_cast<int32_t>(built_.size());
+    built_.emplace_back(comp, b);
+  }
+  void clear() {
+    for (const auto& [comp, b] : built_) at_[static_cast<size_t>(comp)] = -1;
+    built_.clear();
+  }
+
+ private:
+  std::vector<int32_t> at_;                   ///< component -> index into built_, -1 none
+  std::vector<std::pair<int, Built>> built_;  ///< (component, what it built), in lowering order
+};
+
+/// A set of component indices, as flags: membership and size in constant time.
+class ComponentSet {
+ public:
+  /// Adds `comp`; false if it was in already.
+  bool insert(int comp) {
+    const auto c = static_cast<size_t>(comp);
+    if (c >= in_.size()) in_.resize(c + 1, 0);
+    if (in_[c]) return false;
+    in_[c] = 1;
+    ++size_;
+    return true;
+  }
+  void erase(int comp) {
+    const auto c = static_cast<size_t>(comp);
+    if (c < in_.size() && in_[c]) {
+      in_[c] = 0;
+      --size_;
+    }
+  }
+  size_t size() const { return size_; }
+
+ private:
+  std::vector<char> in_;
+  size_t size_ = 0;
 };
 
 class CompileContext {
@@ -71,7 +126,7 @@ class CompileContext {
   /// or -1. Peripheries find their joints and controllers their bodies through these.
   int bodyIndex(const std::string& model_key) const;
   int jointIndex(const std::string& model_key) const;
-  void recordBody(const std::string& model_key, int index) { body_index_[model_key] = index; }
+  void recordBody(const std::string& model_key, int index) { body_index_.set(model_key, index); }
   /// The frame body component `comp` was first lowered in (its parent's), or nullptr.
   const Transform* parentFrame(int comp) const {
     auto it = parent_frame_.find(comp);
@@ -81,23 +136,17 @@ class CompileContext {
   /// Whether an error was left out because its component failed to load.
   bool failedQuietly() const { return failed_quietly_; }
   /// True the first time it is asked about `comp`: checks of shared components report once.
-  bool firstCheck(int comp) { return checked_.insert(comp).second; }
+  bool firstCheck(int comp) { return checked_.insert(comp); }
   /// Index of a component of the scene.
   int indexOf(const Component& c) const { return static_cast<int>(&c - scene.comps.data()); }
-  void recordJoint(const std::string& model_key, int index) { joint_index_[model_key] = index; }
+  void recordJoint(const std::string& model_key, int index) { joint_index_.set(model_key, index); }
   /// Model::actuators index of the periphery lowered under `model_key`, -1 if it was not lowered,
   /// kFailedActuator if its lowering reported an error.
-  int actuatorIndex(const std::string& model_key) const {
-    auto it = actuator_index_.find(model_key);
-    return it == actuator_index_.end() ? -1 : it->second;
-  }
-  void recordActuator(const std::string& model_key, int index) { actuator_index_[model_key] = index; }
+  int actuatorIndex(const std::string& model_key) const { return actuator_index_.find(model_key); }
+  void recordActuator(const std::string& model_key, int index) { actuator_index_.set(model_key, index); }
   /// Model::sensors index of the proximity sensor lowered under `model_key`, as actuatorIndex.
-  int sensorIndex(const std::string& model_key) const {
-    auto it = sensor_index_.find(model_key);
-    return it == sensor_index_.end() ? -1 : it->second;
-  }
-  void recordSensor(const std::string& model_key, int index) { sensor_index_[model_key] = index; }
+  int sensorIndex(const std::string& model_key) const { return sensor_index_.find(model_key); }
+  void recordSensor(const std::string& model_key, int index) { sensor_index_.set(model_key, index); }
   /// Controllers lowered so far: component index -> Model::controllers index (-1 while it is
   /// being lowered or after an error).
   std::map<int, int> controller_index;
@@ -110,13 +159,13 @@ class CompileContext {
     bool active = false;
     /// original key prefix -> copy key prefix, outermost clone first
     std::vector<std::pair<std::string, std::string>> renames;
-    std::map<int, Built> memo;  ///< bodies lowered inside this copy
-    std::set<int> inside;       ///< components that belong to the original
+    BuiltMemo memo;        ///< bodies lowered inside this copy
+    std::set<int> inside;  ///< components that belong to the original
   };
   CloneScope clone;
   int clone_depth = 0;
-  std::map<int, Built> memo;
-  std::set<int> in_progress;
+  BuiltMemo memo;
+  ComponentSet in_progress;
   int static_bodies = 0;  ///< static bodies lowered so far (Built::static_id)
   bool too_big = false;   ///< a size bound was hit (reported once)
 
@@ -139,13 +188,14 @@ class CompileContext {
   }
 
   bool failed_quietly_ = false;
-  std::map<std::string, int> body_index_;
-  std::map<std::string, int> joint_index_;
-  std::map<std::string, int> actuator_index_;
-  std::map<std::string, int> sensor_index_;
+  // Model key -> index; a key recorded twice keeps the last index.
+  NameTable body_index_;
+  NameTable joint_index_;
+  NameTable actuator_index_;
+  NameTable sensor_index_;
   std::map<int, Transform> parent_frame_;
   std::map<const MeshData*, int> mesh_index_;
-  std::set<int> checked_;
+  ComponentSet checked_;
 };
 
 // --- one lowering per family; each is defined in lib/components/<family>.cpp -----------------

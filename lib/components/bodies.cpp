@@ -199,10 +199,9 @@ void registerBodies(Registry& r) {
 }
 
 Built lowerBody(CompileContext& ctx, int ci, const Transform* parent) {
-  std::map<int, Built>& memo = ctx.clone.active && ctx.clone.inside.count(ci) ? ctx.clone.memo : ctx.memo;
-  auto it = memo.find(ci);
-  if (it != memo.end()) return it->second;
-  if (!ctx.in_progress.insert(ci).second) {
+  BuiltMemo& memo = ctx.clone.active && ctx.clone.inside.count(ci) ? ctx.clone.memo : ctx.memo;
+  if (const Built* done = memo.find(ci)) return *done;
+  if (!ctx.in_progress.insert(ci)) {
     ctx.error(ctx.at(ci), "body is part of its own construction (a joint's Body refers back to it)");
     return {};
   }
@@ -221,7 +220,7 @@ Built lowerBody(CompileContext& ctx, int ci, const Transform* parent) {
   if (parent) ctx.recordParentFrame(ci, *parent);
   Built b = lowerUncached(ctx, ci, parent);
   ctx.in_progress.erase(ci);
-  memo[ci] = b;
+  memo.set(ci, b);
   return b;
 }
 

@@ -91,13 +91,13 @@ void lowerCamera(CompileContext& ctx, int comp) {
       d.body = ctx.bodyIndex(ctx.modelKey(ctx.at(b.comp)));
       if (d.body < 0) {
         // A static body (or one not lowered): follow the place it stands.
-        auto it = ctx.memo.find(b.comp);
-        if (it == ctx.memo.end() || !it->second.ok) {
+        const Built* built = ctx.memo.find(b.comp);
+        if (!built || !built->ok) {
           ctx.error(b, c, "parameter 'Body' must refer to a body of the ComponentList");
           break;
         }
-        d.target = it->second.frame.p;
-        d.pose = it->second.frame;
+        d.target = built->frame.p;
+        d.pose = built->frame;
       }
       if (kind == CameraKind::Mounted) {
         const Transform rel = poseValue(ctx, c.get(kPose));

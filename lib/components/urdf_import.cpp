@@ -528,8 +528,7 @@ void Import::addDrives() {
 
 /// Every link's key leads to its body (Refs of cameras, constructions and sensors).
 void Import::remember() {
-  std::map<int, Built>& memo =
-      ctx_.clone.active && ctx_.clone.inside.count(ctx_.indexOf(c_)) ? ctx_.clone.memo : ctx_.memo;
+  BuiltMemo& memo = ctx_.clone.active && ctx_.clone.inside.count(ctx_.indexOf(c_)) ? ctx_.clone.memo : ctx_.memo;
   for (size_t li = 0; li < robot_.links.size(); ++li) {
     const int pb = plan_.link_body[li];
     if (pb < 0) continue;
@@ -539,7 +538,7 @@ void Import::remember() {
     built.frame = urdfToScene(place_, plan_.link_global[static_cast<size_t>(b.root)]);
     built.ok = true;
     if (built.index >= 0) ctx_.recordBody(keyOf(robot_.links[li].name), built.index);
-    if (const Component* p = placeholder(robot_.links[li].name)) memo[ctx_.indexOf(*p)] = built;
+    if (const Component* p = placeholder(robot_.links[li].name)) memo.set(ctx_.indexOf(*p), built);
   }
 }
 
@@ -651,9 +650,9 @@ Built lowerUrdfLink(CompileContext& ctx, const Component& c) {
   }
   lowerBody(ctx, c.parent, nullptr);  // remembers every link
   const int ci = ctx.indexOf(c);
-  const std::map<int, Built>& memo = ctx.clone.active && ctx.clone.inside.count(ci) ? ctx.clone.memo : ctx.memo;
-  auto it = memo.find(ci);
-  return it == memo.end() ? Built{} : it->second;
+  const BuiltMemo& memo = ctx.clone.active && ctx.clone.inside.count(ci) ? ctx.clone.memo : ctx.memo;
+  const Built* built = memo.find(ci);
+  return built ? *built : Built{};
 }
 
 }  // namespace simbob

@@ -37,6 +37,17 @@ class NameTable {
     return e < 0 ? -1 : entries_[static_cast<size_t>(e)].value;
   }
 
+  /// Room for `n` names without growing (a large table's doublings would hold both copies).
+  void reserve(size_t n) {
+    entries_.reserve(n);
+    size_t want = 16;
+    while (want < n * 2) want *= 2;
+    if (want > slots_.size()) {
+      slots_.assign(want, -1);
+      for (size_t e = 0; e < entries_.size(); ++e) place(static_cast<int32_t>(e));
+    }
+  }
+
   void clear() {
     entries_.clear();
     slots_.clear();

@@ -49,6 +49,7 @@ void lowerComponentList(CompileContext& ctx) {
 /// Every body and joint of the Model needs a key of its own: the trajectory names bodies by it.
 void checkUniqueKeys(CompileContext& ctx) {
   NameTable seen;
+  seen.reserve(ctx.model.bodies.size());
   for (size_t i = 0; i < ctx.model.bodies.size(); ++i) {
     const BodyDef& b = ctx.model.bodies[i];
     if (!seen.add(b.key, static_cast<int>(i)))
@@ -73,6 +74,7 @@ bool compileScene(const Scene& scene, Model* model, Diagnostics& diag) {
   model->bodies.reserve(body_comps + body_comps / 32 + 16);
   model->geoms.reserve(geom_comps + geom_comps / 32 + 16);
   CompileContext ctx(scene, *model, diag);
+  ctx.reserveBodies(body_comps);
   lowerSettings(ctx, scene.settings);
   // [0]: the registry's defaults, for geoms made without a material (none today: every body
   // and global has a Material parameter with a default).

@@ -55,6 +55,12 @@ class BuiltMemo {
     at_[c] = static_cast<int32_t>(built_.size());
     built_.emplace_back(comp, b);
   }
+  /// Room for `bodies` bodies among `comps` components, so that a large scene's lists do not
+  /// double (and hold both copies) near their end.
+  void reserve(size_t comps, size_t bodies) {
+    at_.reserve(comps);
+    built_.reserve(bodies);
+  }
   void clear() {
     for (const auto& [comp, b] : built_) at_[static_cast<size_t>(comp)] = -1;
     built_.clear();
@@ -127,6 +133,11 @@ class CompileContext {
   int bodyIndex(const std::string& model_key) const;
   int jointIndex(const std::string& model_key) const;
   void recordBody(const std::string& model_key, int index) { body_index_.set(model_key, index); }
+  /// Room for the bodies of `body_comps` body components (see BuiltMemo::reserve).
+  void reserveBodies(size_t body_comps) {
+    memo.reserve(scene.comps.size(), body_comps);
+    body_index_.reserve(body_comps);
+  }
   /// The frame body component `comp` was first lowered in (its parent's), or nullptr.
   const Transform* parentFrame(int comp) const {
     auto it = parent_frame_.find(comp);

@@ -54,12 +54,27 @@ class NameTable {
   }
   size_t size() const { return entries_.size(); }
 
-  /// FNV-1a of the name's bytes: names are short, so a simple hash is the fast one.
+  /// FNV-1a over the name's 64-bit little-endian words, then its tail bytes one by one. Names
+  /// are hashed at run time for every type element and key of a large scene (byte by byte that
+  /// cost four instructions per letter), and at compile time for typed parameter names: both
+  /// ways give the same value (tests/scene/registry_test.cpp).
   static constexpr uint64_t hash(std::string_view s) {
+    constexpr uint64_t kPrime = 1099511628211ull;
     uint64_t h = 1469598103934665603ull;
-    for (char c : s) {
-      h ^= static_cast<unsigned char>(c);
-      h *= 1099511628211ull;
+    size_t i = 0;
+    for (; i + 8 <= s.size(); i += 8) {
+      uint64_t w = 0;
+      if (__builtin_is_constant_evaluated()) {
+        for (size_t j = 0; j < 8; ++j) w |= static_cast<uint64_t>(static_cast<unsigned char>(s[i + j])) << (8 * j);
+      } else {
+        __builtin_memcpy(&w, s.data() + i, 8);  // one load (x86-64 is little-endian)
+      }
+      h = (h ^ w) * kPrime;
+      h ^= h >> 32;  // the high bytes of a word reach the low bits
+    }
+    for (; i < s.size(); ++i) {
+      h ^= static_cast<unsigned char>(s[i]);
+      h *= kPrime;
     }
     return h ^ (h >> 29);
   }

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <iterator>
 #include <set>
 #include <string>
 #include <vector>
@@ -591,6 +592,51 @@ TEST_CASE("registry: NameTable finds every name added, keeps the first of equal 
   CHECK(t.find("Name7") == -1);
   CHECK(copy.find("Name7") == 7);
   CHECK(copy.size() == 1000);
+}
+
+TEST_CASE("registry: NameTable set replaces a value, reserve keeps what is in", "[scene][registry]") {
+  NameTable t;
+  t.set("Arm", 1);
+  t.set("Arm", 2);  // the last value stands
+  CHECK(t.find("Arm") == 2);
+  CHECK(t.size() == 1);
+  t.reserve(1000);
+  CHECK(t.find("Arm") == 2);  // still found after the slots are laid out again
+  for (int i = 0; i < 1000; ++i) t.set("Key" + std::to_string(i), i);
+  for (int i = 0; i < 1000; ++i) CHECK(t.find("Key" + std::to_string(i)) == i);
+  CHECK(t.size() == 1001);
+}
+
+// A typed parameter name is hashed when the program is compiled, the names of a table when it
+// runs: a name of every length up to three words and a tail must hash alike both ways.
+constexpr uint64_t kHashed[] = {
+    NameTable::hash(""),
+    NameTable::hash("a"),
+    NameTable::hash("Pose"),
+    NameTable::hash("Density"),
+    NameTable::hash("Friction"),
+    NameTable::hash("Bounceness"),
+    NameTable::hash("MinBounceVel"),
+    NameTable::hash("RCMobileRigidBody"),
+    NameTable::hash("RCGlobalCoordinates.Pose2"),
+};
+
+TEST_CASE("registry: names hash alike at compile time and at run time", "[scene][registry]") {
+  const char* names[] = {"",
+                         "a",
+                         "Pose",
+                         "Density",
+                         "Friction",
+                         "Bounceness",
+                         "MinBounceVel",
+                         "RCMobileRigidBody",
+                         "RCGlobalCoordinates.Pose2"};
+  for (size_t i = 0; i < std::size(names); ++i) {
+    const std::string at_run_time = names[i];  // not a constant
+    CHECK(NameTable::hash(at_run_time) == kHashed[i]);
+  }
+  CHECK(NameTable::hash("Friction") != NameTable::hash("Frictiom"));  // the last byte of a whole word counts
+  CHECK(NameTable::hash("RCMobileRigidBody") != NameTable::hash("RCMobileRigidBodz"));  // and of the tail
 }
 
 TEST_CASE("registry: every type and alias is found by name, and its parameters by theirs", "[scene][registry]") {

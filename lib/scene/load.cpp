@@ -562,9 +562,10 @@ void checkCycles(const Scene& scene, Diagnostics& diag) {
     size_t slot;
     size_t item;
   };
+  std::vector<Frame> stack;  // one for every start: most components are reached from a parent
   for (size_t start = 0; start < scene.comps.size(); ++start) {
     if (state[start] != White) continue;
-    std::vector<Frame> stack{{static_cast<int>(start), 0, 0}};
+    stack.push_back({static_cast<int>(start), 0, 0});
     state[start] = Grey;
     while (!stack.empty()) {
       Frame& f = stack.back();
@@ -572,8 +573,13 @@ void checkCycles(const Scene& scene, Diagnostics& diag) {
       const Link* next = nullptr;
       while (!next && f.slot < c.slots.size()) {
         const Slot& s = c.slots[f.slot];
+        const ParamKind kind = c.type->params[f.slot].kind;
+        if (kind == ParamKind::Value) {  // a value links to nothing
+          ++f.slot;
+          continue;
+        }
         const std::vector<Link>* items = nullptr;
-        if (c.type->params[f.slot].kind == ParamKind::List) items = &s.list();
+        if (kind == ParamKind::List) items = &s.list();
         if (items) {
           if (f.item < items->size())
             next = &(*items)[f.item++];

@@ -50,6 +50,12 @@ uint64_t fnv1aWords(uint64_t h, const std::string& bytes) {
   return h;
 }
 
+// A scene file's text read again, for a message that needs it as it was; empty if it cannot be.
+std::string reread(const std::string& path) {
+  std::string text, err;
+  return readFile(path, kMaxSceneFileBytes, &text, &err, true) ? text : std::string();
+}
+
 std::string hex64(uint64_t v) {
   static const char* digits = "0123456789abcdef";
   std::string s(16, '0');
@@ -285,7 +291,7 @@ class Builder {
     }
     addFile(path, text);
     int err_line = 0;
-    std::shared_ptr<XmlDoc> doc = parseXml(std::move(text), reg_, &err, &err_line);
+    std::shared_ptr<XmlDoc> doc = parseXml(std::move(text), reg_, &err, &err_line, [&path] { return reread(path); });
     if (!doc) {
       diag_.error({path, err_line}, err);
       return;
@@ -632,8 +638,10 @@ std::string urdfScene(const std::string& name, const std::string& text) {
          "\"/><AboveGround Value=\"true\"/></RCImportURDF></ComponentList></Simulation>";
 }
 
+// `given` is the caller's text when it came from memory; a file's is read again if a message
+// needs it as it was (see parseXml).
 bool loadFromText(std::string text, const std::string& name, Format format, const Registry& reg, Scene* scene,
-                  Diagnostics& diag) {
+                  Diagnostics& diag, const std::string* given) {
   *scene = Scene{};
   scene->path = name;
   if (text.size() > kMaxSceneFileBytes) {  // scene text from memory (Python's from_text) has a file's limit
@@ -642,9 +650,11 @@ bool loadFromText(std::string text, const std::string& name, Format format, cons
     return false;
   }
   Builder b(reg, *scene, diag);
+  std::string made;  // the scene made around a bare URDF, parsed in the file's place
   if (format == Format::Xml && looksLikeUrdf(name, text)) {
     b.preload(std::filesystem::path(name).lexically_normal().string(), text);
-    text = urdfScene(name, text);
+    made = urdfScene(name, text);
+    text = made;
   } else {
     b.addFile(name, text);
   }
@@ -657,7 +667,10 @@ bool loadFromText(std::string text, const std::string& name, Format format, cons
   std::shared_ptr<XmlDoc> xml;
   std::shared_ptr<IniDoc> ini;
   if (format == Format::Xml) {
-    xml = parseXml(std::move(text), reg, &err, &err_line);
+    xml = parseXml(std::move(text), reg, &err, &err_line, [&] {
+      if (!made.empty()) return made;
+      return given ? *given : reread(name);
+    });
     if (!xml) {
       diag.error({name, err_line}, err);
       return false;
@@ -695,7 +708,7 @@ bool loadFromText(std::string text, const std::string& name, Format format, cons
 
 bool loadSceneFromText(const std::string& text, const std::string& name, Format format, const Registry& reg,
                        Scene* scene, Diagnostics& diag) {
-  return loadFromText(text, name, format, reg, scene, diag);
+  return loadFromText(text, name, format, reg, scene, diag, &text);
 }
 
 Format sceneFormatOf(const std::string& path) {
@@ -711,7 +724,7 @@ bool loadScene(const std::string& path, const Registry& reg, Scene* scene, Diagn
     diag.error({path, 0}, "cannot read scene: " + err, too_large ? ErrorKind::InvalidInput : ErrorKind::MissingInput);
     return false;
   }
-  return loadFromText(std::move(text), path, sceneFormatOf(path), reg, scene, diag);
+  return loadFromText(std::move(text), path, sceneFormatOf(path), reg, scene, diag, nullptr);
 }
 
 bool loadStructIni(const std::string& path, const Registry& reg, const std::string& struct_type, Scene* holder,

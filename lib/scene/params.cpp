@@ -45,6 +45,9 @@ double largestFinite(const Value& v) {
   return big;
 }
 
+// The blanks a value may not have around it (guide 4.3; the same as the value parser's).
+bool isBlank(char c) { return c == ' ' || c == '\t'; }
+
 const char* rangeText(Range r) {
   switch (r) {
     case Range::Any:
@@ -76,6 +79,14 @@ bool inRange(Range r, double v) {
 }  // namespace
 
 ParseResult parseParam(const ParamSpec& p, std::string_view text) {
+  // Most values of a large scene are plain numbers: one that parses, has no blanks around it,
+  // and passes the checks below is taken at once; anything else goes the general way, which
+  // says what is wrong.
+  if (p.type == ValueType::Number && !text.empty() && !isBlank(text.front()) && !isBlank(text.back())) {
+    const std::optional<double> d = parseNumber(text, p.allow_infinite);
+    if (d && !(std::isfinite(*d) && std::fabs(*d) > kMaxMagnitude) && inRange(p.range, *d))
+      return ParseResult{Value(*d), {}};
+  }
   ParseOptions opts;
   opts.allow_infinite = p.allow_infinite;
   ParseResult r = parseValue(p.type, text, p.table, opts);

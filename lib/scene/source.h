@@ -72,9 +72,12 @@ class Source {
 class Registry;
 
 /// Parse XML text; the registry tells type elements from wrapper elements in lists. The document
-/// keeps `text` and is parsed in place (no second copy of a large scene).
+/// keeps `text` and is parsed in place (no second copy of a large scene). `reread` gives the
+/// text again, as it was, for the message about an element left open (in-place parsing changes
+/// it); without it that message names only the line.
 struct XmlDoc;
-std::shared_ptr<XmlDoc> parseXml(std::string text, const Registry& reg, std::string* error, int* error_line);
+std::shared_ptr<XmlDoc> parseXml(std::string text, const Registry& reg, std::string* error, int* error_line,
+                                 const std::function<std::string()>& reread = {});
 std::unique_ptr<Source> xmlRoot(const std::shared_ptr<XmlDoc>& doc, std::string* root_name);
 /// The document node itself, whose one parameter is the root element: imports read
 /// component("Body") / component("Joint") / list("RefList") from it.

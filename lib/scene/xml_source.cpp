@@ -306,8 +306,6 @@ class XmlSource : public Source {
 // open tags up to byte `stop`, skipping comments, processing instructions, CDATA, DOCTYPE and
 // quoted attribute values. Returns the open element's name and the offset of its '<', and in
 // *closing the name of the closing tag found at `stop` ("" at the end of the text).
-constexpr size_t kKeepForDiagnosis = size_t{4} << 20;
-
 bool unclosedElement(std::string_view text, size_t stop, std::string* name, size_t* open_at, std::string* closing) {
   std::vector<std::pair<std::string_view, size_t>> open;
   auto skipTo = [&](size_t from, std::string_view end) {
@@ -391,7 +389,8 @@ pugi::xml_attribute repeatedAttribute(const pugi::xml_node& n) {
 
 }  // namespace
 
-std::shared_ptr<XmlDoc> parseXml(std::string text, const Registry& reg, std::string* error, int* error_line) {
+std::shared_ptr<XmlDoc> parseXml(std::string text, const Registry& reg, std::string* error, int* error_line,
+                                 const std::function<std::string()>& reread) {
   auto d = std::make_shared<XmlDoc>();
   d->text = std::move(text);
   d->reg = &reg;
@@ -399,9 +398,6 @@ std::shared_ptr<XmlDoc> parseXml(std::string text, const Registry& reg, std::str
   const char* const end = begin + d->text.size();
   for (const char* p = begin; (p = static_cast<const char*>(std::memchr(p, '\n', static_cast<size_t>(end - p)))); ++p)
     d->newlines.push_back(static_cast<size_t>(p - begin));
-  // Parsing in place overwrites delimiters, so the element a mismatched end tag leaves open is
-  // found in a copy; kept only for texts of a size people write by hand.
-  const std::string original = d->text.size() <= kKeepForDiagnosis ? d->text : std::string();
   pugi::xml_parse_result res =
       d->doc.load_buffer_inplace(d->text.data(), d->text.size(), pugi::parse_default, pugi::encoding_utf8);
   if (!res) {
@@ -413,7 +409,12 @@ std::shared_ptr<XmlDoc> parseXml(std::string text, const Registry& reg, std::str
     // where it opens.
     std::string open, closing;
     size_t open_at = 0;
-    if (res.status == pugi::status_end_element_mismatch && !original.empty() &&
+    // Parsing in place overwrote delimiters: the element a mismatched end tag leaves open is
+    // found in the text as it was, asked for only now (a copy kept for every scene doubled the
+    // memory of a large one's text). A text of another size is not the one parsed.
+    std::string original;
+    if (res.status == pugi::status_end_element_mismatch && reread) original = reread();
+    if (original.size() == d->text.size() && !original.empty() &&
         unclosedElement(original, off, &open, &open_at, &closing)) {
       const int close_line = *error_line;
       *error_line =

@@ -607,6 +607,25 @@ TEST_CASE("errors: missing import and import without File", "[scene][errors][imp
   CHECK(d2.errors()[0].str().find("nope.xml: cannot read scene") != std::string::npos);
 }
 
+TEST_CASE("errors: an element left open in a scene file is named where it opens, at any size", "[scene][errors]") {
+  // The file is parsed in place and read again for this message: also past the 4 MiB up to
+  // which a copy used to be kept for it.
+  TempDir dir;
+  std::string big = "<Simulation>\n<ComponentList>\n";
+  while (big.size() < (size_t{5} << 20)) big += "<RCGround Key=\"G" + std::to_string(big.size()) + "\"/>\n";
+  const int lines = static_cast<int>(std::count(big.begin(), big.end(), '\n'));
+  big += "<RCGround>\n</ComponentList>\n</Simulation>\n";
+  dir.write("open.xml", big);
+  const std::string path = (dir.path() / "open.xml").string();
+  Scene s;
+  Diagnostics d;
+  CHECK_FALSE(loadScene(path, testRegistry(), &s, d));
+  REQUIRE(d.errors().size() == 1);
+  CHECK(d.errors()[0].str() == path + ":" + std::to_string(lines + 1) +
+                                   ": malformed XML: <RCGround> is not closed (</ComponentList> on line " +
+                                   std::to_string(lines + 2) + " comes first)");
+}
+
 TEST_CASE("errors: imported files with the wrong root or bad content", "[scene][errors][import]") {
   TempDir dir;
   dir.write("joint.xml", "<Joint><RCFixJoint/></Joint>");

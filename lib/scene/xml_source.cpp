@@ -441,17 +441,25 @@ std::shared_ptr<XmlDoc> parseXml(std::string text, const Registry& reg, std::str
     *error = std::string("malformed XML: a second root element <") + n.name() + "> (a document has one)";
     return nullptr;
   }
-  std::vector<pugi::xml_node> stack = {d->doc.document_element()};
-  while (!stack.empty()) {
-    pugi::xml_node n = stack.back();
-    stack.pop_back();
-    if (const pugi::xml_attribute a = repeatedAttribute(n)) {
-      *error_line = d->lineOf(n);
-      *error = std::string("malformed XML: attribute '") + a.name() + "' given twice in <" + n.name() + ">";
-      return nullptr;
+  // pugixml walks the tree itself (in document order, so the first such element in the file is
+  // named): a walk of our own cost several calls into the library for every element.
+  struct RepeatedAttributes : pugi::xml_tree_walker {
+    pugi::xml_node node;
+    pugi::xml_attribute attribute;
+    bool for_each(pugi::xml_node& n) override {
+      if (!isElement(n)) return true;
+      attribute = repeatedAttribute(n);
+      if (!attribute) return true;
+      node = n;
+      return false;
     }
-    for (pugi::xml_node c = n.first_child(); c; c = c.next_sibling())
-      if (isElement(c)) stack.push_back(c);
+  } walk;
+  d->doc.traverse(walk);  // every element below the document node: the root and all inside it
+  if (walk.attribute) {
+    *error_line = d->lineOf(walk.node);
+    *error = std::string("malformed XML: attribute '") + walk.attribute.name() + "' given twice in <" +
+             walk.node.name() + ">";
+    return nullptr;
   }
   return d;
 }

@@ -1197,6 +1197,12 @@ TEST_CASE("XML with a duplicated attribute or two root elements is rejected", "[
   expectExact(dup, "bad.xml:3: malformed XML: attribute 'Key' given twice in <RCGround>");
   Result val = run(inList("<RCSky>\n<Height Value=\"1\" Value=\"2\"/>\n</RCSky>\n"));
   expectExact(val, "bad.xml:4: malformed XML: attribute 'Value' given twice in <Height>");
+  // The root element is looked at too, and of several such elements the first in the file is named.
+  Result root = run("<Simulation A=\"1\" A=\"2\">\n<ComponentList/>\n</Simulation>\n");
+  expectExact(root, "bad.xml:1: malformed XML: attribute 'A' given twice in <Simulation>");
+  Result two = run(inList("<RCGround Key=\"a\" Key=\"b\"/>\n<RCSky>\n<Height Value=\"1\" Value=\"2\"/>\n</RCSky>\n"));
+  REQUIRE(two.diag.errors().size() == 1);
+  expectExact(two, "bad.xml:3: malformed XML: attribute 'Key' given twice in <RCGround>");
   Result roots = run(inList("<RCGround/>\n") + "<Simulation/>\n");
   CHECK_FALSE(roots.loaded);
   expectExact(roots, "bad.xml:6: malformed XML: a second root element <Simulation> (a document has one)");

@@ -132,6 +132,123 @@ struct Placed {
   Vec3 lo, hi;  // global bounds
 };
 
+// The geoms of a scene in the cells of a grid over x and z (y is up), for the overlap search. A
+// sweep along x alone looks at every pair of a grid's column (5,000 boxes on a floor: 175,000
+// pairs); the cells give each geom its neighbours. Geoms are named by their position in the
+// sweep's order. A geom in more than kMaxCells cells is a neighbour of every other instead.
+class CellGrid {
+ public:
+  CellGrid(const std::vector<Placed>& placed, const std::vector<size_t>& order) : n_(order.size()) {
+    if (n_ < 2) return;
+    // Cells as wide as the median geom (the grid suits the many small ones), never so narrow
+    // that the scene is more than kMaxCellsAcross of them across.
+    std::vector<double> widths(n_);
+    double x1 = -1e300, z1 = -1e300;
+    for (size_t r = 0; r < n_; ++r) {
+      const Placed& p = placed[order[r]];
+      widths[r] = std::max(p.hi[0] - p.lo[0], p.hi[2] - p.lo[2]);
+      x0_ = std::min(x0_, p.lo[0]);
+      z0_ = std::min(z0_, p.lo[2]);
+      x1 = std::max(x1, p.hi[0]);
+      z1 = std::max(z1, p.hi[2]);
+    }
+    std::nth_element(widths.begin(), widths.begin() + static_cast<ptrdiff_t>(n_ / 2), widths.end());
+    cell_ = std::max({widths[n_ / 2], (x1 - x0_) / kMaxCellsAcross, (z1 - z0_) / kMaxCellsAcross, 1e-9});
+    ranges_.resize(n_);
+    wide_.assign(n_, 0);
+    size_t listed = 0;
+    for (size_t r = 0; r < n_; ++r) {
+      const Placed& p = placed[order[r]];
+      // Bounds that merely touch share a cell: the sweep's own tests decide.
+      const Range c{cellOf(p.lo[0], x0_), cellOf(p.hi[0], x0_), cellOf(p.lo[2], z0_), cellOf(p.hi[2], z0_)};
+      ranges_[r] = c;
+      const uint64_t cells = uint64_t{c.x1 - c.x0 + 1} * (c.z1 - c.z0 + 1);
+      if (cells > kMaxCells) {
+        wide_[r] = 1;
+        wide_list_.push_back(static_cast<uint32_t>(r));
+      } else {
+        listed += cells;
+      }
+    }
+    // Each cell's geoms as a chain through entries_, from an open-addressing table of cells.
+    size_t slots = 16;
+    while (slots < listed * 2) slots *= 2;
+    table_.assign(slots, {0, kNone});
+    entries_.reserve(listed);
+    for (size_t r = n_; r-- > 0;) {  // last first: each chain ends up in ascending order
+      if (wide_[r]) continue;
+      const Range& c = ranges_[r];
+      for (uint32_t x = c.x0; x <= c.x1; ++x)
+        for (uint32_t z = c.z0; z <= c.z1; ++z) {
+          Slot& s = table_[find(key(x, z))];
+          s.key = key(x, z);
+          entries_.push_back({static_cast<uint32_t>(r), s.head});
+          s.head = static_cast<uint32_t>(entries_.size() - 1);
+        }
+    }
+  }
+
+  /// The positions after `oi` of the geoms that share a cell with it, ascending, into *out.
+  void later(uint32_t oi, std::vector<uint32_t>* out) const {
+    out->clear();
+    if (oi >= ranges_.size()) return;  // one geom alone (or none): no grid, no pairs
+    if (wide_[oi]) {
+      for (size_t r = oi + 1; r < n_; ++r) out->push_back(static_cast<uint32_t>(r));
+      return;
+    }
+    const Range& a = ranges_[oi];
+    for (uint32_t x = a.x0; x <= a.x1; ++x)
+      for (uint32_t z = a.z0; z <= a.z1; ++z) {
+        for (uint32_t e = table_[find(key(x, z))].head; e != kNone; e = entries_[e].next) {
+          const uint32_t r = entries_[e].pos;
+          if (r <= oi) continue;
+          // A pair that shares several cells is taken in the first of them only.
+          const Range& b = ranges_[r];
+          if (x == std::max(a.x0, b.x0) && z == std::max(a.z0, b.z0)) out->push_back(r);
+        }
+      }
+    for (uint32_t w : wide_list_)
+      if (w > oi) out->push_back(w);
+    std::sort(out->begin(), out->end());
+  }
+
+ private:
+  static constexpr uint64_t kMaxCells = 16;
+  static constexpr double kMaxCellsAcross = 65536;  // cell numbers stay small integers
+  static constexpr uint32_t kNone = 0xffffffffu;
+  struct Range {
+    uint32_t x0, x1, z0, z1;
+  };
+  struct Entry {
+    uint32_t pos;   ///< the geom's position in the sweep's order
+    uint32_t next;  ///< the next entry of the same cell, kNone at the end
+  };
+  struct Slot {
+    uint64_t key;
+    uint32_t head;  ///< first entry of the cell; kNone: the slot is empty
+  };
+
+  uint32_t cellOf(double v, double origin) const {
+    const double c = std::floor((v - origin) / cell_);
+    return static_cast<uint32_t>(c >= 0 ? std::min(c, kMaxCellsAcross + 1) : 0);  // NaN: 0
+  }
+  static uint64_t key(uint32_t x, uint32_t z) { return uint64_t{x} << 32 | z; }
+  // The index of the cell's slot: its own, or the empty one where it would go.
+  size_t find(uint64_t k) const {
+    const size_t mask = table_.size() - 1;
+    for (size_t i = static_cast<size_t>((k * 0x9E3779B97F4A7C15ull) >> 32) & mask;; i = (i + 1) & mask)
+      if (table_[i].head == kNone || table_[i].key == k) return i;
+  }
+
+  size_t n_ = 0;
+  double x0_ = 1e300, z0_ = 1e300, cell_ = 1;
+  std::vector<Range> ranges_;
+  std::vector<char> wide_;
+  std::vector<uint32_t> wide_list_;
+  std::vector<Entry> entries_;
+  std::vector<Slot> table_;
+};
+
 class Linter {
  public:
   Linter(const Model& m, Diagnostics& d, double dt) : m_(m), d_(d), dt_(dt > 0 ? dt : m.settings.max_time_step) {}
@@ -442,7 +559,10 @@ class Linter {
                    "': ODE pushes it out violently at the first step; move it out");
       }
     }
-    // Pairs of geoms: sweep along x over sorted bounds.
+    // Pairs of geoms, looked at in the order of a sweep along x over sorted bounds: for each geom
+    // in x order, the later ones whose x range begins inside its own. Only the pairs that share a
+    // cell of a grid (CellGrid) are looked at, in the sweep's order: the warnings, and where the
+    // search stops, are the sweep's.
     std::vector<size_t> order(placed_.size());
     for (size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
@@ -451,6 +571,8 @@ class Linter {
     std::set<std::pair<int, int>> reported;
     // Thousands of coincident bodies overlap pairwise: stop looking once the point is made.
     constexpr size_t kMaxOverlapPairs = 10000;
+    const CellGrid grid(placed_, order);
+    std::vector<uint32_t> later;
     for (size_t oi = 0; oi < order.size(); ++oi) {
       if (reported.size() >= kMaxOverlapPairs) {
         d_.warning({}, "stopped looking for overlaps after " + std::to_string(kMaxOverlapPairs) +
@@ -458,12 +580,10 @@ class Linter {
         return;
       }
       const Placed& a = placed_[order[oi]];
-      for (size_t oj = oi + 1; oj < order.size(); ++oj) {
+      grid.later(static_cast<uint32_t>(oi), &later);
+      for (const uint32_t oj : later) {
         const Placed& b = placed_[order[oj]];
-        if (b.lo[0] > a.hi[0] - kOverlap) break;
-        // The boxes' depth first: in a grid every body of a column shares the sweep's x range,
-        // and the tests below cost more than this one that rejects nearly all of those pairs.
-        // The axes across the sweep first (z, y, x): a column's bodies part there, after one.
+        if (b.lo[0] > a.hi[0] - kOverlap) break;  // beyond the sweep's window, as all later ones
         const bool spheres = a.g->shape == GeomShape::Sphere && b.g->shape == GeomShape::Sphere;
         double depth = 1e300;
         if (!spheres) {

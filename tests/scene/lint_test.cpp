@@ -241,3 +241,37 @@ TEST_CASE("a two-wheel robot whose axle turns its wheel backwards is named", "[s
   REQUIRE(one.size() == 1);
   CHECK(anyContains(one, "joint 'Bot.Cart.RightAxle'"));
 }
+
+TEST_CASE("overlaps among many bodies are found between neighbours and with wide bodies, in x order", "[scene][lint]") {
+  // A floor of 1,600 boxes 0.2 m wide, 0.3 m apart (on negative coordinates too), none touching;
+  // the search looks at neighbours in a grid of cells, and must still find what the sweep along
+  // x finds, in its order (by where each pair's first body begins along x).
+  Model m = base();
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j)
+      addBody(m, "F" + std::to_string(i) + "_" + std::to_string(j), {-6 + 0.3 * i, 0.1, -6 + 0.3 * j}, GeomShape::Box,
+              {0.2, 0.2, 0.2});
+  addBody(m, "P", {-6 + 0.3 * 10 + 0.1, 0.1, -6 + 0.3 * 7}, GeomShape::Box, {0.2, 0.2, 0.2});  // 0.1 m into F10_7
+  // A slab 3 m across lies in some 200 cells (a body of many cells meets every other one); two
+  // boxes sink 0.1 m into it.
+  addBody(m, "Slab", {20, 0.5, 20}, GeomShape::Box, {3, 0.1, 3});
+  addBody(m, "On2", {21.4, 0.5, 21.4}, GeomShape::Box, {0.2, 0.2, 0.2});
+  addBody(m, "On1", {19, 0.5, 19}, GeomShape::Box, {0.2, 0.2, 0.2});
+  // Two spheres 0.05 m into each other, and two large boxes that share several cells.
+  addBody(m, "S1", {10, 2, 10}, GeomShape::Sphere, {0.1, 0, 0});
+  addBody(m, "S2", {10.15, 2, 10}, GeomShape::Sphere, {0.1, 0, 0});
+  addBody(m, "Q2", {-19.9, 1, -20}, GeomShape::Box, {0.5, 0.5, 0.5});
+  addBody(m, "Q1", {-20, 1, -20}, GeomShape::Box, {0.5, 0.5, 0.5});
+  // Each at the line of the pair's first body (the helper gives body i line i + 10).
+  std::vector<std::string> overlaps;
+  for (const std::string& w : warnings(m))
+    if (w.find(" overlap by about ") != std::string::npos) overlaps.push_back(w.substr(0, w.find(" m at t = 0")));
+  const std::vector<std::string> expected = {
+      "lint.xml:1617: bodies 'Q1' and 'Q2' overlap by about 0.4",     // Q1 begins at x = -20.25
+      "lint.xml:417: bodies 'F10_7' and 'P' overlap by about 0.1",    // F10_7 at x = -3.1
+      "lint.xml:1614: bodies 'S1' and 'S2' overlap by about 0.05",    // S1 at x = 9.9
+      "lint.xml:1611: bodies 'Slab' and 'On1' overlap by about 0.1",  // the slab at x = 18.5
+      "lint.xml:1611: bodies 'Slab' and 'On2' overlap by about 0.1",
+  };
+  CHECK(overlaps == expected);
+}

@@ -56,6 +56,21 @@ class XmlSource : public Source {
  public:
   XmlSource(std::shared_ptr<XmlDoc> doc, pugi::xml_node node) : doc_(std::move(doc)), node_(node) {}
 
+  // A source lives while its component is built: a few at a time, one made and dropped for
+  // every component of a large scene. Their memory is kept for the next on the same thread.
+  static void* operator new(size_t size) {
+    std::vector<void*>& kept = spare();
+    if (size != sizeof(XmlSource) || kept.empty()) return ::operator new(size);
+    void* p = kept.back();
+    kept.pop_back();
+    return p;
+  }
+  static void operator delete(void* p, size_t size) {
+    std::vector<void*>& kept = spare();
+    if (size != sizeof(XmlSource) || kept.size() >= kMaxSpare) return ::operator delete(p);
+    kept.push_back(p);
+  }
+
   int line() const override { return doc_->lineOf(node_); }
   bool ignoresCase() const override { return false; }
 
@@ -289,6 +304,19 @@ class XmlSource : public Source {
     }
     // An unknown type is named by the loader, with the nearest type names.
     return typeElement(first);
+  }
+
+  // The memory of sources dropped on this thread, ready for the next (freed when it ends).
+  static constexpr size_t kMaxSpare = 256;
+  static std::vector<void*>& spare() {
+    struct Spare {
+      std::vector<void*> blocks;
+      ~Spare() {
+        for (void* p : blocks) ::operator delete(p);
+      }
+    };
+    thread_local Spare kept;
+    return kept.blocks;
   }
 
   std::shared_ptr<XmlDoc> doc_;

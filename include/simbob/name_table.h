@@ -1,6 +1,7 @@
-// A hash table from names to small integers, built once and read often: the registry's types
-// and each type's parameters, the compile step's model keys. Looked up by string_view without making a std::string, and
-// copyable (it holds its own names), unlike a map keyed by views into the table it indexes.
+// A hash table from names to small integers, built once and read often: the registry's types,
+// each type's parameters, the compile step's model keys. Looked up by string_view without making
+// a std::string, and copyable (it holds its own names), unlike a map keyed by views into the
+// table it indexes.
 #pragma once
 
 #include <cstdint>
@@ -67,7 +68,10 @@ class NameTable {
       if (__builtin_is_constant_evaluated()) {
         for (size_t j = 0; j < 8; ++j) w |= static_cast<uint64_t>(static_cast<unsigned char>(s[i + j])) << (8 * j);
       } else {
-        __builtin_memcpy(&w, s.data() + i, 8);  // one load (x86-64 is little-endian)
+        __builtin_memcpy(&w, s.data() + i, 8);  // one load
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+        w = __builtin_bswap64(w);  // the little-endian word, as the shifts above make it
+#endif
       }
       h = (h ^ w) * kPrime;
       h ^= h >> 32;  // the high bytes of a word reach the low bits

@@ -203,6 +203,10 @@ std::string didYouMean(std::string_view word, const std::vector<std::string>& ca
 /// around it are ignored (for CSV fields and INI counts; scene values go through parseValue).
 std::optional<double> parseNumber(std::string_view text, bool allow_infinite = false);
 
+/// A Number value as parseValue reads it: the number alone, without blanks around it (guide
+/// 4.3). False, leaving *out alone, wherever parseValue gives an error instead.
+bool parseNumberValue(std::string_view text, bool allow_infinite, double* out);
+
 /// A numerical value list: numbers separated by any of " \t,;\\()" (guide 4.3).
 /// Returns std::nullopt and sets *error on a malformed element.
 std::optional<std::vector<double>> parseNumberList(std::string_view text, std::string* error,

@@ -45,9 +45,6 @@ double largestFinite(const Value& v) {
   return big;
 }
 
-// The blanks a value may not have around it (guide 4.3; the same as the value parser's).
-bool isBlank(char c) { return c == ' ' || c == '\t'; }
-
 const char* rangeText(Range r) {
   switch (r) {
     case Range::Any:
@@ -82,11 +79,10 @@ ParseResult parseParam(const ParamSpec& p, std::string_view text) {
   // Most values of a large scene are plain numbers: one that parses, has no blanks around it,
   // and passes the checks below is taken at once; anything else goes the general way, which
   // says what is wrong.
-  if (p.type == ValueType::Number && !text.empty() && !isBlank(text.front()) && !isBlank(text.back())) {
-    const std::optional<double> d = parseNumber(text, p.allow_infinite);
-    if (d && !(std::isfinite(*d) && std::fabs(*d) > kMaxMagnitude) && inRange(p.range, *d))
-      return ParseResult{Value(*d), {}};
-  }
+  double d = 0;
+  if (p.type == ValueType::Number && parseNumberValue(text, p.allow_infinite, &d) &&
+      !(std::isfinite(d) && std::fabs(d) > kMaxMagnitude) && inRange(p.range, d))
+    return ParseResult{Value(d), {}};
   ParseOptions opts;
   opts.allow_infinite = p.allow_infinite;
   ParseResult r = parseValue(p.type, text, p.table, opts);

@@ -534,6 +534,14 @@ bool scanNumberList(std::string_view text, bool allow_infinite, double* out, siz
 
 }  // namespace
 
+bool parseNumberValue(std::string_view text, bool allow_infinite, double* out) {
+  if (text.empty() || isBlank(text.front()) || isBlank(text.back())) return false;
+  double d = 0;
+  if (parseNumberImpl(text, allow_infinite, d) != NumStatus::Ok) return false;
+  *out = d;
+  return true;
+}
+
 std::optional<std::vector<double>> parseNumberList(std::string_view text, std::string* error, bool allow_infinite) {
   size_t count = 0;
   if (!scanNumberList(text, allow_infinite, nullptr, 0, &count, error)) return std::nullopt;
@@ -586,10 +594,10 @@ ParseResult parseValue(ValueType t, std::string_view text, const EnumTable* tabl
     }
     case ValueType::Number: {
       double d = 0;
+      if (parseNumberValue(text, inf, &d)) return ok(d);
       NumStatus st = parseNumberImpl(text, inf, d);
       if (st != NumStatus::Ok) return fail(numberError(st, text, false));
-      if (trim(text).size() != text.size()) return fail(blanksError("a number", text));
-      return ok(d);
+      return fail(blanksError("a number", text));
     }
     case ValueType::String:
       return ok(unescapeString(text));

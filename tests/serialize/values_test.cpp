@@ -1,6 +1,7 @@
 // Tests of the basic value conversions (user guide 4.3) and Error::str().
 #include <catch2/catch.hpp>
 
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -301,6 +302,47 @@ TEST_CASE("random doubles round-trip bit for bit", "[values][number]") {
   for (double d : {0.0, -0.0, 5e-324, -5e-324, 2.2250738585072014e-308, 1.7976931348623157e308}) {
     const double back = parseAs<double>(ValueType::Number, formatValue(ValueType::Number, d));
     CHECK(bitsOf(back) == bitsOf(d));
+  }
+}
+
+TEST_CASE("short decimals read as from_chars reads them, bit for bit", "[values][number]") {
+  // Plain decimals of up to 15 digits take a quicker path than std::from_chars (one division
+  // of exact doubles); both round correctly, so the bits must agree for every such text,
+  // whatever the digits, the place of the '.' and the sign. Longer ones, exponents and a bare
+  // '.' at either end go to from_chars itself and are checked here too.
+  std::mt19937_64 rng(0xdec1a1);
+  int checked = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const size_t digits = 1 + rng() % 17;  // 16 and 17 digits go to from_chars
+    std::string text;
+    if (rng() % 2) text += '-';
+    for (size_t d = 0; d < digits; ++d) text += static_cast<char>('0' + rng() % 10);
+    const size_t point = rng() % (digits + 2);  // digits + 1: no point
+    if (point <= digits) text.insert(text.size() - digits + point, 1, '.');
+    if (rng() % 16 == 0) text += "e" + std::to_string(static_cast<int>(rng() % 40) - 20);
+    const std::string_view unsigned_text = std::string_view(text).substr(text[0] == '-' ? 1 : 0);
+    double want = 0;
+    const auto [end, ec] =
+        std::from_chars(unsigned_text.data(), unsigned_text.data() + unsigned_text.size(), want);
+    double got = 1;
+    INFO("'" << text << "'");
+    if (ec != std::errc() || end != unsigned_text.data() + unsigned_text.size()) {
+      CHECK_FALSE(parseNumberValue(text, false, &got));
+      continue;
+    }
+    REQUIRE(parseNumberValue(text, false, &got));
+    REQUIRE(bitsOf(got) == bitsOf(text[0] == '-' ? -want : want));
+    ++checked;
+  }
+  CHECK(checked > 150000);
+  // Rounding cases: halfway and near-halfway fractions, the largest 15-digit integer, zeros.
+  for (const char* text : {"0.1", "0.3", "0.7", "2.675", "1.005", "999999999999999", "0.000000000000001",
+                           "123456789.012345", "0", "-0", "0.0", "00000.5"}) {
+    double want = 0, got = 1;
+    const std::string_view t(text[0] == '-' ? text + 1 : text);
+    std::from_chars(t.data(), t.data() + t.size(), want);
+    REQUIRE(parseNumberValue(text, false, &got));
+    CHECK(bitsOf(got) == bitsOf(text[0] == '-' ? -want : want));
   }
 }
 

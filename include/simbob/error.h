@@ -18,30 +18,32 @@ class FileName {
   FileName(const std::string& name) : s_(intern(name)) {}
   FileName(const char* name) : s_(intern(name)) {}
 
-  const std::string& str() const { return *s_; }
-  operator const std::string&() const { return *s_; }
-  bool empty() const { return s_->empty(); }
-  size_t size() const { return s_->size(); }
-  const char* c_str() const { return s_->c_str(); }
+  const std::string& str() const { return s_ ? *s_ : emptyName(); }
+  operator const std::string&() const { return str(); }
+  bool empty() const { return !s_; }
+  size_t size() const { return s_ ? s_->size() : 0; }
+  const char* c_str() const { return s_ ? s_->c_str() : ""; }
 
   friend bool operator==(const FileName& a, const FileName& b) { return a.s_ == b.s_; }
   friend bool operator!=(const FileName& a, const FileName& b) { return a.s_ != b.s_; }
-  friend bool operator==(const FileName& a, const std::string& b) { return *a.s_ == b; }
-  friend bool operator==(const std::string& a, const FileName& b) { return a == *b.s_; }
-  friend bool operator==(const FileName& a, const char* b) { return *a.s_ == b; }
-  friend bool operator!=(const FileName& a, const std::string& b) { return *a.s_ != b; }
-  friend bool operator!=(const FileName& a, const char* b) { return *a.s_ != b; }
-  friend std::string operator+(const FileName& a, const std::string& b) { return *a.s_ + b; }
-  friend std::string operator+(const FileName& a, const char* b) { return *a.s_ + b; }
-  friend std::string operator+(const FileName& a, char b) { return *a.s_ + b; }
-  friend std::string operator+(const std::string& a, const FileName& b) { return a + *b.s_; }
-  friend std::string operator+(std::string&& a, const FileName& b) { return std::move(a) + *b.s_; }
-  friend std::string operator+(const char* a, const FileName& b) { return a + *b.s_; }
+  friend bool operator==(const FileName& a, const std::string& b) { return a.str() == b; }
+  friend bool operator==(const std::string& a, const FileName& b) { return a == b.str(); }
+  friend bool operator==(const FileName& a, const char* b) { return a.str() == b; }
+  friend bool operator!=(const FileName& a, const std::string& b) { return a.str() != b; }
+  friend bool operator!=(const FileName& a, const char* b) { return a.str() != b; }
+  friend std::string operator+(const FileName& a, const std::string& b) { return a.str() + b; }
+  friend std::string operator+(const FileName& a, const char* b) { return a.str() + b; }
+  friend std::string operator+(const FileName& a, char b) { return a.str() + b; }
+  friend std::string operator+(const std::string& a, const FileName& b) { return a + b.str(); }
+  friend std::string operator+(std::string&& a, const FileName& b) { return std::move(a) + b.str(); }
+  friend std::string operator+(const char* a, const FileName& b) { return a + b.str(); }
 
  private:
-  static const std::string* intern(const std::string& name);
-  static const std::string* empty_();
-  const std::string* s_ = empty_();
+  static const std::string* intern(const std::string& name);  ///< nullptr for ""
+  static const std::string& emptyName();
+  // The interned name; nullptr for "" (the default), so that the location in every slot of a
+  // large scene is made and copied without a call into the pool.
+  const std::string* s_ = nullptr;
 };
 
 /// Where something came from: a file and a 1-based line (0 = unknown line).

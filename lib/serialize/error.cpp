@@ -11,7 +11,7 @@ namespace {
 // Node-based: the strings never move, so their addresses can be handed out.
 struct NamePool {
   std::mutex mutex;
-  std::unordered_set<std::string> names{std::string()};
+  std::unordered_set<std::string> names;
 };
 NamePool& pool() {
   static NamePool* p = new NamePool;  // never destroyed: FileNames may be read during exit
@@ -19,13 +19,13 @@ NamePool& pool() {
 }
 }  // namespace
 
-const std::string* FileName::empty_() {
-  static const std::string* e = &*pool().names.find(std::string());
-  return e;
+const std::string& FileName::emptyName() {
+  static const std::string* e = new std::string();  // never destroyed, as the pool
+  return *e;
 }
 
 const std::string* FileName::intern(const std::string& name) {
-  if (name.empty()) return empty_();
+  if (name.empty()) return nullptr;
   NamePool& p = pool();
   std::lock_guard<std::mutex> lock(p.mutex);
   return &*p.names.insert(name).first;

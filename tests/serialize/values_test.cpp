@@ -766,3 +766,25 @@ TEST_CASE("Error::str formats file, line and message", "[error]") {
   e.loc.line = 0;
   CHECK(e.str() == "scene.xml: parameter 'mass': expected a number, got 'x'");
 }
+
+TEST_CASE("FileName: one interned name per text, the empty one as made by default", "[error]") {
+  const FileName none, empty(""), empty_string(std::string());
+  CHECK(none == empty);
+  CHECK(none == empty_string);
+  CHECK(none.empty());
+  CHECK(none.size() == 0);
+  CHECK(none.str().empty());
+  CHECK(std::string(none.c_str()).empty());
+  CHECK(none == std::string());
+  CHECK(none + "x" == "x");
+  const FileName a("scene.xml"), b(std::string("scene.xml")), c("other.xml");
+  CHECK(a == b);
+  CHECK(&a.str() == &b.str());  // one interned string
+  CHECK(a != c);
+  CHECK(a != none);
+  CHECK_FALSE(a.empty());
+  CHECK(a.size() == 9);
+  CHECK(a == "scene.xml");
+  CHECK(std::string(a.c_str()) == "scene.xml");
+  CHECK("dir/" + a == "dir/scene.xml");
+}

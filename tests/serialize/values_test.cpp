@@ -768,7 +768,7 @@ TEST_CASE("Error::str formats file, line and message", "[error]") {
 }
 
 TEST_CASE("FileName: one interned name per text, the empty one as made by default", "[error]") {
-  const FileName none, empty(""), empty_string(std::string());
+  const FileName none, empty(""), empty_string{std::string()};
   CHECK(none == empty);
   CHECK(none == empty_string);
   CHECK(none.empty());

@@ -322,8 +322,7 @@ TEST_CASE("short decimals read as from_chars reads them, bit for bit", "[values]
     if (rng() % 16 == 0) text += "e" + std::to_string(static_cast<int>(rng() % 40) - 20);
     const std::string_view unsigned_text = std::string_view(text).substr(text[0] == '-' ? 1 : 0);
     double want = 0;
-    const auto [end, ec] =
-        std::from_chars(unsigned_text.data(), unsigned_text.data() + unsigned_text.size(), want);
+    const auto [end, ec] = std::from_chars(unsigned_text.data(), unsigned_text.data() + unsigned_text.size(), want);
     double got = 1;
     INFO("'" << text << "'");
     if (ec != std::errc() || end != unsigned_text.data() + unsigned_text.size()) {

@@ -180,19 +180,22 @@ bool HashSpacePairs::gather(dSpaceID space) {
   return true;
 }
 
-void HashSpacePairs::sweep(size_t axis, size_t begin, size_t end, std::vector<Pair>& out) const {
-  const size_t n = sorted_.size();
+void HashSpacePairs::sweep(size_t begin, size_t end, std::vector<Pair>& out) const {
+  const size_t n = swept_.size();
   for (size_t i = begin; i < end; ++i) {
-    const int ia = sorted_[i];
-    const Box& a = hash_[static_cast<size_t>(ia)];
+    const Span& s = swept_[i];
     for (size_t j = i + 1; j < n; ++j) {
-      const int ib = sorted_[j];
-      const Box& b = hash_[static_cast<size_t>(ib)];
-      if (b.aabb[axis] > a.aabb[axis + 1]) break;
+      const Span& t = swept_[j];
+      if (t.lo > s.hi) break;
+      // meets() tests these too; most boxes that overlap along the sweep axis in a dense scene
+      // fail here, on the spans at hand, before their boxes are read.
+      if (t.lo1 > s.hi1 || t.hi1 < s.lo1 || t.lo2 > s.hi2 || t.hi2 < s.lo2) continue;
+      const Box& a = hash_[static_cast<size_t>(s.box)];
+      const Box& b = hash_[static_cast<size_t>(t.box)];
       if (!meets(a, b)) continue;
       // Met from the box of the lower level, the earlier one at equal levels.
-      const bool aFirst = a.level < b.level || (a.level == b.level && ia < ib);
-      Pair p{aFirst ? ia : ib, aFirst ? ib : ia, 0, {}};
+      const bool aFirst = a.level < b.level || (a.level == b.level && s.box < t.box);
+      Pair p{aFirst ? s.box : t.box, aFirst ? t.box : s.box, 0, {}};
       if (firstMeeting(aFirst ? a : b, aFirst ? b : a, p)) out.push_back(p);
     }
   }
@@ -202,13 +205,14 @@ void HashSpacePairs::findPairs(WorkerPool* pool, size_t grain) {
   pairs_.clear();
   const size_t n = hash_.size();
   const size_t axis = 2 * static_cast<size_t>(sweepAxis(hash_));  // the axis's lower bound in aabb
-  sorted_.resize(n);
-  for (size_t i = 0; i < n; ++i) sorted_[i] = static_cast<int>(i);
-  std::sort(sorted_.begin(), sorted_.end(), [&](int x, int y) {
-    const dReal bx = hash_[static_cast<size_t>(x)].aabb[axis];
-    const dReal by = hash_[static_cast<size_t>(y)].aabb[axis];
-    return bx < by || (bx == by && x < y);
-  });
+  const size_t axis1 = (axis + 2) % 6, axis2 = (axis + 4) % 6;
+  swept_.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const dReal* b = hash_[i].aabb;
+    swept_[i] = {b[axis], b[axis + 1], b[axis1], b[axis1 + 1], b[axis2], b[axis2 + 1], static_cast<int>(i)};
+  }
+  std::sort(swept_.begin(), swept_.end(),
+            [](const Span& x, const Span& y) { return x.lo < y.lo || (x.lo == y.lo && x.box < y.box); });
   if (pool) {
     // Each chunk of the sorted boxes sweeps into its own list; the lists joined in chunk order
     // are the serial sweep's list, and the sort below orders the pairs totally anyway.
@@ -216,11 +220,11 @@ void HashSpacePairs::findPairs(WorkerPool* pool, size_t grain) {
     if (chunkPairs_.size() < chunks) chunkPairs_.resize(chunks);
     pool->run(n, grain, [&](size_t c, size_t begin, size_t end, int) {
       chunkPairs_[c].clear();
-      sweep(axis, begin, end, chunkPairs_[c]);
+      sweep(begin, end, chunkPairs_[c]);
     });
     for (size_t c = 0; c < chunks; ++c) pairs_.insert(pairs_.end(), chunkPairs_[c].begin(), chunkPairs_[c].end());
   } else {
-    sweep(axis, 0, n, pairs_);
+    sweep(0, n, pairs_);
   }
   std::sort(pairs_.begin(), pairs_.end(), [](const Pair& x, const Pair& y) {
     if (x.a != y.a) return x.a < y.a;

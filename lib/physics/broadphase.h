@@ -71,8 +71,17 @@ class HashSpacePairs {
   bool gather(dSpaceID space);
   /// The overlapping pairs of hash boxes, in dHashSpace's order.
   void findPairs(WorkerPool* pool, size_t grain);
-  /// The pairs met sweeping from sorted_[begin, end) (each box against those after it), into out.
-  void sweep(size_t axis, size_t begin, size_t end, std::vector<Pair>& out) const;
+  /// A hash box's extent along the sweep axis and the two others, kept in sweep order side by
+  /// side: the sweep reads these (a dense scene tests each box against many) instead of the
+  /// boxes themselves, scattered in the space's order.
+  struct Span {
+    dReal lo, hi;    ///< along the sweep axis
+    dReal lo1, hi1;  ///< along the next axis
+    dReal lo2, hi2;  ///< along the last axis
+    int box;         ///< index into hash_
+  };
+  /// The pairs met sweeping from swept_[begin, end) (each box against those after it), into out.
+  void sweep(size_t begin, size_t end, std::vector<Pair>& out) const;
   /// Where dHashSpace meets `high` looking from `low` (low's level <= high's): p.level and
   /// p.cell; false if it never does.
   static bool firstMeeting(const Box& low, const Box& high, Pair& p);
@@ -80,7 +89,7 @@ class HashSpacePairs {
   dGeomID cleaner_ = nullptr;  ///< a geom in no space that collides with nothing (see collide)
   std::vector<Box> hash_;
   std::vector<Box> big_;
-  std::vector<int> sorted_;
+  std::vector<Span> swept_;  ///< the hash boxes by their lower bound along the sweep axis
   std::vector<Pair> pairs_;
   std::vector<std::vector<Pair>> chunkPairs_;  ///< each sweep chunk's pairs (with a pool)
 };

@@ -432,6 +432,20 @@ TEST_CASE("physics: firstBadBody finds runaway and NaN states", "[physics]") {
     // Non-finite is bad even when no finite limit applies.
     CHECK(w->firstBadBody(std::numeric_limits<double>::infinity()) == 1);
   }
+  m.bodies[static_cast<size_t>(huge)].lin_vel = {0, 0, 0};
+  m.bodies[static_cast<size_t>(huge)].pose.p = {0, -2e6, 0};  // a position beyond the limit
+  {
+    auto w = World::create(m, 1);
+    REQUIRE(w);
+    CHECK(w->firstBadBody() == 1);
+    CHECK(w->firstBadBody(2e6) == -1);  // at the limit is within it
+  }
+  m.bodies[static_cast<size_t>(huge)].pose.p = {0, 0, 0};
+  {  // (ODE itself refuses a NaN orientation: it cannot be set to test the quaternion's check)
+    auto w = World::create(m, 1);
+    REQUIRE(w);
+    CHECK(w->firstBadBody() == -1);
+  }
 }
 
 TEST_CASE("physics: sensor geoms create no contact joints", "[physics]") {

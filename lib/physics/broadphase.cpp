@@ -206,13 +206,18 @@ void HashSpacePairs::findPairs(WorkerPool* pool, size_t grain) {
   const size_t n = hash_.size();
   const size_t axis = 2 * static_cast<size_t>(sweepAxis(hash_));  // the axis's lower bound in aabb
   const size_t axis1 = (axis + 2) % 6, axis2 = (axis + 4) % 6;
+  // Sorted as (lower bound, box) pairs, a quarter of a span each; then the spans in that order.
+  order_.resize(n);
+  for (size_t i = 0; i < n; ++i) order_[i] = {hash_[i].aabb[axis], static_cast<int>(i)};
+  std::sort(order_.begin(), order_.end(), [](const std::pair<dReal, int>& x, const std::pair<dReal, int>& y) {
+    return x.first < y.first || (x.first == y.first && x.second < y.second);
+  });
   swept_.resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    const dReal* b = hash_[i].aabb;
-    swept_[i] = {b[axis], b[axis + 1], b[axis1], b[axis1 + 1], b[axis2], b[axis2 + 1], static_cast<int>(i)};
+  for (size_t k = 0; k < n; ++k) {
+    const int i = order_[k].second;
+    const dReal* b = hash_[static_cast<size_t>(i)].aabb;
+    swept_[k] = {b[axis], b[axis + 1], b[axis1], b[axis1 + 1], b[axis2], b[axis2 + 1], i};
   }
-  std::sort(swept_.begin(), swept_.end(),
-            [](const Span& x, const Span& y) { return x.lo < y.lo || (x.lo == y.lo && x.box < y.box); });
   if (pool) {
     // Each chunk of the sorted boxes sweeps into its own list; the lists joined in chunk order
     // are the serial sweep's list, and the sort below orders the pairs totally anyway.

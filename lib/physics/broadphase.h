@@ -31,6 +31,7 @@
 #include <ode/ode.h>
 
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace simbob {
@@ -89,7 +90,8 @@ class HashSpacePairs {
   dGeomID cleaner_ = nullptr;  ///< a geom in no space that collides with nothing (see collide)
   std::vector<Box> hash_;
   std::vector<Box> big_;
-  std::vector<Span> swept_;  ///< the hash boxes by their lower bound along the sweep axis
+  std::vector<std::pair<dReal, int>> order_;  ///< (lower bound along the sweep axis, box), sorted
+  std::vector<Span> swept_;                   ///< the hash boxes in that order
   std::vector<Pair> pairs_;
   std::vector<std::vector<Pair>> chunkPairs_;  ///< each sweep chunk's pairs (with a pool)
 };

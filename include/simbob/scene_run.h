@@ -84,6 +84,9 @@ struct RunListener {
 };
 
 /// What came of a run.
+// Its implicit constructor is noexcept; clang-tidy finds a throw inside nlohmann::ordered_json's
+// noexcept default constructor (an allocation for other kinds of value), not in this struct.
+// NOLINTNEXTLINE(bugprone-exception-escape)
 struct RunOutcome {
   RunResult result;  ///< status, error (with its place and kind), divergence, steps, times
   /// The run summary as written (docs/formats.md); for a failed run, as kept (.partial.json).
@@ -140,7 +143,7 @@ class Run {
   std::string keepFromOtherThread(Error* err);
 
  private:
-  Run() = default;
+  Run() = default;  // NOLINT(bugprone-exception-escape): see RunOutcome
   bool prepare(const Registry& reg, Error* refusal);
   bool openOutputs(Error* refusal);
   void beforeRun();

@@ -17,6 +17,7 @@
 #include "simbob/error.h"
 #include "simbob/model.h"
 #include "simbob/options.h"
+#include "simbob/physics.h"
 #include "simbob/trajectory.h"
 
 namespace simbob {
@@ -47,6 +48,7 @@ struct RunResult {
   /// to connect (bounded by --peer-timeout, not MaxAccessTime). Not simulation work.
   double wait_seconds = 0.0;
   double dt = 0.0;  ///< the step taken: dt (or MaxTimeStep) on the nanosecond grid
+  PhysicsMessages physics_messages;  ///< what ODE reported during the run (World::physicsMessages)
 };
 
 /// Something that needs the simulation at given simulated times (guide 7.2): a sampler, a
@@ -205,6 +207,10 @@ SimTime frameTime(uint64_t n, double fps);
 /// frames show the first grid instant at or after their nominal times), and a sample interval
 /// below the step (a sample every step). Empty when everything lands on the grid.
 std::vector<std::string> gridNotes(double step, double sample_interval, double fps);
+
+/// What a run says once when ODE reported anything while stepping (RunResult::physics_messages,
+/// count > 0): how many, the first and when, and what it means for the motion.
+std::string physicsMessagesWarning(const PhysicsMessages& m);
 
 /// "out.csv" -> "out.partial.csv" (the trajectory kept by a failed or interrupted run).
 std::string partialPath(const std::string& out);

@@ -45,6 +45,16 @@ struct JointState {
   double velocity = 0.0;  ///< rad/s (hinge) or m/s (slider)
 };
 
+/// What ODE reported while a World's calls into it ran: its messages (dMessage), such as Solver
+/// Step's "LCP internal error, s <= 0" when it meets constraints it cannot solve exactly. ODE
+/// prints them to stderr and goes on; simbob keeps them here instead, for the run to report
+/// once. Never part of the physics: a message changes no state.
+struct PhysicsMessages {
+  uint64_t count = 0;
+  std::string first;      ///< the first message, one line ("ODE message 3: LCP internal error, ...")
+  double first_time = 0;  ///< s: the simulated time at the end of the step the first came in
+};
+
 struct WorldImpl;  // ODE handles; private to lib/physics (world_impl.h)
 
 /// An ODE world built from a Model. Any number of Worlds may live in one process, created,
@@ -133,6 +143,9 @@ class World {
 
   /// Contact joints created by the last step (for tests and diagnostics).
   int lastContactCount() const;
+
+  /// ODE's messages from this World's creation and steps so far (see PhysicsMessages).
+  PhysicsMessages physicsMessages() const;
 
   /// The first call with an index out of range (setCommand(99999), joint(-1), ...), in words,
   /// or "": such a call does nothing (a read gives zeros) and is recorded here, so that the

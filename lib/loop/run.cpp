@@ -209,6 +209,7 @@ const RunResult& Runner::complete() {
     stopped_ = true;
   }
   res_.sim_time = toSeconds(clock_.now());
+  if (world_) res_.physics_messages = world_->physicsMessages();
   res_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0_).count();
   return res_;
 }
@@ -239,6 +240,19 @@ std::vector<std::string> gridNotes(double step_s, double sample_interval_s, doub
                       " s (a video keeps the n/fps timestamps)");
   }
   return notes;
+}
+
+std::string physicsMessagesWarning(const PhysicsMessages& m) {
+  std::string text = "ODE reported " + countOf(m.count, "problem", "problems") +
+                     " while stepping; the first, in the step to t = " + formatNumber(m.first_time) + " s: '" +
+                     m.first + "'";
+  // ODE 0.16's one message during a step: dWorldStep's LCP solver (Solver Step) met constraints
+  // it could not meet exactly (redundant or conflicting ones with little or no CFM).
+  if (m.first.find("LCP") != std::string::npos)
+    return text +
+           ". Solver Step could not meet the constraints exactly there (redundant contacts or joints with "
+           "little CFM), so the motion may be off; a CFM above 0 (1e-5, say) or Solver QuickStep avoids it";
+  return text + ". The motion may be off from then on";
 }
 
 }  // namespace simbob

@@ -4,7 +4,10 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdarg>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <mutex>
 #include <stdexcept>
 
@@ -31,10 +34,64 @@ namespace {
 // in parallel within one process (parallel worlds belong in separate processes).
 std::mutex processOdeMutex;
 
+// ODE reports through three process-wide handlers. By default it prints a message (dMessage,
+// such as Solver Step's "LCP internal error, s <= 0") to stderr as a blank line and a line of
+// its own, possibly every step, in the middle of simbob's output; and it ends the process on an
+// error (dError: exit(1)) or a failed internal check (dDebug: abort()). Here a message goes to
+// the World whose section is open (World::physicsMessages: the run reports it once), and an
+// error or failed check ends the process as simbob's internal errors do: one line and exit
+// status 70. The compile step refuses what ODE's checks refuse (a joint between a body and
+// itself, a negative mass, ...), so reaching one is a bug in simbob.
+std::atomic<WorldImpl*> sectionWorld{nullptr};  // the World whose OdeSection is open, or null
+
+constexpr int kExitInternal = 70;  // EX_SOFTWARE (README, "Exit statuses")
+
+// ODE's text as one line: "ODE message 3: LCP internal error, s <= 0 (s=-0.0000e+00)".
+std::string odeText(const char* kind, int num, const char* msg, va_list ap) {
+  char buf[512];
+  std::vsnprintf(buf, sizeof buf, msg ? msg : "", ap);
+  std::string text = std::string(kind) + " " + std::to_string(num) + ": " + buf;
+  std::replace_if(text.begin(), text.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  while (!text.empty() && text.back() == ' ') text.pop_back();
+  return text;
+}
+
+void onOdeMessage(int num, const char* msg, va_list ap) {
+  const std::string text = odeText("ODE message", num, msg, ap);
+  WorldImpl* im = sectionWorld.load(std::memory_order_acquire);
+  if (!im) {  // outside every World (none today): said at once, on one line
+    std::fprintf(stderr, "simbob: warning: %s\n", text.c_str());
+    return;
+  }
+  std::lock_guard<std::mutex> lock(im->messagesMutex);  // the narrow phase's threads may say one too
+  if (im->messages.count++ == 0) {
+    im->messages.first = text;
+    im->messages.first_time = static_cast<double>(im->time_ns) * 1e-9;  // the step's end: World::step
+    im->firstMessageInStep = true;
+  }
+}
+
+[[noreturn]] void odeFatal(const char* kind, int num, const char* msg, va_list ap) {
+  const std::string text = odeText(kind, num, msg, ap);
+  std::fprintf(stderr,
+               "simbob: error: internal error: %s (the scene reached a check in ODE that simbob should have "
+               "refused before: please report it with the scene)\n",
+               text.c_str());
+  std::fflush(stderr);
+  std::_Exit(kExitInternal);
+}
+void onOdeError(int num, const char* msg, va_list ap) { odeFatal("ODE error", num, msg, ap); }
+void onOdeDebug(int num, const char* msg, va_list ap) { odeFatal("ODE internal error", num, msg, ap); }
+
 // dInitODE2 once per process and never dCloseODE: ODE's global state outlives every World, so
 // consecutive Worlds in one process (tests, batch runs) need no re-initialisation.
 void initOdeOnce() {
-  static const bool initialised = (dInitODE2(0) != 0);
+  static const bool initialised = [] {
+    dSetMessageHandler(onOdeMessage);
+    dSetErrorHandler(onOdeError);
+    dSetDebugHandler(onOdeDebug);
+    return dInitODE2(0) != 0;
+  }();
   (void)initialised;
 }
 
@@ -47,15 +104,20 @@ void allocateThreadData() {
   allocated = dAllocateODEDataForThread(dAllocateMaskAll) != 0;
 }
 
-// Holds odeMutex() with the World's generator state swapped in (see above).
+// Holds odeMutex() with the World's generator state swapped in (see above), and takes ODE's
+// messages for the World (`im`; null while a World is destroyed).
 class OdeSection {
  public:
-  explicit OdeSection(unsigned long& rng) : lock_(odeMutex()), rng_(rng) {
+  OdeSection(unsigned long& rng, WorldImpl* im) : lock_(odeMutex()), rng_(rng) {
     initOdeOnce();
     allocateThreadData();
     dRandSetSeed(rng_);
+    sectionWorld.store(im, std::memory_order_release);
   }
-  ~OdeSection() { rng_ = dRandGetSeed(); }
+  ~OdeSection() {
+    sectionWorld.store(nullptr, std::memory_order_release);
+    rng_ = dRandGetSeed();
+  }
   OdeSection(const OdeSection&) = delete;
   OdeSection& operator=(const OdeSection&) = delete;
 
@@ -104,7 +166,7 @@ World::World() : impl_(new WorldImpl) {}
 
 World::~World() {
   unsigned long rng = impl_->rng;  // the section writes it back after impl_ is gone
-  OdeSection ode(rng);
+  OdeSection ode(rng, nullptr);
   impl_.reset();
 }
 
@@ -116,7 +178,7 @@ std::unique_ptr<World> World::create(const Model& model, uint32_t seed, int thre
   // The World's own generator starts at the seed, so QuickStep's constraint reordering is
   // reproducible (and the same as when each World was alone in its process).
   im.rng = seed;
-  OdeSection ode(im.rng);
+  OdeSection ode(im.rng, &im);
   im.world = dWorldCreate();
   dWorldSetGravity(im.world, s.gravity[0], s.gravity[1], s.gravity[2]);
   im.gravity = s.gravity;
@@ -146,7 +208,7 @@ std::unique_ptr<World> World::create(const Model& model, uint32_t seed, int thre
 void World::step(double h) {
   WorldImpl& im = *impl_;
   InUse busy(im.stepping);  // before the section: a refused call must not wait for the mutex
-  OdeSection ode(im.rng);
+  OdeSection ode(im.rng, &im);
   updateHingeStops(im);
   for (const auto& hook : im.beforeStep) hook(im, h);
   collide(im);
@@ -157,8 +219,18 @@ void World::step(double h) {
   }
   dJointGroupEmpty(im.contactGroup);
   im.time_ns += std::llround(h * 1e9);  // the run's steps are whole nanoseconds
+  {
+    std::lock_guard<std::mutex> lock(im.messagesMutex);
+    if (im.firstMessageInStep) im.messages.first_time = static_cast<double>(im.time_ns) * 1e-9;
+    im.firstMessageInStep = false;
+  }
   updateJointTotals(im);
   if (!im.sensors.empty()) updateSensors(im, h);
+}
+
+PhysicsMessages World::physicsMessages() const {
+  std::lock_guard<std::mutex> lock(impl_->messagesMutex);
+  return impl_->messages;
 }
 
 int World::bodyCount() const { return static_cast<int>(impl_->bodies.size()); }

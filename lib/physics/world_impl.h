@@ -197,6 +197,11 @@ struct WorldImpl {
   std::string misuse;
   /// The first failure of a plug-in sensor or actuator (World::failure).
   Error failure;
+  /// ODE's messages while this World held the ODE section (World::physicsMessages); written by
+  /// ODE's message handler, on whichever of the World's threads ODE calls it, under the lock.
+  PhysicsMessages messages;
+  bool firstMessageInStep = false;  ///< the first message came in the step under way: its time is its end
+  mutable std::mutex messagesMutex;
   /// The threads beyond the stepping one (--threads N > 1); null with one thread, when the
   /// narrow phase and the sensors run as they always have.
   std::unique_ptr<WorkerPool> pool;

@@ -74,6 +74,10 @@ nlohmann::ordered_json runSummary(const Model& model, const RunResult& r, const 
   summary["reproducibility"] = {{"physics", physicsVersion()},   {"ode_version", odeVersion()}, {"precision", "double"},
                                 {"compiler", compilerVersion()}, {"fp_contract", "off"},        {"libc", libcVersion()},
                                 {"cpu_features", cpuFeatures()}};
+  if (r.physics_messages.count > 0)  // ODE's own reports (World::physicsMessages): only when there are any
+    summary["physics_messages"] = {{"count", r.physics_messages.count},
+                                   {"first", r.physics_messages.first},
+                                   {"first_time", r.physics_messages.first_time}};
   if (r.status != RunStatus::Completed) {
     // Why it ended: what `simbob batch` and `sweep run` read from a worker's partial summary.
     summary["error"] = {{"file", r.error.loc.file},

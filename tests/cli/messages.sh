@@ -2,7 +2,8 @@
 # What a new user reads (issue 18): a mistyped option names the right one; an output in a
 # missing folder is named by its own name; counts of one are singular; `types TYPE` prints one
 # type; `info` names the git revision; `run` shows check's warnings once (not with -q); a
-# command beyond an actuator's limit is reported once per actuator with both numbers.
+# command beyond an actuator's limit is reported once per actuator with both numbers; what ODE
+# reports while stepping is one warning.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 cli_setup "$@"
@@ -99,5 +100,22 @@ expect_match "right" clamps.txt "two_wheel_robot.xml:90: warning: actuator 'Bot.
 check "the scene as shipped (MaxVelocity 10) clamps nothing"
 expect_status 0 "$SIMBOB" run "$SCENES/two_wheel_robot.xml" --duration 1 --out robot.csv
 if grep -q 'clamped' "$LAST_ERR"; then fail "clamp notice without a clamp: $(cat "$LAST_ERR")"; fi
+
+check "what ODE reports while stepping is one warning with its count, and a summary field"
+# The box stack under Solver Step without constraint force mixing: ODE's LCP solver says
+# "LCP internal error" many times; ODE alone would print each on lines of its own.
+sed 's#<SceneSettings>#<SceneSettings><Solver Value="Step"/><CFM Value="0"/>#' "$SCENES/box_stack.xml" >step.xml
+expect_status 0 "$SIMBOB" run step.xml --duration 1 --out step.csv
+if grep -q 'ODE Message' "$LAST_ERR"; then fail "ODE's own lines on stderr: $(head -3 "$LAST_ERR")"; fi
+grep 'ODE reported' "$LAST_ERR" >ode.txt || fail "no warning of ODE's messages: $(cat "$LAST_ERR")"
+expect_lines "one warning" ode.txt 1
+expect_match "count, first and advice" ode.txt \
+  "^step.xml: warning: ODE reported [0-9]+ problems while stepping; the first, in the step to t = [0-9.e-]+ s: 'ODE message 3: LCP internal error, .*'\. Solver Step could not meet the constraints exactly there .* a CFM above 0 \(1e-5, say\) or Solver QuickStep avoids it$"
+count=$(json_get step.json "j['physics_messages']['count']")
+expect_match "the summary's count is the warning's" ode.txt "ODE reported $count problems"
+check "the scene as shipped (QuickStep) gives ODE nothing to report"
+expect_status 0 "$SIMBOB" run "$SCENES/box_stack.xml" --duration 1 --out stack.csv
+if grep -q 'ODE' "$LAST_ERR"; then fail "a report without a message: $(cat "$LAST_ERR")"; fi
+if grep -q physics_messages stack.json; then fail "stack.json has physics_messages"; fi
 
 say "OK"

@@ -25,6 +25,7 @@
 #include "simbob/compile.h"
 #include "simbob/graph.h"
 #include "simbob/registry.h"
+#include "simbob/scene_run.h"
 #include "simbob/trajectory.h"
 #include "simbob/values.h"
 
@@ -42,7 +43,7 @@ inline const Registry& fuzzRegistry() {
 
 /// The fuzz targets; the names are the directories under fuzz/corpus/ and tests/data/fuzz/.
 inline const std::vector<std::string>& targetNames() {
-  static const std::vector<std::string> names{"scene_xml", "scene_ini", "values", "trajectory"};
+  static const std::vector<std::string> names{"scene_xml", "scene_ini", "scene_run", "values", "trajectory"};
   return names;
 }
 
@@ -122,6 +123,36 @@ inline std::string runScene(const uint8_t* data, size_t size, Format format) {
 
 inline std::string runSceneXml(const uint8_t* data, size_t size) { return runScene(data, size, Format::Xml); }
 inline std::string runSceneIni(const uint8_t* data, size_t size) { return runScene(data, size, Format::Ini); }
+
+/// Steps of kRunStep a scene that loads and compiles is run for (scene_run).
+constexpr int kRunSteps = 20;
+constexpr double kRunStep = 0.001;
+
+/// An XML scene run through a Run, as every client runs one (simbob/scene_run.h), for kRunSteps
+/// steps of kRunStep s: it writes nothing and starts no program (no_controllers), and a socket
+/// peer it waits for gives up at once. What the scene asks of ODE (joints, drives, sensors,
+/// contacts) must end in a completed run of every step, or in a run that stopped, or was
+/// refused, with a message; never in a crash, a sanitizer report or a hang.
+inline std::string runSceneSteps(const uint8_t* data, size_t size) {
+  RunOptions o;
+  o.scene = sceneName(Format::Xml);
+  o.scene_text = std::string(reinterpret_cast<const char*>(data), size);
+  o.write_outputs = false;
+  o.warnings = false;
+  o.simulation.dt = kRunStep;
+  o.simulation.duration = kRunSteps * kRunStep;
+  o.simulation.no_controllers = true;
+  o.simulation.peer_timeout = 0.001;
+  Error refusal;
+  std::unique_ptr<Run> run = Run::open(o, fuzzRegistry(), RunListener{}, &refusal);
+  if (!run) return refusal.message.empty() ? "Run::open refused the scene without a message" : std::string();
+  const RunResult& r = run->finish().result;
+  if (r.status != RunStatus::Completed)
+    return r.error.message.empty() ? "a run that did not complete says nothing" : std::string();
+  if (r.steps != static_cast<uint64_t>(kRunSteps))
+    return "a completed run took " + std::to_string(r.steps) + " steps, not " + std::to_string(kRunSteps);
+  return {};
+}
 
 // ------------------------------------------------------------------------------------ values
 
@@ -304,6 +335,7 @@ using Entry = std::string (*)(const uint8_t*, size_t);
 inline Entry entryFor(std::string_view target) {
   if (target == "scene_xml") return runSceneXml;
   if (target == "scene_ini") return runSceneIni;
+  if (target == "scene_run") return runSceneSteps;
   if (target == "values") return runValues;
   if (target == "trajectory") return runTrajectory;
   return nullptr;

@@ -1,0 +1,7 @@
+// libFuzzer target. Scene XML run through a Run for a few steps (fuzz/entry.h, runSceneSteps):
+// whatever loads and compiles must step, or stop with a message, without a crash or a hang.
+#include "fuzz/entry.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  return simbob::fuzz::fuzzOne(simbob::fuzz::runSceneSteps, data, size);
+}

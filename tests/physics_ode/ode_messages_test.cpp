@@ -12,23 +12,11 @@
 #include <string>
 
 #include "physics/world_impl.h"
-#include "simbob/compile.h"
-#include "simbob/registry.h"
+#include "shipped_scene.h"
 
 namespace {
 
 using simbob::World;
-
-simbob::Model load(const std::string& name) {
-  simbob::Registry reg;
-  REQUIRE(simbob::registerBuiltins(reg));
-  simbob::LoadRequest rq;
-  rq.path = std::string(SIMBOB_SOURCE_DIR) + "/scenes/" + name + ".xml";
-  simbob::LoadReport report;
-  simbob::Model m;
-  REQUIRE(simbob::loadModel(rq, reg, &m, &report));
-  return m;
-}
 
 // What the process writes to its stderr (file descriptor 2) while `f` runs.
 template <class F>
@@ -56,7 +44,7 @@ TEST_CASE("ODE's messages while stepping are the World's, not lines on stderr", 
   // The guide's box stack under Solver Step with no constraint force mixing: dWorldStep's LCP
   // solver meets contacts it cannot meet exactly (the boxes rest on four points each, more than
   // a box needs) and ODE says "LCP internal error" (dMessage 3), many times in a second.
-  simbob::Model m = load("box_stack");
+  simbob::Model m = simbob::test::shippedScene("box_stack");
   m.settings.quickstep = false;
   m.settings.cfm = 0;
   const double h = m.settings.max_time_step;
@@ -77,7 +65,7 @@ TEST_CASE("ODE's messages while stepping are the World's, not lines on stderr", 
   CHECK(std::fabs(msg.first_time / h - std::round(msg.first_time / h)) < 1e-9);
 
   // The same scene as it is written (QuickStep) gives ODE nothing to say.
-  const simbob::Model quick = load("box_stack");
+  const simbob::Model quick = simbob::test::shippedScene("box_stack");
   std::unique_ptr<World> q = World::create(quick, 0);
   for (int i = 0; i < kSteps; ++i) q->step(h);
   CHECK(q->physicsMessages().count == 0);
@@ -96,7 +84,7 @@ TEST_CASE("an error of ODE's ends the process with one line and status 70", "[ph
   if (child == 0) {
     dup2(out[1], 2);
     close(out[0]);
-    const simbob::Model m = load("pendulum");
+    const simbob::Model m = simbob::test::shippedScene("pendulum");
     std::unique_ptr<World> w = World::create(m, 0);
     dWorldID world = dWorldCreate();
     dBodyID b = dBodyCreate(world);
@@ -112,7 +100,7 @@ TEST_CASE("an error of ODE's ends the process with one line and status 70", "[ph
   REQUIRE(waitpid(child, &status, 0) == child);
   REQUIRE(WIFEXITED(status));
   CHECK(WEXITSTATUS(status) == 70);
-  CHECK(text.rfind("simbob: error: internal error: ODE internal error 2: can't have body1==body2 in dJointAttach()", 0) ==
-        0);
+  CHECK(text.rfind("simbob: error: internal error: ODE internal error 2: can't have body1==body2 in dJointAttach()",
+                   0) == 0);
   CHECK(text.find('\n') == text.size() - 1);  // one line
 }

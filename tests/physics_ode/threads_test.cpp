@@ -15,23 +15,11 @@
 
 #include "physics/world_impl.h"
 #include "physics/workers.h"
-#include "simbob/compile.h"
-#include "simbob/registry.h"
+#include "shipped_scene.h"
 
 namespace {
 
 using simbob::World;
-
-simbob::Model load(const std::string& name) {
-  simbob::Registry reg;
-  REQUIRE(simbob::registerBuiltins(reg));
-  simbob::LoadRequest rq;
-  rq.path = std::string(SIMBOB_SOURCE_DIR) + "/scenes/" + name + ".xml";
-  simbob::LoadReport report;
-  simbob::Model m;
-  REQUIRE(simbob::loadModel(rq, reg, &m, &report));
-  return m;
-}
 
 struct Trace {
   std::vector<double> values;  ///< compared bit for bit
@@ -82,7 +70,7 @@ TEST_CASE("threads: the swarm, maze, box stack and chain give the same bits on 1
   Hooks hooks(false);
   for (const char* name : {"swarm", "maze", "box_stack", "chain"}) {
     INFO(name);
-    const simbob::Model m = load(name);
+    const simbob::Model m = simbob::test::shippedScene(name);
     const Trace one = trace(m, 1, kSteps);
     // The chain hangs free: no contacts, only its joints (the pool must leave them alone).
     CHECK((one.contacts > 0) == (std::string(name) != "chain"));
@@ -97,7 +85,7 @@ TEST_CASE("threads: the swarm, maze, box stack and chain give the same bits on 1
 // contact per wheel and caster, and its trajectory is the same in any commit order.
 TEST_CASE("threads: contacts committed out of order give other bits (the comparison above can fail)") {
   Hooks hooks(true);
-  const simbob::Model m = load("box_stack");
+  const simbob::Model m = simbob::test::shippedScene("box_stack");
   CHECK_FALSE(sameBits(trace(m, 1, kSteps), trace(m, 2, kSteps)));
   CHECK_FALSE(sameBits(trace(m, 1, kSteps), trace(m, 3, kSteps)));
 }

@@ -47,7 +47,7 @@ struct RunResult {
   /// Of wall_seconds, the part spent in the parties' first() calls: waiting for socket peers
   /// to connect (bounded by --peer-timeout, not MaxAccessTime). Not simulation work.
   double wait_seconds = 0.0;
-  double dt = 0.0;  ///< the step taken: dt (or MaxTimeStep) on the nanosecond grid
+  double dt = 0.0;                   ///< the step taken: dt (or MaxTimeStep) on the nanosecond grid
   PhysicsMessages physics_messages;  ///< what ODE reported during the run (World::physicsMessages)
 };
 

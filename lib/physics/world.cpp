@@ -51,7 +51,8 @@ std::string odeText(const char* kind, int num, const char* msg, va_list ap) {
   char buf[512];
   std::vsnprintf(buf, sizeof buf, msg ? msg : "", ap);
   std::string text = std::string(kind) + " " + std::to_string(num) + ": " + buf;
-  std::replace_if(text.begin(), text.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  std::replace_if(
+      text.begin(), text.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
   while (!text.empty() && text.back() == ' ') text.pop_back();
   return text;
 }

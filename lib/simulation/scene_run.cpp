@@ -262,7 +262,8 @@ const RunOutcome& Run::finish() {
   finished_ = true;
   RunResult r = sim_->runToEnd();
   if (r.status == RunStatus::Diverged) explainDivergence(model_, r.divergence.body, r.divergence.joint, &r.error);
-  if (r.physics_messages.count > 0) note(RunNote::Warning, physicsMessagesWarning(r.physics_messages), {opts_.scene, 0});
+  if (r.physics_messages.count > 0)
+    note(RunNote::Warning, physicsMessagesWarning(r.physics_messages), {opts_.scene, 0});
   sim_.reset();  // its parties are done with the outputs before they are committed
   if (!opts_.write_outputs) {
     outcome_.result = r;

@@ -953,6 +953,18 @@ keep the GIL. An exception from fn stops the run; step() re-raises it.)");
       "warnings", [](PySimulation& s) { return s.warnings(); },
       "The scene's warnings as one-line strings \"file:line: warning: message\" (load and `simbob check`).");
   cls.def_property_readonly(
+      "physics_messages",
+      [](PySimulation& s) {
+        const simbob::PhysicsMessages m = s.sim().world().physicsMessages();
+        py::dict d;
+        d["count"] = m.count;
+        d["first"] = m.first;
+        d["first_time"] = m.first_time;
+        return d;
+      },
+      "What ODE reported while stepping so far, as the run summary's physics_messages: count, first "
+      "(one line) and first_time (the end of the step it came in, s); count 0 when nothing.");
+  cls.def_property_readonly(
       "running", [](PySimulation& s) { return s.sim().running(); },
       "False once the run has stopped (diverged, failed): only reset() continues it.");
   cls.def_property_readonly(

@@ -188,6 +188,21 @@ def test_dt_option_sets_the_step():
     assert sim.dt == 0.002 and sim.steps == 5 and sim.time == 0.01
 
 
+def test_physics_messages_count_what_ode_reported_while_stepping():
+    # The box stack under Solver Step without constraint force mixing: ODE's LCP solver reports
+    # contacts it cannot meet exactly ("LCP internal error"); as shipped (QuickStep) it says nothing.
+    step = {"SceneSettings.Solver": "Step", "SceneSettings.CFM": "0"}
+    sim = simbob.Simulation(SCENES / "box_stack.xml", overrides=step)
+    sim.step(1000)
+    m = sim.physics_messages
+    assert m["count"] > 1
+    assert m["first"].startswith("ODE message 3: LCP internal error")
+    assert 0 < m["first_time"] <= sim.time
+    quiet = simbob.Simulation(SCENES / "box_stack.xml")
+    quiet.step(1000)
+    assert quiet.physics_messages == {"count": 0, "first": "", "first_time": 0.0}
+
+
 # ---- reset and seeds ----
 
 def trajectory(sim, steps=1500, every=50):

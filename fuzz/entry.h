@@ -21,6 +21,7 @@
 #include <variant>
 #include <vector>
 
+#include "physics/parallel_test_hooks.h"
 #include "simbob/tool/comparison.h"
 #include "simbob/compile.h"
 #include "simbob/graph.h"
@@ -128,29 +129,92 @@ inline std::string runSceneIni(const uint8_t* data, size_t size) { return runSce
 constexpr int kRunSteps = 20;
 constexpr double kRunStep = 0.001;
 
-/// An XML scene run through a Run, as every client runs one (simbob/scene_run.h), for kRunSteps
-/// steps of kRunStep s: it writes nothing and starts no program (no_controllers), and a socket
-/// peer it waits for gives up at once. What the scene asks of ODE (joints, drives, sensors,
-/// contacts) must end in a completed run of every step, or in a run that stopped, or was
-/// refused, with a message; never in a crash, a sanitizer report or a hang.
-inline std::string runSceneSteps(const uint8_t* data, size_t size) {
+/// Every body's state and every sensor's reading when a run completes, as bits.
+class FinalState : public Party {
+ public:
+  SimTime first() override { return kNever; }
+  SimTime onGrant(SimTime, World&) override { return kNever; }
+  void finish(SimTime, World& world) override {
+    for (int b = 0; b < world.bodyCount(); ++b) {
+      const BodyState s = world.body(b);
+      values.insert(values.end(), s.pose.p.begin(), s.pose.p.end());
+      values.insert(values.end(), s.pose.q.begin(), s.pose.q.end());
+      values.insert(values.end(), s.lin_vel.begin(), s.lin_vel.end());
+      values.insert(values.end(), s.ang_vel.begin(), s.ang_vel.end());
+    }
+    for (int i = 0; i < world.sensorCount(); ++i) {
+      const std::vector<double>& r = world.sensorReading(i);
+      values.insert(values.end(), r.begin(), r.end());
+    }
+  }
+  std::vector<double> values;
+};
+
+/// How one run of scene_run ended.
+struct RunEnd {
+  bool opened = false;
+  RunStatus status = RunStatus::Failed;
+  uint64_t steps = 0;
+  std::string message;        ///< the refusal's or the run's error ("" for a completed run)
+  std::vector<double> state;  ///< FinalState's values (a completed run)
+};
+
+inline RunEnd runSteps(const std::string& text, int threads) {
   RunOptions o;
   o.scene = sceneName(Format::Xml);
-  o.scene_text = std::string(reinterpret_cast<const char*>(data), size);
+  o.scene_text = text;
   o.write_outputs = false;
   o.warnings = false;
   o.simulation.dt = kRunStep;
   o.simulation.duration = kRunSteps * kRunStep;
+  o.simulation.threads = threads;
   o.simulation.no_controllers = true;
   o.simulation.peer_timeout = 0.001;
+  RunEnd end;
   Error refusal;
   std::unique_ptr<Run> run = Run::open(o, fuzzRegistry(), RunListener{}, &refusal);
-  if (!run) return refusal.message.empty() ? "Run::open refused the scene without a message" : std::string();
+  if (!run) {
+    end.message = refusal.message;
+    return end;
+  }
+  end.opened = true;
+  FinalState final_state;
+  run->simulation().addParty(final_state);
   const RunResult& r = run->finish().result;
-  if (r.status != RunStatus::Completed)
-    return r.error.message.empty() ? "a run that did not complete says nothing" : std::string();
-  if (r.steps != static_cast<uint64_t>(kRunSteps))
-    return "a completed run took " + std::to_string(r.steps) + " steps, not " + std::to_string(kRunSteps);
+  end.status = r.status;
+  end.steps = r.steps;
+  end.message = r.error.message;
+  end.state = std::move(final_state.values);
+  return end;
+}
+
+/// An XML scene run through a Run, as every client runs one (simbob/scene_run.h), for kRunSteps
+/// steps of kRunStep s, on one thread and again on three: it writes nothing and starts no
+/// program (no_controllers), and a socket peer it waits for gives up at once. What the scene asks
+/// of ODE (joints, drives, sensors, contacts) must end in a completed run of every step, or in a
+/// run that stopped, or was refused, with a message; never in a crash, a sanitizer report or a
+/// hang. And the thread count changes nothing: the same end, every state and reading the same
+/// bits (World::create).
+inline std::string runSceneSteps(const uint8_t* data, size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  const RunEnd one = runSteps(text, 1);
+  if (!one.opened) return one.message.empty() ? "Run::open refused the scene without a message" : std::string();
+  if (one.status != RunStatus::Completed && one.message.empty()) return "a run that did not complete says nothing";
+  if (one.status == RunStatus::Completed && one.steps != static_cast<uint64_t>(kRunSteps))
+    return "a completed run took " + std::to_string(one.steps) + " steps, not " + std::to_string(kRunSteps);
+  // Every pair and swept box a chunk of its own: without it a scene of fewer than 256 pairs
+  // collides on the stepping thread alone (kPairGrain), and the comparison would test little.
+  const size_t grain = parallelTestHooks().grain;
+  parallelTestHooks().grain = 1;
+  const RunEnd three = runSteps(text, 3);
+  parallelTestHooks().grain = grain;
+  // The messages are not compared: one about a socket peer may name wall-clock times.
+  if (!three.opened || three.status != one.status || three.steps != one.steps)
+    return "on 3 threads the run ends otherwise (" + std::to_string(three.steps) + " steps: " + three.message +
+           ") than on 1 (" + std::to_string(one.steps) + " steps: " + one.message + ")";
+  if (three.state.size() != one.state.size() ||
+      std::memcmp(three.state.data(), one.state.data(), one.state.size() * sizeof(double)) != 0)
+    return "on 3 threads the bodies and sensors end in other bits than on 1";
   return {};
 }
 

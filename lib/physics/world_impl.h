@@ -34,6 +34,7 @@
 
 #include "simbob/physics.h"
 #include "broadphase.h"
+#include "parallel_test_hooks.h"
 #include "sensor_noise.h"
 #include "workers.h"
 
@@ -141,13 +142,6 @@ constexpr size_t kPairGrain = 256;
 constexpr size_t kSweepGrain = 256;
 /// Ray sensors per chunk at least.
 constexpr size_t kRaySensorGrain = 2;
-
-/// Tests only (tests/physics_ode/threads_test.cpp): process-wide switches of the parallel paths.
-struct ParallelTestHooks {
-  size_t grain = 0;             ///< pairs (and swept boxes) per chunk at least; 0: kPairGrain, kSweepGrain
-  bool reverse_commit = false;  ///< commit the pairs' contacts last pair first: unordered on purpose
-};
-ParallelTestHooks& parallelTestHooks();
 
 struct WorldImpl {
   dWorldID world = nullptr;

@@ -220,9 +220,9 @@ void World::step(double h) {
   }
   dJointGroupEmpty(im.contactGroup);
   im.time_ns += std::llround(h * 1e9);  // the run's steps are whole nanoseconds
-  {
+  if (im.firstMessageInStep) {  // read without the lock: the narrow phase's threads are done, none writes it now
     std::lock_guard<std::mutex> lock(im.messagesMutex);
-    if (im.firstMessageInStep) im.messages.first_time = static_cast<double>(im.time_ns) * 1e-9;
+    im.messages.first_time = static_cast<double>(im.time_ns) * 1e-9;
     im.firstMessageInStep = false;
   }
   updateJointTotals(im);

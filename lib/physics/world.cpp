@@ -203,6 +203,7 @@ std::unique_ptr<World> World::create(const Model& model, uint32_t seed, int thre
   createJoints(im, model);
   createActuators(im, model);
   createSensors(im, model, seed);
+  im.firstMessageInStep = false;  // a message while the World was built stays at t = 0, not at the first step's end
   return w;
 }
 

@@ -359,7 +359,7 @@ class PyController : public simbob::Party {
   std::optional<Error> failure_;
 };
 
-// The threads keyword (--threads): None is the scene's Threads.
+// The threads keyword (--threads): None is 1.
 int threadCount(const py::object& threads) {
   if (threads.is_none()) return 0;
   const int n = threads.cast<int>();
@@ -840,7 +840,7 @@ Args mirror `simbob run`'s options: overrides (--set, as for Simulation), seed, 
 log ("joints,sensors,commands") and log_out, columns ("pose" or "pose,velocity"), record (a
 folder of PNG frames), video (.avi or .mp4), html (the replay page), size ("640x480" or (w, h)),
 camera, quality and fps of the recording, check_determinism, controllers ({"KEY": "COMMAND"},
-as --controller), peer_timeout, port_offset, threads (None: the scene's Threads).
+as --controller), peer_timeout, port_offset, threads (None: 1).
 
 Returns the run summary as a dict. The scene's warnings go to Python's warnings (RuntimeWarning).
 
@@ -885,7 +885,7 @@ Args:
         order), 0 to 2**32-1, as `simbob run --seed`.
     dt (float | None): the step in s; None takes the scene's MaxTimeStep.
     threads (int | None): threads a step may use, 1 to 64, as `simbob run --threads`; every
-        count gives the same numbers. None takes the scene's Threads (default 1).
+        count gives the same numbers. None is 1.
 
 Raises:
     SceneError: the scene is wrong (e.file, e.line point at the first error; e.errors

@@ -149,12 +149,14 @@ int cmdTypes(bool markdown, const Registry& reg, const std::string& only) {
           out += "| " + cell(p.name) + " | " + cell(typeText(p)) + " | `" + cell(defaultText(p)) + "` | " +
                  cell(p.unit) + " | " + cell(p.doc) + " |\n";
       }
+      for (const auto& [name, advice] : t.retired) out += "\nRemoved: `" + name + "`: " + advice + ".\n";
     } else {
       out +=
           t.name + " (" + familyName(t.family) + (aliases.empty() ? "" : "; alias " + aliases) + "): " + t.doc + "\n";
       for (const auto& p : t.params)
         out += "  " + p.name + " : " + typeText(p) + " = " + defaultText(p) +
                (p.unit.empty() ? "" : " [" + p.unit + "]") + "  -- " + p.doc + "\n";
+      for (const auto& [name, advice] : t.retired) out += "  " + name + " : removed -- " + advice + "\n";
     }
   }
   if (one) {

@@ -391,7 +391,6 @@ struct SolverSettings {
   std::string solver_rule;
   SpaceKind space = SpaceKind::Hash;
   bool auto_disable = false;  ///< let ODE disable resting bodies (changes trajectories slightly)
-  int threads = 1;            ///< threads a step may use (Threads; --threads overrides); same bytes for any
 };
 
 struct Model {

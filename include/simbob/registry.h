@@ -128,6 +128,15 @@ struct TypeSpec {
   std::string import_root;              ///< non-empty: parameter File names an XML file with this root
                                         ///< element ("Body", "Joint", "RefList") read into the scene
   std::vector<std::string> interfaces;  ///< guide interfaces it offers controllers ("RCDriver", ...)
+  /// Parameters the type took once and no longer does, each with what to do instead: a file or a
+  /// --set that names one is refused with that advice (README, "Changes that may affect you").
+  std::vector<std::pair<std::string, std::string>> retired;
+  /// The advice for a retired parameter `name`, or null.
+  const std::string* retiredAdvice(std::string_view name) const {
+    for (const auto& [n, advice] : retired)
+      if (n == name) return &advice;
+    return nullptr;
+  }
   /// A plug-in's type (kept by registerPlugin), or null.
   const PluginType* plugin = nullptr;
   std::string plugin_name;  ///< the plug-in that added the type (SimbobPlugin::name), for messages

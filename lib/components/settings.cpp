@@ -33,7 +33,6 @@ constexpr ValueParam<double> kCFM{"CFM"};
 constexpr ValueParam<int64_t> kMaxContacts{"MaxContacts"};
 constexpr EnumParam kSpaceParam{"Space"};
 constexpr ValueParam<bool> kAutoDisable{"AutoDisable"};
-constexpr ValueParam<int64_t> kThreads{"Threads"};
 constexpr ValueParam<Vector4> kLightPos{"LightPos"};
 constexpr ValueParam<Color> kLightColor{"LightColor"};
 constexpr ValueParam<Color> kClearColor{"ClearColor"};
@@ -57,7 +56,7 @@ void registerSettings(Registry& r) {
          {},
          "Fog of the rendered views (guide 3.3.4)."});
 
-  r.add(
+  TypeSpec scene_settings(
       {"SceneSettings",
        Family::Struct,
        int(StructKind::SceneSettings),
@@ -78,14 +77,18 @@ void registerSettings(Registry& r) {
         enumParam(kSpaceParam, ValueType::Enum, &kSpace, 0,
                   "collision space: Hash, SweepAndPrune, QuadTree, Simple (--space)"),
         flag(kAutoDisable, false, "let ODE put resting bodies to sleep (--auto-disable)"),
-        integer(kThreads, 1, "threads a step may use, 1 to 64; every count gives the same bytes (--threads)",
-                Range::Positive),
         valueParam(kLightPos, ValueType::Vector, Vector4{{10, 10, 10, 1}}, "m", "light position"),
         color(kLightColor, rgba(1, 1, 1), "light colour"), color(kClearColor, rgba(0.3, 0.3, 0.5), "background colour"),
         number(kShadowIntensity, 0.5, "", "intensity of projected shadows", Range::Unit),
         structParam(kFogSettings, "FogSettings", "fog")},
        {},
        "Scene and physics settings (guide 3.3.4, 5.2, 7.2)."});
+  // Threads never changed a result and paid only where the narrow phase dominates a step: a
+  // property of the machine a run is on, not of the scene (2026-12-06).
+  scene_settings.retired = {{"Threads",
+                             "the thread count is no scene setting since 2026-12-06: give `--threads N` "
+                             "to the command (the same bytes for every count)"}};
+  r.add(std::move(scene_settings));
 
   r.add(
       {"Simulation",
@@ -128,9 +131,6 @@ void lowerSettings(CompileContext& ctx, int comp) {
   s.max_contacts = static_cast<int>(std::min(c.get(kMaxContacts), kMaxContactsLimit));
   s.space = static_cast<SpaceKind>(c.get(kSpaceParam));
   s.auto_disable = c.get(kAutoDisable);
-  if (c.get(kThreads) > kMaxThreads)
-    ctx.diag.error(c.slotOf(kThreads).loc, "SceneSettings: Threads must be at most " + std::to_string(kMaxThreads));
-  s.threads = static_cast<int>(std::min<int64_t>(c.get(kThreads), kMaxThreads));
   if (s.min_time_step > s.max_time_step)
     ctx.diag.error(c.slotOf(kMinTimeStep).loc, "SceneSettings: MinTimeStep must not exceed MaxTimeStep");
   // The look of the views (guide 3.3.4); an invalid colour keeps the default.

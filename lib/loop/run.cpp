@@ -65,7 +65,7 @@ Runner::Runner(const Model& model, const SimulationOptions& opts, std::vector<Pa
     stopped_ = true;
     return;
   }
-  world_ = World::create(model, opts.seed, opts.threads > 0 ? opts.threads : model.settings.threads);
+  world_ = World::create(model, opts.seed, opts.threads > 0 ? opts.threads : 1);
   if (!world_) {
     res_.error = {ErrorKind::Internal, {}, "cannot create the physics world"};
     stopped_ = true;

@@ -227,7 +227,9 @@ class Builder {
       for (const auto& p : t.params) names.push_back(p.name);
       std::string near = didYouMean(name, names);
       bool duplicate = t.paramIndex(name) >= 0 || (src.ignoresCase() && t.paramIndexIgnoreCase(name) >= 0);
-      if (duplicate) {
+      if (const std::string* advice = t.retiredAdvice(name)) {
+        diag_.error({loc.file, line}, prefix(what) + "parameter '" + quoteInput(name) + "' removed: " + *advice);
+      } else if (duplicate) {
         diag_.error({loc.file, line}, prefix(what) + "parameter '" + quoteInput(name) + "' given twice");
       } else if (!near.empty()) {
         diag_.error({loc.file, line},

@@ -106,6 +106,10 @@ bool applyOverrides(Scene& scene, const std::vector<Override>& overrides, Diagno
       continue;
     }
     const int pi = c.type->paramIndex(o.param);
+    if (const std::string* advice = c.type->retiredAdvice(o.param); pi < 0 && advice) {
+      diag.error(at, what(c, o.key) + ": parameter '" + quoteInput(o.param) + "' removed: " + *advice);
+      continue;
+    }
     if (pi < 0) {
       std::vector<std::string> names;
       for (const auto& p : c.type->params) names.push_back(p.name);

@@ -309,7 +309,7 @@ const RunOutcome& Run::finish() {
 // the runs part; an interrupt of the second run is the run's interrupt ("" then: not a difference).
 std::string Run::secondRun(RunResult* r) {
   SimulationOptions second = opts_.simulation;
-  const int threads = second.threads > 0 ? second.threads : model_.settings.threads;
+  const int threads = second.threads > 0 ? second.threads : 1;
   second.threads = threads == 1 ? 2 : 1;
   note(RunNote::Debug, "determinism check: running the scene a second time, on " +
                            countOf(static_cast<size_t>(second.threads), "thread", "threads") + " (the first on " +

@@ -38,9 +38,22 @@ for n in 3; do
   done
 done
 
-check "SceneSettings Threads = 3 (the scene's setting) writes the same bytes"
-"$SIMBOB" run scenes/box_stack.xml --duration 10 --set SceneSettings.Threads=3 --out "$WORK/box_stack.s3.csv" --quiet
-cmp "$WORK/box_stack.s3.csv" golden/box_stack.csv || fail "box_stack with SceneSettings.Threads=3 differs"
+check "SceneSettings Threads is no scene setting any more: refused (65) with what to use instead, in a file and by --set"
+cat >"$WORK/threads_setting.xml" <<'EOF'
+<Simulation>
+  <SceneSettings>
+    <Threads Value="3"/>
+  </SceneSettings>
+  <ComponentList><RCGround Key="G"/></ComponentList>
+</Simulation>
+EOF
+set +e
+"$SIMBOB" check "$WORK/threads_setting.xml" 2> "$WORK/ts.err"
+rc=$?
+set -e
+[[ $rc -eq 65 ]] || fail "a scene with Threads: exit $rc, expected 65"
+grep -qxF "$WORK/threads_setting.xml:3: error: SceneSettings 'SceneSettings': parameter 'Threads' removed: the thread count is no scene setting since 2026-12-06: give \`--threads N\` to the command (the same bytes for every count)" "$WORK/ts.err" ||
+  { cat "$WORK/ts.err"; fail "no advice for a scene's Threads"; }
 
 check "--check-determinism runs its second pass on another thread count"
 "$SIMBOB" run scenes/box_stack.xml --duration 1 --out "$WORK/cd1.csv" --check-determinism -v 2> "$WORK/cd1.err"
@@ -60,9 +73,11 @@ for bad in 0 65; do
   [[ ! -e "$WORK/bad.csv" ]] || fail "--threads $bad wrote output"
 done
 set +e
-"$SIMBOB" run scenes/box_stack.xml --duration 1 --set SceneSettings.Threads=65 --out "$WORK/bad.csv" 2> "$WORK/bad.err"
+"$SIMBOB" run scenes/box_stack.xml --duration 1 --set SceneSettings.Threads=3 --out "$WORK/bad.csv" 2> "$WORK/bad.err"
 rc=$?
 set -e
-[[ $rc -eq 65 ]] || fail "SceneSettings.Threads=65: exit $rc, expected 65"
-grep -qF "SceneSettings: Threads must be at most 64" "$WORK/bad.err" || { cat "$WORK/bad.err"; fail "no message for Threads=65"; }
+[[ $rc -eq 65 ]] || fail "--set SceneSettings.Threads=3: exit $rc, expected 65"
+grep -qF "parameter 'Threads' removed: the thread count is no scene setting since 2026-12-06" "$WORK/bad.err" ||
+  { cat "$WORK/bad.err"; fail "no advice for --set SceneSettings.Threads"; }
+[[ ! -e "$WORK/bad.csv" ]] || fail "--set SceneSettings.Threads wrote output"
 say PASS

@@ -118,6 +118,12 @@ assert len(m["triangles"]["positions"]) == 128 and len(m["triangles"]["indices"]
 assert [v["mesh"] for v in data["model"]["visuals"] if v["shape"] == "mesh"] == [0]
 assert [g["shape"] for g in data["model"]["geoms"] if g["shape"] != "plane"] == ["hull"]
 PY
+# first_error: a file holding the first line of the last command's stderr.
+first_error() {
+  head -n 1 "$LAST_ERR" >first_error.txt
+  echo first_error.txt
+}
+
 check "a URDF's 0.4 m tall COLLADA block, Y_UP or with no up_axis, stands at half its height (as in RViz and Gazebo)"
 # The block's vertices: 0.1 x 0.1 x 0.4 m along x y z, centred on the link frame. ROS takes a
 # URDF's COLLADA vertices as written (Z-up, the file's up_axis ignored): it rests on its end with
@@ -179,7 +185,7 @@ cat >pack/meshes/part.gltf <<'JSON'
 JSON
 scene "../pack/meshes/part.gltf" >s/gltf.xml
 expect_status 65 "$SIMBOB" run s/gltf.xml --duration 0.1 --out gltf.csv --html gltf.html
-expect_match "scene's line" "$(head -n 1 "$LAST_ERR")" \
+expect_match "scene's line" "$(first_error)" \
   "^s/gltf.xml:7: error: RCMeshGeom 'Part.Geom': mesh 's/../pack/meshes/part.gltf': '.gltf' is not a mesh format simbob reads \(STL .stl, OBJ .obj, COLLADA .dae\)$"
 expect_no_file gltf.html
 block_urdf "meshes/part.gltf" >pack/robot.urdf
@@ -196,18 +202,18 @@ check "non-finite and out-of-range vertices are refused by check at the scene's 
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1e39\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n' >s/big.obj
 scene "big.obj" >s/big.xml
 expect_status 65 "$SIMBOB" check s/big.xml
-expect_match "1e39" "$(head -n 1 "$LAST_ERR")" \
+expect_match "1e39" "$(first_error)" \
   "^s/big.xml:7: error: RCMeshGeom 'Part.Geom': mesh 's/big.obj': line 4: a vertex coordinate '1e39' is beyond the range of a float \(3.4e38\)$"
 printf 'v 0 0 0\nv nan 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n' >s/nan.obj
 scene "nan.obj" >s/nan.xml
 expect_status 65 "$SIMBOB" run s/nan.xml --duration 0.1 --out nan.csv
-expect_match "nan" "$(head -n 1 "$LAST_ERR")" "^s/nan.xml:7: error: .*'s/nan.obj': line 2: a vertex coordinate 'nan' is not a finite number$"
+expect_match "nan" "$(first_error)" "^s/nan.xml:7: error: .*'s/nan.obj': line 2: a vertex coordinate 'nan' is not a finite number$"
 
 check "a FIFO as a scene's mesh file is refused (66) at once, like a URDF's"
 mkfifo s/pipe.stl
 scene "pipe.stl" >s/pipe.xml
 expect_status 66 timeout 20 "$SIMBOB" check s/pipe.xml
-expect_match "fifo" "$(head -n 1 "$LAST_ERR")" "^s/pipe.xml:7: error: RCMeshGeom 'Part.Geom': mesh 's/pipe.stl': cannot read the mesh: not a regular file$"
+expect_match "fifo" "$(first_error)" "^s/pipe.xml:7: error: RCMeshGeom 'Part.Geom': mesh 's/pipe.stl': cannot read the mesh: not a regular file$"
 
 check "a module planted in the folder above the program is not opened; beside it, it is"
 mkdir -p plant/bin

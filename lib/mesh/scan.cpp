@@ -42,7 +42,7 @@ size_t tokenCount(std::string_view text) {
 }
 
 // "" when `token` is a number a float holds (what assimp reads vertices into), else why not.
-std::string floatProblem(std::string_view token) {
+std::string floatProblem(std::string_view token, const char* what = "a vertex coordinate") {
   char buffer[64];
   const size_t n = std::min(token.size(), sizeof buffer - 1);
   std::memcpy(buffer, token.data(), n);
@@ -51,8 +51,8 @@ std::string floatProblem(std::string_view token) {
   const double v = std::strtod(buffer, &end);
   const std::string quoted = "'" + std::string(token.substr(0, 40)) + "'";
   if (end == buffer) return "";  // not a number at all: the importer's own error
-  if (!std::isfinite(v)) return "a vertex coordinate " + quoted + " is not a finite number";
-  if (std::fabs(v) > FLT_MAX) return "a vertex coordinate " + quoted + " is beyond the range of a float (3.4e38)";
+  if (!std::isfinite(v)) return what + (" " + quoted) + " is not a finite number";
+  if (std::fabs(v) > FLT_MAX) return what + (" " + quoted) + " is beyond the range of a float (3.4e38)";
   return "";
 }
 
@@ -260,7 +260,8 @@ std::string scanCollada(const std::string& bytes, size_t max_triangles, std::str
         controllers.emplace(id, x);
       } else if (name == "float_array") {
         std::string problem;
-        eachToken(x.child_value(), [&](std::string_view t) { return (problem = floatProblem(t)).empty(); });
+        eachToken(x.child_value(),
+                  [&](std::string_view t) { return (problem = floatProblem(t, "a number of <float_array>")).empty(); });
         if (!problem.empty()) return atLine(lineAt(bytes, x.offset_debug()), problem);
       }
       if (x.first_child()) {

@@ -103,7 +103,7 @@ TEST_CASE("mesh scan: non-finite and out-of-range vertices are refused at their 
   refused(dir.write("nan_binary.stl", stl), "facet 3: a vertex coordinate is not a finite number");
   refused(dir.write("nan.dae", replaced(collada("", "<node id=\"a\"><instance_geometry url=\"#tri\"/></node>"),
                                         "0 0 0 1 0 0 0 1 0", "0 0 0 1 0 0 0 NaN 0")),
-          "line 4: a vertex coordinate 'NaN' is not a finite number");
+          "line 4: a number of <float_array> 'NaN' is not a finite number");
   // Finite in the file, beyond range after the node's transform: refused before qhull.
   refused(
       dir.write("scaled.dae",

@@ -117,8 +117,10 @@ std::string scanObj(const std::string& bytes, size_t max_triangles) {
         return problem.empty() && ++k < 3;
       });
       if (!problem.empty()) problem = atLine(line, problem);
-    } else if (key == "f") {
-      const size_t corners = tokenCount(rest);
+    } else if (!key.empty() && key[0] == 'f') {
+      // assimp 5.2 reads every line that starts with 'f' as a face ("fo", "f1 2 3" too).
+      const bool glued = key.size() > 1 && ((key[1] >= '0' && key[1] <= '9') || key[1] == '-');  // "f1 2 3"
+      const size_t corners = tokenCount(rest) + (glued ? 1 : 0);
       if (corners > kMaxMeshFaceCorners) problem = atLine(line, overCorners(corners));
       triangles += corners > 2 ? corners - 2 : 0;
       if (problem.empty() && triangles > max_triangles) problem = atLine(line, overTriangles(max_triangles));

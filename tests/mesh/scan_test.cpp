@@ -180,6 +180,10 @@ TEST_CASE("mesh scan: a polygon of many corners and a triangle count over the li
   std::string split = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf";
   for (int i = 0; i < 300; ++i) split += " 1 2 3\\\n";
   refused(dir.write("split.obj", split + "\n"), "line 4: a polygon of 900 corners, more than the limit of 256");
+  // assimp takes any line that starts with 'f' for a face: "fo" (an old spelling) too.
+  std::string fo = "v 0 0 0\nv 1 0 0\nv 0 1 0\nfo";
+  for (int i = 0; i < 100; ++i) fo += " 1 2 3";
+  refused(dir.write("fo.obj", fo + "\n"), "line 4: a polygon of 300 corners, more than the limit of 256");
   // 2,000,001 triangles in 16 MB: refused by the count, before assimp allocated for them.
   std::string faces = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
   faces.reserve(faces.size() + 8 * 2000001);

@@ -19,14 +19,24 @@
 
 namespace simbob {
 
-/// The axis that points up in a frame. Scenes are Y-up; URDF (and ROS) are Z-up. COLLADA files
-/// say theirs (`<up_axis>`, Y_UP by default); STL and OBJ have none and are taken as they are.
+/// The frame a mesh is read into and how a COLLADA file's `<up_axis>` is taken (docs/meshes.md).
+/// Y: a scene's frame (Y-up); the file's up axis (Y_UP by default) is turned onto +Y. Z: a URDF's
+/// frame (Z-up); the vertices are taken as written, the file's up axis not applied, as RViz,
+/// MoveIt and Gazebo classic read a URDF's meshes. STL and OBJ have none and are taken as written
+/// in both; COLLADA's `<unit>` is applied in both.
 enum class UpAxis : uint8_t { Y, Z };
 
 /// Largest mesh loadMesh accepts (vertices after merging identical ones, triangles after
-/// triangulating polygons); a bigger one is refused with a message naming the limit.
+/// triangulating polygons and after COLLADA's instancing); a bigger one is refused with a message
+/// naming the limit. The others are checked in the file before assimp reads it.
 constexpr size_t kMaxMeshVertices = 1000000;
 constexpr size_t kMaxMeshTriangles = 2000000;
+constexpr size_t kMaxMeshFileBytes = size_t{256} << 20;  ///< a mesh file's size
+constexpr size_t kMaxMeshFaceCorners = 256;              ///< corners of one polygon (OBJ, COLLADA)
+constexpr size_t kMaxMeshNodes = 100000;                 ///< COLLADA nodes after instancing
+constexpr size_t kMaxMeshNodeDepth = 100;                ///< COLLADA nodes nested, counting <instance_node>
+constexpr size_t kMaxMeshXmlDepth = 256;                 ///< COLLADA elements nested
+constexpr double kMaxMeshCoordinate = 1e9;               ///< m, a vertex after unit, transforms and scale
 
 /// A convex polyhedron in ODE's dGeomConvex layout (dCreateConvex(space, planes, planecount,
 /// points, pointcount, polygons)): plain numbers, copied to dReal by the physics.
@@ -51,12 +61,15 @@ struct MeshMass {
 };
 
 /// One mesh as read from its file, in metres, in the frame the caller places it in: the file's
-/// own unit (COLLADA `<unit meter>`), then the turn from the file's up axis to the caller's
-/// (COLLADA only; STL and OBJ are taken as written), then `scale` are applied to every vertex, once.
+/// own unit (COLLADA `<unit meter>`), then, in a scene (UpAxis::Y), the turn from a COLLADA
+/// file's up axis onto +Y, then `scale` are applied to every vertex, once.
 struct MeshData {
-  std::string file;                                ///< the path it was read from, as given to loadMesh
-  Vec3 scale{1, 1, 1};                             ///< the scale it was read with (per axis of the caller's frame)
-  UpAxis up = UpAxis::Y;                           ///< the up axis of the caller's frame
+  std::string file;       ///< the path it was read from, as given to loadMesh
+  Vec3 scale{1, 1, 1};    ///< the scale it was read with (per axis of the caller's frame)
+  UpAxis up = UpAxis::Y;  ///< the up axis of the caller's frame
+  /// COLLADA's `<up_axis>` as the file states it ("Y_UP", "Z_UP", "X_UP"); "" when it states
+  /// none (or is STL or OBJ). With `up`, what `check` reports was done with it.
+  std::string file_up_axis;
   std::vector<Vec3> vertices;                      ///< m
   std::vector<std::array<uint32_t, 3>> triangles;  ///< indices into vertices, counterclockwise seen from outside
   Vec3 lo{0, 0, 0}, hi{0, 0, 0};                   ///< bounds of the vertices (m)
@@ -74,16 +87,18 @@ struct MeshData {
 /// What loadMesh gives: the mesh, or an error (then `mesh` is null).
 struct MeshLoad {
   std::shared_ptr<const MeshData> mesh;
-  /// kind MissingInput (exit 66) when the file does not exist or cannot be read, InvalidInput
-  /// (65) when it cannot be parsed, holds no triangles, is over the limits or `scale` has a zero
-  /// or non-finite component; loc.file is the mesh file, the message says why (no "file:" in it).
+  /// kind MissingInput (exit 66) when the file does not exist, cannot be read or is not a regular
+  /// file, InvalidInput (65) when it is not one of the formats, cannot be parsed, holds no
+  /// triangles, a vertex that is not a finite float, is over the limits or `scale` has a zero or
+  /// non-finite component; loc.file is the mesh file, the message says why (no "file:" in it;
+  /// "line N: " first where the mesh file's line is known).
   Error error;
   bool ok() const { return mesh != nullptr; }
 };
 
-/// Reads a mesh file (format by its contents and extension: .stl, .obj, .dae) and converts it
-/// to metres in a frame whose up axis is `up`. `scale` multiplies each axis of that frame (after
-/// the file's unit and up-axis turn); a negative product flips the winding back so triangles
+/// Reads a mesh file (format by its extension, .stl, .obj or .dae, and its contents; any other
+/// is refused, and no other file is opened) and converts it to metres in the frame `up` names. `scale` multiplies
+/// each axis of that frame (after the file's unit and up-axis turn); a negative product flips the winding back so triangles
 /// stay counterclockwise from outside. The hull and masses are computed here.
 MeshLoad loadMesh(const std::string& path, const Vec3& scale, UpAxis up);
 

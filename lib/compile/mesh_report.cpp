@@ -27,6 +27,12 @@ std::vector<std::string> describeMeshes(const Model& model) {
               ")";
     if (trimeshes[i]) line += "; triangle mesh of " + countOf(trimeshes[i], "geom", "geoms");
     if (visuals[i]) line += "; drawn by " + countOf(visuals[i], "model", "models");
+    // A COLLADA file that states its up axis: what was done with it (docs/meshes.md).
+    if (!m.file_up_axis.empty())
+      line += "; its up_axis " + m.file_up_axis +
+              (m.up == UpAxis::Z          ? " not applied (a URDF's mesh: vertices as written, as ROS reads them)"
+               : m.file_up_axis == "Y_UP" ? " is the scene's"
+                                          : " turned onto the scene's +Y");
     out.push_back(std::move(line));
   }
   return out;

@@ -1,14 +1,18 @@
-// Mesh files: assimp reads them in the module libsimbob_mesh.so (assimp_read.cpp, opened on the
-// first mesh), and the rest is done here: limits, the up-axis turn and scale, bounds, closedness,
-// masses and the convex hull. STL and OBJ carry no unit or up axis: their numbers are the
-// caller's.
+// Mesh files: read here (a regular file, within the size limit), checked by scan.cpp before
+// assimp sees them, handed as bytes to the module libsimbob_mesh.so (assimp_read.cpp, opened on
+// the first mesh), and the rest is done here: limits, scale, bounds, closedness, masses and the
+// convex hull. STL and OBJ carry no unit or up axis: their numbers are the caller's.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 
 #include "mesh/mesh_module.h"
+#include "mesh/scan.h"
 #include "simbob/mesh.h"
 #include "simbob/tool/platform.h"
 
@@ -61,6 +65,48 @@ const MeshModule* meshModule(std::string* why) {
                                   "reading meshes needs libsimbob_mesh.so (assimp)", &simbob_mesh_module, why);
 }
 
+/// The file's bytes, or an error: MissingInput when it cannot be opened or is not a regular
+/// file (a FIFO would block, a device never end), InvalidInput over the size limit.
+bool readBytes(const std::string& path, std::string* bytes, Error* error) {
+  // O_NONBLOCK: opening a FIFO does not wait for a writer; the fstat below then refuses it.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    *error = meshError(ErrorKind::MissingInput, path, std::string("cannot read the mesh: ") + std::strerror(errno));
+    return false;
+  }
+  struct stat st {};
+  bool ok = ::fstat(fd, &st) == 0;
+  if (!ok) {
+    *error = meshError(ErrorKind::MissingInput, path, std::string("cannot read the mesh: ") + std::strerror(errno));
+  } else if (!S_ISREG(st.st_mode)) {
+    *error = meshError(ErrorKind::MissingInput, path, "cannot read the mesh: not a regular file");
+    ok = false;
+  } else if (static_cast<uint64_t>(st.st_size) > kMaxMeshFileBytes) {
+    *error = meshError(ErrorKind::InvalidInput, path,
+                       "is " + count(static_cast<size_t>(st.st_size)) + " bytes, more than the limit of " +
+                           count(kMaxMeshFileBytes) + " (256 MiB)");
+    ok = false;
+  } else {
+    bytes->resize(static_cast<size_t>(st.st_size));
+    size_t done = 0;
+    while (ok && done < bytes->size()) {
+      const ssize_t n = ::read(fd, bytes->data() + done, bytes->size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) {
+        *error = meshError(ErrorKind::MissingInput, path, std::string("cannot read the mesh: ") + std::strerror(errno));
+        ok = false;
+      } else if (n == 0) {
+        bytes->resize(done);  // shrank while read: what is there
+        break;
+      } else {
+        done += static_cast<size_t>(n);
+      }
+    }
+  }
+  ::close(fd);
+  return ok;
+}
+
 }  // namespace
 
 MeshLoad loadMesh(const std::string& path, const Vec3& scale, UpAxis up) {
@@ -70,13 +116,12 @@ MeshLoad loadMesh(const std::string& path, const Vec3& scale, UpAxis up) {
       out.error = meshError(ErrorKind::InvalidInput, path, "scale needs three finite, non-zero factors");
       return out;
     }
-  {
-    std::ifstream probe(path, std::ios::binary);
-    if (!probe) {
-      out.error =
-          meshError(ErrorKind::MissingInput, path, std::string("cannot read the mesh: ") + std::strerror(errno));
-      return out;
-    }
+  std::string bytes;
+  if (!readBytes(path, &bytes, &out.error)) return out;
+  const MeshScan scan = scanMeshFile(path, bytes, kMaxMeshTriangles);
+  if (!scan.problem.empty()) {
+    out.error = meshError(ErrorKind::InvalidInput, path, scan.problem);
+    return out;
   }
   std::string why;
   const MeshModule* module = meshModule(&why);
@@ -84,15 +129,21 @@ MeshLoad loadMesh(const std::string& path, const Vec3& scale, UpAxis up) {
     out.error = meshError(ErrorKind::MissingInput, path, why);
     return out;
   }
+  MeshRequest request;
+  request.data = bytes.data();
+  request.size = bytes.size();
+  request.format = scan.format;
+  request.ignore_up_axis = up == UpAxis::Z;
+  request.max_triangles = kMaxMeshTriangles;
   MeshFile file;
-  if (!module->read(path, kMaxMeshTriangles, &file)) {
+  if (!module->read(request, &file)) {
     out.error = meshError(ErrorKind::InvalidInput, path, "not a mesh assimp can read: " + file.error);
     return out;
   }
+  bytes = std::string();
   if (file.faces > kMaxMeshTriangles) {
-    out.error =
-        meshError(ErrorKind::InvalidInput, path,
-                  "has " + count(file.faces) + " triangles, more than the limit of " + count(kMaxMeshTriangles));
+    out.error = meshError(ErrorKind::InvalidInput, path,
+                          "has more than " + count(kMaxMeshTriangles) + " triangles, the limit (after instancing)");
     return out;
   }
   if (file.vertices.size() > kMaxMeshVertices) {
@@ -105,17 +156,24 @@ MeshLoad loadMesh(const std::string& path, const Vec3& scale, UpAxis up) {
     out.error = meshError(ErrorKind::InvalidInput, path, "holds no triangles");
     return out;
   }
-  const bool collada = file.collada;
   auto data = std::make_shared<MeshData>();
   data->file = path;
   data->scale = scale;
   data->up = up;
+  data->file_up_axis = scan.up_axis;
   data->vertices = std::move(file.vertices);
   data->triangles = std::move(file.triangles);
   for (Vec3& v : data->vertices) {
-    // assimp left a COLLADA file Y-up; a Z-up caller turns it by +90 degrees about X.
-    if (collada && up == UpAxis::Z) v = {v[0], -v[2], v[1]};
-    for (size_t k = 0; k < 3; ++k) v[k] *= scale[k];
+    for (size_t k = 0; k < 3; ++k) {
+      v[k] *= scale[k];
+      // Node transforms and scale can take finite numbers out of range; qhull and ODE must not see them.
+      if (!(std::fabs(v[k]) <= kMaxMeshCoordinate)) {
+        out.error = meshError(ErrorKind::InvalidInput, path,
+                              std::string("a vertex ") + (std::isfinite(v[k]) ? "lies beyond 1e9 m" : "is not finite") +
+                                  " after the file's transforms and the scale");
+        return out;
+      }
+    }
   }
   if (scale[0] * scale[1] * scale[2] < 0)
     for (auto& t : data->triangles) std::swap(t[1], t[2]);

@@ -16,12 +16,28 @@
 
 namespace simbob {
 
+/// The mesh formats simbob reads (docs/meshes.md); load.cpp chooses one from the file's
+/// extension and contents before the module sees the file.
+enum class MeshFormat : uint8_t { Stl, Obj, Collada };
+
+/// What to read: the file's bytes (the module opens no file at all: an OBJ's `mtllib` or any
+/// other reference a file makes finds nothing) with the one importer of `format`.
+struct MeshRequest {
+  const char* data = nullptr;
+  size_t size = 0;
+  MeshFormat format = MeshFormat::Stl;
+  /// COLLADA: keep the vertices as written, the file's <up_axis> not applied (as ROS reads a
+  /// URDF's meshes); false turns the file's up axis onto +Y (scenes). <unit> is applied either way.
+  bool ignore_up_axis = false;
+  size_t max_triangles = 0;  ///< stop once more triangles than this come out (after instancing)
+};
+
 /// A mesh file's triangles as assimp gives them: the vertices through the node transforms,
 /// identical positions merged in order of first use, degenerate triangles dropped.
 struct MeshFile {
   std::string error;  ///< why assimp could not read it (read() returned false)
-  size_t faces = 0;   ///< faces in the file; over max_triangles, nothing more is read
-  bool collada = false;
+  /// Triangles in the file (after instancing); over max_triangles, reading stopped there.
+  size_t faces = 0;
   std::vector<Vec3> vertices;
   std::vector<std::array<uint32_t, 3>> triangles;
 };
@@ -30,9 +46,9 @@ struct MeshFile {
 struct MeshModule {
   int abi;
   /// False when assimp cannot read the file (out->error says why).
-  bool (*read)(const std::string& path, size_t max_triangles, MeshFile* out);
+  bool (*read)(const MeshRequest& request, MeshFile* out);
 };
-constexpr int kMeshModuleAbi = 1;
+constexpr int kMeshModuleAbi = 2;
 
 }  // namespace simbob
 

@@ -2,6 +2,7 @@
 
 #include <dlfcn.h>
 #include <gnu/libc-version.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -47,14 +48,28 @@ void* openSimbobModule(const char* file_name, const char* env, const char* entry
   if (const char* e = std::getenv(env); e && *e) {
     candidates.emplace_back(e);
   } else {
+    // Beside the program (the build tree; tests/ and bench/ hold links to the modules) and in an
+    // installed simbob's lib/simbob. Never the folder above the program: for a simbob in
+    // /tmp/x that is /tmp, where anyone can put a library whose constructor would run here.
     const std::string dir = exeDir();
-    for (const char* rel : {"/", "/../", "/../lib/simbob/"}) candidates.push_back(dir + rel + file_name);
+    for (const char* rel : {"/", "/../lib/simbob/"}) candidates.push_back(dir + rel + file_name);
   }
   std::string tried;
   for (const std::string& path : candidates) {
     if (::access(path.c_str(), F_OK) != 0) {
       tried += (tried.empty() ? "" : ", ") + path;
       continue;
+    }
+    // A module that any user can write, or replace in its folder, is not opened (its constructor
+    // would run before any check of what it is).
+    struct stat file {
+    }, folder{};
+    const std::string dir = std::filesystem::path(path).parent_path().string();
+    if (::stat(path.c_str(), &file) == 0 && ::stat(dir.empty() ? "." : dir.c_str(), &folder) == 0 &&
+        ((file.st_mode & S_IWOTH) != 0 || (folder.st_mode & S_IWOTH) != 0)) {
+      *why = path + " is not opened: " + ((file.st_mode & S_IWOTH) != 0 ? "it" : "its folder") +
+             " can be written by any user";
+      return nullptr;
     }
     void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!handle) {

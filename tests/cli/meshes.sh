@@ -2,7 +2,10 @@
 # Mesh files in scenes (RCMeshGeom, RCMeshModel; docs/meshes.md): check reports each mesh once;
 # a missing mesh is 66 and a corrupt one 65, at the File line; file names with spaces work; two
 # triangle meshes that can touch are named in a warning; `types` lists both types; the replay
-# page embeds each mesh once.
+# page embeds each mesh once. A URDF's COLLADA mesh is read as ROS reads it (up_axis not applied)
+# and check says what was done with every stated up axis; hostile mesh files (other formats,
+# non-finite vertices, FIFOs) are refused at the line naming them; a module planted in the folder
+# above the program is not opened (issues 42 and 43).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 cli_setup "$@"
@@ -81,7 +84,7 @@ expect_status 66 "$SIMBOB" check s/missing.xml
 check "a corrupt mesh is 65 at its line"
 scene "junk.stl" >s/junk.xml
 expect_status 65 "$SIMBOB" check s/junk.xml
-expect_match "corrupt" "$LAST_ERR" "^s/junk.xml:7: error: RCMeshGeom 'Part.Geom': mesh 's/junk.stl': not a mesh assimp can read: "
+expect_match "corrupt" "$LAST_ERR" "^s/junk.xml:7: error: RCMeshGeom 'Part.Geom': mesh 's/junk.stl': is not an STL file \\(neither 84 \\+ 50 bytes a facet, binary, nor text starting with 'solid'\\)$"
 
 check "two triangle meshes that can touch: a warning naming both, with their files and lines"
 scene "my meshes/cube 100mm.stl" '    <RCStaticRigidBody Key="Floor"><Geom><RCMeshGeom><File Value="my meshes/cube 100mm.stl"/>
@@ -115,4 +118,120 @@ assert len(m["triangles"]["positions"]) == 128 and len(m["triangles"]["indices"]
 assert [v["mesh"] for v in data["model"]["visuals"] if v["shape"] == "mesh"] == [0]
 assert [g["shape"] for g in data["model"]["geoms"] if g["shape"] != "plane"] == ["hull"]
 PY
+# first_error: a file holding the first line of the last command's stderr.
+first_error() {
+  head -n 1 "$LAST_ERR" >first_error.txt
+  echo first_error.txt
+}
+
+check "a URDF's 0.4 m tall COLLADA block, Y_UP or with no up_axis, stands at half its height (as in RViz and Gazebo)"
+# The block's vertices: 0.1 x 0.1 x 0.4 m along x y z, centred on the link frame. ROS takes a
+# URDF's COLLADA vertices as written (Z-up, the file's up_axis ignored): it rests on its end with
+# its centre 0.2 m up. Turned by its Y_UP (the old reading) it lay on its side at 0.05 m. The
+# contact leaves the hull a fraction of a millimetre in the ground: 1 mm either way.
+block_dae() {
+  printf '<?xml version="1.0"?>\n<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">\n'
+  printf '<asset><unit name="meter" meter="1"/>%s</asset>\n' "$1"
+  printf '<library_geometries><geometry id="b"><mesh><source id="p"><float_array id="pa" count="24">'
+  printf -- '-0.05 -0.05 -0.2 0.05 -0.05 -0.2 -0.05 0.05 -0.2 0.05 0.05 -0.2 '
+  printf -- '-0.05 -0.05 0.2 0.05 -0.05 0.2 -0.05 0.05 0.2 0.05 0.05 0.2'
+  printf '</float_array><technique_common><accessor source="#pa" count="8" stride="3"><param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>\n'
+  printf '<vertices id="v"><input semantic="POSITION" source="#p"/></vertices><triangles count="12"><input semantic="VERTEX" source="#v" offset="0"/>'
+  printf '<p>0 3 1 0 2 3 4 5 7 4 7 6 0 1 5 0 5 4 2 6 7 2 7 3 1 3 7 1 7 5 0 4 6 0 6 2</p></triangles></mesh></geometry></library_geometries>\n'
+  printf '<library_visual_scenes><visual_scene id="s"><node id="n"><instance_geometry url="#b"/></node></visual_scene></library_visual_scenes>\n'
+  printf '<scene><instance_visual_scene url="#s"/></scene>\n</COLLADA>\n'
+}
+block_urdf() {
+  cat <<URDF
+<robot name="block">
+  <link name="block">
+    <inertial><mass value="1"/><inertia ixx="0.0141667" iyy="0.0141667" izz="0.0016667" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><mesh filename="$1"/></geometry></collision>
+  </link>
+</robot>
+URDF
+}
+block_dae '<up_axis>Y_UP</up_axis>' >block_y.dae
+block_dae '' >block_none.dae
+for up in y none; do
+  block_urdf "block_$up.dae" >"block_$up.urdf"
+  cat >"block_$up.xml" <<XML
+<Simulation><ComponentList><RCGround Key="Ground"/>
+  <RCImportURDF Key="blk"><File Value="block_$up.urdf"/>
+    <Pose><RCGlobalCoordinates><Pose Value="0 0.5 0 0 0 0"/></RCGlobalCoordinates></Pose></RCImportURDF>
+</ComponentList></Simulation>
+XML
+  expect_status 0 "$SIMBOB" run "block_$up.xml" --duration 2 --out "block_$up.csv"
+  y=$(grep ',blk\.block,' "block_$up.csv" | tail -n 1 | cut -d, -f4)
+  float_between "resting height of the block (up_axis $up)" "$y" 0.199 0.201
+done
+expect_status 0 "$SIMBOB" check block_y.xml
+expect_match "check names the up axis and what was done" "$LAST_ERR" \
+  "mesh block_y.dae \(scale 1 1 1\): 8 vertices, 12 triangles, closed; hull of 1 geom \(8 points, 6 faces\); its up_axis Y_UP not applied \(a URDF's mesh: vertices as written, as ROS reads them\)$"
+expect_status 0 "$SIMBOB" check block_none.xml
+expect_eq "no up axis stated, none named" "$(grep -c 'up_axis' "$LAST_ERR")" 0
+# In a scene, a Z_UP file is turned onto the scene's +Y, and check says so.
+scene "$REPO/tests/data/meshes/box_cm_zup.dae" >s/zup.xml
+expect_status 0 "$SIMBOB" check s/zup.xml
+expect_match "scene's Z_UP" "$LAST_ERR" "box_cm_zup.dae \(scale 0.001 0.001 0.001\): .*; its up_axis Z_UP turned onto the scene's \+Y$"
+
+check "a glTF (its buffer a file outside the folder) is refused at the line naming it, and nothing of the file is embedded"
+mkdir -p pack/meshes
+printf 'AWS_SECRET_ACCESS_KEY=do-not-leak-me\n' >secret.txt
+cat >pack/meshes/part.gltf <<'JSON'
+{"asset":{"version":"2.0"},"buffers":[{"uri":"../../secret.txt","byteLength":36}],
+"bufferViews":[{"buffer":0,"byteLength":36}],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],
+"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0}
+JSON
+scene "../pack/meshes/part.gltf" >s/gltf.xml
+expect_status 65 "$SIMBOB" run s/gltf.xml --duration 0.1 --out gltf.csv --html gltf.html
+expect_match "scene's line" "$(first_error)" \
+  "^s/gltf.xml:7: error: RCMeshGeom 'Part.Geom': mesh 's/../pack/meshes/part.gltf': '.gltf' is not a mesh format simbob reads \(STL .stl, OBJ .obj, COLLADA .dae\)$"
+expect_no_file gltf.html
+block_urdf "meshes/part.gltf" >pack/robot.urdf
+expect_status 65 "$SIMBOB" check pack/robot.urdf
+expect_match "URDF's line" "$LAST_ERR" "^pack/robot.urdf:4: error: mesh 'meshes/part.gltf': '.gltf' is not a mesh format simbob reads"
+# The same bytes named .dae are not XML, and named .obj read as OBJ (no triangles): never as glTF.
+cp pack/meshes/part.gltf pack/meshes/part.obj
+scene "../pack/meshes/part.obj" >s/gltf_obj.xml
+expect_status 65 "$SIMBOB" view spaces.csv --scene s/gltf_obj.xml --out gltf_obj.html
+expect_no_file gltf_obj.html
+if grep -rqs "do-not-leak-me\|QVdTX1NFQ1JFV" ./*.html; then fail "the secret reached a page"; fi
+
+check "non-finite and out-of-range vertices are refused by check at the scene's line and the mesh file's line"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1e39\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n' >s/big.obj
+scene "big.obj" >s/big.xml
+expect_status 65 "$SIMBOB" check s/big.xml
+expect_match "1e39" "$(first_error)" \
+  "^s/big.xml:7: error: RCMeshGeom 'Part.Geom': mesh 's/big.obj': line 4: a vertex coordinate '1e39' is beyond the range of a float \(3.4e38\)$"
+printf 'v 0 0 0\nv nan 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n' >s/nan.obj
+scene "nan.obj" >s/nan.xml
+expect_status 65 "$SIMBOB" run s/nan.xml --duration 0.1 --out nan.csv
+expect_match "nan" "$(first_error)" "^s/nan.xml:7: error: .*'s/nan.obj': line 2: a vertex coordinate 'nan' is not a finite number$"
+
+check "a FIFO as a scene's mesh file is refused (66) at once, like a URDF's"
+mkfifo s/pipe.stl
+scene "pipe.stl" >s/pipe.xml
+expect_status 66 timeout 20 "$SIMBOB" check s/pipe.xml
+expect_match "fifo" "$(first_error)" "^s/pipe.xml:7: error: RCMeshGeom 'Part.Geom': mesh 's/pipe.stl': cannot read the mesh: not a regular file$"
+
+check "a module planted in the folder above the program is not opened; beside it, it is"
+mkdir -p plant/bin
+cp "$SIMBOB" plant/bin/simbob
+cat >plant/evil.c <<'C'
+#include <stdio.h>
+__attribute__((constructor)) static void planted(void) { FILE* f = fopen("PLANTED_RAN", "w"); if (f) fclose(f); }
+C
+cc -shared -fPIC -o plant/libsimbob_mesh.so plant/evil.c || fail "cc"
+expect_status 66 plant/bin/simbob check s/spaces.xml
+expect_no_file PLANTED_RAN
+expect_match "not looked for above" "$LAST_ERR" "libsimbob_mesh.so not found at .*plant/bin/libsimbob_mesh.so, .*plant/bin/../lib/simbob/libsimbob_mesh.so$"
+ln -s "$(dirname "$SIMBOB")/libsimbob_mesh.so" plant/bin/libsimbob_mesh.so
+expect_status 0 plant/bin/simbob check s/spaces.xml
+expect_no_file PLANTED_RAN
+# A module that any user can write is not opened either.
+cp "$(dirname "$SIMBOB")/libsimbob_mesh.so" plant/bin/libsimbob_mesh_copy.so
+chmod o+w plant/bin/libsimbob_mesh_copy.so
+expect_status 66 env SIMBOB_MESH_MODULE="$PWD/plant/bin/libsimbob_mesh_copy.so" "$SIMBOB" check s/spaces.xml
+expect_match "writable" "$LAST_ERR" "libsimbob_mesh_copy.so is not opened: it can be written by any user"
 say "ok"

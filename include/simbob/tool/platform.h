@@ -24,9 +24,11 @@ namespace simbob {
 /// Opens one of simbob's own on-demand modules (libsimbob_video.so, libsimbob_mesh.so, ...): the
 /// libraries behind them (FFmpeg, assimp, cairo, urdfdom) are loaded only by a run that needs
 /// them, so every other run starts without their relocations and memory. `env`, when set and not
-/// empty, names the file; otherwise the module is looked for beside the executable, one folder up
-/// (tests and benchmarks in the build tree), and in ../lib/simbob (an installed simbob). Returns
-/// the address of the module's function `entry`, or nullptr with `why` set. See simbobModule.
+/// empty, names the file; otherwise the module is looked for beside the executable (the build
+/// tree, whose tests/ and bench/ hold links to the modules) and in ../lib/simbob (an installed
+/// simbob), never in the folder above the executable. A module that any user can write, or whose
+/// folder any user can write, is not opened. Returns the address of the module's function
+/// `entry`, or nullptr with `why` set. See simbobModule.
 void* openSimbobModule(const char* file_name, const char* env, const char* entry, std::string* why);
 
 /// The table of one module, opened on the first call and remembered (thread-safe): `entry` is

@@ -8,6 +8,7 @@
 //   joints.cpp    joints and joint state (simbob's sign convention)
 //   contacts.cpp  the near callback: contact joints per the material rules of guide 7.1; the
 //                 narrow phase in parallel (--threads), joints committed in the pair order
+//   cylinder_caps.cpp  dCollide, with simbob's own contacts for flat cylinder caps on boxes and caps
 //   workers.cpp   WorkerPool: the World's threads beyond the stepping one (--threads)
 //   actuators.cpp drives, servos and velocity drives on hinge and slider joints
 //   sensors.cpp   sensors: their readings on the step grid; proximity sensors (sensor geoms, in a
@@ -303,6 +304,12 @@ void createPluginActuator(WorldImpl& im, ActuatorState& a);
 void readPluginSensor(WorldImpl& im, SensorState& s);
 /// A plug-in actuator's force and torque on its body for the next step of h s.
 void applyPluginActuator(WorldImpl& im, ActuatorState& a, double h);
+
+// cylinder_caps.cpp
+/// dCollide(g1, g2, most, out, stride), except that a cylinder's cap against a box face or against
+/// another cylinder's cap (axes within 25.8 degrees) gets simbob's own contacts, each point with
+/// its own depth. Reads only the two geoms (a worker thread may call it).
+int collideGeoms(dGeomID g1, dGeomID g2, int most, dContactGeom* out, int stride);
 
 // contacts.cpp
 /// Collides the space and creates this step's contact joints (guide 7.1); counts them in lastContacts.

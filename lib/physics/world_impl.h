@@ -74,6 +74,8 @@ struct JointInfo {
   /// Hinge with a stop: the angular motor in user mode that carries its stops (joints.cpp,
   /// setHingeStops), given simbob's own reading of the angle before every step; null otherwise.
   dJointID stops = nullptr;
+  /// Where ODE records the force of `stops` after every step (World::stopTorque); null without.
+  std::unique_ptr<dJointFeedback> stopFeedback{};
 };
 
 /// A sensor: its definition, its reading and what computing the next one needs (World::sensorReading).
@@ -250,6 +252,9 @@ void updateJointTotals(WorldImpl& im);
 void setHingeStops(WorldImpl& im, size_t i, double lo, double hi);
 /// Hands every hinge's stop motor the hinge's current angle (before every step).
 void updateHingeStops(WorldImpl& im);
+/// The torque (N m) hinge i's stops applied in the last step, on its child about its axis in
+/// simbob's sense; 0 without stops (World::stopTorque).
+double stopTorque(const WorldImpl& im, int i);
 /// Distance (m) between where joint i's anchor is on its first and on its second body; 0 for
 /// joints without a shared anchor (slider, fixed).
 double jointSeparation(const WorldImpl& im, int i);

@@ -144,8 +144,10 @@ TEST_CASE("cylinder caps: a wheel rolling across a box top touches it until its 
           "[physics][cylinder]") {
   // A wheel of radius 0.1 m and width 0.04 m, axis along Z, on the box top at y = 0.5 (centre at
   // 0.6), rolling at 1 m/s towards the edge at x = 0.5 (w = -v / r about Z). Its cylinder side on
-  // the box face is ODE's own collider: contact every step while the centre is over the box, the
-  // centre at the rolling height; past the edge it tips over the edge and falls.
+  // the box face is ODE's own collider, which gives no point at zero depth: a wheel resting at
+  // exactly 0.6 m has no contact for that one step and sinks g dt^2 = 1e-5 m into the next. Held
+  // up, the gaps are single steps and the centre stays at the rolling height; a wheel that lost
+  // the box would have fallen 1 mm within 14 ms (g t^2 / 2).
   const std::string motion =
       "<Motion><RCGlobalMotion><LinVelocity Value=\"1 0 0\"/><AngVelocity Value=\"0 0 "
       "-10\"/></RCGlobalMotion></Motion>";
@@ -158,17 +160,18 @@ TEST_CASE("cylinder caps: a wheel rolling across a box top touches it until its 
   Model m = compileXml(box(0, 0, 0, 1, 1, 1) + wheel);
   auto w = World::create(m, 0);
   REQUIRE(w);
-  int steps = 0, lost = 0;
+  int steps = 0, gap = 0, longestGap = 0;
   double worst = 0;
   while (w->body(0).pose.p[0] < 0.5) {
     w->step(0.001);
     ++steps;
     if (w->body(0).pose.p[0] >= 0.5) break;
-    lost += w->lastContactCount() == 0;
+    gap = w->lastContactCount() == 0 ? gap + 1 : 0;
+    longestGap = std::max(longestGap, gap);
     worst = std::max(worst, std::fabs(w->body(0).pose.p[1] - 0.6));
     REQUIRE(steps < 2000);  // 0.8 m at about 1 m/s
   }
-  CHECK(lost == 0);
+  CHECK(longestGap <= 1);
   CHECK(worst < kHeightTol);
   run(*w, 0.5);
   CHECK(w->body(0).pose.p[1] < 0.5);  // past the edge it fell: the test sees losing the box

@@ -36,7 +36,6 @@ Model arm(bool world_parent) {
 }
 
 int hingeOf(const Model& m) { return static_cast<int>(m.joints.size()) - 1; }
-int childOf(const Model& m) { return static_cast<int>(m.bodies.size()) - 1; }
 
 /// Steps n times and returns the mean of stopTorque(joint) over them.
 double meanStopTorque(World& w, int joint, int n) {
@@ -102,7 +101,9 @@ TEST_CASE("hinge stops: a velocity drive pushing into a stop with MaxPower F is 
       CHECK(mean == Approx(-3.0 * sense).epsilon(1e-3));
       CHECK(std::fabs(w->joint(j).velocity) < 1e-3);
       CHECK(w->joint(j).position == Approx(sense < 0 ? -0.4 : 0.3).margin(1e-3));
-      CHECK(w->stopTorque(j) == Approx(-3.0 * sense).epsilon(1e-3));  // every step, not only on average
+      // Every step, not only on average, to QuickStep's residual: its 20 iterations share the
+      // step's impulse among the hinge's rows, the stop's and (with a base) the fixed joint's.
+      CHECK(w->stopTorque(j) == Approx(-3.0 * sense).epsilon(1e-2));
     }
   }
 }
@@ -141,7 +142,10 @@ TEST_CASE("hinge stops: a joint started beyond its stop leaves it at ERP of its 
         const int n = 10;
         for (int i = 1; i < n; ++i) w->step(kDt);
         CHECK(w->joint(j).velocity == Approx(v).epsilon(1e-8));
-        CHECK(w->joint(j).position == Approx(n * erp * err).epsilon(1e-8));
+        // n * ERP * error, as ODE turns a body: its rotation (q + dt/2 w q, normalised) turns
+        // 2 atan(w dt / 2) a step, short of w dt by a relative (w dt)^2 / 12 (3e-7 at 2 rad/s).
+        CHECK(w->joint(j).position == Approx(n * 2 * std::atan(v * kDt / 2)).epsilon(1e-8));
+        CHECK(w->joint(j).position == Approx(n * erp * err).epsilon(v * v * kDt * kDt / 12 + 1e-8));
         CHECK(w->stopTorque(j) == 0);  // off the stop: no torque
       }
     }

@@ -48,6 +48,7 @@ Model armModel(bool quickstep) {
 /// flips its reading, and its stops test the unflipped angle, which is simbob's.
 std::vector<double> odeAngles(const Model& m, int steps) {
   const SolverSettings& s = m.settings;
+  dInitODE2(0);  // counted: World's own initialisation, before or after, is not undone
   dWorldID world = dWorldCreate();
   dWorldSetGravity(world, s.gravity[0], s.gravity[1], s.gravity[2]);
   dWorldSetERP(world, s.erp);

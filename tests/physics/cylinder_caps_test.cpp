@@ -11,6 +11,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <string>
 
 #include "test_registry.h"
@@ -179,4 +180,25 @@ TEST_CASE("cylinder caps: a wheel rolling across a box top touches it until its 
   CHECK(worst < kHeightTol);
   run(*w, 0.5);
   CHECK(w->body(0).pose.p[1] < 0.5);  // past the edge it fell: the test sees losing the box
+}
+
+TEST_CASE("cylinder caps: the same bits on 1 and 3 threads (the narrow phase's workers collide caps too)",
+          "[physics][cylinder]") {
+  // A puck on a puck on a box: both kinds of cap contact, collided on a worker with 3 threads.
+  Model m = compileXml(box(0, 0, 0, 1, 1, 1) + puck("Lower", 0, 0.511, 0, 0.05, 0.02) +
+                       puck("Upper", 0.01, 0.57, 0, 0.05, 0.02, 5));
+  auto one = World::create(m, 0, 1), three = World::create(m, 0, 3);
+  REQUIRE(one);
+  REQUIRE(three);
+  bool same = true;
+  for (int i = 0; i < 1000 && same; ++i) {
+    one->step(0.001);
+    three->step(0.001);
+    for (int b = 0; b < 2; ++b) {
+      const BodyState x = one->body(b), y = three->body(b);
+      same = same && std::memcmp(&x.pose, &y.pose, sizeof(Transform)) == 0;
+    }
+  }
+  CHECK(same);
+  CHECK(one->lastContactCount() == 8);  // it did rest on caps: 4 on the box, 4 between the pucks
 }

@@ -111,6 +111,10 @@ class World {
   /// The force (N) or torque (N m) drive i applied in the last step, in the joint's sense
   /// (0 for servos and velocity drives, whose force comes from the solver).
   double driveEffort(int actuator) const;
+  /// The torque (N m) hinge i's stops (MinPos/MaxPos, URDF limits) applied in the last step: on
+  /// the child about the joint's axis, in the joint's sense (positive pushes the position up); 0
+  /// for a joint without hinge stops, and while the hinge is off them. For tests and diagnostics.
+  double stopTorque(int joint) const;
   /// Actuator i's current command as recorded by setCommand (clamped), or its value before the
   /// first command (0; a servo's start position). For logs (`run --log commands`).
   double command(int actuator) const;

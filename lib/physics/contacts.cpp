@@ -12,6 +12,8 @@
 // cylinder and plane, whose colliders keep no state. Debian's ODE is built without thread-local
 // collision caches (dGetConfiguration lacks ODE_EXT_mt_collisions), so a pair with any other
 // class (a triangle mesh, a heightfield) is collided in step 3, on the stepping thread.
+// dCollide is called through collideGeoms (cylinder_caps.cpp): a flat cylinder cap against a box
+// face or another cap gets simbob's own contacts, every other pair ODE's.
 #include <algorithm>
 #include <cstdint>
 
@@ -70,7 +72,7 @@ void addContacts(WorldImpl& im, dGeomID g1, dGeomID g2, const dContactGeom* cont
 /// Collides one pair on the stepping thread and adds its contact joints.
 void collidePair(WorldImpl& im, dGeomID g1, dGeomID g2) {
   const int maxContacts = static_cast<int>(im.contactBuffer.size());
-  const int n = dCollide(g1, g2, maxContacts, &im.contactBuffer[0].geom, sizeof(dContact));
+  const int n = collideGeoms(g1, g2, maxContacts, &im.contactBuffer[0].geom, sizeof(dContact));
   if (n > 0) addContacts(im, g1, g2, &im.contactBuffer[0].geom, n, sizeof(dContact));
 }
 
@@ -108,7 +110,7 @@ void broadPhase(WorldImpl& im, dNearCallback* callback) {
     }
     const size_t at = out.size();
     out.resize(at + most);
-    const int got = dCollide(g1, g2, static_cast<int>(most), &out[at], sizeof(dContactGeom));
+    const int got = collideGeoms(g1, g2, static_cast<int>(most), &out[at], sizeof(dContactGeom));
     out.resize(at + static_cast<size_t>(std::max(got, 0)));
     np.counts[i] = std::max(got, 0);
   }

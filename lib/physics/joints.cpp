@@ -1,6 +1,8 @@
 // Joints: ball-and-socket, hinge, slider and fixed joints between a parent (JointDef::body1, ODE
 // body 1) and a child (JointDef::body2, ODE body 2), and their state in simbob's convention.
 #include <cmath>
+#include <memory>
+#include <utility>
 
 #include "world_impl.h"
 
@@ -91,7 +93,7 @@ void createJoints(WorldImpl& im, const Model& model) {
     JointInfo info{jd.kind, 0.0};
     if (jd.kind == JointKind::Hinge) info.hinge = hingeFrame(j, jd.axis);
     info.zero = odePosition(j, info);
-    im.jointInfo.push_back(info);
+    im.jointInfo.push_back(std::move(info));
     if (jd.kind == JointKind::Hinge && jd.body1 < 0 && jd.body2 >= 0) im.jointInfo.back().motor_sign = 1.0;
   }
   createJointDynamics(im, model);
@@ -159,6 +161,9 @@ void setHingeStops(WorldImpl& im, size_t i, double lo, double hi) {
     dVector3 axis;
     dMultiply0_331(axis, dBodyGetRotation(info.hinge.body0), info.hinge.axis1);
     dJointSetAMotorAxis(info.stops, 0, 1, axis[0], axis[1], axis[2]);
+    // ODE copies the motor's force here after every step (read only: the bytes stay).
+    info.stopFeedback = std::make_unique<dJointFeedback>();
+    dJointSetFeedback(info.stops, info.stopFeedback.get());
     im.stopJoints.push_back(i);
   }
   // Open first, so that lo <= hi holds at every moment (ODE ignores a stop that would break it).
@@ -169,7 +174,25 @@ void setHingeStops(WorldImpl& im, size_t i, double lo, double hi) {
 }
 
 void updateHingeStops(WorldImpl& im) {
-  for (size_t i : im.stopJoints) dJointSetAMotorAngle(im.jointInfo[i].stops, 0, stopFrameAngle(im.jointInfo[i]));
+  for (size_t i : im.stopJoints) {
+    JointInfo& info = im.jointInfo[i];
+    dJointSetAMotorAngle(info.stops, 0, stopFrameAngle(info));
+    // ODE writes the feedback only of a joint that has rows in the step (off its stops the
+    // motor has none): what it does not write reads 0.
+    *info.stopFeedback = dJointFeedback{};
+  }
+}
+
+double stopTorque(const WorldImpl& im, int i) {
+  const JointInfo& info = im.jointInfo[static_cast<size_t>(i)];
+  if (!info.stops) return 0;
+  dVector3 axis;  // JointDef::axis as the bodies have turned it: simbob's positive sense
+  dJointGetHingeAxis(im.joints[static_cast<size_t>(i)], axis);
+  const dReal* t = info.stopFeedback->t1;  // on the motor's first body, ODE's body0 of the hinge
+  const double along = t[0] * axis[0] + t[1] * axis[1] + t[2] * axis[2];
+  // body0 is the child when ODE reversed the hinge (the parent is the world), else the parent,
+  // which gets the opposite of the child's torque.
+  return info.hinge.reverse ? along : -along;
 }
 
 void createJointDynamics(WorldImpl& im, const Model& model) {

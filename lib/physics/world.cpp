@@ -286,6 +286,11 @@ double World::driveEffort(int actuator) const {
   return impl_->actuators[static_cast<size_t>(actuator)].effort;
 }
 
+double World::stopTorque(int joint) const {
+  if (!inRange(*impl_, "stopTorque", joint, impl_->joints.size(), "joint")) return 0;
+  return simbob::stopTorque(*impl_, joint);
+}
+
 double World::command(int actuator) const {
   if (!inRange(*impl_, "command", actuator, impl_->actuators.size(), "actuator")) return 0;
   return impl_->actuators[static_cast<size_t>(actuator)].command;

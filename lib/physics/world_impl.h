@@ -8,6 +8,7 @@
 //   joints.cpp    joints and joint state (simbob's sign convention)
 //   contacts.cpp  the near callback: contact joints per the material rules of guide 7.1; the
 //                 narrow phase in parallel (--threads), joints committed in the pair order
+//   cylinder_caps.cpp  dCollide, with simbob's own contacts for flat cylinder caps on boxes and caps
 //   workers.cpp   WorkerPool: the World's threads beyond the stepping one (--threads)
 //   actuators.cpp drives, servos and velocity drives on hinge and slider joints
 //   sensors.cpp   sensors: their readings on the step grid; proximity sensors (sensor geoms, in a
@@ -73,6 +74,8 @@ struct JointInfo {
   /// Hinge with a stop: the angular motor in user mode that carries its stops (joints.cpp,
   /// setHingeStops), given simbob's own reading of the angle before every step; null otherwise.
   dJointID stops = nullptr;
+  /// Where ODE records the force of `stops` after every step (World::stopTorque); null without.
+  std::unique_ptr<dJointFeedback> stopFeedback{};
 };
 
 /// A sensor: its definition, its reading and what computing the next one needs (World::sensorReading).
@@ -249,6 +252,9 @@ void updateJointTotals(WorldImpl& im);
 void setHingeStops(WorldImpl& im, size_t i, double lo, double hi);
 /// Hands every hinge's stop motor the hinge's current angle (before every step).
 void updateHingeStops(WorldImpl& im);
+/// The torque (N m) hinge i's stops applied in the last step, on its child about its axis in
+/// simbob's sense; 0 without stops (World::stopTorque).
+double stopTorque(const WorldImpl& im, int i);
 /// Distance (m) between where joint i's anchor is on its first and on its second body; 0 for
 /// joints without a shared anchor (slider, fixed).
 double jointSeparation(const WorldImpl& im, int i);
@@ -303,6 +309,12 @@ void createPluginActuator(WorldImpl& im, ActuatorState& a);
 void readPluginSensor(WorldImpl& im, SensorState& s);
 /// A plug-in actuator's force and torque on its body for the next step of h s.
 void applyPluginActuator(WorldImpl& im, ActuatorState& a, double h);
+
+// cylinder_caps.cpp
+/// dCollide(g1, g2, most, out, stride), except that a cylinder's cap against a box face or against
+/// another cylinder's cap (axes within 25.8 degrees) gets simbob's own contacts, each point with
+/// its own depth. Reads only the two geoms (a worker thread may call it).
+int collideGeoms(dGeomID g1, dGeomID g2, int most, dContactGeom* out, int stride);
 
 // contacts.cpp
 /// Collides the space and creates this step's contact joints (guide 7.1); counts them in lastContacts.

@@ -28,7 +28,8 @@ TestSuiteReport sample() {
   s.hostname = "ci-runner";
   s.time = 2.5;
   s.properties = {{"simbob.version", "0.1.0"}, {"seed", "0"}};
-  TestCaseReport pass{"scenes.chain", "chain", "scenes/chain.xml", 0.25, TestOutcome::Passed, "", "", "", {}};
+  TestCaseReport pass{
+      "scenes.chain", "chain", "scenes/chain.xml", 0.25, TestOutcome::Passed, "", "", "", {}, "", {}, {}};
   TestCaseReport fail{"scenes.bounce",
                       "bounce",
                       "scenes/bounce.xml",
@@ -37,6 +38,9 @@ TestSuiteReport sample() {
                       "first divergence at t=0.5 s, body 'Ball'",
                       "golden mismatch",
                       "body  max pos err\nBall  0.1\n",
+                      {},
+                      "",
+                      {},
                       {}};
   fail.artifacts.push_back({"replay page", "ci/bounce/view.html", "bounce/view.html"});
   TestCaseReport error{"scenes.broken",
@@ -47,9 +51,13 @@ TestSuiteReport sample() {
                        "scenes/broken.xml:3: error: unknown type",
                        "run failed",
                        "",
+                       {},
+                       "",
+                       {},
                        {}};
   TestCaseReport skip{
-      "scenes.new", "new", "scenes/new.xml", 0.1, TestOutcome::Skipped, "no golden file golden/new.csv", "", "", {}};
+      "scenes.new", "new", "scenes/new.xml", 0.1, TestOutcome::Skipped, "no golden file golden/new.csv", "", "", {}, "",
+      {},           {}};
   s.cases = {pass, fail, error, skip};
   return s;
 }
@@ -139,7 +147,7 @@ TEST_CASE("junitXml escapes special characters and never writes a control charac
   CHECK(xml.find("<property name=\"key &lt;&amp;&gt;&quot;&apos;\" value=\"a\\x01b\\x1B[31m\\x7F\\xFF\\u{FFFE}\"/>") !=
         std::string::npos);
   CHECK(xml.find("message=\"body &apos;a&quot;b&apos; &lt;x&gt; &amp; \\x02 \\x0A next\"") != std::string::npos);
-  CHECK(xml.find(">tab\there\nbell\\x07 &amp; &lt;end&gt;\\x0D\n</failure>") != std::string::npos);
+  CHECK(xml.find("next\ntab\there\nbell\\x07 &amp; &lt;end&gt;\\x0D\n</failure>") != std::string::npos);
   CHECK(xml.find("file=\"scenes/nul\\x00name.xml\"") != std::string::npos);
 }
 

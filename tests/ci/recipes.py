@@ -102,7 +102,7 @@ def github(broken_build=False):
             f.write('#!/bin/sh\necho "cmake: a build that fails (tests/ci/recipes.py)" >&2\nexit 2\n')
         os.chmod(os.path.join(fake, 'cmake'), 0o755)
         env['PATH'] = fake + os.pathsep + env['PATH']
-    steps_text = yaml.safe_dump(job['steps'])
+    steps_text = '\n'.join(' '.join(str(step.get(k, '')).split()) for step in job['steps'] for k in ('uses', 'run'))
     if not re.search(r'apt-get install .*\bgit\b', steps_text) or 'actions/checkout' not in steps_text or \
             steps_text.index('apt-get install') > steps_text.index('actions/checkout'):
         fail(f'{path}: git is not installed before actions/checkout (simbob.revision would be "unknown")')

@@ -19,6 +19,8 @@ RUN_PACKAGES=(
   liburdfdom-dev        # URDF robots (lib/urdf; brings liburdfdom-headers-dev, libtinyxml-dev, libconsole-bridge-dev)
   libassimp-dev libqhull-dev  # mesh files (STL, OBJ, DAE) and their convex hulls (lib/mesh)
   libmpfr-dev           # correctly rounded sin, cos and log: the same bits on every CPU (lib/compile/cr_math.cpp)
+  git                   # simbob.revision: `git describe` when CMake configures (cmake/git_revision.cmake; docs/ci.md)
+  ccache                # rebuilds compile only what changed (scripts/build.sh; the CI recipes keep its cache)
 )
 TEST_PACKAGES=(
   catch2                # unit tests
@@ -30,12 +32,10 @@ TEST_PACKAGES=(
   slurmctld slurmd slurm-client munge  # a real one-node Slurm cluster (tests/cluster/slurm_*.sh)
   procps iproute2 util-linux  # its daemons' job steps (pgrep), listening ports (ss), a UTS namespace (unshare)
   file dpkg-dev         # cpack -G DEB: CPackDeb finds the ELF files with file, Depends with dpkg-shlibdeps
-  git                   # cluster.version builds throwaway repositories (tests/cluster/version.sh)
   pybind11-dev python3-dev python3-numpy python3-pytest  # the optional Python module (python/) and its tests
   chromium chromium-driver python3-selenium  # view pages driven in headless Chromium (tests/view/)
-  libxml2-utils         # xmllint validates the JUnit reports against tests/ci/junit.xsd (docs/ci.md)
+  libxml2-utils         # xmllint validates the JUnit reports against the schemas in tests/ci (docs/ci.md)
   python3-yaml          # tests/ci/recipes.py reads the CI recipes (.github/workflows, .gitlab-ci.yml)
-  ccache                # test.sh's two builds reuse what an earlier run on this machine compiled (scripts/build.sh)
   dart-doc              # real URDF robots with STL and DAE meshes (/usr/share/doc/dart/data/urdf; tests/urdf, tests/mesh)
 )
 

@@ -8,6 +8,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <csignal>
+#include <functional>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
@@ -55,19 +57,178 @@ pid_t startWorker(const Job& j, const BatchArgs& a, const Common& common) {
   return spawnSelf(args, j.log);
 }
 
-void compareWithGolden(Job& j, const BatchArgs& a);
-
 void finish(Job& j, int wstatus, const BatchArgs& a) {
   j.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - j.started).count();
   const WorkerOutcome o = workerOutcome(wstatus);
   j.status = o.status;
   j.exit_code = o.exit_code;
   j.error = o.error;
+  if (j.timed_out) {
+    std::error_code ec;
+    const std::string partial = partialPath(j.out);
+    j.status = "timed out";
+    j.error = "the run took longer than --timeout " + formatNumber(a.timeout) + " s (wall clock) and was stopped" +
+              (fs::exists(partial, ec) ? "; its partial trajectory: " + partial : "");
+    return;
+  }
   if (o.exit_code < 0) return;
   if (j.exit_code != kExitOk) j.error = workerError(j.out, j.log, j.since);
   if (a.golden.empty() || j.status != "ok") return;
-  compareWithGolden(j, a);
+  batch::compareWithGolden(j, a);
 }
+
+// A scene that did not run, or whose comparison did not pass (a missing golden file too, unless
+// --allow-missing-golden): what the exit status, the table and the reports count as failed.
+bool jobFailed(const Job& j, const BatchArgs& a) {
+  if (j.status != "ok") return true;
+  if (j.golden_status == "no-golden") return !a.allow_missing_golden;
+  return !j.golden_status.empty() && j.golden_status != "pass";
+}
+
+// Text from the input (scene paths, error lines) as the terminal may show it: control bytes as \xNN.
+std::string shown(const std::string& text) { return quoteInput(text, 8192); }
+
+// --timeout: a running worker past the limit gets SIGTERM (it stops as on a signal, keeping its
+// partial trajectory), and SIGKILL if it is still there 10 s later. Called by the pool between
+// reaps, so every pid here is still its worker's.
+void stopLateWorkers(std::vector<Job>& jobs, const BatchArgs& a) {
+  constexpr double kGrace = 10;
+  const auto now = std::chrono::steady_clock::now();
+  for (Job& j : jobs) {
+    if (j.pid <= 0 || j.status != "not started") continue;  // not started yet, or finished
+    const double took = std::chrono::duration<double>(now - j.started).count();
+    if (!j.timed_out && took > a.timeout) {
+      kill(j.pid, SIGTERM);
+      j.timed_out = true;
+    } else if (j.timed_out && took > a.timeout + kGrace) {
+      kill(j.pid, SIGKILL);
+    }
+  }
+}
+
+// The batch's table (or --json) on stdout, and --report FILE. 0, or the exit status (reported).
+int writeReport(const std::vector<Job>& jobs, const BatchArgs& a, int workers, double wall) {
+  size_t failed = 0;
+  for (const auto& j : jobs) failed += jobFailed(j, a) ? 1 : 0;
+  nlohmann::ordered_json rep;
+  rep["scenes"] = jobs.size();
+  rep["failed"] = failed;
+  rep["workers"] = workers;
+  rep["wall_seconds"] = wall;
+  rep["golden"] = a.golden;
+  rep["results"] = nlohmann::json::array();
+  std::string table =
+      "\nscene                                    status       wall s   golden      max pos err  max rot err\n";
+  for (const auto& j : jobs) {
+    nlohmann::ordered_json r;
+    r["scene"] = j.scene;
+    r["status"] = j.status;
+    r["exit_code"] = j.exit_code;
+    r["out"] = j.out;
+    r["log"] = j.log;
+    r["wall_seconds"] = j.wall;
+    if (!j.golden_status.empty()) {
+      r["golden"] = j.golden_status;
+      r["max_pos_err"] = j.max_pos;
+      r["max_rot_err"] = j.max_rot;
+    }
+    if (!j.error.empty()) r["error"] = j.error;
+    std::error_code pec;
+    if (j.status != "ok" && fs::exists(partialPath(j.out), pec)) r["partial"] = partialPath(j.out);
+    rep["results"].push_back(r);
+    char buf[512];
+    std::snprintf(buf, sizeof buf, "%-40s %-12s %7.2f   %-11s %-12s %s\n", shown(j.scene).c_str(), j.status.c_str(),
+                  j.wall, j.golden_status.empty() ? "-" : j.golden_status.c_str(),
+                  j.golden_status.empty() ? "-" : formatApprox(j.max_pos).c_str(),
+                  j.golden_status.empty() ? "-" : formatApprox(j.max_rot).c_str());
+    table += buf;
+  }
+  const std::string pool =
+      " (" + countOf(static_cast<size_t>(workers), "worker", "workers") + ", " + fixedDecimals(wall, 2) + " s)\n";
+  if (a.bless) {
+    // What --bless needs is that the scenes ran; which golden files change is listed below.
+    size_t ran = 0;
+    for (const auto& j : jobs) ran += j.status == "ok" ? 1 : 0;
+    table +=
+        "\n" + std::to_string(ran) + " of " + std::to_string(jobs.size()) + " scenes ran to the end (--bless)" + pool;
+  } else {
+    table += "\n" + std::to_string(jobs.size() - failed) + " of " + std::to_string(jobs.size()) + " scenes ok" + pool;
+  }
+  if (a.json)
+    std::fputs(jsonText(rep).c_str(), stdout);
+  else
+    std::fputs(table.c_str(), stdout);
+  if (!a.report.empty()) {
+    Error err;
+    std::string text = endsWith(a.report, ".json") ? jsonText(rep) : table;
+    if (!writeFileAtomically(a.report, text, &err)) {
+      g_log.error(err);
+      return exitCodeFor(err.kind);
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+int cmdBatch(const BatchArgs& a, const Common& common) {
+  if (!checkTimeOption("--duration", a.duration) || (a.dt != 0 && !checkTimeOption("--dt", a.dt)) ||
+      !checkTimeOption("--sample-interval", a.sample_interval))
+    return kExitUsage;
+  if (a.timeout != 0 && !checkTimeOption("--timeout", a.timeout)) return kExitUsage;
+  if (int c = batch::checkCiOptions(a)) return c;
+  if (!a.bless_from.empty()) return batch::blessFrom(a);
+  std::vector<Job> jobs;
+  if (int c = batch::readJobs(a, &jobs)) return c;
+  if (int c = batch::assignOutputs(a, common, &jobs)) return c;
+
+  int workers = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
+  catchStopSignals();
+  auto t0 = std::chrono::steady_clock::now();
+  size_t done = 0;
+  runWorkerPool(
+      jobs.size(), workers,
+      [&](size_t i) {
+        Job& j = jobs[i];
+        j.started = std::chrono::steady_clock::now();
+        j.since = fs::file_time_type::clock::now();
+        j.pid = startWorker(j, a, common);
+        if (j.pid < 0) {
+          j.status = "failed";
+          j.error = std::string("cannot fork: ") + std::strerror(errno);
+          ++done;
+        }
+        return j.pid;
+      },
+      [&](size_t i, int wstatus) {
+        Job& j = jobs[i];
+        ++done;
+        finish(j, wstatus, a);
+        std::string line = "[" + std::to_string(done) + "/" + std::to_string(jobs.size()) + "] " + j.status + "  " +
+                           shown(j.scene) + "  " + fixedDecimals(j.wall, 2) + " s";
+        if (!j.golden_status.empty()) line += "  golden: " + j.golden_status;
+        if (!j.error.empty()) line += "  -- " + shown(j.error);
+        if (g_log.level == Level::Quiet && !jobFailed(j, a)) return;  // -q: only the scenes that failed
+        std::printf("%s\n", line.c_str());
+        std::fflush(stdout);
+      },
+      a.timeout > 0 ? std::function<void()>([&] { stopLateWorkers(jobs, a); }) : std::function<void()>());
+  double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  size_t failed = 0;
+  for (const auto& j : jobs) failed += jobFailed(j, a) ? 1 : 0;
+  if (int c = writeReport(jobs, a, workers, wall)) return c;
+  if (int c = batch::writeCiOutputs(jobs, a, common, wall)) return c;
+  if (g_stop) return stopExitCode();
+  if (a.bless) return batch::blessGoldens(jobs, a);
+  return failed == 0 ? kExitOk : kExitResultWrong;
+}
+
+}  // namespace simbob::cli
+
+namespace simbob::cli::batch {
+
+namespace fs = std::filesystem;
 
 // Compares a worker's trajectory with the golden file of the same name (--golden DIR).
 void compareWithGolden(Job& j, const BatchArgs& a) {
@@ -109,113 +270,4 @@ void compareWithGolden(Job& j, const BatchArgs& a) {
   }
 }
 
-// What `simbob run` would refuse in a manifest line (its options after the batch-wide ones).
-bool jobFailed(const Job& j) { return j.status != "ok" || (!j.golden_status.empty() && j.golden_status != "pass"); }
-
-// The batch's table (or --json) on stdout, and --report FILE. 0, or the exit status (reported).
-int writeReport(const std::vector<Job>& jobs, const BatchArgs& a, int workers, double wall) {
-  size_t failed = 0;
-  for (const auto& j : jobs) failed += jobFailed(j) ? 1 : 0;
-  nlohmann::ordered_json rep;
-  rep["scenes"] = jobs.size();
-  rep["failed"] = failed;
-  rep["workers"] = workers;
-  rep["wall_seconds"] = wall;
-  rep["golden"] = a.golden;
-  rep["results"] = nlohmann::json::array();
-  std::string table =
-      "\nscene                                    status       wall s   golden      max pos err  max rot err\n";
-  for (const auto& j : jobs) {
-    nlohmann::ordered_json r;
-    r["scene"] = j.scene;
-    r["status"] = j.status;
-    r["exit_code"] = j.exit_code;
-    r["out"] = j.out;
-    r["log"] = j.log;
-    r["wall_seconds"] = j.wall;
-    if (!j.golden_status.empty()) {
-      r["golden"] = j.golden_status;
-      r["max_pos_err"] = j.max_pos;
-      r["max_rot_err"] = j.max_rot;
-    }
-    if (!j.error.empty()) r["error"] = j.error;
-    std::error_code pec;
-    if (j.status != "ok" && fs::exists(partialPath(j.out), pec)) r["partial"] = partialPath(j.out);
-    rep["results"].push_back(r);
-    char buf[512];
-    std::snprintf(buf, sizeof buf, "%-40s %-12s %7.2f   %-11s %-12s %s\n", j.scene.c_str(), j.status.c_str(), j.wall,
-                  j.golden_status.empty() ? "-" : j.golden_status.c_str(),
-                  j.golden_status.empty() ? "-" : formatApprox(j.max_pos).c_str(),
-                  j.golden_status.empty() ? "-" : formatApprox(j.max_rot).c_str());
-    table += buf;
-  }
-  table += "\n" + std::to_string(jobs.size() - failed) + " of " + std::to_string(jobs.size()) + " scenes ok (" +
-           countOf(static_cast<size_t>(workers), "worker", "workers") + ", " + fixedDecimals(wall, 2) + " s)\n";
-  if (a.json)
-    std::fputs(jsonText(rep).c_str(), stdout);
-  else
-    std::fputs(table.c_str(), stdout);
-  if (!a.report.empty()) {
-    Error err;
-    std::string text = endsWith(a.report, ".json") ? jsonText(rep) : table;
-    if (!writeFileAtomically(a.report, text, &err)) {
-      g_log.error(err);
-      return exitCodeFor(err.kind);
-    }
-  }
-  return 0;
-}
-
-}  // namespace
-
-int cmdBatch(const BatchArgs& a, const Common& common) {
-  if (!checkTimeOption("--duration", a.duration) || (a.dt != 0 && !checkTimeOption("--dt", a.dt)) ||
-      !checkTimeOption("--sample-interval", a.sample_interval))
-    return kExitUsage;
-  if (int c = batch::checkCiOptions(a)) return c;
-  std::vector<Job> jobs;
-  if (int c = batch::readJobs(a, &jobs)) return c;
-  if (int c = batch::assignOutputs(a, common, &jobs)) return c;
-
-  int workers = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
-  catchStopSignals();
-  auto t0 = std::chrono::steady_clock::now();
-  size_t done = 0;
-  runWorkerPool(
-      jobs.size(), workers,
-      [&](size_t i) {
-        Job& j = jobs[i];
-        j.started = std::chrono::steady_clock::now();
-        j.since = fs::file_time_type::clock::now();
-        j.pid = startWorker(j, a, common);
-        if (j.pid < 0) {
-          j.status = "failed";
-          j.error = std::string("cannot fork: ") + std::strerror(errno);
-          ++done;
-        }
-        return j.pid;
-      },
-      [&](size_t i, int wstatus) {
-        Job& j = jobs[i];
-        ++done;
-        finish(j, wstatus, a);
-        std::string line = "[" + std::to_string(done) + "/" + std::to_string(jobs.size()) + "] " + j.status + "  " +
-                           j.scene + "  " + fixedDecimals(j.wall, 2) + " s";
-        if (!j.golden_status.empty()) line += "  golden: " + j.golden_status;
-        if (!j.error.empty()) line += "  -- " + j.error;
-        if (g_log.level == Level::Quiet && !jobFailed(j)) return;  // -q: only the scenes that failed
-        std::printf("%s\n", line.c_str());
-        std::fflush(stdout);
-      });
-  double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
-  size_t failed = 0;
-  for (const auto& j : jobs) failed += jobFailed(j) ? 1 : 0;
-  if (int c = writeReport(jobs, a, workers, wall)) return c;
-  if (int c = batch::writeCiOutputs(jobs, a, common, wall)) return c;
-  if (g_stop) return stopExitCode();
-  if (a.bless) return batch::blessGoldens(jobs, a);
-  return failed == 0 ? kExitOk : kExitResultWrong;
-}
-
-}  // namespace simbob::cli
+}  // namespace simbob::cli::batch

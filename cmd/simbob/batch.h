@@ -28,6 +28,7 @@ struct Job {
   double wall = 0;
   std::chrono::steady_clock::time_point started;
   std::filesystem::file_time_type since;  ///< when it started, as file times go (workerError)
+  bool timed_out = false;                 ///< stopped by --timeout (SIGTERM, then SIGKILL)
   std::string error;                      // first error line of the worker
   std::string golden_status;              // pass, mismatch, no-golden, unreadable ("" without --golden)
   double max_pos = 0, max_rot = 0;
@@ -49,6 +50,13 @@ int checkCiOptions(const BatchArgs& a);
 /// --junit, --summary-md and --artifacts once every job has finished: 0, or the exit status of
 /// the first report that could not be written (reported; the others are still written).
 int writeCiOutputs(const std::vector<Job>& jobs, const BatchArgs& a, const Common& common, double wall);
+/// Compares a finished job's trajectory with GOLDEN/NAME.csv (--golden): sets golden_status,
+/// golden_path, comparison and, on a mismatch, error and a NAME.compare.txt beside the trajectory.
+void compareWithGolden(Job& j, const BatchArgs& a);
+/// --bless-from DIR: the trajectories a batch left in DIR (its --out-dir, e.g. from a CI run's
+/// artifacts) compared with --golden and blessed as --bless does, without running any scene.
+/// The exit status.
+int blessFrom(const BatchArgs& a);
 /// --bless: refuses (1) when a scene did not run to the end; else prints each change (body,
 /// largest difference) and then rewrites the golden files that differ or are new. The exit status.
 int blessGoldens(const std::vector<Job>& jobs, const BatchArgs& a);

@@ -1,7 +1,11 @@
 // simbob batch --golden DIR --bless (docs/ci.md, "Blessing a change"): every change is shown
 // before any golden file is rewritten, and a batch in which a scene did not run to the end
 // rewrites nothing.
+#include <algorithm>
 #include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -46,6 +50,51 @@ std::string changeLines(const CompareResult& r) {
 
 }  // namespace
 
+int blessFrom(const BatchArgs& a) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_directory(a.bless_from, ec)) {
+    g_log.error({ErrorKind::MissingInput, {a.bless_from, 0}, "--bless-from: not a folder (a batch's --out-dir)"});
+    return kExitNoInput;
+  }
+  // Every run's summary: NAME.json beside its trajectory NAME.csv, and NAME.partial.json of a run
+  // that failed or was refused: a folder with a run that did not finish blesses nothing.
+  std::vector<std::string> files;
+  for (fs::directory_iterator it(a.bless_from, ec), end; !ec && it != end; it.increment(ec))
+    if (it->is_regular_file(ec) && it->path().extension() == ".json") files.push_back(it->path().string());
+  std::sort(files.begin(), files.end());
+  std::vector<Job> jobs;
+  for (const std::string& f : files) {
+    std::ifstream in(f);
+    const nlohmann::json summary = nlohmann::json::parse(in, nullptr, false);
+    if (!summary.is_object() || !summary.contains("status") || !summary["status"].is_string()) continue;
+    const bool partial = endsWith(f, ".partial.json");
+    Job j;
+    j.out = partial ? f.substr(0, f.size() - 13) + ".csv" : fs::path(f).replace_extension(".csv").string();
+    j.scene = summary.contains("scene") && summary["scene"].is_string() ? summary["scene"].get<std::string>() : j.out;
+    const std::string status = summary["status"].get<std::string>();
+    if (!partial && status == "completed" && fs::is_regular_file(j.out, ec)) {
+      j.status = "ok";
+      compareWithGolden(j, a);
+    } else {
+      j.status = status == "completed" ? "failed" : status;
+      if (summary.contains("error") && summary["error"].is_object() && summary["error"].contains("text") &&
+          summary["error"]["text"].is_string())
+        j.error = summary["error"]["text"].get<std::string>();
+      if (j.error.empty()) j.error = "the run did not finish (" + quoteInput(f, 8192) + ")";
+    }
+    jobs.push_back(std::move(j));
+  }
+  if (jobs.empty()) {
+    g_log.error({ErrorKind::MissingInput,
+                 {a.bless_from, 0},
+                 "--bless-from: no run summary (NAME.json beside NAME.csv) in the folder"});
+    return kExitNoInput;
+  }
+  g_log.info("--bless-from: " + countOf(jobs.size(), "trajectory", "trajectories") + " in " + a.bless_from);
+  return blessGoldens(jobs, a);
+}
+
 int blessGoldens(const std::vector<Job>& jobs, const BatchArgs& a) {
   std::vector<const Job*> broken, changed;
   for (const Job& j : jobs) {
@@ -59,8 +108,8 @@ int blessGoldens(const std::vector<Job>& jobs, const BatchArgs& a) {
     g_log.error({ErrorKind::Diverged,
                  {},
                  "--bless refused: " + countOf(broken.size(), "scene", "scenes") +
-                     " did not run to the end or could not be compared (first: " + j.scene + ": " +
-                     (j.error.empty() ? j.status : j.error) + "); no golden file was changed"});
+                     " did not run to the end or could not be compared (first: " + quoteInput(j.scene, 8192) + ": " +
+                     quoteInput(j.error.empty() ? j.status : j.error, 8192) + "); no golden file was changed"});
     return kExitResultWrong;
   }
   if (changed.empty()) {
@@ -71,12 +120,21 @@ int blessGoldens(const std::vector<Job>& jobs, const BatchArgs& a) {
   std::printf("\n--bless: %s change:\n", countOf(changed.size(), "golden file", "golden files").c_str());
   for (const Job* j : changed) {
     if (!j->comparison) {
-      std::printf("new      %s (from %s)\n", j->golden_path.c_str(), j->scene.c_str());
+      std::printf("new      %s (from %s)\n", quoteInput(j->golden_path, 8192).c_str(),
+                  quoteInput(j->scene, 8192).c_str());
       continue;
     }
-    std::printf("changed  %s (%s):\n%s", j->golden_path.c_str(), j->scene.c_str(), changeLines(*j->comparison).c_str());
+    std::printf("changed  %s (%s):\n%s", quoteInput(j->golden_path, 8192).c_str(), quoteInput(j->scene, 8192).c_str(),
+                changeLines(*j->comparison).c_str());
   }
   std::fflush(stdout);
+  // The first bless may find no golden folder yet.
+  std::error_code dir_ec;
+  std::filesystem::create_directories(a.golden, dir_ec);
+  if (dir_ec) {
+    g_log.error({ErrorKind::CannotCreate, {a.golden, 0}, "cannot create the golden folder: " + dir_ec.message()});
+    return kExitCantCreate;
+  }
   // All rewritten, or none (commitOutputs puts the old files back if one rename fails).
   std::vector<std::unique_ptr<OutputFile>> files;
   std::vector<OutputFile*> commit;

@@ -223,8 +223,8 @@ int assignOutputs(const BatchArgs& a, const Common& common, std::vector<Job>* jo
     auto [it, fresh] = outs.emplace(j.out, i);
     if (!fresh) {
       g_log.error({ErrorKind::InvalidInput, j.loc,
-                   "scenes " + (*jobs)[it->second].scene + " and " + j.scene + " would both write " + j.out +
-                       "; give one of them --out"});
+                   "scenes " + quoteInput((*jobs)[it->second].scene, 8192) + " and " + quoteInput(j.scene, 8192) +
+                       " would both write " + quoteInput(j.out, 8192) + "; give one of them --out"});
       return kExitUsage;
     }
   }

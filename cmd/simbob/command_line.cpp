@@ -131,6 +131,19 @@ void defineBatchCommand(CLI::App& app, Invocation& in) {
   batch->add_option("--artifacts", ba.artifacts,
                     "Folder for each failed scene's replay page against its golden run and plot, and index.html");
   batch->add_option("--summary-md", ba.summary_md, "Also write a short Markdown table of the scenes that did not pass");
+  batch->add_option("--suite-name", ba.suite_name,
+                    "Name of the JUnit testsuite and of the summary and index pages (default \"simbob batch\")");
+  batch->add_flag("--allow-missing-golden", ba.allow_missing_golden,
+                  "With --golden: a scene without a golden file is skipped (exit 0), not a failure");
+  batch->add_flag("--junit-extended", ba.junit_extended,
+                  "Add file and line, per-case properties and GitLab's attachments to --junit (beyond Jenkins' and "
+                  "Ant's schemas; docs/ci.md)");
+  batch->add_option("--timeout", ba.timeout,
+                    "Wall-clock seconds a scene may take: one past it is stopped and is an error, its partial "
+                    "trajectory kept (default: no limit)");
+  batch->add_option("--bless-from", ba.bless_from,
+                    "With --golden: bless the trajectories a batch left in DIR (its --out-dir, e.g. a CI run's "
+                    "artifact) without running the scenes");
   batch->add_flag("--bless", ba.bless,
                   "With --golden: show each change, then make the new trajectories the golden files (not after a "
                   "failed run)");

@@ -142,10 +142,15 @@ struct BatchArgs {
   bool json = false;
   bool html = false;  ///< --html: each run's replay page beside its trajectory (STEM.html)
   // CI reports (docs/ci.md, batch_ci.cpp).
-  std::string junit;       ///< --junit FILE: JUnit XML, one test case per scene
-  std::string artifacts;   ///< --artifacts DIR: each failed scene's page and plot, DIR/index.html
-  std::string summary_md;  ///< --summary-md FILE: a short Markdown table of what did not pass
-  bool bless = false;      ///< --bless: show each change, then rewrite the golden files
+  std::string junit;                        ///< --junit FILE: JUnit XML, one test case per scene
+  std::string artifacts;                    ///< --artifacts DIR: each failed scene's page and plot, DIR/index.html
+  std::string summary_md;                   ///< --summary-md FILE: a short Markdown table of what did not pass
+  bool bless = false;                       ///< --bless: show each change, then rewrite the golden files
+  std::string suite_name = "simbob batch";  ///< --suite-name: the JUnit testsuite's and the pages' name
+  bool allow_missing_golden = false;        ///< a scene without a golden file is skipped, not failed
+  bool junit_extended = false;              ///< --junit-extended: file, line, per-case properties and output
+  double timeout = 0;                       ///< --timeout: wall-clock s per scene (0 = none)
+  std::string bless_from;                   ///< --bless-from DIR: bless a finished batch's trajectories
 };
 int cmdBatch(const BatchArgs& a, const Common& common);
 

@@ -123,7 +123,7 @@ std::string workerError(const std::string& trajectory, const std::string& log, s
 }
 
 void runWorkerPool(size_t count, int jobs, const std::function<pid_t(size_t)>& start,
-                   const std::function<void(size_t, int)>& finished) {
+                   const std::function<void(size_t, int)>& finished, const std::function<void()>& tick) {
   size_t next = 0, running = 0;
   std::map<pid_t, size_t> by_pid;
   bool forwarded = false;
@@ -143,7 +143,12 @@ void runWorkerPool(size_t count, int jobs, const std::function<pid_t(size_t)>& s
     }
     if (running == 0) return;
     int wstatus = 0;
-    const pid_t pid = waitpid(-1, &wstatus, 0);
+    const pid_t pid = waitpid(-1, &wstatus, tick ? WNOHANG : 0);
+    if (pid == 0) {  // polling (tick): none ended yet
+      tick();
+      usleep(50'000);
+      continue;
+    }
     if (pid < 0) {
       if (errno == EINTR) continue;  // a signal: stop starting new tasks, keep reaping
       return;

@@ -47,7 +47,9 @@ std::string workerError(const std::string& trajectory, const std::string& log, s
 /// Runs tasks 0 .. count-1 on at most `jobs` workers: start(i) spawns one (a pid, or -1 when it
 /// could not), finished(i, wait status) hears of its end. A stop signal (g_stop) is forwarded to
 /// the running workers once and no new task starts; the pool returns when none is running.
+/// With `tick`, the pool polls for ended workers and calls tick() about every 50 ms between
+/// them (batch --timeout: a pid it signals there has not been reaped, so it is still the worker's).
 void runWorkerPool(size_t count, int jobs, const std::function<pid_t(size_t)>& start,
-                   const std::function<void(size_t, int)>& finished);
+                   const std::function<void(size_t, int)>& finished, const std::function<void()>& tick = {});
 
 }  // namespace simbob::cli

@@ -109,41 +109,76 @@ const char* elementOf(TestOutcome o) {
   return "";
 }
 
-std::string caseXml(const TestCaseReport& c, size_t max_message, size_t max_details) {
-  std::string x = "  <testcase" + attr("classname", c.classname, max_message) + attr("name", c.name, max_message) +
-                  attr("file", c.file, max_message) + " time=\"" + seconds(c.time) + "\"";
+// The body of a failure, error or skipped: the located message on one line, then the output
+// and the details (cut together at line ends to max_details).
+std::string bodyXml(const TestCaseReport& c, size_t max_message, size_t max_details) {
+  std::string body = escapeCut(locatedMessage(c), false, max_message);
+  const std::string rest = c.output + c.details;
+  if (!rest.empty()) body += "\n" + escapeCut(cutAtLines(rest, max_details), true, max_details + 64);
+  return body;
+}
+
+std::string caseXml(const TestCaseReport& c, size_t max_message, size_t max_details, JUnitForm form) {
+  const bool extended = form == JUnitForm::Extended;
+  std::string x = "  <testcase" + attr("classname", c.classname, max_message) + attr("name", c.name, max_message);
+  if (extended) {
+    x += attr("file", c.file, max_message);
+    if (c.where.line > 0 && c.where.file == c.file) x += " line=\"" + std::to_string(c.where.line) + "\"";
+  }
+  x += " time=\"" + seconds(c.time) + "\"";
   std::string out;
-  for (const TestArtifact& a : c.artifacts) out += "[[ATTACHMENT|" + a.path + "]]\n" + a.label + ": " + a.path + "\n";
-  if (c.outcome == TestOutcome::Passed && out.empty()) return x + "/>\n";
+  if (extended)
+    for (const TestArtifact& a : c.artifacts) out += "[[ATTACHMENT|" + a.path + "]]\n" + a.label + ": " + a.path + "\n";
+  const bool props = extended && !c.properties.empty();
+  if (c.outcome == TestOutcome::Passed && out.empty() && !props) return x + "/>\n";
   x += ">\n";
+  if (props) {
+    x += "    <properties>\n";
+    for (const auto& [k, v] : c.properties)
+      x += "      <property" + attr("name", k, max_message) + attr("value", v, max_message) + "/>\n";
+    x += "    </properties>\n";
+  }
   if (c.outcome != TestOutcome::Passed) {
-    x += std::string("    <") + elementOf(c.outcome) + attr("message", c.message, max_message);
-    if (c.outcome != TestOutcome::Skipped) x += attr("type", c.type, max_message);
-    const std::string details = cutAtLines(c.details, max_details);
-    if (details.empty() || c.outcome == TestOutcome::Skipped)
-      x += "/>\n";
-    else
-      x += ">" + escapeCut(details, true, max_details + 64) + "</" + elementOf(c.outcome) + ">\n";
+    const char* element = elementOf(c.outcome);
+    x += std::string("    <") + element + attr("message", c.message, max_message);
+    // Ant's schema requires a type on failure and error.
+    if (c.outcome != TestOutcome::Skipped)
+      x += attr("type", c.type.empty() ? std::string(testOutcomeName(c.outcome)) : c.type, max_message);
+    x += ">" + bodyXml(c, max_message, max_details) + "</" + element + ">\n";
   }
   if (!out.empty()) x += "    <system-out>" + escapeCut(out, true, max_message * 4) + "</system-out>\n";
   return x + "  </testcase>\n";
 }
 
-std::string suiteXml(const TestSuiteReport& s, size_t max_message, size_t max_details) {
+// The suite's <system-out>: every case's artifacts, one "NAME: label: path" line each.
+std::string artifactLines(const TestSuiteReport& s, size_t max_message) {
+  std::string out;
+  for (const TestCaseReport& c : s.cases)
+    for (const TestArtifact& a : c.artifacts) out += c.name + ": " + a.label + ": " + a.path + "\n";
+  return out.empty() ? "" : escapeCut(out, true, max_message * 4);
+}
+
+std::string suiteXml(const TestSuiteReport& s, size_t max_message, size_t max_details, JUnitForm form,
+                     bool list_artifacts) {
   std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite" + attr("name", s.name, max_message) +
                   " tests=\"" + std::to_string(s.cases.size()) + "\" failures=\"" +
                   std::to_string(s.count(TestOutcome::Failed)) + "\" errors=\"" +
                   std::to_string(s.count(TestOutcome::Error)) + "\" skipped=\"" +
                   std::to_string(s.count(TestOutcome::Skipped)) + "\" time=\"" + seconds(s.time) + "\"" +
                   attr("timestamp", s.timestamp, max_message) + attr("hostname", s.hostname, max_message) + ">\n";
-  if (!s.properties.empty()) {
+  // Ant's schema requires <properties>, and <system-out> and <system-err> after the cases.
+  if (s.properties.empty()) {
+    x += "  <properties/>\n";
+  } else {
     x += "  <properties>\n";
     for (const auto& [k, v] : s.properties)
       x += "    <property" + attr("name", k, max_message) + attr("value", v, max_message) + "/>\n";
     x += "  </properties>\n";
   }
-  for (const TestCaseReport& c : s.cases) x += caseXml(c, max_message, max_details);
-  return x + "</testsuite>\n";
+  for (const TestCaseReport& c : s.cases) x += caseXml(c, max_message, max_details, form);
+  const std::string listed = list_artifacts ? artifactLines(s, max_message) : "";
+  x += listed.empty() ? "  <system-out/>\n" : "  <system-out>" + listed + "</system-out>\n";
+  return x + "  <system-err/>\n</testsuite>\n";
 }
 
 }  // namespace
@@ -167,18 +202,26 @@ size_t TestSuiteReport::count(TestOutcome o) const {
       std::count_if(cases.begin(), cases.end(), [o](const TestCaseReport& c) { return c.outcome == o; }));
 }
 
-bool junitXml(const TestSuiteReport& suite, std::string* xml, Error* err, const JUnitLimits& limits) {
-  // Whole, if it fits; else each case's details get an even share of what the rest leaves.
-  *xml = suiteXml(suite, limits.max_message, limits.max_details);
+std::string locatedMessage(const TestCaseReport& c) {
+  if (c.where.file.empty()) return c.message;
+  const std::string place = c.where.file + (c.where.line > 0 ? ":" + std::to_string(c.where.line) : std::string());
+  if (c.message.compare(0, place.size() + 1, place + ":") == 0) return c.message;
+  return place + ": " + c.message;
+}
+
+bool junitXml(const TestSuiteReport& suite, std::string* xml, Error* err, const JUnitLimits& limits, JUnitForm form) {
+  // Whole, if it fits; else each case's details get an even share of what the rest leaves (and
+  // the suite's list of artifacts gives way: index.html lists them too).
+  *xml = suiteXml(suite, limits.max_message, limits.max_details, form, true);
   if (xml->size() <= limits.max_bytes) return true;
   size_t with_details = 0;
-  for (const TestCaseReport& c : suite.cases) with_details += c.details.empty() ? 0 : 1;
+  for (const TestCaseReport& c : suite.cases) with_details += c.details.empty() && c.output.empty() ? 0 : 1;
   for (size_t message : {limits.max_message, std::min(limits.max_message, kMinText)}) {
-    const std::string bare = suiteXml(suite, message, 0);
+    const std::string bare = suiteXml(suite, message, 0, form, false);
     if (bare.size() > limits.max_bytes) continue;
     // Escaping can grow a text up to 6 times ("&quot;"): share the room by that bound.
     const size_t share = (limits.max_bytes - bare.size()) / std::max<size_t>(1, with_details) / 6;
-    *xml = suiteXml(suite, message, std::min(limits.max_details, share));
+    *xml = suiteXml(suite, message, std::min(limits.max_details, share), form, false);
     if (xml->size() <= limits.max_bytes) return true;
   }
   xml->clear();
@@ -190,9 +233,10 @@ bool junitXml(const TestSuiteReport& suite, std::string* xml, Error* err, const 
   return false;
 }
 
-bool writeJUnit(const TestSuiteReport& suite, const std::string& path, Error* err, const JUnitLimits& limits) {
+bool writeJUnit(const TestSuiteReport& suite, const std::string& path, Error* err, const JUnitLimits& limits,
+                JUnitForm form) {
   std::string xml;
-  if (!junitXml(suite, &xml, err, limits)) {
+  if (!junitXml(suite, &xml, err, limits, form)) {
     if (err) err->loc = {path, 0};
     return false;
   }
@@ -216,6 +260,45 @@ std::string relativeLink(const std::string& path) {
       out += hex[c >> 4];
       out += hex[c & 15];
     }
+  }
+  return out;
+}
+
+namespace {
+
+// A workflow command's text: quoted as messages are (no control character reaches the log),
+// then %, CR and LF as the runner decodes them; in a property also ',' and ':'.
+std::string workflowText(const std::string& text, bool property) {
+  std::string out;
+  for (char c : quoteInput(text, 2000)) {
+    if (c == '%')
+      out += "%25";
+    else if (c == '\r')
+      out += "%0D";
+    else if (c == '\n')
+      out += "%0A";
+    else if (property && c == ',')
+      out += "%2C";
+    else if (property && c == ':')
+      out += "%3A";
+    else
+      out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string githubAnnotations(const TestSuiteReport& suite) {
+  std::string out;
+  for (const TestCaseReport& c : suite.cases) {
+    if (c.outcome == TestOutcome::Passed) continue;
+    const std::string& file = c.where.file.empty() ? c.file : c.where.file.str();
+    out += c.outcome == TestOutcome::Skipped ? "::warning " : "::error ";
+    if (!file.empty()) out += "file=" + workflowText(file, true) + ",";
+    if (!file.empty() && c.where.line > 0) out += "line=" + std::to_string(c.where.line) + ",";
+    out += "title=" + workflowText(c.name + ": " + (c.type.empty() ? testOutcomeName(c.outcome) : c.type), true) +
+           "::" + workflowText(c.message, false) + "\n";
   }
   return out;
 }

@@ -77,7 +77,8 @@ std::string artifactsIndexHtml(const TestSuiteReport& s) {
       "content=\"simbob\">\n<title>" +
       xmlEscape(s.name) +
       "</title>\n<style>body{font:14px/1.4 system-ui,sans-serif;margin:1em 2em}td,th{padding:2px 8px;text-align:"
-      "left;vertical-align:top}.failed{color:#b00}.error{color:#a50}.skipped{color:#777}.passed{color:#070}"
+      "left;vertical-align:top}.failed{color:#b00}.error{color:#a50}.skipped{color:#777}.passed{color:#070}pre.output{"
+      "font-size:12px;white-space:pre-wrap;margin:4px 0;color:#333}"
       "</style>\n</head>\n<body>\n<h1>" +
       xmlEscape(s.name) + "</h1>\n<p id=\"counts\">" + xmlEscape(countsLine(s)) + "</p>\n";
   static const char* kHeadings[] = {"Failed", "Errors", "Skipped", "Passed"};
@@ -90,7 +91,10 @@ std::string artifactsIndexHtml(const TestSuiteReport& s) {
     for (const TestCaseReport& c : s.cases) {
       if (c.outcome != o) continue;
       h += "<tr class=\"" + std::string(testOutcomeName(o)) + "\"><td>" + xmlEscape(c.file.empty() ? c.name : c.file) +
-           "</td><td>" + xmlEscape(c.message) + "</td><td>";
+           "</td><td>" + xmlEscape(c.message);
+      // The run's and its controllers' last words (the log tails the JUnit bodies carry).
+      if (!c.output.empty()) h += "<pre class=\"output\">" + xmlEscape(c.output, true) + "</pre>";
+      h += "</td><td>";
       bool first = true;
       for (const TestArtifact& a : c.artifacts) {
         if (a.link.empty()) continue;

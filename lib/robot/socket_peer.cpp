@@ -102,8 +102,11 @@ class SocketPeer : public Party {
   static constexpr double kLinger = 1.0;                        ///< s a started controller may take to exit after 'bye'
   static constexpr double kStopLinger = 0.3, kStopGrace = 0.4;  ///< the same after 'error'; s to SIGKILL
 
+  // A controller simbob starts listens on a port the system picks, another one every run: its
+  // messages say $SIMBOB_PORT, so that one failure reads the same every run (docs/ci.md).
   std::string where() const {
-    return "RCLocalSocketCommunicator '" + def_.key + "' (127.0.0.1:" + std::to_string(def_.port) + ")";
+    return "RCLocalSocketCommunicator '" + def_.key +
+           "' (127.0.0.1:" + (def_.controller.empty() ? std::to_string(def_.port) : std::string("$SIMBOB_PORT")) + ")";
   }
   std::string timeoutText() const { return formatNumber(def_.timeout) + " s"; }
   Wall::time_point deadline() const {

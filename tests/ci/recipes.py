@@ -5,9 +5,9 @@
 Reads .github/workflows/regression.yml and .gitlab-ci.yml (python3-yaml) and runs their shell
 steps in order from REPO, as the CI systems would in their Debian 12 container:
 
-- a GitHub step with `uses:` is the CI system's own action (checkout, upload, publishing the
-  report): it is not run, and the test says so; the paths its `with:` names must exist after the
-  steps before it ran (what is uploaded was written);
+- a GitHub step with `uses:` is the CI system's own action (checkout, cache, upload, publishing
+  the report): it is not run, and the test says so; the paths an upload or a report action's
+  `with:` names must exist after the steps before it ran (what is uploaded was written);
 - `if: always()` steps run after a failed step, steps without `if:` do not; any other condition,
   and any `${{ }}` expression in a script, fails this test (the runner here would not know it);
 - the job's variables are the recipe's, except four that point the steps at this machine:
@@ -18,8 +18,13 @@ steps in order from REPO, as the CI systems would in their Debian 12 container:
   GITHUB_STEP_SUMMARY is a file under WORKDIR.
 
 The GitHub workflow runs once with a broken scene in the list: the batch step fails (exit 1),
-the always() steps still run, and the summary and the report name the broken scene. The GitLab
-job runs with good scenes: every line succeeds, and the report GitLab would read validates.
+the always() steps still run, and the summary and the report name the broken scene; the report
+validates against Jenkins xunit's junit-10 rules and Ant's strict schema (tests/ci). It runs
+again with a build that fails (a `cmake` first in PATH that exits 2): the batch step does not
+run, and the summary step must still succeed, saying why there is nothing. The GitLab job runs
+with good scenes: every line succeeds, and the report GitLab would read (--junit-extended)
+validates against tests/ci/junit.xsd. Both recipes must install git (simbob.revision) and keep
+a compiler cache.
 """
 import os
 import re
@@ -33,7 +38,7 @@ import yaml
 REPO, BUILD, WORK = (os.path.abspath(a) for a in sys.argv[1:4])
 shutil.rmtree(WORK, ignore_errors=True)  # nothing of an earlier run passes for this one's output
 os.makedirs(WORK)
-XSD = os.path.join(REPO, 'tests', 'ci', 'junit.xsd')
+STRICT = ('xunit-junit-10.xsd', 'ant-junit.xsd', 'junit.xsd')
 failures = []
 
 
@@ -60,10 +65,12 @@ def run_script(what, script, env):
     return p.returncode
 
 
-def validate(report):
-    p = subprocess.run(['xmllint', '--noout', '--schema', XSD, report], capture_output=True, text=True)
-    if p.returncode != 0:
-        fail(f'{report} does not validate: {p.stderr}')
+def validate(report, schemas=STRICT):
+    for xsd in schemas:
+        p = subprocess.run(['xmllint', '--noout', '--schema', os.path.join(REPO, 'tests', 'ci', xsd), report],
+                           capture_output=True, text=True)
+        if p.returncode != 0:
+            fail(f'{report} does not validate against {xsd}: {p.stderr}')
 
 
 def counts(report):
@@ -71,7 +78,7 @@ def counts(report):
     return {k: r.get(k) for k in ('tests', 'failures', 'errors', 'skipped')}
 
 
-def github():
+def github(broken_build=False):
     path = os.path.join(REPO, '.github', 'workflows', 'regression.yml')
     wf = yaml.safe_load(open(path))
     (name, job), = wf['jobs'].items()
@@ -80,14 +87,27 @@ def github():
     if job.get('defaults', {}).get('run', {}).get('shell') != 'bash':
         fail(f'{path}: the run steps do not say shell: bash (this runner uses bash -e)')
     recipe_out = job['env']['OUT']
-    out = os.path.join(WORK, 'github-out')
+    out = os.path.join(WORK, 'github-out-broken-build' if broken_build else 'github-out')
     broken = os.path.join(WORK, 'broken.xml')
     with open(broken, 'w') as f:
         f.write('<?xml version="1.0"?>\n<Simulation>\n  <ComponentList>\n    <RCMobileRigidBody Key="Box" Mass="-1"/>\n'
                 '  </ComponentList>\n</Simulation>\n')
     env = overrides({**wf.get('env', {}), **job['env']}, out, f'scenes/chain.xml {broken} scenes/bounce.xml')
-    env['GITHUB_STEP_SUMMARY'] = os.path.join(WORK, 'step_summary.md')
+    env['GITHUB_STEP_SUMMARY'] = os.path.join(WORK, 'step_summary-broken-build.md' if broken_build else 'step_summary.md')
     open(env['GITHUB_STEP_SUMMARY'], 'w').close()
+    if broken_build:
+        fake = os.path.join(WORK, 'fake-bin')
+        os.makedirs(fake, exist_ok=True)
+        with open(os.path.join(fake, 'cmake'), 'w') as f:
+            f.write('#!/bin/sh\necho "cmake: a build that fails (tests/ci/recipes.py)" >&2\nexit 2\n')
+        os.chmod(os.path.join(fake, 'cmake'), 0o755)
+        env['PATH'] = fake + os.pathsep + env['PATH']
+    steps_text = '\n'.join(' '.join(str(step.get(k, '')).split()) for step in job['steps'] for k in ('uses', 'run'))
+    if not re.search(r'apt-get install .*\bgit\b', steps_text) or 'actions/checkout' not in steps_text or \
+            steps_text.index('apt-get install') > steps_text.index('actions/checkout'):
+        fail(f'{path}: git is not installed before actions/checkout (simbob.revision would be "unknown")')
+    if 'actions/cache' not in steps_text or 'ccache' not in job['env'].get('CMAKE_FLAGS', ''):
+        fail(f'{path}: no compiler cache (ccache with actions/cache)')
     failed = False
     exits = {}
     for i, step in enumerate(job['steps']):
@@ -101,6 +121,8 @@ def github():
             continue
         if 'uses' in step:
             print(f'--- {what}: skipped here: {step["uses"]} is the CI system\'s own action')
+            if broken_build or step['uses'].startswith(('actions/cache', 'actions/checkout')):
+                continue  # nothing to upload after a failed build; a cache is restored, not written
             for key in ('path', 'report_paths'):
                 if key in step.get('with', {}):
                     p = str(step['with'][key]).replace(recipe_out, out, 1)
@@ -111,6 +133,17 @@ def github():
         exits[step.get('name')] = code
         failed = failed or code != 0
     batch = [n for n in exits if n and 'golden' in n]
+    if broken_build:
+        build = [n for n in exits if n and 'Build' in n]
+        if [exits[n] for n in build] != [2] or batch:
+            fail(f'the build step should fail (exit 2) and the batch step not run: {exits}')
+        if any(code for n, code in exits.items() if n not in build):
+            fail(f'a step other than the build failed after the failed build: {exits}')
+        summary = open(env['GITHUB_STEP_SUMMARY']).read()
+        if 'simbob did not run' not in summary:
+            fail(f'the step summary does not say why it is empty:\n{summary}')
+        print('ok: the GitHub workflow with a failed build (the summary step did not fail)')
+        return
     if [exits[n] for n in batch] != [1]:
         fail(f'the batch step should fail (exit 1) on the broken scene: {exits}')
     if any(code for n, code in exits.items() if n not in batch):
@@ -137,6 +170,8 @@ def gitlab():
     recipe_out = job['variables']['OUT']
     out = os.path.join(WORK, 'gitlab-out')
     env = overrides({**ci.get('variables', {}), **job['variables']}, out, 'scenes/chain.xml scenes/bounce.xml')
+    if 'ccache' not in job['variables'].get('CMAKE_FLAGS', '') or '.ccache/' not in job.get('cache', {}).get('paths', []):
+        fail(f'{path}: no compiler cache (ccache, cache: paths: .ccache/)')
     lines = job.get('before_script', []) + job['script']
     code = run_script(f'gitlab job {name}', '\n'.join(lines), env)
     if code != 0:
@@ -148,7 +183,7 @@ def gitlab():
         if not p or not os.path.exists(p.replace(recipe_out, out, 1)):
             fail(f'{path}: artifact path {p!r} names nothing the job wrote')
     report = os.path.join(out, 'junit.xml')
-    validate(report)
+    validate(report, ('junit.xsd',))  # --junit-extended: GitLab reads the attachments
     if counts(report) != {'tests': '2', 'failures': '0', 'errors': '0', 'skipped': '0'}:
         fail(f'{report}: {counts(report)}')
     print('ok: the GitLab job')
@@ -163,8 +198,28 @@ def documented():
             fail(f'docs/ci.md does not show {rel} as it is (copy the file into its yaml block)')
 
 
+def deps_git():
+    """scripts/deps.sh run installs git (simbob.revision in the debian:12 recipes)."""
+    text = open(os.path.join(REPO, 'scripts', 'deps.sh')).read()
+    run = text[text.index('RUN_PACKAGES=('):text.index('TEST_PACKAGES=(')]
+    for pkg in ('git', 'ccache'):
+        if not re.search(r'^\s+' + pkg + r'\b', run, re.M):
+            fail(f'scripts/deps.sh run does not install {pkg}')
+
+
+def ignored():
+    """ci-out/ (the recipes' OUT) and the compiler cache are not committed by accident."""
+    lines = open(os.path.join(REPO, '.gitignore')).read().split()
+    for p in ('ci-out/', '.ccache/'):
+        if p not in lines:
+            fail(f'.gitignore does not list {p}')
+
+
 documented()
+deps_git()
+ignored()
 github()
+github(broken_build=True)
 gitlab()
 if failures:
     sys.exit(f'{len(failures)} failure(s)')

@@ -112,4 +112,24 @@ set -e
 "$simbob" compare moved.csv old.csv --bless > bless.txt
 cmp moved.csv old.csv || fail "--bless did not replace the golden file"
 "$simbob" compare moved.csv old.csv > /dev/null || fail "after --bless the files should match"
+
+echo "== --artifacts: a scene named ...xml or index.html.xml stays in its own folder (issue 43, item 3)"
+mkdir -p confine/scenes confine/golden
+cp pendulum.xml confine/scenes/...xml
+cp pendulum.xml confine/scenes/index.html.xml
+cp pendulum.xml confine/scenes/Index.HTML.xml
+set +e
+"$simbob" batch confine/scenes/...xml confine/scenes/index.html.xml confine/scenes/Index.HTML.xml --duration 0.1 \
+  --out-dir confine/out --golden confine/golden --artifacts confine/art/dir >confine.txt
+status=$?
+set -e
+[ $status -eq 1 ] || fail "scenes without golden files should exit 1, got $status: $(cat confine.txt)"
+# Nothing beside the artifacts folder: no view.html, plot.png, summary.json in its parent.
+[ "$(ls -A confine/art)" = "dir" ] || fail "batch wrote beside the artifacts folder: $(ls -A confine/art)"
+grep -q '<p id="counts">0 passed, 3 failed' confine/art/dir/index.html || fail "index.html is not the index: $(head -c 300 confine/art/dir/index.html)"
+for d in _.. index.html-2 Index.HTML-3; do
+  [ -s "confine/art/dir/$d/summary.json" ] || fail "no case folder $d: $(ls -A confine/art/dir)"
+done
+grep -q 'href="./_../summary.json"' confine/art/dir/index.html || fail "index.html does not link ./_../summary.json"
+[ "$(ls -A confine/art/dir | wc -l)" -eq 4 ] || fail "unexpected entries: $(ls -A confine/art/dir)"
 echo "PASS"

@@ -88,13 +88,13 @@ check "a controller that exits before connecting: one line naming it and its sta
 expect_status 69 "$SIMBOB" run "$SCENE" --duration 1 --out exits.csv -q --controller "$KEY=/bin/sh -c 'exit 3'"
 expect_lines "one line" "$LAST_ERR" 1
 expect_match "names it and its status" "$LAST_ERR" \
-  "^$SCENE:$LINE: error: RCLocalSocketCommunicator '$KEY' \(127.0.0.1:[0-9]+\): controller '/bin/sh -c 'exit 3'' exited with status 3 before connecting \(its output: exits.controller.log\)\$"
+  "^$SCENE:$LINE: error: RCLocalSocketCommunicator '$KEY' \(127.0.0.1:\\\$SIMBOB_PORT\): controller '/bin/sh -c 'exit 3'' exited with status 3 before connecting \(its output: exits.controller.log\)\$"
 
 check "a controller that cannot be run (69)"
 expect_status 69 "$SIMBOB" run "$SCENE" --duration 1 --out none.csv -q --controller "$KEY=./no-such-program x"
 expect_lines "one line" "$LAST_ERR" 1
 expect_match "names it and why" "$LAST_ERR" \
-  "^$SCENE:$LINE: error: RCLocalSocketCommunicator '$KEY' \(127.0.0.1:[0-9]+\): cannot start controller './no-such-program x': cannot run ./no-such-program: No such file or directory\$"
+  "^$SCENE:$LINE: error: RCLocalSocketCommunicator '$KEY' \(127.0.0.1:\\\$SIMBOB_PORT\): cannot start controller './no-such-program x': cannot run ./no-such-program: No such file or directory\$"
 
 check "a controller that never connects: --peer-timeout ends the run and the controller's group"
 cat >silent.sh <<SH

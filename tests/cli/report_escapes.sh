@@ -36,4 +36,16 @@ expect_match "only in golden" "$LAST_OUT" '^bodies only in golden: Cart\\x0DX$'
 expect_match "only in actual" "$LAST_OUT" '^bodies only in actual: Only$'
 expect_match "the divergence" "$LAST_OUT" '^first divergence: t=0.5 body Arm\\x1B\]0;pwned\\x07:'
 expect_match "the path" "$LAST_OUT" '^actual: act\\x1B\[1mual.csv$'
+
+check "batch: scene paths and error lines reach the terminal escaped (issue 43, item 4)"
+cp "$SCENES/pendulum.xml" $'pend\e]0;pwned\aulum.xml'
+printf '<Simulation><ComponentList><RCNoSuchThing/></ComponentList></Simulation>\n' >$'bad\e[2J.xml'
+expect_status 1 "$SIMBOB" batch $'pend\e]0;pwned\aulum.xml' $'bad\e[2J.xml' --duration 0.1 --out-dir b-out \
+  --golden no-golden -j 1 --report b-report.txt
+no_raw_control "$LAST_OUT"
+no_raw_control "$LAST_ERR"
+no_raw_control b-report.txt
+expect_match "the progress line" "$LAST_OUT" '^\[[12]/2\] ok  pend\\x1B\]0;pwned\\x07ulum\.xml  '
+expect_match "the error line" "$LAST_OUT" '^\[[12]/2\] failed  bad\\x1B\[2J\.xml  .* -- bad\\x1B\[2J\.xml:1: error: '
+expect_match "the table" "$LAST_OUT" '^pend\\x1B\]0;pwned\\x07ulum\.xml +ok '
 say "ok"

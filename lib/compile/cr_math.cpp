@@ -101,7 +101,8 @@ struct Tables {
   // For i = 181..363: rcp[i] = 256 / i rounded to double, and mlog[i] = -log(rcp[i]) to 2^-106.
   std::array<double, 364> rcp;
   std::array<DD, 364> mlog;
-  DD ln2;
+  // log 2 = ln2hi + ln2lo + d, ln2hi with 42 bits (e ln2hi is exact for |e| < 2^11), |d| < 2^-96.
+  double ln2hi, ln2lo;
 
   Tables() {
     mpfr_t v, t;
@@ -144,7 +145,8 @@ struct Tables {
       mlog[i] = split(v);
     }
     mpfr_const_log2(v, MPFR_RNDN);
-    ln2 = split(v);
+    ln2hi = take(42);
+    ln2lo = take(53);
     mpfr_clears(v, t, static_cast<mpfr_ptr>(nullptr));
     mpfr_free_cache2(MPFR_FREE_LOCAL_CACHE);
   }
@@ -168,11 +170,13 @@ constexpr double kRelErr = 0x1p-66;
 // cos r = C + (C (cos t - 1) - S sin t), S and C the table's sin a and cos a.
 //   sin t = t + t^3 (-1/6 + t^2/120 - t^4/5040): the next term, t^9/9!, is below 2^-82 |t|. The
 //     t^3 part is below 2^-18.5 |t| and computed in doubles from t.hi with at most 8 roundings
-//     (relative 2^-53 each, the coefficients' own included): its error is below 2^-68.5 |t|.
+//     (relative 2^-53 each, the coefficients' own included): its error is below 2^-68.5 |t|;
+//     added to t.lo in double, it errs by 2^-53 * 2^-18.4 |t| more: 2^-68.2 |t| in all.
 //   cos t - 1 = -t^2/2 + t^4 (1/24 - t^2/720): -t^2/2 in double-double (Dekker's product of t.hi,
-//     plus t.hi t.lo), error below 2^-100 t^2; the t^4 part is below 2^-36.5 and good to 2^-86;
+//     plus t.hi t.lo), error below 2^-100 t^2; the t^4 part is below 2^-36.5 and good to 2^-86
+//     (added to the low part: 2^-89 more);
 //     the next term, t^8/8!, is below 2^-79.
-// For j = 0 the result is sin t (error 2^-68.5 |t|, |sin t| >= 0.99 |t|) or 1 + (cos t - 1)
+// For j = 0 the result is sin t (error 2^-68.2 |t|, |sin t| >= 0.99 |t|) or 1 + (cos t - 1)
 // (error 2^-79). For j >= 1, |sin r| >= sin(2^-8) and the absolute errors above (2^-76.5) are
 // below 2^-68 |sin r|; |cos r| >= 0.7 throughout. The double-double products and sums add below
 // 2^-100 relative.
@@ -187,43 +191,63 @@ SinCosT kernelParts(DD r) {
   const DD t = cr::fastTwoSum(r.hi - a, r.lo);
   const double z = t.hi * t.hi;
   const double s3 = t.hi * z * (-1.0 / 6 + z * (1.0 / 120 + z * (-1.0 / 5040)));
-  const DD sinT = cr::add(t, {s3, 0});
-  DD sq = cr::twoProduct(t.hi, t.hi);
-  sq = cr::fastTwoSum(sq.hi, sq.lo + 2 * t.hi * t.lo);
+  const DD sinT = cr::fastTwoSum(t.hi, t.lo + s3);
+  const DD sq = cr::twoProduct(t.hi, t.hi);
   const double c4 = z * z * (1.0 / 24 + z * (-1.0 / 720));
-  const DD cosTm1 = cr::add({-0.5 * sq.hi, -0.5 * sq.lo}, {c4, 0});
+  const DD cosTm1{-0.5 * sq.hi, (-0.5 * sq.lo - t.hi * t.lo) + c4};  // not normalised
   return {sinT, cosTm1, j};
 }
 
+// a * b as an unnormalised double-double (mul without its last FastTwoSum): the same error.
+DD mulRaw(DD a, DD b) {
+  const DD p = cr::twoProduct(a.hi, b.hi);
+  return {p.hi, p.lo + (a.hi * b.lo + a.lo * b.hi)};
+}
+
+// a + b + c, each an unnormalised double-double whose lo is below 2^-50 of its hi: the highs by
+// TwoSum, exactly, the lows and the TwoSums' errors summed in doubles. With M = |a| + |b| + |c|,
+// the error is below 5 * 2^-53 * 5 * 2^-52 M < 2^-100 M.
+DD sum3(DD a, DD b, DD c) {
+  const DD h1 = cr::twoSum(a.hi, b.hi), h2 = cr::twoSum(h1.hi, c.hi);
+  return cr::fastTwoSum(h2.hi, ((h1.lo + h2.lo) + (a.lo + b.lo)) + c.lo);
+}
+
+// M <= 3 |sin r| (for j >= 1, |S| <= 2 |sin r| and |C sin t| <= 2^-8; for j = 0, S = 0) and
+// M <= 3 |cos r|: sum3 adds below 2^-98 relative.
 DD sinKernel(DD r) {  // r >= 0
   const Tables& tb = tables();
   const SinCosT p = kernelParts(r);
   const DD s = tb.sin[p.j], c = tb.cos[p.j];
-  return cr::add(s, cr::add(cr::mul(c, p.sinT), cr::mul(s, p.cosTm1)));
+  return sum3(s, mulRaw(c, p.sinT), mulRaw(s, p.cosTm1));
 }
 
 DD cosKernel(DD r) {  // r >= 0
   const Tables& tb = tables();
   const SinCosT p = kernelParts(r);
   const DD s = tb.sin[p.j], c = tb.cos[p.j];
-  return cr::add(c, cr::add(cr::mul(c, p.cosTm1), cr::neg(cr::mul(s, p.sinT))));
+  return sum3(c, mulRaw(c, p.cosTm1), cr::neg(mulRaw(s, p.sinT)));
 }
 
 // Cody and Waite's reduction, for 2^-27 <= |x| < 2^20: x = k pi/2 + r, r in double-double with
 // |r| <= pi/4 + 2^-40, and an absolute error below 2^-102 |r| + 2^-140:
-//   k = x * 2/pi rounded to an integer (|k| < 2^20);
+//   k = x * 2/pi rounded to an integer (|k| < 2^20), by adding and subtracting 1.5 * 2^52;
 //   x - k P1 is exact (k P1 has 53 bits; the difference is a multiple of 2^-53 below 1);
-//   k P2 is exact, and its difference with the former is held exactly by TwoSum;
-//   k P3 exactly by Dekker's product, subtracted in double-double (3 * 2^-106 relative);
+//   k P2 is exact, and its difference with the former is held exactly by TwoSum (s);
+//   k P3 exactly by Dekker's product (p), and s.hi - p.hi exactly by TwoSum (h);
+//   the lows, h.lo + s.lo - p.lo - k P4, in doubles: each is below 2^-52 (|s.hi| + |p.hi|), so
+//     three roundings err by less than 2^-103 (|s.hi| + |p.hi|), which is below 2^-102 |r| where
+//     s.hi and p.hi do not cancel, and below 2^-147 where they do (|p.hi| < 2^20 * 2^-65);
 //   k P4 in double (error below 2^-150) and the remainder of pi/2 (k 2^-170) left out.
 DD reduce(double x, std::int64_t* k) {
   const Tables& tb = tables();
-  const double kd = std::nearbyint(x * 0x1.45f306dc9c883p-1);  // 2/pi; any nearby value will do
+  constexpr double kRound = 0x1.8p52;
+  const double kd = (x * 0x1.45f306dc9c883p-1 + kRound) - kRound;  // 2/pi; any nearby value will do
   *k = static_cast<std::int64_t>(kd);
   const double r1 = x - kd * tb.p1;
-  DD r = cr::twoSum(r1, -(kd * tb.p2));
-  r = cr::add(r, cr::neg(cr::twoProduct(kd, tb.p3)));
-  return cr::add(r, {-(kd * tb.p4), 0});
+  const DD s = cr::twoSum(r1, -(kd * tb.p2));
+  const DD p = cr::twoProduct(kd, tb.p3);
+  const DD h = cr::twoSum(s.hi, -p.hi);
+  return cr::twoSum(h.hi, (h.lo + (s.lo - p.lo)) - kd * tb.p4);
 }
 
 enum class Which { kSin, kCos };
@@ -236,7 +260,7 @@ double sinCos(double x, Which which) {
   if (ax < 0x1p-27) return which == Which::kSin ? x : 1.0;
   if (ax >= 0x1p20) return which == Which::kSin ? cr::sinMpfr(x) : cr::cosMpfr(x);
   std::int64_t k = 0;
-  DD r = reduce(x, &k);
+  DD r = ax < 0.78 ? DD{x, 0} : reduce(x, &k);  // below pi/4: k = 0, r = x exactly
   const bool negR = r.hi < 0;
   if (negR) r = cr::neg(r);
   // sin x = sin r, cos r, -sin r, -cos r for k = 0, 1, 2, 3 mod 4; cos x = sin(x + pi/2).
@@ -273,10 +297,14 @@ double crCos(double x) {
 //     in doubles from z.hi: z.hi^3 is good to 5 * 2^-53 (z.lo <= 2^-53 |z.hi|, two products),
 //     the polynomial to 3 * 2^-53 (1/3 rounded, the sum; the rest is 2^-8 smaller), their
 //     product to one more: error below 2^-50 * 2^-18.4 |z| = 2^-68.4 |z|.
-//   e log 2 - log c: double-double, 2^-100 relative.
+//     z.hi - z.hi^2/2 is held exactly by FastTwoSum; the low part's terms are below 2^-51 |z|
+//     but for t3, so its roundings err by less than 2^-53 (2^-18.4 + 2^-49) |z|: 2^-68.2 |z| in all.
+//   e log 2: e ln2hi exact, e ln2lo to 2^-53 of it (2^-96 |e|), log 2 - ln2hi - ln2lo < 2^-96:
+//     below 2^-94 |e| <= 2^-95 |log x| for e != 0. -log c: 2^-106 relative.
+//   The sum (sum3): below 2^-100 of |e log 2| + |log c| + |log(1 + z)| <= 3 |log x|.
 // The sum: for e != 0, |log x| >= 0.34 and every error above is below 2^-75 |log x|; for e = 0,
 // either i = 256 (c = 1: the result is log(1 + z) itself, |log(1 + z)| >= 0.99 |z|) or
-// |log x| >= log(256.5/256) >= |z|/2, so the error is below 2^-67.4 |log x| (kRelErr = 2^-66).
+// |log x| >= log(256.5/256) >= |z|/2, so the error is below 2^-67.2 |log x| (kRelErr = 2^-66).
 double crLog(double x) {
   if (!std::isfinite(x) || x <= 0) return std::log(x);  // NaN, +inf, -inf at 0, NaN below
   if (x == 1) return 0.0;
@@ -305,11 +333,13 @@ double crLog(double x) {
       zh * zh * zh *
       (1.0 / 3 +
        zh * (-1.0 / 4 + zh * (1.0 / 5 + zh * (-1.0 / 6 + zh * (1.0 / 7 + zh * (-1.0 / 8 + zh * (1.0 / 9)))))));
-  DD sq = cr::twoProduct(zh, zh);
-  sq = cr::fastTwoSum(sq.hi, sq.lo + 2 * zh * z.lo);
-  DD v = cr::add(cr::add(z, {-0.5 * sq.hi, -0.5 * sq.lo}), {t3, 0});
-  if (i != 256) v = cr::add(tb.mlog[i], v);
-  if (e != 0) v = cr::add(cr::mul({static_cast<double>(e), 0}, tb.ln2), v);
+  // log(1 + z): z.hi - z.hi^2/2 by FastTwoSum (|z.hi| > z.hi^2), the rest in the low part.
+  const DD sq = cr::twoProduct(zh, zh);
+  const DD h = cr::fastTwoSum(zh, -0.5 * sq.hi);
+  const DD l1p{h.hi, ((h.lo + z.lo) - (0.5 * sq.lo + zh * z.lo)) + t3};
+  // e log 2 (exact high part) - log c + log(1 + z).
+  const double ed = static_cast<double>(e);
+  const DD v = sum3({ed * tb.ln2hi, ed * tb.ln2lo}, tb.mlog[i], l1p);
   double out = 0;
   if (cr::zivRound(v, kRelErr * std::fabs(v.hi), &out)) return out;
   return cr::logMpfr(x0);

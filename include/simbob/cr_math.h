@@ -11,7 +11,7 @@
 // arithmetic from IEEE additions, multiplications and divisions alone (simbob compiles with
 // -ffp-contract=off), with an error bound proven in the source's comments (below 2^-66 relative);
 // if both ends of that error interval round to the same double, it is the correctly rounded
-// value, and it is returned. Otherwise (about one argument in 10,000, and sin/cos of |x| >= 2^20)
+// value, and it is returned. Otherwise (about one argument in 3,000, and sin/cos of |x| >= 2^20)
 // GNU MPFR at 53 bits, correctly rounded by its own contract, decides. Correct rounding is thus
 // proven for every argument, given the bounds and MPFR. A call costs a few times libm's
 // (bench/README.md, "Deterministic math"). tests/compile/cr_math_test.cpp checks all four against

@@ -1,7 +1,7 @@
 // crAtan2 (include/simbob/cr_math.h): atan2 correctly rounded, by Ziv's strategy (as crSin,
 // crCos and crLog in lib/compile/cr_math.cpp): a fast path in double-double arithmetic
 // (lib/compile/cr_detail.h) with a proven error bound, Ziv's rounding test, and GNU MPFR's
-// mpfr_atan2 for the arguments the test cannot decide (about one in 10,000).
+// mpfr_atan2 for the arguments the test cannot decide (about one in 3,000).
 //
 // The fast path. With num = min(|y|, |x|), den = max(|y|, |x|) and q = num / den in [0, 1]:
 //   atan2(y, x) = s (pi - (w pi/2 + (1 - 2w) atan q)) or s (w pi/2 + (1 - 2w) atan q)

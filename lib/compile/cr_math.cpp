@@ -4,7 +4,7 @@
 // Each function is Ziv's strategy: a fast path in double-double arithmetic (lib/compile/cr_detail.h:
 // IEEE + - * / only, no FMA, no libm transcendental) with a proven bound on its error, then Ziv's
 // rounding test: if both ends of the error interval round to the same double, that double is the
-// correctly rounded value. Otherwise (about one argument in 10,000; tests/compile/cr_math_test.cpp
+// correctly rounded value. Otherwise (about one argument in 3,000; tests/compile/cr_math_test.cpp
 // counts them) GNU MPFR at 53 bits decides, as every call did before. Both paths return the
 // correctly rounded value, so the bits are those MPFR alone gave, on every CPU.
 //
@@ -159,7 +159,7 @@ const Tables& tables() {
 
 // The bound on the relative error of every fast path below, with a margin of 4 to 8 over each
 // derivation (the comments at each function): a proven bound is all Ziv's test needs, and the
-// margin costs only a rarer fast path (about 2^-12 of the arguments fall back).
+// margin costs only a slower average (about 1 argument in 3,000 falls back).
 constexpr double kRelErr = 0x1p-66;
 
 // sin(r) and cos(r) for a double-double r, |r| <= pi/4 + 2^-40, with absolute errors at most

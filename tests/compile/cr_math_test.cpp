@@ -264,7 +264,7 @@ TEST_CASE("crAtan2: equal to MPFR over the whole range, near the axes and diagon
 
 TEST_CASE("crSin, crCos, crLog, crAtan2: the MPFR fallback is rare on their fast paths", "[compile][crmath]") {
   // Each fast path's error bound is 2^-66 relative: Ziv's test fails only where the value lies
-  // within about 2^-65 relative of a midpoint between doubles, for about 2^-12 (0.02 %) of the
+  // within about 2^-65 relative of a midpoint between doubles, for a few in 10,000 of the
   // arguments. Counted on the arguments of simbob's per-step calls; allowed: 0.1 %.
   std::mt19937_64 rng(47);
   std::uniform_real_distribution<double> angle(-M_PI, M_PI), unit(0.0, 1.0), sym(-1.0, 1.0);

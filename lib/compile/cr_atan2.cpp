@@ -99,7 +99,7 @@ double crAtan2(double y, double x) {
       num = std::ldexp(num, -e);
       den = std::ldexp(den, -e);
     }
-    const auto k = static_cast<std::size_t>(num / den * 256 + 0.5);
+    const auto k = static_cast<std::size_t>(cr::nearestInt(num / den * 256));
     const double c = static_cast<double>(k) / 256;
     const DD cd = cr::twoProduct(c, den), cn = cr::twoProduct(c, num);
     const DD n = cr::add(cr::twoSum(num, -cd.hi), {-cd.lo, 0});

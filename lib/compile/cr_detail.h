@@ -63,6 +63,13 @@ inline DD div(DD a, DD b) {
   return fastTwoSum(q1, r / b.hi);
 }
 
+/// v rounded to the nearest integer (ties to even), for |v| < 2^51: adding and subtracting
+/// 1.5 * 2^52 leaves no fraction bits. Exact, no libm call, the same on every CPU.
+inline double nearestInt(double v) {
+  constexpr double kRound = 0x1.8p52;
+  return (v + kRound) - kRound;
+}
+
 inline DD neg(DD a) { return {-a.hi, -a.lo}; }
 
 /// Ziv's rounding test. v.hi + v.lo approximates an exact value y with |y - (v.hi + v.lo)| <= err

@@ -186,7 +186,7 @@ struct SinCosT {
 };
 
 SinCosT kernelParts(DD r) {
-  const auto j = static_cast<std::size_t>(r.hi * 128 + 0.5);
+  const auto j = static_cast<std::size_t>(cr::nearestInt(r.hi * 128));
   const double a = static_cast<double>(j) / 128;
   const DD t = cr::fastTwoSum(r.hi - a, r.lo);
   const double z = t.hi * t.hi;
@@ -230,7 +230,7 @@ DD cosKernel(DD r) {  // r >= 0
 
 // Cody and Waite's reduction, for 2^-27 <= |x| < 2^20: x = k pi/2 + r, r in double-double with
 // |r| <= pi/4 + 2^-40, and an absolute error below 2^-102 |r| + 2^-140:
-//   k = x * 2/pi rounded to an integer (|k| < 2^20), by adding and subtracting 1.5 * 2^52;
+//   k = x * 2/pi rounded to an integer (|k| < 2^20);
 //   x - k P1 is exact (k P1 has 53 bits; the difference is a multiple of 2^-53 below 1);
 //   k P2 is exact, and its difference with the former is held exactly by TwoSum (s);
 //   k P3 exactly by Dekker's product (p), and s.hi - p.hi exactly by TwoSum (h);
@@ -240,8 +240,7 @@ DD cosKernel(DD r) {  // r >= 0
 //   k P4 in double (error below 2^-150) and the remainder of pi/2 (k 2^-170) left out.
 DD reduce(double x, std::int64_t* k) {
   const Tables& tb = tables();
-  constexpr double kRound = 0x1.8p52;
-  const double kd = (x * 0x1.45f306dc9c883p-1 + kRound) - kRound;  // 2/pi; any nearby value will do
+  const double kd = cr::nearestInt(x * 0x1.45f306dc9c883p-1);  // 2/pi; any nearby value will do
   *k = static_cast<std::int64_t>(kd);
   const double r1 = x - kd * tb.p1;
   const DD s = cr::twoSum(r1, -(kd * tb.p2));
@@ -325,7 +324,7 @@ double crLog(double x) {
     m *= 0.5;
     ++e;
   }
-  const auto i = static_cast<std::size_t>(m * 256 + 0.5);
+  const auto i = static_cast<std::size_t>(cr::nearestInt(m * 256));
   const DD p = cr::twoProduct(m, tb.rcp[i]);
   const DD z = cr::fastTwoSum(p.hi - 1, p.lo);  // exact: |p.hi - 1| >= ulp(p.hi) > |p.lo| or 0
   const double zh = z.hi;

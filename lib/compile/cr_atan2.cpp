@@ -14,8 +14,9 @@
 //     The u^3 part is below 2^-19.5 |u|, computed in doubles from u.hi to 2^-50 relative (as
 //     log's in cr_math.cpp): error below 2^-69.5 |u|.
 //   atan c from the table (MPFR at 256 bits, split into two doubles): 2^-106 relative.
-//   For k = 0 the sum is atan u itself; for k >= 1, atan c >= 2^-8.1 >= 2|atan u|, so the sum is
-//   at least half atan c and the errors above are below 2^-68.5 of it. Adding or subtracting
+//   For k = 0 the sum is atan u itself; for k >= 1, q c >= 2^-17 makes |u| < 2^-9 (1 - 2^-17)
+//   while atan c >= 2^-8 (1 - 2^-17), so the sum, atan q >= atan c - |u|, is at least |u| and
+//   at least atan c / 3: the errors above are below 2^-68.5 of it. Adding or subtracting
 //   from pi/2 or pi (double-double, 2^-106) only grows the result: below 2^-68 relative in all.
 // Ziv's test is run with 2^-66 (kRelErr): a margin of 4.
 //

@@ -7,20 +7,23 @@
 // (docs/ci.md, "Hinge angles and libm's atan2"). A correctly rounded result depends on nothing
 // but the argument.
 //
-// crAtan2 is simbob's own double-double arithmetic from IEEE additions, multiplications and
-// divisions alone (simbob compiles with -ffp-contract=off): about 0.2 microseconds, cheap enough
-// for every hinge at every step. crSin, crCos and crLog are GNU MPFR's at 53 bits, rounded to
-// nearest (a few microseconds each): for set-up work and per-reading noise, not for inner loops.
-// tests/compile/cr_math_test.cpp checks crAtan2 against MPFR and against values computed at 300
-// bits.
+// Each is Ziv's strategy (lib/compile/cr_math.cpp, cr_atan2.cpp): a fast path in double-double
+// arithmetic from IEEE additions, multiplications and divisions alone (simbob compiles with
+// -ffp-contract=off), with an error bound proven in the source's comments (below 2^-66 relative);
+// if both ends of that error interval round to the same double, it is the correctly rounded
+// value, and it is returned. Otherwise (about one argument in 3,000, and sin/cos of |x| >= 2^20)
+// GNU MPFR at 53 bits, correctly rounded by its own contract, decides. Correct rounding is thus
+// proven for every argument, given the bounds and MPFR. A call costs a few times libm's
+// (bench/README.md, "Deterministic math"). tests/compile/cr_math_test.cpp checks all four against
+// MPFR on random arguments, hard cases and special values.
 #pragma once
 
 namespace simbob {
 
 /// atan2(y, x) rounded once to the nearest double; zeros, infinities and NaN as C's atan2.
 double crAtan2(double y, double x);
-/// sin(x), cos(x), log(x) rounded once to the nearest double (MPFR); NaN, infinities and
-/// log's domain as C's.
+/// sin(x), cos(x), log(x) rounded once to the nearest double; NaN, infinities and log's domain
+/// as C's.
 double crSin(double x);
 double crCos(double x);
 double crLog(double x);

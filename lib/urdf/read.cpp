@@ -10,6 +10,7 @@
 #include <locale>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 
 #include "simbob/cr_math.h"
 #include "simbob/values.h"
@@ -71,11 +72,12 @@ class Reader {
     diag_.error({file_, line}, msg, kind);
   }
   void ignore(int line, const std::string& what) {
-    for (UrdfNote& n : robot_->ignored)
-      if (n.text == what) {
-        ++n.count;
-        return;
-      }
+    // A map, not a search of the notes: a file may hold 200,000 different unknown elements.
+    auto [it, added] = ignored_index_.emplace(what, robot_->ignored.size());
+    if (!added) {
+      ++robot_->ignored[it->second].count;
+      return;
+    }
     robot_->ignored.push_back({line, what, 1});
   }
   int urdfdomLine(const std::string& message) const;
@@ -85,6 +87,7 @@ class Reader {
   int readVisualMaterial(const pugi::xml_node& visual, const urdf::Visual& v);
   bool readJoint(const pugi::xml_node& x, const urdf::Joint& u, const std::map<std::string, int>& links);
   bool resolveFile(const std::string& name, int line, const char* what, std::string* path);
+  bool checkDepth(const pugi::xml_node& root);
 
   const std::string& text_;
   std::string file_;
@@ -93,8 +96,9 @@ class Reader {
   std::vector<size_t> newlines_;
   pugi::xml_document doc_;
   std::shared_ptr<UrdfRobot> robot_ = std::make_shared<UrdfRobot>();
-  std::map<std::string, int> materials_;             // robot-level material name -> index
-  std::vector<std::pair<int, std::string>> mimics_;  // joint index, the joint it follows
+  std::map<std::string, int> materials_;                   // robot-level material name -> index
+  std::unordered_map<std::string, size_t> ignored_index_;  // note text -> UrdfRobot::ignored index
+  std::vector<std::pair<int, std::string>> mimics_;        // joint index, the joint it follows
   struct Missing {
     int line;
     std::string message;
@@ -258,6 +262,48 @@ int Reader::urdfdomLine(const std::string& message) const {
     if (!best && message.find(n) != std::string::npos && n.size() > 2) best = lineOf(c);
   }
   return best ? best : lineOf(doc_.document_element());
+}
+
+/// Refuses a tree deeper than kMaxUrdfDepth before urdfdom sees it: urdfdom frees its tree
+/// recursively (a link's children with it). Counted without recursion over the joints' names.
+bool Reader::checkDepth(const pugi::xml_node& root) {
+  std::unordered_map<std::string, std::pair<std::string, pugi::xml_node>> parent;  // child -> parent, joint
+  for (pugi::xml_node j : root.children("joint"))
+    parent.emplace(j.child("child").attribute("link").value(),
+                   std::make_pair(std::string(j.child("parent").attribute("link").value()), j));
+  std::unordered_map<std::string, int> depth;  // link -> joints above it (known so far)
+  std::vector<const std::string*> path;
+  for (pugi::xml_node j : root.children("joint")) {  // document order: the same joint is named every time
+    auto start = parent.find(j.child("child").attribute("link").value());
+    if (depth.count(start->first)) continue;
+    path.clear();
+    const std::string* at = &start->first;
+    int base = 0;
+    while (true) {
+      auto known = depth.find(*at);
+      if (known != depth.end()) {
+        base = known->second;
+        break;
+      }
+      auto up = parent.find(*at);
+      // A root, or a loop (urdfdom refuses it; stop at the number of joints).
+      if (up == parent.end() || path.size() > parent.size()) break;
+      path.push_back(at);
+      at = &up->second.first;
+    }
+    for (size_t k = path.size(); k-- > 0;) {
+      const int d = base + static_cast<int>(path.size() - k);
+      depth[*path[k]] = d;
+      if (d > kMaxUrdfDepth) {
+        const pugi::xml_node j = parent[*path[k]].second;
+        error(lineOf(j), "joint '" + quoteInput(j.attribute("name").value()) + "': its child link is more than " +
+                             std::to_string(kMaxUrdfDepth) +
+                             " joints below the root: simbob reads URDF trees at most that deep (docs/urdf.md)");
+        return false;
+      }
+    }
+  }
+  return true;
 }
 
 bool Reader::resolveFile(const std::string& name, int line, const char* what, std::string* path) {
@@ -482,6 +528,7 @@ std::shared_ptr<const UrdfRobot> Reader::read() {
                                  : ""));
     return nullptr;
   }
+  if (!checkDepth(root)) return nullptr;
   std::string message;
   const UrdfModule* urdfdom = urdfModule(&message);
   if (!urdfdom) {
@@ -489,6 +536,18 @@ std::shared_ptr<const UrdfRobot> Reader::read() {
     return nullptr;
   }
   urdf::ModelInterfaceSharedPtr model = urdfdom->parse(text_, &message);
+  // urdfdom's links hold their children: freed from the root, a deep tree recurses once per
+  // level. Unchained first, each link is freed on its own.
+  struct Unchain {
+    urdf::ModelInterfaceSharedPtr& model;
+    ~Unchain() {
+      if (!model) return;
+      for (auto& named : model->links_) {
+        named.second->child_links.clear();
+        named.second->child_joints.clear();
+      }
+    }
+  } unchain{model};
   if (!model) {
     error(urdfdomLine(message), "not a valid URDF: " + (message.empty() ? "urdfdom refused it" : message));
     return nullptr;

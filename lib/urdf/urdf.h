@@ -162,3 +162,8 @@ Vec3 urdfDirToScene(const Transform& place, const Vec3& v);
 Quat quatFromRpy(double roll, double pitch, double yaw);
 
 }  // namespace simbob
+/// The deepest a URDF tree may be (joints from the root to the farthest link), checked before
+/// urdfdom sees the text: urdfdom frees a tree recursively, which overflows an 8 MB stack near
+/// 120,000 levels (docs/urdf.md, docs/testing.md).
+constexpr int kMaxUrdfDepth = 50000;
+

@@ -52,6 +52,8 @@ const char* typeName(UrdfJoint::Type t) {
   return "?";
 }
 
+using ContextFixedShape = CompileContext::FixedUrdfShape;
+
 /// The lowering of one import: what it has made so far and what it says.
 class Import {
  public:
@@ -101,6 +103,7 @@ class Import {
   std::vector<int> joint_index_;  // per URDF joint: Model::joints index (-1: none)
   std::vector<int> skin_index_;   // per URDF material: Model::skins index (-1: not made yet)
   int material_ = 0;
+  std::vector<ContextFixedShape> fixed_shapes_;  // moving links' collisions, if fixed to the world
   int drives_ = 0;
   int hulls_ = 0, trimeshes_ = 0;
   int group_ = 0;  // GeomDef::group of its geoms: the first geom index it makes (a copy gets its own)
@@ -135,6 +138,8 @@ Built Import::lower(const Transform* parent) {
   summarise();
   ctx_.model.imports.push_back(report_);
   const int root_body = plan_.link_body[static_cast<size_t>(robot_.root)];
+  if (plan_.bodies[static_cast<size_t>(root_body)].fixed && !fixed_shapes_.empty())
+    ctx_.fixed_urdf_robots.push_back({&robot_, c_.get(kAboveGround), std::move(fixed_shapes_)});
   Built out;
   out.index = body_index_[static_cast<size_t>(root_body)];
   out.frame = urdfToScene(place_, plan_.link_global[static_cast<size_t>(robot_.root)]);
@@ -228,33 +233,15 @@ double Import::lowestPoint(const UrdfShape& s, const Transform& t) {
 
 /// AboveGround (a bare robot.urdf): a floating robot whose collision shapes reach below y = 0 is
 /// raised until the lowest touches it, rather than started inside the ground. A robot fixed to
-/// the world is not raised (its base is bolted where the file puts it): one whose moving links
-/// start more than 1 mm inside the ground is refused at the deepest link's line, as ODE would
-/// tear it apart at the first step (KR5's file lays its arm along URDF +Y, in the ground).
+/// the world is not raised (its base is bolted where the file puts it): checkFixedUrdfRobots
+/// refuses it if its moving links start inside the ground, in a scene as in a bare run.
 void Import::raiseAboveGround() {
   const int root_body = plan_.link_body[static_cast<size_t>(robot_.root)];
-  const bool fixed = root_body < 0 || plan_.bodies[static_cast<size_t>(root_body)].fixed;
+  if (root_body < 0 || plan_.bodies[static_cast<size_t>(root_body)].fixed) return;
   double lowest = std::numeric_limits<double>::infinity();
-  size_t deepest = 0;
-  for (size_t li = 0; li < robot_.links.size(); ++li) {
-    const int body = plan_.link_body[li];
-    if (fixed && (body < 0 || plan_.bodies[static_cast<size_t>(body)].fixed)) continue;
-    for (const UrdfShape& s : robot_.links[li].collisions) {
-      const double y = lowestPoint(s, urdfToScene(place_, compose(plan_.link_global[li], s.origin)));
-      if (y < lowest) {
-        lowest = y;
-        deepest = li;
-      }
-    }
-  }
-  if (fixed) {
-    if (lowest < -0.001)
-      error(robot_.links[deepest].line,
-            "link '" + robot_.links[deepest].name + "' of a robot fixed to the world starts " + formatApprox(-lowest) +
-                " m inside the ground: a robot fixed to the world is not raised; place it with RCImportURDF's "
-                "Pose in a scene (is the file's up axis +Z?)");
-    return;
-  }
+  for (size_t li = 0; li < robot_.links.size(); ++li)
+    for (const UrdfShape& s : robot_.links[li].collisions)
+      lowest = std::min(lowest, lowestPoint(s, urdfToScene(place_, compose(plan_.link_global[li], s.origin))));
   if (!(lowest < 0)) return;
   place_.p[1] -= lowest;
   note(robot_.line, "the robot is raised " + formatApprox(-lowest) +
@@ -293,6 +280,7 @@ void Import::addShapes(int li) {
     return body >= 0 ? compose(plan_.link_in_body[l], origin)
                      : urdfToScene(place_, compose(plan_.link_global[l], origin));
   };
+  auto scenePose = [&](const Transform& origin) { return urdfToScene(place_, compose(plan_.link_global[l], origin)); };
   for (const UrdfShape& s : ul.collisions) {
     GeomDef g;
     g.loc = at(s.line);
@@ -316,6 +304,7 @@ void Import::addShapes(int li) {
       g.offset = where(s.origin);
       g.material = material_;
       g.shape = hull ? GeomShape::ConvexHull : GeomShape::TriMesh;
+      if (body >= 0) fixed_shapes_.push_back({static_cast<int>(ctx_.model.geoms.size()), scenePose(s.origin), li});
       ctx_.model.geoms.push_back(g);
       continue;
     }
@@ -326,6 +315,7 @@ void Import::addShapes(int li) {
     g.shape = s.kind == UrdfShape::Box ? GeomShape::Box
                                        : (s.kind == UrdfShape::Sphere ? GeomShape::Sphere : GeomShape::Cylinder);
     g.size = s.size;
+    if (body >= 0) fixed_shapes_.push_back({static_cast<int>(ctx_.model.geoms.size()), scenePose(s.origin), li});
     ctx_.model.geoms.push_back(g);
   }
   for (const UrdfShape& s : ul.visuals) addVisual(li, s);
@@ -578,7 +568,71 @@ void Import::summarise() {
                    [](const Error& a, const Error& b) { return a.loc.line < b.loc.line; });
 }
 
+/// The lowest point of a collision geom placed at `t` along the direction `n` (unit): a box's
+/// lowest corner, a sphere's centre less its radius, a cylinder's lowest rim point, a mesh's
+/// lowest vertex.
+double lowestAlong(const Model& model, const GeomDef& g, const Transform& t, const Vec3& n) {
+  double lowest = std::numeric_limits<double>::infinity();
+  auto reach = [&](const Vec3& local) { lowest = std::min(lowest, dot(n, add(t.p, rotate(t.q, local)))); };
+  switch (g.shape) {
+    case GeomShape::Box:
+      for (int k = 0; k < 8; ++k)
+        reach({k & 1 ? g.size[0] / 2 : -g.size[0] / 2, k & 2 ? g.size[1] / 2 : -g.size[1] / 2,
+               k & 4 ? g.size[2] / 2 : -g.size[2] / 2});
+      return lowest;
+    case GeomShape::Sphere:
+      return dot(n, t.p) - g.size[0];
+    case GeomShape::Cylinder:
+    case GeomShape::Capsule: {  // axis along the shape's z: each end's circle dips r sin(tilt)
+      const double an = dot(n, rotate(t.q, Vec3{0, 0, 1}));
+      const double rim = g.size[0] * std::sqrt(std::max(0.0, 1 - an * an));
+      return dot(n, t.p) - std::abs(an) * g.size[1] / 2 - (g.shape == GeomShape::Capsule ? g.size[0] : rim);
+    }
+    case GeomShape::ConvexHull:
+    case GeomShape::TriMesh:
+      if (g.mesh < 0) return lowest;
+      for (const Vec3& v : model.meshes[static_cast<size_t>(g.mesh)].data->vertices) reach(v);
+      return lowest;
+    case GeomShape::Plane:
+      return lowest;
+  }
+  return lowest;
+}
+
 }  // namespace
+
+/// A robot fixed to the world is bolted where it is put (never raised): one whose moving links
+/// start more than 1 mm inside a static plane (the ground) is refused at the deepest link's line,
+/// as ODE would tear it apart at the first step; a bare .urdf and a scene's RCImportURDF alike
+/// (KR5's file lays its arm along URDF +Y, in the ground).
+void checkFixedUrdfRobots(CompileContext& ctx) {
+  std::vector<const GeomDef*> planes;
+  for (const GeomDef& g : ctx.model.geoms)
+    if (g.shape == GeomShape::Plane && g.body < 0 && !g.sensor) planes.push_back(&g);
+  for (const CompileContext::FixedUrdfRobot& r : ctx.fixed_urdf_robots) {
+    double deepest = -0.001;
+    const CompileContext::FixedUrdfShape* at = nullptr;
+    const GeomDef* in = nullptr;
+    for (const CompileContext::FixedUrdfShape& s : r.shapes)
+      for (const GeomDef* p : planes) {
+        const Vec3 n{p->plane[0], p->plane[1], p->plane[2]};
+        const double c = lowestAlong(ctx.model, ctx.model.geoms[static_cast<size_t>(s.geom)], s.at, n) - p->plane[3];
+        if (c < deepest) {
+          deepest = c;
+          at = &s;
+          in = p;
+        }
+      }
+    if (!at) continue;
+    const UrdfLink& l = r.robot->links[static_cast<size_t>(at->link)];
+    ctx.diag.error({r.robot->file, l.line},
+                   "link '" + l.name + "' of a robot fixed to the world starts " + formatApprox(-deepest) +
+                       " m inside " + (r.bare ? std::string("the ground") : "the plane of '" + in->key + "'") +
+                       ": a robot fixed to the world is not raised; " +
+                       (r.bare ? "place it with RCImportURDF's Pose in a scene" : "move it with RCImportURDF's Pose") +
+                       " (is the file's up axis +Z?)");
+  }
+}
 
 void registerUrdfImport(Registry& r) {
   r.add({"RCImportURDF",

@@ -75,6 +75,21 @@ expect_eq "refusal" "$(cat "$LAST_ERR")" \
   "$DART/KR5/KR5 sixx R650.urdf:107: error: link 'bicep' of a robot fixed to the world starts 0.169 m inside the ground: a robot fixed to the world is not raised; place it with RCImportURDF's Pose in a scene (is the file's up axis +Z?)"
 expect_no_file kr5_bare.csv
 
+check "KR5 lying in a scene, as the file has it: refused by check (65) as the bare file is, naming the plane"
+# One rule for a robot fixed to the world (issue 42 point 5): it used to pass check with two
+# overlap warnings and come apart in run (exit 1).
+cat >kr5_lying.xml <<XML
+<Simulation><ComponentList><RCGround Key="Ground"/>
+  <RCImportURDF Key="kr5"><File Value="$DART/KR5/KR5 sixx R650.urdf"/></RCImportURDF>
+</ComponentList></Simulation>
+XML
+expect_status 65 "$SIMBOB" check kr5_lying.xml
+expect_match "check" "$LAST_ERR" "R650.urdf:107: error: link 'bicep' of a robot fixed to the world starts 0.169 m inside the plane of 'Ground'"
+expect_status 65 "$SIMBOB" run kr5_lying.xml --duration 1 --out kr5_lying.csv
+expect_eq "refusal" "$(cat "$LAST_ERR")" \
+  "$DART/KR5/KR5 sixx R650.urdf:107: error: link 'bicep' of a robot fixed to the world starts 0.169 m inside the plane of 'Ground': a robot fixed to the world is not raised; move it with RCImportURDF's Pose (is the file's up axis +Z?)"
+expect_no_file kr5_lying.csv
+
 check "KR5 (a space in the file name) stood up in a scene: its summary, and effort=\"0\" named at each <limit> line"
 cat >kr5_up.xml <<XML
 <Simulation><ComponentList><RCGround Key="Ground"/>

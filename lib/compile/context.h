@@ -235,6 +235,8 @@ bool isLocalPose(const CompileContext& ctx, const Link& l);
 Transform poseValue(const CompileContext& ctx, const Link& l);
 /// materials.cpp: the Model::materials index of a material link (0 = the default).
 int lowerMaterial(CompileContext& ctx, const Link& l);
+/// materials.cpp: the Model::materials index of a material (one entry per set of numbers).
+int addMaterial(CompileContext& ctx, const MaterialDef& m);
 /// motions.cpp: initial velocities from a motion link (none: at rest).
 void lowerMotion(CompileContext& ctx, const Link& l, BodyDef* b);
 /// geoms.cpp: the geoms of a geom link, at `offset` in the owner's frame.
@@ -277,11 +279,11 @@ Built lowerClone(CompileContext& ctx, const Component& c, const Transform* paren
 /// placeholder the loader makes so that Refs reach a link: the body it is part of).
 Built lowerUrdfImport(CompileContext& ctx, const Component& c, const Transform* parent);
 Built lowerUrdfLink(CompileContext& ctx, const Component& c);
-bool isClone(const Component& c);
-/// joints.cpp: a joint of a construction whose root is `parent`; the overrides come from an
 /// urdf_import.cpp: once every component is lowered, refuses a robot fixed to the world whose
 /// moving links start inside a static plane (a bare .urdf and a scene alike, docs/urdf.md).
 void checkFixedUrdfRobots(CompileContext& ctx);
+bool isClone(const Component& c);
+/// joints.cpp: a joint of a construction whose root is `parent`; the overrides come from an
 /// RCImportJoint's own Pose and Body.
 void lowerJoint(CompileContext& ctx, int ji, const Built& parent, const Link* pose_override, const Link* body_override);
 /// joints.cpp: the kind of a joint component (following RCImportJoint); false if unknown.

@@ -80,6 +80,12 @@ class Import {
     return p ? ctx_.modelKey(*p) : key_ + "." + urdfKey(name);
   }
   void checkInertia();
+  void surfaces();
+  int linkMaterial(int li) const {
+    return link_material_.empty() ? material_ : link_material_[static_cast<size_t>(li)];
+  }
+  bool selfCollides(const UrdfLink& l) const;
+  void bodyGravity();
   double lowestPoint(const UrdfShape& s, const Transform& t);
   void raiseAboveGround();
   void addBodies();
@@ -103,6 +109,7 @@ class Import {
   std::vector<int> joint_index_;  // per URDF joint: Model::joints index (-1: none)
   std::vector<int> skin_index_;   // per URDF material: Model::skins index (-1: not made yet)
   int material_ = 0;
+  std::vector<int> link_material_;               // per URDF link: Model::materials index (empty: material_ for all)
   std::vector<ContextFixedShape> fixed_shapes_;  // moving links' collisions, if fixed to the world
   int drives_ = 0;
   int hulls_ = 0, trimeshes_ = 0;
@@ -129,7 +136,9 @@ Built Import::lower(const Transform* parent) {
   if (!ok_) return Built{};
   if (c_.get(kAboveGround)) raiseAboveGround();
   if (!ok_) return Built{};
+  surfaces();
   addBodies();
+  bodyGravity();
   for (size_t li = 0; li < robot_.links.size(); ++li) addShapes(static_cast<int>(li));
   addJoints();
   if (!ok_) return Built{};
@@ -248,6 +257,130 @@ void Import::raiseAboveGround() {
                         " m so that its lowest collision shape touches the ground (AboveGround)");
 }
 
+/// Each link's <gazebo reference> surface (docs/urdf.md, "Surfaces") as a material of its own: the
+/// import's Material with the file's values in Gazebo classic's meaning, each said at its line.
+void Import::surfaces() {
+  const MaterialDef base = ctx_.model.materials[static_cast<size_t>(material_)];
+  const double h = ctx_.model.settings.max_time_step;
+  if (robot_.self_collide.line)
+    note(robot_.self_collide.line, std::string("robot: <self_collide> ") +
+                                       (robot_.self_collide.value != 0 ? "true" : "false") +
+                                       ": the default of every link without a <selfCollide> of its own" +
+                                       (c_.get(kSelfCollision) ? " (SelfCollision true: every link collides)" : ""));
+  for (size_t li = 0; li < robot_.links.size(); ++li) {
+    const UrdfLink& l = robot_.links[li];
+    const UrdfGazebo& gz = l.gazebo;
+    const std::string who = "link '" + l.name + "': ";
+    if (gz.self_collide.line)
+      note(gz.self_collide.line,
+           who + "<selfCollide> " + (gz.self_collide.value != 0 ? "true" : "false") + ": its collisions collide " +
+               (gz.self_collide.value != 0 ? "with the robot's other links too (never those a joint connects)"
+                                           : "only with the rest of the scene") +
+               (c_.get(kSelfCollision) ? " (SelfCollision true: every link collides)" : ""));
+    if (!gz.surface()) continue;
+    if (l.collisions.empty()) {
+      const int line = std::max({gz.mu1.line, gz.mu2.line, gz.fdir1_tag.line, gz.kp.line, gz.kd.line, gz.min_depth.line,
+                                 gz.max_vel.line, gz.max_contacts.line});
+      note(line, who + "its <gazebo> surface tags change nothing: it has no <collision>");
+      continue;
+    }
+    if (link_material_.empty()) link_material_.assign(robot_.links.size(), material_);
+    MaterialDef m = base;
+    m.key = key_ + "." + urdfKey(l.name);
+    if (gz.mu1.line || gz.mu2.line) {
+      m.gazebo = true;
+      m.friction = gz.mu1.line ? gz.mu1.value : base.friction;
+      m.friction2 = gz.mu2.line ? gz.mu2.value : base.friction;
+      const std::string rule =
+          "; a contact of its collisions takes the smaller of the two geoms' values (Gazebo classic), not the larger";
+      const std::string other = "not given: the Material's Friction " + formatNumber(base.friction);
+      if (gz.mu1.line)
+        note(gz.mu1.line, who + "<mu1> " + formatNumber(gz.mu1.value) + ": friction along " +
+                              (gz.fdir1_tag.line ? "<fdir1>" : "ODE's first direction") + rule +
+                              (gz.mu2.line ? "" : "; <mu2> " + other));
+      if (gz.mu2.line)
+        note(gz.mu2.line, who + "<mu2> " + formatNumber(gz.mu2.value) + ": friction across it" + rule +
+                              (gz.mu1.line ? "" : "; <mu1> " + other));
+    }
+    if (gz.fdir1_tag.line) {
+      m.fdir1 = gz.fdir1;
+      note(gz.fdir1_tag.line,
+           who + "<fdir1> " + formatNumber(gz.fdir1[0]) + " " + formatNumber(gz.fdir1[1]) + " " +
+               formatNumber(gz.fdir1[2]) +
+               (gz.fdir1 == Vec3{0, 0, 0} ? ": ODE chooses the friction directions (as Gazebo's zero does)"
+                                          : ": the first friction direction, in the frame of each of its collisions, "
+                                            "laid into each contact's plane"));
+    }
+    if (gz.kp.line || gz.kd.line) {
+      m.kp = gz.kp.line ? gz.kp.value : 1e12;  // SDF's defaults where one of the two is missing
+      m.kd = gz.kd.line ? gz.kd.value : 1.0;
+      const double erp = h * m.kp / (h * m.kp + m.kd), cfm = 1.0 / (h * m.kp + m.kd);
+      note(gz.kp.line ? gz.kp.line : gz.kd.line,
+           who + "<kp> " + formatNumber(m.kp) + " N/m" + (gz.kp.line ? "" : " (not given: SDF's default)") + ", <kd> " +
+               formatNumber(m.kd) + " N s/m" + (gz.kd.line ? "" : " (not given: SDF's default)") +
+               ": its contacts' ERP " + formatApprox(erp) + " and CFM " + formatApprox(cfm) + " at the " +
+               formatNumber(h) +
+               " s step, as Gazebo classic computes them (against a geom with a <kp> too: the springs in "
+               "series, the dampers added)");
+    }
+    if (gz.min_depth.line) {
+      m.min_depth = gz.min_depth.value;
+      note(gz.min_depth.line, who + "<minDepth> " + formatNumber(m.min_depth) +
+                                  " m: its contacts push out only what goes deeper (the smaller of a pair's)");
+    }
+    if (gz.max_vel.line) {
+      m.max_vel = gz.max_vel.value;
+      note(gz.max_vel.line, who + "<maxVel> " + formatNumber(m.max_vel) +
+                                " m/s: its contacts push out at most that fast (the smaller of a pair's)");
+    }
+    if (gz.max_contacts.line) {
+      m.max_contacts = static_cast<int>(gz.max_contacts.value);
+      note(gz.max_contacts.line, who + "<maxContacts> " + std::to_string(m.max_contacts) +
+                                     ": at most that many contacts of one of its collisions with another geom (and "
+                                     "at most MaxContacts)");
+    }
+    link_material_[li] = addMaterial(ctx_, m);
+  }
+}
+
+/// Whether a link's collisions collide with the robot's other links: SelfCollision, else its
+/// <selfCollide>, else the robot's <self_collide> (Gazebo classic: a pair collides when either does).
+bool Import::selfCollides(const UrdfLink& l) const {
+  if (c_.get(kSelfCollision)) return true;
+  if (l.gazebo.self_collide.line) return l.gazebo.self_collide.value != 0;
+  return robot_.self_collide.value != 0;
+}
+
+/// <gravity> false (or <turnGravityOff> true) on a link: gravity does not act on its body. The
+/// links lumped into one body must agree; the first in the file decides.
+void Import::bodyGravity() {
+  for (size_t bi = 0; bi < plan_.bodies.size(); ++bi) {
+    const UrdfBody& b = plan_.bodies[bi];
+    const UrdfLink* first = nullptr;
+    for (int li : b.links) {
+      const UrdfLink& l = link(li);
+      if (!l.gazebo.gravity.line) continue;
+      const bool on = l.gazebo.gravity.value != 0;
+      if (!first) {
+        first = &l;
+        if (b.fixed) {
+          note(l.gazebo.gravity.line, "link '" + l.name +
+                                          "': its <gazebo> gravity changes nothing: it is fixed to "
+                                          "the world");
+          continue;
+        }
+        ctx_.model.bodies[static_cast<size_t>(body_index_[bi])].gravity = on;
+        note(l.gazebo.gravity.line, "link '" + l.name + "': gravity " + (on ? "acts" : "does not act") + " on body '" +
+                                        ctx_.model.bodies[static_cast<size_t>(body_index_[bi])].key + "'");
+      } else if (on != (first->gazebo.gravity.value != 0)) {
+        ctx_.diag.warning(at(l.gazebo.gravity.line), "link '" + l.name + "': its <gazebo> gravity differs from link '" +
+                                                         first->name + "''s, lumped into the same body: '" +
+                                                         first->name + "''s is used");
+      }
+    }
+  }
+}
+
 void Import::addBodies() {
   body_index_.assign(plan_.bodies.size(), -1);
   for (size_t bi = 0; bi < plan_.bodies.size(); ++bi) {
@@ -286,7 +419,7 @@ void Import::addShapes(int li) {
     g.loc = at(s.line);
     // Its links collide with everything else but not with each other, unless asked (Gazebo's
     // self_collide, PyBullet's URDF_USE_SELF_COLLISION): CAD shapes of neighbours often overlap.
-    g.group = c_.get(kSelfCollision) ? -1 : group_;
+    g.group = selfCollides(ul) ? -1 : group_;
     if (s.kind == UrdfShape::Mesh) {
       g.mesh = meshOf(s);
       if (g.mesh < 0) continue;
@@ -302,7 +435,7 @@ void Import::addShapes(int li) {
       g.key = body >= 0 ? ctx_.model.bodies[static_cast<size_t>(body)].key : key;
       g.body = body;
       g.offset = where(s.origin);
-      g.material = material_;
+      g.material = linkMaterial(li);
       g.shape = hull ? GeomShape::ConvexHull : GeomShape::TriMesh;
       if (body >= 0) fixed_shapes_.push_back({static_cast<int>(ctx_.model.geoms.size()), scenePose(s.origin), li});
       ctx_.model.geoms.push_back(g);
@@ -311,7 +444,7 @@ void Import::addShapes(int li) {
     g.key = body >= 0 ? ctx_.model.bodies[static_cast<size_t>(body)].key : key;
     g.body = body;
     g.offset = where(s.origin);
-    g.material = material_;
+    g.material = linkMaterial(li);
     g.shape = s.kind == UrdfShape::Box ? GeomShape::Box
                                        : (s.kind == UrdfShape::Sphere ? GeomShape::Sphere : GeomShape::Cylinder);
     g.size = s.size;

@@ -1,13 +1,15 @@
 // Reading a URDF robot: urdfdom parses the values; pugixml reads the same text again for the line
-// of every element (urdfdom keeps none) and for what urdfdom drops without a word (unknown
-// elements and attributes, <transmission>, <gazebo>, <calibration>, <safety_controller>), which
-// become UrdfRobot::ignored, named once each.
+// of every element (urdfdom keeps none), for the <gazebo reference> tags Gazebo classic hands to
+// ODE (UrdfGazebo) and for what urdfdom drops without a word (unknown elements and attributes,
+// <transmission>, the rest of <gazebo>, <calibration>, <safety_controller>), which become
+// UrdfRobot::ignored, named once each.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <pugixml.hpp>
 #include <locale>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <unordered_map>
@@ -88,6 +90,10 @@ class Reader {
   bool readJoint(const pugi::xml_node& x, const urdf::Joint& u, const std::map<std::string, int>& links);
   bool resolveFile(const std::string& name, int line, const char* what, std::string* path);
   bool checkDepth(const pugi::xml_node& root);
+  bool readGazebo(const pugi::xml_node& g, const std::map<std::string, int>& links,
+                  const std::map<std::string, int>& joints);
+  bool gazeboNumber(const pugi::xml_node& tag, const std::string& what, double lo, bool lo_open, UrdfTag* out);
+  bool gazeboBool(const pugi::xml_node& tag, const std::string& what, bool invert, UrdfTag* out);
 
   const std::string& text_;
   std::string file_;
@@ -179,6 +185,7 @@ constexpr Known kKnown[] = {
     {"robot/joint/limit", "lower upper effort velocity"},
     {"robot/joint/dynamics", "damping friction"},
     {"robot/joint/mimic", "joint multiplier offset"},
+    {"robot/gazebo", "reference"},
 };
 
 // Elements URDF defines that simbob does not model, with the reason given once.
@@ -188,7 +195,6 @@ struct Unmodelled {
 };
 constexpr Unmodelled kUnmodelled[] = {
     {"transmission", "simbob models no transmissions; RCImportURDF's Drives puts a drive on every movable joint"},
-    {"gazebo", "Gazebo's extensions are not read"},
     {"calibration", "joint positions are zero at the URDF's zero configuration"},
     {"safety_controller", "simbob has no safety controllers; the <limit> is what stops a joint"},
 };
@@ -225,6 +231,7 @@ void Reader::walk(const pugi::xml_node& n, const std::string& path) {
     if (hasWord(known->attrs, a.name()) || name.rfind("xmlns", 0) == 0) continue;
     ignore(lineOf(n), "attribute '" + quoteInput(name) + "' of <" + n.name() + "> ignored");
   }
+  if (path == "robot/gazebo") return;  // its tags: readGazebo
   int shapes = 0;
   for (pugi::xml_node c : n.children()) {
     if (c.type() != pugi::node_element) continue;
@@ -262,6 +269,157 @@ int Reader::urdfdomLine(const std::string& message) const {
     if (!best && message.find(n) != std::string::npos && n.size() > 2) best = lineOf(c);
   }
   return best ? best : lineOf(doc_.document_element());
+}
+
+// --- <gazebo>: what Gazebo classic's URDF converter (sdformat's parser_urdf.cc) hands to ODE -----
+
+/// A tag's text as Gazebo reads it: its `value` attribute, or else its text, without blanks around.
+std::string gazeboText(const pugi::xml_node& tag) {
+  std::string t = tag.attribute("value") ? tag.attribute("value").value() : tag.child_value();
+  const size_t b = t.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return "";
+  return t.substr(b, t.find_last_not_of(" \t\r\n") - b + 1);
+}
+
+bool Reader::gazeboNumber(const pugi::xml_node& tag, const std::string& what, double lo, bool lo_open, UrdfTag* out) {
+  const std::string text = gazeboText(tag);
+  const std::optional<double> v = parseNumber(text);
+  const int line = lineOf(tag);
+  if (!v) {
+    error(line, what + ": <" + tag.name() + "> '" + quoteInput(text, 80) + "' is not a number");
+    return false;
+  }
+  if (!std::isfinite(*v) || (lo_open ? !(*v > lo) : !(*v >= lo))) {
+    error(line, what + ": <" + tag.name() + "> " + formatNumber(*v) + " must be finite and " +
+                    (lo_open ? "> " : ">= ") + formatNumber(lo));
+    return false;
+  }
+  *out = {line, *v};
+  return true;
+}
+
+bool Reader::gazeboBool(const pugi::xml_node& tag, const std::string& what, bool invert, UrdfTag* out) {
+  const std::string text = gazeboText(tag);
+  bool v;
+  if (equalsIgnoreCase(text, "true") || equalsIgnoreCase(text, "yes") || text == "1") {
+    v = true;
+  } else if (equalsIgnoreCase(text, "false") || equalsIgnoreCase(text, "no") || text == "0") {
+    v = false;
+  } else {
+    error(lineOf(tag), what + ": <" + tag.name() + "> '" + quoteInput(text, 80) + "' is not true or false");
+    return false;
+  }
+  *out = {lineOf(tag), (v != invert) ? 1.0 : 0.0};
+  return true;
+}
+
+/// One <gazebo> element. With reference="LINK": the tags Gazebo classic maps onto the link's ODE
+/// surface and body (docs/urdf.md, "Surfaces"); without reference: the robot's <self_collide>;
+/// every other tag is named once as ignored.
+bool Reader::readGazebo(const pugi::xml_node& g, const std::map<std::string, int>& links,
+                        const std::map<std::string, int>& joints) {
+  const pugi::xml_attribute ref = g.attribute("reference");
+  bool ok = true;
+  auto children = [&](auto&& each) {
+    for (pugi::xml_node c : g.children())
+      if (c.type() == pugi::node_element) each(c, std::string(c.name()));
+  };
+  if (!ref) {
+    children([&](const pugi::xml_node& c, const std::string& name) {
+      if (name == "self_collide") {
+        ok = gazeboBool(c, "robot '" + robot_->name + "'", false, &robot_->self_collide) && ok;
+      } else if (name == "selfCollide") {
+        ignore(lineOf(c),
+               "<gazebo> <selfCollide> without reference ignored: Gazebo classic applies it to a link "
+               "(<gazebo reference=\"LINK\">); <self_collide> applies to every link");
+      } else if (name == "static") {
+        ignore(lineOf(c), "<gazebo> <static> ignored: FixedBase fixes the root link to the world");
+      } else if (name == "plugin") {
+        ignore(lineOf(c),
+               "<gazebo> <plugin> ignored: simbob runs no Gazebo plug-ins (RCImportURDF's Drives puts "
+               "a drive on every movable joint)");
+      } else {
+        ignore(lineOf(c), "<gazebo> <" + quoteInput(name) + "> without reference ignored: not read by simbob");
+      }
+    });
+    return ok;
+  }
+  const std::string target = ref.value();
+  auto link = links.find(target);
+  if (link == links.end()) {
+    if (joints.count(target)) {
+      children([&](const pugi::xml_node& c, const std::string& name) {
+        ignore(lineOf(c), "<gazebo> <" + quoteInput(name) +
+                              "> of a joint ignored: simbob reads no joint tags of "
+                              "Gazebo");
+      });
+    } else {
+      diag_.warning({file_, lineOf(g)}, "<gazebo reference=\"" + quoteInput(target) +
+                                            "\"> names no link or joint of the robot: its tags are ignored");
+    }
+    return true;
+  }
+  UrdfLink& l = robot_->links[static_cast<size_t>(link->second)];
+  UrdfGazebo& gz = l.gazebo;
+  const std::string what = "link '" + l.name + "'";
+  children([&](const pugi::xml_node& c, const std::string& name) {
+    if (name == "mu1") {
+      ok = gazeboNumber(c, what, 0, false, &gz.mu1) && ok;
+    } else if (name == "mu2") {
+      ok = gazeboNumber(c, what, 0, false, &gz.mu2) && ok;
+    } else if (name == "kp") {
+      ok = gazeboNumber(c, what, 0, true, &gz.kp) && ok;
+    } else if (name == "kd") {
+      ok = gazeboNumber(c, what, 0, false, &gz.kd) && ok;
+    } else if (name == "minDepth") {
+      ok = gazeboNumber(c, what, 0, false, &gz.min_depth) && ok;
+    } else if (name == "maxVel") {
+      ok = gazeboNumber(c, what, 0, false, &gz.max_vel) && ok;
+    } else if (name == "maxContacts") {
+      UrdfTag t;
+      if (!gazeboNumber(c, what, 1, false, &t)) {
+        ok = false;
+      } else if (t.value != std::floor(t.value) || t.value > 1e6) {
+        error(t.line, what + ": <maxContacts> " + formatNumber(t.value) + " must be a whole number from 1 to 1000000");
+        ok = false;
+      } else {
+        gz.max_contacts = t;
+      }
+    } else if (name == "fdir1") {
+      std::string problem;
+      const std::string text = gazeboText(c);
+      const auto v = parseNumberList(text, &problem);
+      if (!v || v->size() != 3 || !std::isfinite((*v)[0]) || !std::isfinite((*v)[1]) || !std::isfinite((*v)[2])) {
+        error(lineOf(c), what + ": <fdir1> '" + quoteInput(text, 80) + "' must be three finite numbers");
+        ok = false;
+      } else {
+        gz.fdir1_tag = {lineOf(c), 0};
+        gz.fdir1 = {(*v)[0], (*v)[1], (*v)[2]};
+      }
+    } else if (name == "selfCollide") {
+      ok = gazeboBool(c, what, false, &gz.self_collide) && ok;
+    } else if (name == "gravity") {
+      ok = gazeboBool(c, what, false, &gz.gravity) && ok;
+    } else if (name == "turnGravityOff") {
+      ok = gazeboBool(c, what, true, &gz.gravity) && ok;
+    } else if (name == "material") {
+      ignore(lineOf(c),
+             "<gazebo> <material> ignored: Gazebo's material scripts are not read (a link's colour is "
+             "its URDF <material>)");
+    } else if (name == "plugin") {
+      ignore(lineOf(c),
+             "<gazebo> <plugin> ignored: simbob runs no Gazebo plug-ins (RCImportURDF's Drives puts a "
+             "drive on every movable joint)");
+    } else if (name == "sensor") {
+      ignore(lineOf(c),
+             "<gazebo> <sensor> ignored: Gazebo's sensors are not read (simbob's sensors go on the "
+             "link's key)");
+    } else {
+      ignore(lineOf(c), "<gazebo> <" + quoteInput(name) +
+                            "> of a link ignored: not one of the surface tags simbob reads (docs/urdf.md)");
+    }
+  });
+  return ok;
 }
 
 /// Refuses a tree deeper than kMaxUrdfDepth before urdfdom sees it: urdfdom frees its tree
@@ -600,6 +758,7 @@ std::shared_ptr<const UrdfRobot> Reader::read() {
       j.mimic = it->second;
     }
   }
+  for (pugi::xml_node g : root.children("gazebo")) ok = readGazebo(g, links, joints) && ok;
   if (model->getRoot()) robot_->root = links.count(model->getRoot()->name) ? links[model->getRoot()->name] : -1;
   std::vector<Missing> missing;
   for (const auto& [package, m] : missing_) missing.push_back(m);

@@ -138,6 +138,32 @@ turned = 2 * math.acos(min(1.0, abs(sum(a * b for a, b in zip(q0, q1)))))
 # The drive turns at the URDF's 1 rad/s to within 50 ms of the target and settles on it by 2 s.
 assert abs(turned - 1.0) < 1e-3, turned
 PY
+check "<gazebo reference>: check says what each surface tag does at its line, and names the rest as ignored"
+cat >caster.urdf <<'EOF'
+<robot name="caster">
+  <link name="base">
+    <inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+    <collision><geometry><sphere radius="0.05"/></geometry></collision>
+  </link>
+  <gazebo reference="base">
+    <mu1>0</mu1>
+    <mu2 value="0"/>
+    <kp>1e5</kp>
+    <material>Gazebo/Grey</material>
+  </gazebo>
+  <gazebo><plugin name="diff_drive" filename="libgazebo_ros_diff_drive.so"/></gazebo>
+</robot>
+EOF
+expect_status 0 "$SIMBOB" check caster.urdf
+expect_match "mu1" "$LAST_ERR" "^caster.urdf:7: note: link 'base': <mu1> 0: friction along ODE's first direction; a contact of its collisions takes the smaller of the two geoms' values \(Gazebo classic\), not the larger$"
+expect_match "mu2" "$LAST_ERR" "^caster.urdf:8: note: link 'base': <mu2> 0: friction across it"
+expect_match "kp" "$LAST_ERR" "^caster.urdf:9: note: link 'base': <kp> 100000 N/m, <kd> 1 N s/m \(not given: SDF's default\): its contacts' ERP 0.99 and CFM 0.0099 at the 0.001 s step"
+expect_match "material" "$LAST_ERR" "^caster.urdf:10: note: <gazebo> <material> ignored"
+expect_match "plugin" "$LAST_ERR" "^caster.urdf:12: note: <gazebo> <plugin> ignored: simbob runs no Gazebo plug-ins"
+sed 's|<mu1>0</mu1>|<mu1>none</mu1>|' caster.urdf >bad_caster.urdf
+expect_status 65 "$SIMBOB" check bad_caster.urdf
+expect_match "bad value" "$LAST_ERR" "^bad_caster.urdf:7: error: link 'base': <mu1> 'none' is not a number$"
+
 # scenes/kr5.xml (position drives holding and reaching) and scenes/drchubo.xml (dropped with
 # passive joints) are golden scenes: tests/cli/scenes.sh checks their motion, golden_regression
 # and golden_hwcaps their bytes.

@@ -104,8 +104,8 @@ TEST_CASE("urdf read: what urdfdom drops is named once each, with its first line
     <calibration rising="0"/><safety_controller k_velocity="1"/></joint>
   <link name="b"><inertial><mass value="1"/><inertia ixx="1" iyx="0" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
   <transmission name="t"/>
-  <gazebo reference="a"/>
-  <gazebo reference="b"/>
+  <gazebo reference="a"><material>Gazebo/Grey</material></gazebo>
+  <gazebo reference="b"><material>Gazebo/Red</material></gazebo>
 </robot>)",
                 d);
   INFO(errorText(d));
@@ -122,7 +122,8 @@ TEST_CASE("urdf read: what urdfdom drops is named once each, with its first line
                    "joint",
                    "10 x1 <transmission> ignored: simbob models no transmissions; RCImportURDF's Drives puts a drive "
                    "on every movable joint",
-                   "11 x2 <gazebo> ignored: Gazebo's extensions are not read",
+                   "11 x2 <gazebo> <material> ignored: Gazebo's material scripts are not read (a link's colour is "
+                   "its URDF <material>)",
                });
 }
 

@@ -86,9 +86,8 @@ void addSurfaceContacts(WorldImpl& im, dGeomID g1, dGeomID g2, const dContactGeo
   }
   Vec3 fd{0, 0, 0};
   if (fdir)
-    for (int r = 0; r < 3; ++r)
-      fd[static_cast<size_t>(r)] =
-          fdir_rot[r * 4] * (*fdir)[0] + fdir_rot[r * 4 + 1] * (*fdir)[1] + fdir_rot[r * 4 + 2] * (*fdir)[2];
+    for (size_t r = 0; r < 3; ++r)  // ODE's rotation: 3 rows of 4
+      fd[r] = fdir_rot[r * 4] * (*fdir)[0] + fdir_rot[r * 4 + 1] * (*fdir)[1] + fdir_rot[r * 4 + 2] * (*fdir)[2];
   // kp and kd: springs in series, dampers side by side; as ERP and CFM at the step size.
   double inv_kp = 0, kd = 0;
   for (const MaterialDef* m : {s1, s2})

@@ -157,7 +157,7 @@ EOF
 expect_status 0 "$SIMBOB" check caster.urdf
 expect_match "mu1" "$LAST_ERR" "^caster.urdf:7: note: link 'base': <mu1> 0: friction along ODE's first direction; a contact of its collisions takes the smaller of the two geoms' values \(Gazebo classic\), not the larger$"
 expect_match "mu2" "$LAST_ERR" "^caster.urdf:8: note: link 'base': <mu2> 0: friction across it"
-expect_match "kp" "$LAST_ERR" "^caster.urdf:9: note: link 'base': <kp> 100000 N/m, <kd> 1 N s/m \(not given: SDF's default\): its contacts' ERP 0.99 and CFM 0.0099 at the 0.001 s step"
+expect_match "kp" "$LAST_ERR" "^caster.urdf:9: note: link 'base': <kp> 1e\\+05 N/m, <kd> 1 N s/m \(not given: SDF's default\): its contacts' ERP 0.99 and CFM 0.0099 at the 0.001 s step"
 expect_match "material" "$LAST_ERR" "^caster.urdf:10: note: <gazebo> <material> ignored"
 expect_match "plugin" "$LAST_ERR" "^caster.urdf:12: note: <gazebo> <plugin> ignored: simbob runs no Gazebo plug-ins"
 sed 's|<mu1>0</mu1>|<mu1>none</mu1>|' caster.urdf >bad_caster.urdf

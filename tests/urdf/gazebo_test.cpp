@@ -53,15 +53,16 @@ Model compileBall(TempDir& dir, double z, const std::string& tags) {
   return m;
 }
 
-/// The usual ROS diff-drive: a 4 kg base, two driven wheels (r = 0.1 m, 0.34 m apart) and a
-/// fixed sphere caster 0.2 m behind them, with `caster` in the caster's <gazebo reference>.
+/// The usual ROS diff-drive: a 4 kg base (its centre of mass 0.1 m behind the axle: the caster
+/// carries half of it), two driven wheels (r = 0.1 m, 0.34 m apart) and a fixed sphere caster
+/// 0.2 m behind them, with `caster` in the caster's <gazebo reference>.
 std::string diffDrive(const std::string& caster) {
   const std::string wheel = R"(<inertial><mass value="0.5"/>
       <inertia ixx="0.0013" ixy="0" ixz="0" iyy="0.0025" iyz="0" izz="0.0013"/></inertial>
     <collision><origin rpy="1.5707963267948966 0 0"/><geometry><cylinder radius="0.1" length="0.04"/></geometry></collision>)";
   return std::string(R"(<robot name="bot">
   <link name="base">
-    <inertial><mass value="4"/><inertia ixx="0.05" ixy="0" ixz="0" iyy="0.06" iyz="0" izz="0.1"/></inertial>
+    <inertial><origin xyz="-0.1 0 0.05"/><mass value="4"/><inertia ixx="0.05" ixy="0" ixz="0" iyy="0.06" iyz="0" izz="0.1"/></inertial>
     <collision><origin xyz="-0.1 0 0.05"/><geometry><box size="0.4 0.26 0.06"/></geometry></collision>
   </link>
   <joint name="left_wheel" type="continuous"><parent link="base"/><child link="left"/>
@@ -235,12 +236,27 @@ TEST_CASE("urdf gazebo: kp and kd make a spring: a resting sphere sinks m g / kp
 }
 
 TEST_CASE("urdf gazebo: minDepth leaves that much penetration alone", "[urdf][gazebo]") {
-  TempDir dir;
-  Model m = compileBall(dir, 0.1, "<minDepth>0.005</minDepth>");
-  auto sim = simulate(m);
-  sim->runUntil(2.0);
-  // ERP 0.2 pushes out what is deeper than 5 mm; at rest it lags by g h^2 / ERP = 4.9e-5 m.
-  CHECK(sim->world().body(0).pose.p[1] == Approx(0.1 - 0.005 - kG * 1e-6 / 0.2).margin(1e-5));
+  for (bool tag : {true, false}) {
+    CAPTURE(tag);
+    const std::string tags = tag ? "<minDepth>0.005</minDepth>" : "<mu1>0.5</mu1>";
+    {
+      // 3 mm inside: ODE keeps the contact from closing further and, within 5 mm, pushes out
+      // nothing; without the tag it is pushed out to the surface. What is left is ERP's 0.8^steps
+      // and the contact's softness (CFM 1e-10 at 1 ms: m g CFM / h = 1e-6 m).
+      TempDir dir;
+      auto sim = simulate(compileBall(dir, 0.097, tags));
+      sim->runUntil(2.0);
+      CHECK(sim->world().body(0).pose.p[1] == Approx(tag ? 0.097 : 0.1).margin(1e-5));
+    }
+    {
+      // 8 mm inside: the first step pushes out at ERP * (depth - minDepth) / h = 0.6 m/s (without
+      // the tag 0.2 * 0.008 / 0.001 = 1.6 m/s), the contact's target velocity, to its softness.
+      TempDir dir;
+      auto sim = simulate(compileBall(dir, 0.092, tags));
+      sim->step();
+      CHECK(sim->world().body(0).lin_vel[1] == Approx(tag ? 0.6 : 1.6).margin(1e-6));
+    }
+  }
 }
 
 TEST_CASE("urdf gazebo: maxVel bounds the push-out of a sphere started 2 cm inside the ground", "[urdf][gazebo]") {

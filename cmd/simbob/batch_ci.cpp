@@ -106,6 +106,7 @@ int failureArtifacts(const Job& j, const BatchArgs& a, const Common& common, con
   if (j.comparison && j.comparison->first_divergence) {
     PlotOptions opts;
     opts.bodies = {j.comparison->first_divergence->body};
+    opts.rotation = true;
     opts.title = name + ": body " + opts.bodies[0] + " (solid) against its golden run (dashed)";
     if (plotTrajectory(actual, &golden, opts, (dir / "plot.png").string(), &err)) {
       c->artifacts.push_back({"plot", (dir / "plot.png").string(), name + "/plot.png"});

@@ -144,6 +144,7 @@ void defineOutputCommands(CLI::App& app, Invocation& in) {
   plot->add_option("--golden", pa.golden, "Golden trajectory drawn dashed");
   plot->add_option("--bodies", pa.bodies, "Comma-separated body keys (default: all, at most 8)");
   plot->add_option("--title", pa.title, "Plot title");
+  plot->add_flag("--rotation", pa.rotation, "Add a panel: each body's rotation from its first orientation (rad)");
   plot->add_option("--out", pa.out, "Output .png or .svg")->required();
   plot->add_option("--x", pa.x, "With --y: TRAJ.csv is a sweep table; plot column --y against column --x");
   plot->add_option("--y", pa.y, "With --x: the metric column of a sweep table");

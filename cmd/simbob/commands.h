@@ -110,7 +110,8 @@ int viewPage(const ViewPageArgs& a, const Common& common, const Trajectory* actu
 
 struct PlotArgs {
   std::string trajectory, golden, out, bodies, title;
-  std::string x, y;  ///< a sweep table's columns: metric y against parameter x
+  std::string x, y;       ///< a sweep table's columns: metric y against parameter x
+  bool rotation = false;  ///< a fourth panel: each body's rotation from its first orientation
 };
 int cmdPlot(const PlotArgs& a, const Common& common);
 

@@ -131,8 +131,9 @@ int cmdCompare(const CompareArgs& a, const Common& common) {
 
 // `simbob plot TABLE --x PARAM --y METRIC`: one metric of a gathered sweep against a parameter.
 static int plotSweepTable(const PlotArgs& a) {
-  if (a.x.empty() || a.y.empty() || !a.golden.empty()) {
-    g_log.error({ErrorKind::InvalidInput, {}, "a sweep table plot needs both --x and --y (and no --golden)"});
+  if (a.x.empty() || a.y.empty() || !a.golden.empty() || a.rotation) {
+    g_log.error(
+        {ErrorKind::InvalidInput, {}, "a sweep table plot needs both --x and --y (and no --golden or --rotation)"});
     return kExitUsage;
   }
   std::string text, reason;
@@ -177,6 +178,7 @@ int cmdPlot(const PlotArgs& a, const Common& common) {
   if (!a.golden.empty() && !readOrReport(a.golden, &golden, &code)) return code;
   PlotOptions opts;
   opts.title = a.title.empty() ? a.trajectory : a.title;
+  opts.rotation = a.rotation;
   size_t start = 0;
   while (start < a.bodies.size()) {
     size_t comma = a.bodies.find(',', start);

@@ -290,7 +290,8 @@ class KeyIndex {
 
 /// A whole scene: components in document order (imports appended as they are read).
 struct Scene {
-  std::string path;  ///< the scene file as given
+  std::string path;        ///< the scene file as given
+  bool bare_urdf = false;  ///< made around a bare .urdf file (`simbob run robot.urdf`)
   std::vector<Component> comps;
   int settings = -1;             ///< SceneSettings struct component
   std::vector<Link> cameras;     ///< CameraList

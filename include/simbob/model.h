@@ -55,6 +55,9 @@ struct BodyDef {
   Vec3 com{0, 0, 0};                        ///< centre of mass in the body frame, m (offset geoms move it)
   Mat3 inertia{1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< kg m^2 about the centre of mass, body axes
   bool gravity = true;                      ///< false: gravity does not act on it (a URDF link's <gravity>)
+  /// Where an imported file writes this body's moment of inertia (a URDF link's <inertia>), for
+  /// advice that names it; empty for a body of the scene format.
+  SourceLoc inertia_loc;
 };
 
 enum class GeomShape : uint8_t {
@@ -399,6 +402,9 @@ struct SolverSettings {
   int iterations = 20;           ///< QuickStep iterations
   int max_contacts = 4;          ///< contact points per colliding geom pair
   bool quickstep = true;         ///< false: dWorldStep (exact LCP)
+  /// Why the solver is what it is when the scene did not say: "" (the scene's Solver, or its
+  /// default), or the rule a bare URDF run follows (docs/urdf.md, "The solver of a bare run").
+  std::string solver_rule;
   SpaceKind space = SpaceKind::Hash;
   bool auto_disable = false;  ///< let ODE disable resting bodies (changes trajectories slightly)
   int threads = 1;            ///< threads a step may use (Threads; --threads overrides); same bytes for any

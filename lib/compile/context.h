@@ -326,5 +326,8 @@ int lowerModelMesh(CompileContext& ctx, const Component& model);
 /// models.cpp: appends the visuals of a body's model tree to Model::visuals: `body` the
 /// Model::bodies index (frame = identity) or -1 with `frame` the static body's global frame.
 void lowerVisuals(CompileContext& ctx, const Link& root, int body, const Transform& frame, const std::string& key);
+/// lint.cpp: the first body that QuickStep cannot hold at its hinge or ball joint (an inertia far
+/// below m d^2: lint's "inertia ratio" warning), or -1.
+int firstBodyQuickStepCannotHold(const Model& model);
 
 }  // namespace simbob

@@ -249,6 +249,26 @@ class CellGrid {
   std::vector<Slot> table_;
 };
 
+/// Calls f(joint, body, d, smallest, reference) for each body at distance d from a hinge or ball
+/// joint whose smallest moment of inertia is below kInertiaRatio of m d^2 (reference).
+template <class F>
+void forEachUnholdable(const Model& m, F f) {
+  for (const JointDef& j : m.joints) {
+    if (j.kind != JointKind::Hinge && j.kind != JointKind::BallSocket) continue;
+    for (int bi : {j.body1, j.body2}) {
+      if (bi < 0) continue;
+      const BodyDef& b = m.bodies[static_cast<size_t>(bi)];
+      const Vec3 com = add(b.pose.p, rotate(b.pose.q, b.com));
+      const double d = norm(sub(com, j.anchor));
+      const Eigen::Matrix3d inertia = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(b.inertia.data());
+      const double smallest =
+          Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia, Eigen::EigenvaluesOnly).eigenvalues()[0];
+      const double reference = b.mass * d * d;
+      if (reference > 0 && smallest < kInertiaRatio * reference) f(j, bi, d, smallest, reference);
+    }
+  }
+}
+
 class Linter {
  public:
   Linter(const Model& m, Diagnostics& d, double dt) : m_(m), d_(d), dt_(dt > 0 ? dt : m.settings.max_time_step) {}
@@ -397,28 +417,23 @@ class Linter {
   }
 
   // A body swinging at distance d from a joint with an inertia far below m d^2 makes the joint's
-  // effective-mass matrix nearly singular: QuickStep then lets the joint drift apart.
+  // effective-mass matrix nearly singular: QuickStep then lets the joint drift apart (Step, an
+  // exact solve, holds it: no warning there).
   void inertiaRatios() {
-    for (const JointDef& j : m_.joints) {
-      if (j.kind != JointKind::Hinge && j.kind != JointKind::BallSocket) continue;
-      for (int bi : {j.body1, j.body2}) {
-        if (bi < 0) continue;
-        const BodyDef& b = body(bi);
-        Vec3 com = add(b.pose.p, rotate(b.pose.q, b.com));
-        double d = norm(sub(com, j.anchor));
-        Eigen::Matrix3d inertia = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(b.inertia.data());
-        double smallest =
-            Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia, Eigen::EigenvaluesOnly).eigenvalues()[0];
-        double reference = b.mass * d * d;
-        if (reference > 0 && smallest < kInertiaRatio * reference)
-          warn("inertia ratio", b.loc, {{bi}, {jointIndex(j)}},
-               "body '" + b.key + "' (" + formatApprox(b.mass) + " kg) sits " + formatApprox(d) + " m from joint '" +
-                   j.key + "' but its smallest moment of inertia is " + formatApprox(smallest) + " kg m^2, " +
-                   formatApprox(smallest / reference) + " of m*d^2 (below " + formatApprox(kInertiaRatio) +
-                   "): the solver cannot hold the joint together; give the body a realistic inertia "
-                   "(RCInertiaByGeom computes it from the geoms) or use Solver Step");
-      }
-    }
+    if (!m_.settings.quickstep) return;
+    forEachUnholdable(m_, [&](const JointDef& j, int bi, double d, double smallest, double reference) {
+      const BodyDef& b = body(bi);
+      const std::string advice =
+          b.inertia_loc.line > 0
+              ? "give the link a realistic <inertia> (" + b.inertia_loc.file.str() + ":" +
+                    std::to_string(b.inertia_loc.line) + ") or step with Solver Step (--set SceneSettings.Solver=Step)"
+              : "give the body a realistic inertia (RCInertiaByGeom computes it from the geoms) or use Solver Step";
+      warn("inertia ratio", b.loc, {{bi}, {jointIndex(j)}},
+           "body '" + b.key + "' (" + formatApprox(b.mass) + " kg) sits " + formatApprox(d) + " m from joint '" +
+               j.key + "' but its smallest moment of inertia is " + formatApprox(smallest) + " kg m^2, " +
+               formatApprox(smallest / reference) + " of m*d^2 (below " + formatApprox(kInertiaRatio) +
+               "): the solver cannot hold the joint together; " + advice);
+    });
   }
 
   // The fastest gravity pendulum formed by a hinge or ball joint and its child body.
@@ -627,6 +642,14 @@ class Linter {
 }  // namespace
 
 void lintModel(const Model& model, Diagnostics& diag, double dt) { Linter(model, diag, dt).run(); }
+
+int firstBodyQuickStepCannotHold(const Model& model) {
+  int first = -1;
+  forEachUnholdable(model, [&](const JointDef&, int bi, double, double, double) {
+    if (first < 0) first = bi;
+  });
+  return first;
+}
 
 double recommendedStep(const Model& model) {
   Diagnostics unused;

@@ -394,6 +394,10 @@ void Import::addBodies() {
     d.mass = b.mass;
     d.com = b.com;  // body-frame quantities stay in the link's own (URDF) axes
     d.inertia = b.inertia;
+    // The <inertia> to name in advice: the root link's, else the first lumped link's.
+    for (int li : b.links)
+      if (link(li).has_inertial && (li == b.root || !d.inertia_loc.line))
+        d.inertia_loc = at(link(li).inertial.inertia_line);
     body_index_[bi] = static_cast<int>(ctx_.model.bodies.size());
     ctx_.model.bodies.push_back(d);
     ctx_.recordBody(d.key, body_index_[bi]);

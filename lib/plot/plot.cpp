@@ -17,6 +17,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <array>
 #include <vector>
 
 namespace simbob {
@@ -26,7 +27,8 @@ constexpr int kMinWidth = 200;
 constexpr int kMinHeight = 300;
 constexpr int kMaxSide = 10000;
 constexpr int kPanelHeight = 300;  // default height per panel when PlotOptions::height == 0
-constexpr int kPanels = 3;
+constexpr int kPanels = 4;         // x, y, z and (PlotOptions::rotation) the rotation panel
+constexpr int kRotation = 3;       // the component of the rotation panel
 
 // Layout, in pixels.
 constexpr double kOuterPad = 16;     // image edge to title / legend
@@ -48,7 +50,7 @@ constexpr size_t kMaxLabelChars = 48;  // body keys longer than this are shorten
 constexpr double kMinBoxSide = 30;     // smallest usable panel box
 constexpr double kPi = 3.14159265358979323846;
 
-constexpr const char* kPanelTitles[kPanels] = {"x [m]", "y [m]", "z [m]"};
+constexpr const char* kPanelTitles[kPanels] = {"x [m]", "y [m]", "z [m]", "rotation from the first orientation [rad]"};
 
 enum class Format { Png, Svg };
 
@@ -65,9 +67,13 @@ struct Axis {
 };
 
 /// One plotted body: its index in the actual and (if any) the golden trajectory.
+using Orientation = std::array<double, 4>;  // w x y z
+
 struct Series {
   size_t actual = 0;
   size_t golden = SIZE_MAX;
+  Orientation actual_first{1, 0, 0, 0};  // each trajectory's first orientation of the body
+  Orientation golden_first{1, 0, 0, 0};
   PlotColor color;
   std::string label;
 };
@@ -258,11 +264,36 @@ std::vector<int32_t> sampleColumns(const Trajectory& tr, double t0, double t1, d
   return cols;
 }
 
+/// The angle (rad, 0..pi) of the rotation from `first` to the orientation of row p (x y z w x y z):
+/// 2 atan2(|v|, |w|) of first^-1 * q, accurate for small angles too.
+double rotationFrom(const Orientation& first, const double* p) {
+  const double aw = first[0], ax = -first[1], ay = -first[2], az = -first[3];
+  const double bw = p[3], bx = p[4], by = p[5], bz = p[6];
+  const double w = aw * bw - ax * bx - ay * by - az * bz;
+  const double x = aw * bx + ax * bw + ay * bz - az * by;
+  const double y = aw * by - ax * bz + ay * bw + az * bx;
+  const double z = aw * bz + ax * by - ay * bx + az * bw;
+  return 2 * std::atan2(std::sqrt(x * x + y * y + z * z), std::fabs(w));
+}
+
+/// Component comp of a row: x, y, z, or (kRotation) the rotation from `first`.
+double componentOf(const double* p, int comp, const Orientation& first) {
+  return comp == kRotation ? rotationFrom(first, p) : p[comp];
+}
+
+/// The first orientation of body b in tr (identity when it has no row).
+Orientation firstOrientation(const Trajectory& tr, size_t b) {
+  for (size_t s = 0; s < tr.times.size(); ++s)
+    if (const double* p = tr.pose(s, b)) return {p[3], p[4], p[5], p[6]};
+  return {1, 0, 0, 0};
+}
+
 /// Adds one component of one body as sub-paths (a break at every missing row), keeping per pixel
 /// column only the first, lowest, highest and last sample so long trajectories stay cheap to
 /// draw while spikes survive. Isolated samples are collected in `dots`.
-void addSeriesPath(cairo_t* cr, const Trajectory& tr, size_t body, int comp, const std::vector<int32_t>& cols,
-                   const Mapper& m, std::vector<size_t>* run, std::vector<size_t>* dots) {
+void addSeriesPath(cairo_t* cr, const Trajectory& tr, size_t body, int comp, const Orientation& from,
+                   const std::vector<int32_t>& cols, const Mapper& m, std::vector<size_t>* run,
+                   std::vector<size_t>* dots) {
   run->clear();
   bool open = false;  // a column bucket is being filled
   int32_t col = 0;
@@ -286,7 +317,7 @@ void addSeriesPath(cairo_t* cr, const Trajectory& tr, size_t body, int comp, con
       for (size_t i = 0; i < run->size(); ++i) {
         const size_t s = (*run)[i];
         const double px = m.x(tr.times[s]);
-        const double py = m.y(tr.pose(s, body)[comp]);
+        const double py = m.y(componentOf(tr.pose(s, body), comp, from));
         if (i == 0) {
           cairo_move_to(cr, px, py);
         } else {
@@ -303,7 +334,7 @@ void addSeriesPath(cairo_t* cr, const Trajectory& tr, size_t body, int comp, con
       emitRun();
       continue;
     }
-    const double v = p[comp];
+    const double v = componentOf(p, comp, from);
     if (!open || cols[s] != col) {
       flushBucket();
       open = true;
@@ -326,11 +357,12 @@ void addSeriesPath(cairo_t* cr, const Trajectory& tr, size_t body, int comp, con
 }
 
 /// Strokes one series (solid or dashed) and marks its isolated samples with dots.
-void drawSeries(cairo_t* cr, const Trajectory& tr, size_t body, int comp, const std::vector<int32_t>& cols,
-                const Mapper& m, PlotColor color, bool dashed, std::vector<size_t>* run) {
+void drawSeries(cairo_t* cr, const Trajectory& tr, size_t body, int comp, const Orientation& first,
+                const std::vector<int32_t>& cols, const Mapper& m, PlotColor color, bool dashed,
+                std::vector<size_t>* run) {
   std::vector<size_t> dots;
   cairo_new_path(cr);
-  addSeriesPath(cr, tr, body, comp, cols, m, run, &dots);
+  addSeriesPath(cr, tr, body, comp, first, cols, m, run, &dots);
   setColor(cr, color);
   cairo_set_line_width(cr, dashed ? kGoldenWidth : kLineWidth);
   if (dashed) cairo_set_dash(cr, kDash, 2, 0);
@@ -339,7 +371,7 @@ void drawSeries(cairo_t* cr, const Trajectory& tr, size_t body, int comp, const 
   for (size_t s : dots) {
     const double r = dashed ? 2.5 : 3.0;
     cairo_new_sub_path(cr);
-    cairo_arc(cr, m.x(tr.times[s]), m.y(tr.pose(s, body)[comp]), r, 0, 2 * kPi);
+    cairo_arc(cr, m.x(tr.times[s]), m.y(componentOf(tr.pose(s, body), comp, first)), r, 0, 2 * kPi);
   }
   cairo_fill(cr);
 }
@@ -368,10 +400,11 @@ struct Scene {
   std::vector<Series> series;
   std::string title;
   double t_lo = 0, t_hi = 1;
-  double v_lo[kPanels] = {0, 0, 0};
-  double v_hi[kPanels] = {0, 0, 0};
-  int panels = kPanels;
-  std::string titles[kPanels] = {kPanelTitles[0], kPanelTitles[1], kPanelTitles[2]};
+  double v_lo[kPanels] = {0, 0, 0, 0};
+  double v_hi[kPanels] = {0, 0, 0, 0};
+  int panels = 3;
+  int comps[kPanels] = {0, 1, 2, kRotation};  // the component each panel shows
+  std::string titles[kPanels] = {kPanelTitles[0], kPanelTitles[1], kPanelTitles[2], kPanelTitles[3]};
   std::string time_label = "time [s]";
 };
 
@@ -455,11 +488,11 @@ void drawPanel(cairo_t* cr, const Scene& sc, int p, const Mapper& m, const Axis&
   if (sc.golden) {
     for (const Series& s : sc.series) {
       if (s.golden == SIZE_MAX) continue;
-      drawSeries(cr, *sc.golden, s.golden, p, cols->golden, m, s.color, true, &cols->run);
+      drawSeries(cr, *sc.golden, s.golden, sc.comps[p], s.golden_first, cols->golden, m, s.color, true, &cols->run);
     }
   }
   for (const Series& s : sc.series) {
-    drawSeries(cr, *sc.actual, s.actual, p, cols->actual, m, s.color, false, &cols->run);
+    drawSeries(cr, *sc.actual, s.actual, sc.comps[p], s.actual_first, cols->actual, m, s.color, false, &cols->run);
   }
   cairo_restore(cr);
 
@@ -602,14 +635,15 @@ std::string renderToBytes(const Scene& sc, Format format, int width, int height,
   return format == Format::Svg ? normalizeSvgIds(bytes) : bytes;
 }
 
-/// Extends [lo, hi] of each panel by body b's positions in tr.
-void extendRanges(const Trajectory& tr, size_t b, double* lo, double* hi) {
+/// Extends [lo, hi] of each component by body b's rows in tr.
+void extendRanges(const Trajectory& tr, size_t b, const Orientation& first, double* lo, double* hi) {
   for (size_t s = 0; s < tr.times.size(); ++s) {
     const double* p = tr.pose(s, b);
     if (!p) continue;
     for (int c = 0; c < kPanels; ++c) {
-      lo[c] = std::min(lo[c], p[c]);
-      hi[c] = std::max(hi[c], p[c]);
+      const double v = componentOf(p, c, first);
+      lo[c] = std::min(lo[c], v);
+      hi[c] = std::max(hi[c], v);
     }
   }
 }
@@ -675,11 +709,12 @@ bool cairoPlotTrajectory(const Trajectory& actual, const Trajectory* golden, con
   }
 
   const int width = options.width;
-  if (options.panels < 1 || options.panels > kPanels) {
+  if (options.panels < 1 || options.panels > 3) {
     setError(err, ErrorKind::InvalidInput, "", "plot panels must be 1 to 3");
     return false;
   }
-  const int height = options.height == 0 ? kPanelHeight * options.panels : options.height;
+  const int panels = options.panels + (options.rotation ? 1 : 0);
+  const int height = options.height == 0 ? kPanelHeight * panels : options.height;
   if (width < kMinWidth || width > kMaxSide || height < kMinHeight || height > kMaxSide) {
     setError(err, ErrorKind::InvalidInput, "",
              "plot size " + std::to_string(width) + "x" + std::to_string(height) + " out of range (width " +
@@ -701,9 +736,13 @@ bool cairoPlotTrajectory(const Trajectory& actual, const Trajectory* golden, con
   sc.actual = &actual;
   sc.golden = (golden && golden->sampleCount() > 0) ? golden : nullptr;
   sc.title = displayText(options.title.empty() ? "trajectory" : options.title, 200) + note;
-  sc.panels = options.panels;
-  for (size_t p = 0; p < options.panel_titles.size() && p < static_cast<size_t>(kPanels); ++p)
+  sc.panels = panels;
+  for (size_t p = 0; p < options.panel_titles.size() && p < 3; ++p)
     sc.titles[p] = displayText(options.panel_titles[p], kMaxLabelChars);
+  if (options.rotation) {  // after the position panels
+    sc.comps[options.panels] = kRotation;
+    sc.titles[options.panels] = kPanelTitles[kRotation];
+  }
   if (!options.time_label.empty()) sc.time_label = displayText(options.time_label, kMaxLabelChars);
   std::unordered_map<std::string, size_t> golden_index;
   if (sc.golden) golden_index = bodyIndex(*golden);
@@ -715,12 +754,14 @@ bool cairoPlotTrajectory(const Trajectory& actual, const Trajectory* golden, con
     s.actual = selected[i];
     s.color = plotColor(i);
     s.label = displayText(actual.bodies[s.actual], kMaxLabelChars);
-    extendRanges(actual, s.actual, lo, hi);
+    s.actual_first = firstOrientation(actual, s.actual);
+    extendRanges(actual, s.actual, s.actual_first, lo, hi);
     if (sc.golden) {
       const auto it = golden_index.find(actual.bodies[s.actual]);
       if (it != golden_index.end()) {
         s.golden = it->second;
-        extendRanges(*golden, s.golden, lo, hi);
+        s.golden_first = firstOrientation(*golden, s.golden);
+        extendRanges(*golden, s.golden, s.golden_first, lo, hi);
       } else {
         s.label += " (no golden)";
       }
@@ -730,9 +771,9 @@ bool cairoPlotTrajectory(const Trajectory& actual, const Trajectory* golden, con
   // Beyond this an axis cannot span the data (hi - lo, the padding and the ticks overflow): say
   // so rather than draw an empty panel.
   constexpr double kMaxPlotMagnitude = 1e300;
-  const char* const names[kPanels] = {"x", "y", "z"};
-  for (int c = 0; c < sc.panels; ++c)
-    if (std::fabs(lo[c]) > kMaxPlotMagnitude || std::fabs(hi[c]) > kMaxPlotMagnitude) {
+  const char* const names[kPanels] = {"x", "y", "z", "rotation"};
+  for (int p = 0; p < sc.panels; ++p)
+    if (const int c = sc.comps[p]; std::fabs(lo[c]) > kMaxPlotMagnitude || std::fabs(hi[c]) > kMaxPlotMagnitude) {
       setError(err, ErrorKind::InvalidInput, "",
                std::string("cannot plot ") + names[c] + " values from " + formatNumber(lo[c]) + " to " +
                    formatNumber(hi[c]) + ": a plot axis spans at most -1e300 to 1e300");
@@ -746,10 +787,11 @@ bool cairoPlotTrajectory(const Trajectory& actual, const Trajectory* golden, con
                  ": a plot axis spans at most -1e300 to 1e300");
     return false;
   }
-  for (int c = 0; c < kPanels; ++c) {
+  for (int p = 0; p < sc.panels; ++p) {
+    const int c = sc.comps[p];
     padRange(&lo[c], &hi[c], 0.05);
-    sc.v_lo[c] = lo[c];
-    sc.v_hi[c] = hi[c];
+    sc.v_lo[p] = lo[c];
+    sc.v_hi[p] = hi[c];
   }
   // Time spans both trajectories (times are increasing, so the ends suffice).
   sc.t_lo = actual.times.front();

@@ -526,6 +526,26 @@ bool isConnection(Family target) {
          target == Family::Controller;
 }
 
+// A Ref IMPORTKEY.JOINT that names no component may name a URDF joint that got no drive: say
+// why ("" when it names none).
+std::string urdfJointWithoutDrive(const Scene& scene, const std::string& ref) {
+  for (const auto& [index, robot] : scene.urdf) {
+    const std::string& key = scene.at(index).qkey;
+    if (ref.size() <= key.size() + 1 || ref.compare(0, key.size(), key) != 0 || ref[key.size()] != '.') continue;
+    const std::string name = ref.substr(key.size() + 1);
+    for (const UrdfJoint& j : robot->joints) {
+      if (urdfKey(j.name) != name) continue;
+      const std::string joint = "names joint '" + quoteInput(j.name) + "' of URDF robot '" + key + "', ";
+      if (j.mimic >= 0)
+        return joint + "a mimic joint: it has no drive (it follows joint '" +
+               quoteInput(robot->joints[static_cast<size_t>(j.mimic)].name) + "'; command that one)";
+      if (!urdfJointDriven(j)) return joint + "which does not move: it has no drive";
+      return joint + "which has no drive: RCImportURDF '" + key + "' has Drives none";
+    }
+  }
+  return "";
+}
+
 void resolveRefs(Scene& scene, Diagnostics& diag) {
   std::vector<std::string> keys;  // for "did you mean", made on the first unknown Ref
   for (size_t ci = 0; ci < scene.comps.size(); ++ci) {
@@ -538,6 +558,11 @@ void resolveRefs(Scene& scene, Diagnostics& diag) {
         if (target_index < 0) {
           // In key order, so that the nearest of equals is always the same.
           if (keys.empty()) keys = scene.sortedKeys();
+          const std::string why = urdfJointWithoutDrive(scene, l.ref.str());
+          if (!why.empty()) {
+            diag.error(l.loc, c.type->name + " '" + c.qkey + "': Ref '" + l.ref + "' " + why);
+            return;
+          }
           std::string near = didYouMean(l.ref.str(), keys);
           diag.error(l.loc, c.type->name + " '" + c.qkey + "': Ref '" + l.ref + "' names no component" +
                                 (near.empty() ? "" : " (did you mean '" + near + "'?)"));
@@ -655,6 +680,7 @@ bool loadFromText(std::string text, const std::string& name, Format format, cons
     b.preload(std::filesystem::path(name).lexically_normal().string(), text);
     made = urdfScene(name, text);
     text = made;
+    scene->bare_urdf = true;
   } else {
     b.addFile(name, text);
   }

@@ -59,6 +59,11 @@ nlohmann::ordered_json runSummary(const Model& model, const RunResult& r, const 
   summary["space"] = kSpaceNames[static_cast<int>(model.settings.space)];
   summary["auto_disable"] = model.settings.auto_disable;
   summary["max_contacts"] = model.settings.max_contacts;
+  // The solver changes the bytes: which one stepped, and what chose it.
+  summary["solver"] = {{"type", model.settings.quickstep ? "quickstep" : "step"},
+                       {"iterations", model.settings.quickstep ? nlohmann::ordered_json(model.settings.iterations)
+                                                               : nlohmann::ordered_json(nullptr)},
+                       {"chosen_by", model.settings.solver_rule.empty() ? "scene" : model.settings.solver_rule}};
   summary["overrides"] = nlohmann::ordered_json::array();
   for (const std::string& o : in.overrides) summary["overrides"].push_back(o);
   summary["units"] = {{"time", "s"}, {"position", "m"}, {"orientation", "unit quaternion w x y z"}};

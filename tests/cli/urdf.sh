@@ -164,6 +164,32 @@ sed 's|<mu1>0</mu1>|<mu1>none</mu1>|' caster.urdf >bad_caster.urdf
 expect_status 65 "$SIMBOB" check bad_caster.urdf
 expect_match "bad value" "$LAST_ERR" "^bad_caster.urdf:7: error: link 'base': <mu1> 'none' is not a number$"
 
+check "a bare point-mass pendulum: Step by the bare-run rule (said by check, in the summary); QuickStep by --set, told what to do"
+cat >pm.urdf <<'EOF'
+<robot name="pm">
+  <link name="world"/>
+  <joint name="hinge" type="continuous">
+    <parent link="world"/><child link="bob"/><origin xyz="0 0 2" rpy="0 0.5 0"/><axis xyz="0 1 0"/>
+  </joint>
+  <link name="bob">
+    <inertial><origin xyz="0 0 -0.5"/><mass value="1"/>
+      <inertia ixx="1e-6" ixy="0" ixz="0" iyy="1e-6" iyz="0" izz="1e-6"/></inertial>
+  </link>
+</robot>
+EOF
+expect_status 0 "$SIMBOB" check pm.urdf
+expect_match "the rule, said" "$LAST_ERR" \
+  "^pm.urdf:1: note: a bare URDF run steps with Solver Step, ODE's exact solver \(1 moving bodies, at most 16\); --set SceneSettings.Solver=QuickStep chooses the other$"
+expect_status 0 "$SIMBOB" run pm.urdf --duration 3 --out pm.csv -q
+python3 - pm.json <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))["solver"]
+assert s == {"type": "step", "iterations": None, "chosen_by": "bare URDF run: 1 moving bodies, at most 16: Step"}, s
+PY
+expect_status 1 "$SIMBOB" run pm.urdf --duration 3 --out pm_quick.csv -q --set SceneSettings.Solver=QuickStep
+expect_match "what to do" "$LAST_ERR" \
+  "^pm.urdf:3: error: joint 'pm.hinge' came apart at t=.*; likely cause: body 'pm.bob' .*give the link a realistic <inertia> \(pm.urdf:8\) or step with Solver Step \(--set SceneSettings.Solver=Step\)$"
+
 # scenes/kr5.xml (position drives holding and reaching) and scenes/drchubo.xml (dropped with
 # passive joints) are golden scenes: tests/cli/scenes.sh checks their motion, golden_regression
 # and golden_hwcaps their bytes.

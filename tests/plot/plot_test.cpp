@@ -448,3 +448,39 @@ TEST_CASE("plot: same input gives the same PNG bytes", "[plot]") {
   CHECK(a.size() > 1000);
   CHECK(a == readBytes(dir.file("b.png")));
 }
+
+TEST_CASE("plot: the rotation panel shows the turn from the first orientation", "[plot]") {
+  PlotTempDir dir;
+  const std::string out = dir.file("rotation.png");
+  // A body that stays put and turns about y from 0 to 1 rad (q = cos(a/2), 0, sin(a/2), 0).
+  const Trajectory tr = makeTraj({"wheel"}, 101, 1.0, [](size_t, double t, double* p) {
+    p[3] = std::cos(t / 2);
+    p[5] = std::sin(t / 2);
+  });
+  Error err;
+  PlotOptions opt;
+  opt.rotation = true;
+  REQUIRE(simbob::plotTrajectory(tr, nullptr, opt, out, &err));
+  const Image img = loadPng(out);
+  CHECK(img.height == 1200);  // four panels of 300 px
+  const PlotColor c = simbob::plotColor(0);
+  // In the bottom panel the line rises from left to right; in the three above it is flat.
+  auto topRow = [&](int x, int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      if (near(img.at(x, y), c)) return y;
+    return -1;
+  };
+  const int left = topRow(img.width / 5, img.height * 3 / 4, img.height);
+  const int right = topRow(img.width * 9 / 10, img.height * 3 / 4, img.height);
+  REQUIRE(left > 0);
+  REQUIRE(right > 0);
+  CHECK(right < left - 50);
+  const int x_left = topRow(img.width / 5, img.height / 10, img.height / 4);
+  const int x_right = topRow(img.width * 9 / 10, img.height / 10, img.height / 4);
+  REQUIRE(x_left > 0);
+  CHECK(std::abs(x_right - x_left) <= 1);
+  // Without the option the same trajectory has three panels and no rotation.
+  opt.rotation = false;
+  REQUIRE(simbob::plotTrajectory(tr, nullptr, opt, out, &err));
+  CHECK(loadPng(out).height == 900);
+}

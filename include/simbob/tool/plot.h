@@ -32,6 +32,10 @@ struct PlotOptions {
   int panels = 3;
   /// Titles of the panels instead of "x [m]", "y [m]", "z [m]" (empty = those).
   std::vector<std::string> panel_titles;
+  /// Adds a panel after the position panels: each body's rotation from its first orientation
+  /// (rad, the angle of q_first^-1 q), so that a change that is a rotation (a pendulum off by
+  /// 0.08 rad) shows as one, and not only as the small motion of a frame near its hinge.
+  bool rotation = false;
   /// Label of the horizontal axis instead of "time [s]" (empty = that).
   std::string time_label;
 };

@@ -27,6 +27,21 @@ struct MaterialDef {
   double friction = 0.5;        ///< Coulomb coefficient mu (dimensionless)
   double bounceness = 0.0;      ///< restitution in [0,1]
   double min_bounce_vel = 0.1;  ///< m/s; slower impacts do not bounce
+  /// Gazebo classic's contact surface (a URDF link's <gazebo reference> tags, docs/urdf.md
+  /// "Surfaces"); the defaults leave a contact as guide 7.1 makes it.
+  bool gazebo = false;    ///< friction combines as Gazebo classic's (the smaller of the pair's, per direction)
+  double friction2 = -1;  ///< friction along the second direction (mu2); < 0: `friction`
+  Vec3 fdir1{0, 0, 0};    ///< first friction direction in the geom's frame; 0: ODE's choice
+  double kp = 0;          ///< N/m contact stiffness; 0: the settings' ERP and CFM
+  double kd = 0;          ///< N s/m contact damping (with kp)
+  double min_depth = -1;  ///< m of penetration left alone; < 0: none
+  double max_vel = -1;    ///< m/s largest push-out velocity; < 0: unbounded
+  int max_contacts = 0;   ///< most contacts with any other geom; 0: the settings' MaxContacts
+  /// Whether any Gazebo surface value is set (contacts then take Gazebo classic's rules).
+  bool surface() const {
+    return gazebo || friction2 >= 0 || fdir1 != Vec3{0, 0, 0} || kp > 0 || min_depth >= 0 || max_vel >= 0 ||
+           max_contacts > 0;
+  }
 };
 
 /// A mobile rigid body. Static bodies have no entry: their geoms are world geoms.
@@ -39,6 +54,7 @@ struct BodyDef {
   double mass = 1.0;                        ///< kg, > 0
   Vec3 com{0, 0, 0};                        ///< centre of mass in the body frame, m (offset geoms move it)
   Mat3 inertia{1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< kg m^2 about the centre of mass, body axes
+  bool gravity = true;                      ///< false: gravity does not act on it (a URDF link's <gravity>)
   /// Where an imported file writes this body's moment of inertia (a URDF link's <inertia>), for
   /// advice that names it; empty for a body of the scene format.
   SourceLoc inertia_loc;

@@ -121,6 +121,7 @@ bool compileScene(const Scene& scene, Model* model, Diagnostics& diag) {
   model->materials.push_back(MaterialDef{});
   model->skins.push_back(SkinDef{});  // [0]: what a model without a skin wears
   lowerComponentList(ctx);
+  checkFixedUrdfRobots(ctx);
   chooseBareUrdfSolver(scene, model);
   for (const Link& l : scene.cameras)
     if (l.comp >= 0) lowerCamera(ctx, l.comp);

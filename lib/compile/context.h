@@ -178,7 +178,20 @@ class CompileContext {
   BuiltMemo memo;
   ComponentSet in_progress;
   int static_bodies = 0;  ///< static bodies lowered so far (Built::static_id)
-  bool too_big = false;   ///< a size bound was hit (reported once)
+  /// urdf_import.cpp: the collision shapes of the moving links of each robot fixed to the world,
+  /// for checkFixedUrdfRobots.
+  struct FixedUrdfShape {
+    int geom;      ///< Model::geoms index
+    Transform at;  ///< its pose in the scene
+    int link;      ///< UrdfRobot::links index
+  };
+  struct FixedUrdfRobot {
+    const UrdfRobot* robot = nullptr;  ///< Scene::urdf holds it
+    bool bare = false;                 ///< a bare .urdf (AboveGround): the advice differs
+    std::vector<FixedUrdfShape> shapes;
+  };
+  std::vector<FixedUrdfRobot> fixed_urdf_robots;
+  bool too_big = false;  ///< a size bound was hit (reported once)
 
   /// The meshes of this compile (simbob/mesh.h): each file + scale + up axis is read once.
   MeshCache mesh_cache;
@@ -222,6 +235,8 @@ bool isLocalPose(const CompileContext& ctx, const Link& l);
 Transform poseValue(const CompileContext& ctx, const Link& l);
 /// materials.cpp: the Model::materials index of a material link (0 = the default).
 int lowerMaterial(CompileContext& ctx, const Link& l);
+/// materials.cpp: the Model::materials index of a material (one entry per set of numbers).
+int addMaterial(CompileContext& ctx, const MaterialDef& m);
 /// motions.cpp: initial velocities from a motion link (none: at rest).
 void lowerMotion(CompileContext& ctx, const Link& l, BodyDef* b);
 /// geoms.cpp: the geoms of a geom link, at `offset` in the owner's frame.
@@ -264,6 +279,9 @@ Built lowerClone(CompileContext& ctx, const Component& c, const Transform* paren
 /// placeholder the loader makes so that Refs reach a link: the body it is part of).
 Built lowerUrdfImport(CompileContext& ctx, const Component& c, const Transform* parent);
 Built lowerUrdfLink(CompileContext& ctx, const Component& c);
+/// urdf_import.cpp: once every component is lowered, refuses a robot fixed to the world whose
+/// moving links start inside a static plane (a bare .urdf and a scene alike, docs/urdf.md).
+void checkFixedUrdfRobots(CompileContext& ctx);
 bool isClone(const Component& c);
 /// joints.cpp: a joint of a construction whose root is `parent`; the overrides come from an
 /// RCImportJoint's own Pose and Body.

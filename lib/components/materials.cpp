@@ -39,11 +39,17 @@ int lowerMaterial(CompileContext& ctx, const Link& l) {
       m.min_bounce_vel = c.get(kMinBounceVel);
       break;
   }
+  return addMaterial(ctx, m);
+}
+
+int addMaterial(CompileContext& ctx, const MaterialDef& m) {
   // Materials with equal properties share one entry: contacts only see the numbers.
   std::vector<MaterialDef>& all = ctx.model.materials;
   for (size_t i = 1; i < all.size(); ++i) {
     const MaterialDef& o = all[i];
-    if (o.friction == m.friction && o.bounceness == m.bounceness && o.min_bounce_vel == m.min_bounce_vel)
+    if (o.friction == m.friction && o.bounceness == m.bounceness && o.min_bounce_vel == m.min_bounce_vel &&
+        o.gazebo == m.gazebo && o.friction2 == m.friction2 && o.fdir1 == m.fdir1 && o.kp == m.kp && o.kd == m.kd &&
+        o.min_depth == m.min_depth && o.max_vel == m.max_vel && o.max_contacts == m.max_contacts)
       return static_cast<int>(i);
   }
   all.push_back(m);

@@ -52,6 +52,8 @@ const char* typeName(UrdfJoint::Type t) {
   return "?";
 }
 
+using ContextFixedShape = CompileContext::FixedUrdfShape;
+
 /// The lowering of one import: what it has made so far and what it says.
 class Import {
  public:
@@ -78,6 +80,12 @@ class Import {
     return p ? ctx_.modelKey(*p) : key_ + "." + urdfKey(name);
   }
   void checkInertia();
+  void surfaces();
+  int linkMaterial(int li) const {
+    return link_material_.empty() ? material_ : link_material_[static_cast<size_t>(li)];
+  }
+  bool selfCollides(const UrdfLink& l) const;
+  void bodyGravity();
   double lowestPoint(const UrdfShape& s, const Transform& t);
   void raiseAboveGround();
   void addBodies();
@@ -101,6 +109,8 @@ class Import {
   std::vector<int> joint_index_;  // per URDF joint: Model::joints index (-1: none)
   std::vector<int> skin_index_;   // per URDF material: Model::skins index (-1: not made yet)
   int material_ = 0;
+  std::vector<int> link_material_;               // per URDF link: Model::materials index (empty: material_ for all)
+  std::vector<ContextFixedShape> fixed_shapes_;  // moving links' collisions, if fixed to the world
   int drives_ = 0;
   int hulls_ = 0, trimeshes_ = 0;
   int group_ = 0;  // GeomDef::group of its geoms: the first geom index it makes (a copy gets its own)
@@ -126,7 +136,9 @@ Built Import::lower(const Transform* parent) {
   if (!ok_) return Built{};
   if (c_.get(kAboveGround)) raiseAboveGround();
   if (!ok_) return Built{};
+  surfaces();
   addBodies();
+  bodyGravity();
   for (size_t li = 0; li < robot_.links.size(); ++li) addShapes(static_cast<int>(li));
   addJoints();
   if (!ok_) return Built{};
@@ -135,6 +147,8 @@ Built Import::lower(const Transform* parent) {
   summarise();
   ctx_.model.imports.push_back(report_);
   const int root_body = plan_.link_body[static_cast<size_t>(robot_.root)];
+  if (plan_.bodies[static_cast<size_t>(root_body)].fixed && !fixed_shapes_.empty())
+    ctx_.fixed_urdf_robots.push_back({&robot_, c_.get(kAboveGround), std::move(fixed_shapes_)});
   Built out;
   out.index = body_index_[static_cast<size_t>(root_body)];
   out.frame = urdfToScene(place_, plan_.link_global[static_cast<size_t>(robot_.root)]);
@@ -228,37 +242,143 @@ double Import::lowestPoint(const UrdfShape& s, const Transform& t) {
 
 /// AboveGround (a bare robot.urdf): a floating robot whose collision shapes reach below y = 0 is
 /// raised until the lowest touches it, rather than started inside the ground. A robot fixed to
-/// the world is not raised (its base is bolted where the file puts it): one whose moving links
-/// start more than 1 mm inside the ground is refused at the deepest link's line, as ODE would
-/// tear it apart at the first step (KR5's file lays its arm along URDF +Y, in the ground).
+/// the world is not raised (its base is bolted where the file puts it): checkFixedUrdfRobots
+/// refuses it if its moving links start inside the ground, in a scene as in a bare run.
 void Import::raiseAboveGround() {
   const int root_body = plan_.link_body[static_cast<size_t>(robot_.root)];
-  const bool fixed = root_body < 0 || plan_.bodies[static_cast<size_t>(root_body)].fixed;
+  if (root_body < 0 || plan_.bodies[static_cast<size_t>(root_body)].fixed) return;
   double lowest = std::numeric_limits<double>::infinity();
-  size_t deepest = 0;
-  for (size_t li = 0; li < robot_.links.size(); ++li) {
-    const int body = plan_.link_body[li];
-    if (fixed && (body < 0 || plan_.bodies[static_cast<size_t>(body)].fixed)) continue;
-    for (const UrdfShape& s : robot_.links[li].collisions) {
-      const double y = lowestPoint(s, urdfToScene(place_, compose(plan_.link_global[li], s.origin)));
-      if (y < lowest) {
-        lowest = y;
-        deepest = li;
-      }
-    }
-  }
-  if (fixed) {
-    if (lowest < -0.001)
-      error(robot_.links[deepest].line,
-            "link '" + robot_.links[deepest].name + "' of a robot fixed to the world starts " + formatApprox(-lowest) +
-                " m inside the ground: a robot fixed to the world is not raised; place it with RCImportURDF's "
-                "Pose in a scene (is the file's up axis +Z?)");
-    return;
-  }
+  for (size_t li = 0; li < robot_.links.size(); ++li)
+    for (const UrdfShape& s : robot_.links[li].collisions)
+      lowest = std::min(lowest, lowestPoint(s, urdfToScene(place_, compose(plan_.link_global[li], s.origin))));
   if (!(lowest < 0)) return;
   place_.p[1] -= lowest;
   note(robot_.line, "the robot is raised " + formatApprox(-lowest) +
                         " m so that its lowest collision shape touches the ground (AboveGround)");
+}
+
+/// Each link's <gazebo reference> surface (docs/urdf.md, "Surfaces") as a material of its own: the
+/// import's Material with the file's values in Gazebo classic's meaning, each said at its line.
+void Import::surfaces() {
+  const MaterialDef base = ctx_.model.materials[static_cast<size_t>(material_)];
+  const double h = ctx_.model.settings.max_time_step;
+  if (robot_.self_collide.line)
+    note(robot_.self_collide.line, std::string("robot: <self_collide> ") +
+                                       (robot_.self_collide.value != 0 ? "true" : "false") +
+                                       ": the default of every link without a <selfCollide> of its own" +
+                                       (c_.get(kSelfCollision) ? " (SelfCollision true: every link collides)" : ""));
+  for (size_t li = 0; li < robot_.links.size(); ++li) {
+    const UrdfLink& l = robot_.links[li];
+    const UrdfGazebo& gz = l.gazebo;
+    const std::string who = "link '" + l.name + "': ";
+    if (gz.self_collide.line)
+      note(gz.self_collide.line,
+           who + "<selfCollide> " + (gz.self_collide.value != 0 ? "true" : "false") + ": its collisions collide " +
+               (gz.self_collide.value != 0 ? "with the robot's other links too (never those a joint connects)"
+                                           : "only with the rest of the scene") +
+               (c_.get(kSelfCollision) ? " (SelfCollision true: every link collides)" : ""));
+    if (!gz.surface()) continue;
+    if (l.collisions.empty()) {
+      const int line = std::max({gz.mu1.line, gz.mu2.line, gz.fdir1_tag.line, gz.kp.line, gz.kd.line, gz.min_depth.line,
+                                 gz.max_vel.line, gz.max_contacts.line});
+      note(line, who + "its <gazebo> surface tags change nothing: it has no <collision>");
+      continue;
+    }
+    if (link_material_.empty()) link_material_.assign(robot_.links.size(), material_);
+    MaterialDef m = base;
+    m.key = key_ + "." + urdfKey(l.name);
+    if (gz.mu1.line || gz.mu2.line) {
+      m.gazebo = true;
+      m.friction = gz.mu1.line ? gz.mu1.value : base.friction;
+      m.friction2 = gz.mu2.line ? gz.mu2.value : base.friction;
+      const std::string rule =
+          "; a contact of its collisions takes the smaller of the two geoms' values (Gazebo classic), not the larger";
+      const std::string other = "not given: the Material's Friction " + formatNumber(base.friction);
+      if (gz.mu1.line)
+        note(gz.mu1.line, who + "<mu1> " + formatNumber(gz.mu1.value) + ": friction along " +
+                              (gz.fdir1_tag.line ? "<fdir1>" : "ODE's first direction") + rule +
+                              (gz.mu2.line ? "" : "; <mu2> " + other));
+      if (gz.mu2.line)
+        note(gz.mu2.line, who + "<mu2> " + formatNumber(gz.mu2.value) + ": friction across it" + rule +
+                              (gz.mu1.line ? "" : "; <mu1> " + other));
+    }
+    if (gz.fdir1_tag.line) {
+      m.fdir1 = gz.fdir1;
+      note(gz.fdir1_tag.line,
+           who + "<fdir1> " + formatNumber(gz.fdir1[0]) + " " + formatNumber(gz.fdir1[1]) + " " +
+               formatNumber(gz.fdir1[2]) +
+               (gz.fdir1 == Vec3{0, 0, 0} ? ": ODE chooses the friction directions (as Gazebo's zero does)"
+                                          : ": the first friction direction, in the frame of each of its collisions, "
+                                            "laid into each contact's plane"));
+    }
+    if (gz.kp.line || gz.kd.line) {
+      m.kp = gz.kp.line ? gz.kp.value : 1e12;  // SDF's defaults where one of the two is missing
+      m.kd = gz.kd.line ? gz.kd.value : 1.0;
+      const double erp = h * m.kp / (h * m.kp + m.kd), cfm = 1.0 / (h * m.kp + m.kd);
+      note(gz.kp.line ? gz.kp.line : gz.kd.line,
+           who + "<kp> " + formatNumber(m.kp) + " N/m" + (gz.kp.line ? "" : " (not given: SDF's default)") + ", <kd> " +
+               formatNumber(m.kd) + " N s/m" + (gz.kd.line ? "" : " (not given: SDF's default)") +
+               ": its contacts' ERP " + formatApprox(erp) + " and CFM " + formatApprox(cfm) + " at the " +
+               formatNumber(h) +
+               " s step, as Gazebo classic computes them (against a geom with a <kp> too: the springs in "
+               "series, the dampers added)");
+    }
+    if (gz.min_depth.line) {
+      m.min_depth = gz.min_depth.value;
+      note(gz.min_depth.line, who + "<minDepth> " + formatNumber(m.min_depth) +
+                                  " m: its contacts push out only what goes deeper (the smaller of a pair's)");
+    }
+    if (gz.max_vel.line) {
+      m.max_vel = gz.max_vel.value;
+      note(gz.max_vel.line, who + "<maxVel> " + formatNumber(m.max_vel) +
+                                " m/s: its contacts push out at most that fast (the smaller of a pair's)");
+    }
+    if (gz.max_contacts.line) {
+      m.max_contacts = static_cast<int>(gz.max_contacts.value);
+      note(gz.max_contacts.line, who + "<maxContacts> " + std::to_string(m.max_contacts) +
+                                     ": at most that many contacts of one of its collisions with another geom (and "
+                                     "at most MaxContacts)");
+    }
+    link_material_[li] = addMaterial(ctx_, m);
+  }
+}
+
+/// Whether a link's collisions collide with the robot's other links: SelfCollision, else its
+/// <selfCollide>, else the robot's <self_collide> (Gazebo classic: a pair collides when either does).
+bool Import::selfCollides(const UrdfLink& l) const {
+  if (c_.get(kSelfCollision)) return true;
+  if (l.gazebo.self_collide.line) return l.gazebo.self_collide.value != 0;
+  return robot_.self_collide.value != 0;
+}
+
+/// <gravity> false (or <turnGravityOff> true) on a link: gravity does not act on its body. The
+/// links lumped into one body must agree; the first in the file decides.
+void Import::bodyGravity() {
+  for (size_t bi = 0; bi < plan_.bodies.size(); ++bi) {
+    const UrdfBody& b = plan_.bodies[bi];
+    const UrdfLink* first = nullptr;
+    for (int li : b.links) {
+      const UrdfLink& l = link(li);
+      if (!l.gazebo.gravity.line) continue;
+      const bool on = l.gazebo.gravity.value != 0;
+      if (!first) {
+        first = &l;
+        if (b.fixed) {
+          note(l.gazebo.gravity.line, "link '" + l.name +
+                                          "': its <gazebo> gravity changes nothing: it is fixed to "
+                                          "the world");
+          continue;
+        }
+        ctx_.model.bodies[static_cast<size_t>(body_index_[bi])].gravity = on;
+        note(l.gazebo.gravity.line, "link '" + l.name + "': gravity " + (on ? "acts" : "does not act") + " on body '" +
+                                        ctx_.model.bodies[static_cast<size_t>(body_index_[bi])].key + "'");
+      } else if (on != (first->gazebo.gravity.value != 0)) {
+        ctx_.diag.warning(at(l.gazebo.gravity.line), "link '" + l.name + "': its <gazebo> gravity differs from link '" +
+                                                         first->name + "''s, lumped into the same body: '" +
+                                                         first->name + "''s is used");
+      }
+    }
+  }
 }
 
 void Import::addBodies() {
@@ -297,12 +417,13 @@ void Import::addShapes(int li) {
     return body >= 0 ? compose(plan_.link_in_body[l], origin)
                      : urdfToScene(place_, compose(plan_.link_global[l], origin));
   };
+  auto scenePose = [&](const Transform& origin) { return urdfToScene(place_, compose(plan_.link_global[l], origin)); };
   for (const UrdfShape& s : ul.collisions) {
     GeomDef g;
     g.loc = at(s.line);
     // Its links collide with everything else but not with each other, unless asked (Gazebo's
     // self_collide, PyBullet's URDF_USE_SELF_COLLISION): CAD shapes of neighbours often overlap.
-    g.group = c_.get(kSelfCollision) ? -1 : group_;
+    g.group = selfCollides(ul) ? -1 : group_;
     if (s.kind == UrdfShape::Mesh) {
       g.mesh = meshOf(s);
       if (g.mesh < 0) continue;
@@ -318,18 +439,20 @@ void Import::addShapes(int li) {
       g.key = body >= 0 ? ctx_.model.bodies[static_cast<size_t>(body)].key : key;
       g.body = body;
       g.offset = where(s.origin);
-      g.material = material_;
+      g.material = linkMaterial(li);
       g.shape = hull ? GeomShape::ConvexHull : GeomShape::TriMesh;
+      if (body >= 0) fixed_shapes_.push_back({static_cast<int>(ctx_.model.geoms.size()), scenePose(s.origin), li});
       ctx_.model.geoms.push_back(g);
       continue;
     }
     g.key = body >= 0 ? ctx_.model.bodies[static_cast<size_t>(body)].key : key;
     g.body = body;
     g.offset = where(s.origin);
-    g.material = material_;
+    g.material = linkMaterial(li);
     g.shape = s.kind == UrdfShape::Box ? GeomShape::Box
                                        : (s.kind == UrdfShape::Sphere ? GeomShape::Sphere : GeomShape::Cylinder);
     g.size = s.size;
+    if (body >= 0) fixed_shapes_.push_back({static_cast<int>(ctx_.model.geoms.size()), scenePose(s.origin), li});
     ctx_.model.geoms.push_back(g);
   }
   for (const UrdfShape& s : ul.visuals) addVisual(li, s);
@@ -582,7 +705,71 @@ void Import::summarise() {
                    [](const Error& a, const Error& b) { return a.loc.line < b.loc.line; });
 }
 
+/// The lowest point of a collision geom placed at `t` along the direction `n` (unit): a box's
+/// lowest corner, a sphere's centre less its radius, a cylinder's lowest rim point, a mesh's
+/// lowest vertex.
+double lowestAlong(const Model& model, const GeomDef& g, const Transform& t, const Vec3& n) {
+  double lowest = std::numeric_limits<double>::infinity();
+  auto reach = [&](const Vec3& local) { lowest = std::min(lowest, dot(n, add(t.p, rotate(t.q, local)))); };
+  switch (g.shape) {
+    case GeomShape::Box:
+      for (int k = 0; k < 8; ++k)
+        reach({k & 1 ? g.size[0] / 2 : -g.size[0] / 2, k & 2 ? g.size[1] / 2 : -g.size[1] / 2,
+               k & 4 ? g.size[2] / 2 : -g.size[2] / 2});
+      return lowest;
+    case GeomShape::Sphere:
+      return dot(n, t.p) - g.size[0];
+    case GeomShape::Cylinder:
+    case GeomShape::Capsule: {  // axis along the shape's z: each end's circle dips r sin(tilt)
+      const double an = dot(n, rotate(t.q, Vec3{0, 0, 1}));
+      const double rim = g.size[0] * std::sqrt(std::max(0.0, 1 - an * an));
+      return dot(n, t.p) - std::abs(an) * g.size[1] / 2 - (g.shape == GeomShape::Capsule ? g.size[0] : rim);
+    }
+    case GeomShape::ConvexHull:
+    case GeomShape::TriMesh:
+      if (g.mesh < 0) return lowest;
+      for (const Vec3& v : model.meshes[static_cast<size_t>(g.mesh)].data->vertices) reach(v);
+      return lowest;
+    case GeomShape::Plane:
+      return lowest;
+  }
+  return lowest;
+}
+
 }  // namespace
+
+/// A robot fixed to the world is bolted where it is put (never raised): one whose moving links
+/// start more than 1 mm inside a static plane (the ground) is refused at the deepest link's line,
+/// as ODE would tear it apart at the first step; a bare .urdf and a scene's RCImportURDF alike
+/// (KR5's file lays its arm along URDF +Y, in the ground).
+void checkFixedUrdfRobots(CompileContext& ctx) {
+  std::vector<const GeomDef*> planes;
+  for (const GeomDef& g : ctx.model.geoms)
+    if (g.shape == GeomShape::Plane && g.body < 0 && !g.sensor) planes.push_back(&g);
+  for (const CompileContext::FixedUrdfRobot& r : ctx.fixed_urdf_robots) {
+    double deepest = -0.001;
+    const CompileContext::FixedUrdfShape* at = nullptr;
+    const GeomDef* in = nullptr;
+    for (const CompileContext::FixedUrdfShape& s : r.shapes)
+      for (const GeomDef* p : planes) {
+        const Vec3 n{p->plane[0], p->plane[1], p->plane[2]};
+        const double c = lowestAlong(ctx.model, ctx.model.geoms[static_cast<size_t>(s.geom)], s.at, n) - p->plane[3];
+        if (c < deepest) {
+          deepest = c;
+          at = &s;
+          in = p;
+        }
+      }
+    if (!at) continue;
+    const UrdfLink& l = r.robot->links[static_cast<size_t>(at->link)];
+    ctx.diag.error({r.robot->file, l.line},
+                   "link '" + l.name + "' of a robot fixed to the world starts " + formatApprox(-deepest) +
+                       " m inside " + (r.bare ? std::string("the ground") : "the plane of '" + in->key + "'") +
+                       ": a robot fixed to the world is not raised; " +
+                       (r.bare ? "place it with RCImportURDF's Pose in a scene" : "move it with RCImportURDF's Pose") +
+                       " (is the file's up axis +Z?)");
+  }
+}
 
 void registerUrdfImport(Registry& r) {
   r.add({"RCImportURDF",

@@ -27,6 +27,7 @@ void createBodies(WorldImpl& im, const Model& model) {
     dBodySetQuaternion(b, q);
     dBodySetLinearVel(b, v[0], v[1], v[2]);
     dBodySetAngularVel(b, bd.ang_vel[0], bd.ang_vel[1], bd.ang_vel[2]);
+    if (!bd.gravity) dBodySetGravityMode(b, 0);
     im.bodies.push_back(b);
     im.com.push_back(bd.com);
   }

@@ -15,6 +15,7 @@
 // dCollide is called through collideGeoms (cylinder_caps.cpp): a flat cylinder cap against a box
 // face or another cap gets simbob's own contacts, every other pair ODE's.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 #include "world_impl.h"
@@ -43,10 +44,115 @@ bool mayTouch(const WorldImpl& im, dGeomID g1, dGeomID g2) {
   return i1.group < 0 || i1.group != i2.group;
 }
 
+/// The most contacts of a pair: the settings' MaxContacts, or fewer where a geom's Gazebo surface
+/// says so (<maxContacts>: the smaller of the pair's, as Gazebo classic takes it).
+int mostContacts(const WorldImpl& im, dGeomID g1, dGeomID g2, int most) {
+  for (const GeomInfo* i : {&infoOf(im, g1), &infoOf(im, g2)})
+    if (i->surface >= 0) {
+      const int m = im.surfaces[static_cast<size_t>(i->surface)].max_contacts;
+      if (m > 0) most = std::min(most, m);
+    }
+  return most;
+}
+
+/// The contact joints of a pair where a geom has a Gazebo classic surface (a URDF link's
+/// <gazebo reference> tags, docs/urdf.md "Surfaces"), with Gazebo classic's rules
+/// (ODEPhysics::Collide and its ODE's per-body max_vel and min_depth) on Debian's ODE. A geom
+/// without a surface counts as its material: Friction both ways, rigid, no tolerances.
+void addSurfaceContacts(WorldImpl& im, dGeomID g1, dGeomID g2, const dContactGeom* contacts, int n, size_t stride) {
+  const GeomInfo& i1 = infoOf(im, g1);
+  const GeomInfo& i2 = infoOf(im, g2);
+  const MaterialDef* s1 = i1.surface >= 0 ? &im.surfaces[static_cast<size_t>(i1.surface)] : nullptr;
+  const MaterialDef* s2 = i2.surface >= 0 ? &im.surfaces[static_cast<size_t>(i2.surface)] : nullptr;
+  auto second = [](const GeomInfo& i, const MaterialDef* s) {
+    return s && s->friction2 >= 0 ? s->friction2 : i.friction;
+  };
+  // Friction: Gazebo's smaller of the pair's per direction where a surface gives mu1 or mu2,
+  // else guide 7.1's larger; bounce as guide 7.1.
+  const bool gazebo = (s1 && s1->gazebo) || (s2 && s2->gazebo);
+  const double mu = gazebo ? std::min(i1.friction, i2.friction) : std::max(i1.friction, i2.friction);
+  const double mu2 = gazebo ? std::min(second(i1, s1), second(i2, s2)) : std::max(second(i1, s1), second(i2, s2));
+  const double bounce = std::max(i1.bounceness, i2.bounceness);
+  const double bounceVel = std::min(i1.minBounceVel, i2.minBounceVel);
+  // fdir1 in the world: the first geom's, or the second's where it has one and the first has
+  // none or a larger mu1 (Gazebo's rule).
+  const dReal* fdir_rot = nullptr;
+  const Vec3* fdir = nullptr;
+  if (s1 && s1->fdir1 != Vec3{0, 0, 0}) {
+    fdir = &s1->fdir1;
+    fdir_rot = dGeomGetRotation(g1);
+  }
+  if (s2 && s2->fdir1 != Vec3{0, 0, 0} && (!fdir || i1.friction > i2.friction)) {
+    fdir = &s2->fdir1;
+    fdir_rot = dGeomGetRotation(g2);
+  }
+  Vec3 fd{0, 0, 0};
+  if (fdir)
+    for (size_t r = 0; r < 3; ++r)  // ODE's rotation: 3 rows of 4
+      fd[r] = fdir_rot[r * 4] * (*fdir)[0] + fdir_rot[r * 4 + 1] * (*fdir)[1] + fdir_rot[r * 4 + 2] * (*fdir)[2];
+  // kp and kd: springs in series, dampers side by side; as ERP and CFM at the step size.
+  double inv_kp = 0, kd = 0;
+  for (const MaterialDef* m : {s1, s2})
+    if (m && m->kp > 0) {
+      inv_kp += 1.0 / m->kp;
+      kd += m->kd;
+    }
+  const double h = im.stepSize;
+  const bool soft = inv_kp > 0;
+  const double kp = soft ? 1.0 / inv_kp : 0;
+  const double erp = soft ? h * kp / (h * kp + kd) : dWorldGetERP(im.world);
+  const double cfm = soft ? 1.0 / (h * kp + kd) : 0;
+  // minDepth and maxVel: the smaller of those given, applied through the depth ODE sees (the
+  // world's surface layer is 0 and its largest correcting velocity unbounded).
+  double min_depth = -1, max_vel = -1;
+  for (const MaterialDef* m : {s1, s2}) {
+    if (m && m->min_depth >= 0) min_depth = min_depth < 0 ? m->min_depth : std::min(min_depth, m->min_depth);
+    if (m && m->max_vel >= 0) max_vel = max_vel < 0 ? m->max_vel : std::min(max_vel, m->max_vel);
+  }
+  const double push = h > 0 ? erp / h : 0;  // ODE's push-out velocity per m of depth
+  dBodyID b1 = dGeomGetBody(g1);
+  dBodyID b2 = dGeomGetBody(g2);
+  for (int k = 0; k < n; ++k) {
+    dContact c{};
+    c.geom = *reinterpret_cast<const dContactGeom*>(reinterpret_cast<const char*>(contacts) + k * stride);
+    c.surface.mode = dContactBounce | dContactApprox1 | dContactMu2;
+    c.surface.mu = mu;
+    c.surface.mu2 = mu2;
+    c.surface.bounce = bounce;
+    c.surface.bounce_vel = bounceVel;
+    if (soft) {
+      c.surface.mode |= dContactSoftERP | dContactSoftCFM;
+      c.surface.soft_erp = erp;
+      c.surface.soft_cfm = cfm;
+    }
+    if (min_depth > 0) c.geom.depth -= min_depth;  // ODE pushes out nothing below 0
+    if (max_vel >= 0 && push > 0 && c.geom.depth * push > max_vel) c.geom.depth = max_vel / push;
+    if (fdir) {  // in the contact plane (ODE takes fdir1 as it is: off the plane it is no tangent)
+      const dReal* nrm = c.geom.normal;
+      const double along = fd[0] * nrm[0] + fd[1] * nrm[1] + fd[2] * nrm[2];
+      const Vec3 t{fd[0] - along * nrm[0], fd[1] - along * nrm[1], fd[2] - along * nrm[2]};
+      const double len = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+      if (len > 1e-9) {
+        c.surface.mode |= dContactFDir1;
+        c.fdir1[0] = t[0] / len;
+        c.fdir1[1] = t[1] / len;
+        c.fdir1[2] = t[2] / len;
+      }
+    }
+    dJointID j = dJointCreateContact(im.world, im.contactGroup, &c);
+    dJointAttach(j, b1, b2);
+    ++im.lastContacts;
+  }
+}
+
 /// Creates the contact joints of the pair's n contacts (guide 7.1).
 void addContacts(WorldImpl& im, dGeomID g1, dGeomID g2, const dContactGeom* contacts, int n, size_t stride) {
   const GeomInfo& i1 = infoOf(im, g1);
   const GeomInfo& i2 = infoOf(im, g2);
+  if (i1.surface >= 0 || i2.surface >= 0) {
+    addSurfaceContacts(im, g1, g2, contacts, n, stride);
+    return;
+  }
   // Guide 7.1: the larger friction, the larger bounceness, the smaller MinBounceVel.
   const double mu = std::max(i1.friction, i2.friction);
   const double bounce = std::max(i1.bounceness, i2.bounceness);
@@ -71,7 +177,7 @@ void addContacts(WorldImpl& im, dGeomID g1, dGeomID g2, const dContactGeom* cont
 
 /// Collides one pair on the stepping thread and adds its contact joints.
 void collidePair(WorldImpl& im, dGeomID g1, dGeomID g2) {
-  const int maxContacts = static_cast<int>(im.contactBuffer.size());
+  const int maxContacts = mostContacts(im, g1, g2, static_cast<int>(im.contactBuffer.size()));
   const int n = collideGeoms(g1, g2, maxContacts, &im.contactBuffer[0].geom, sizeof(dContact));
   if (n > 0) addContacts(im, g1, g2, &im.contactBuffer[0].geom, n, sizeof(dContact));
 }
@@ -99,7 +205,8 @@ void broadPhase(WorldImpl& im, dNearCallback* callback) {
 
 // One chunk's pairs into its buffer (a job of the pool; not inlined, so that a profile shows
 // what runs in parallel: bench/threads_bench.py --profile).
-[[gnu::noinline]] void collideChunk(NarrowPhase& np, size_t c, size_t begin, size_t end, size_t most) {
+[[gnu::noinline]] void collideChunk(const WorldImpl& im, NarrowPhase& np, size_t c, size_t begin, size_t end,
+                                    size_t most) {
   std::vector<dContactGeom>& out = np.buffers[c];
   out.clear();
   for (size_t i = begin; i < end; ++i) {
@@ -109,8 +216,9 @@ void broadPhase(WorldImpl& im, dNearCallback* callback) {
       continue;
     }
     const size_t at = out.size();
-    out.resize(at + most);
-    const int got = collideGeoms(g1, g2, static_cast<int>(most), &out[at], sizeof(dContactGeom));
+    const int pair_most = mostContacts(im, g1, g2, static_cast<int>(most));
+    out.resize(at + static_cast<size_t>(pair_most));
+    const int got = collideGeoms(g1, g2, pair_most, &out[at], sizeof(dContactGeom));
     out.resize(at + static_cast<size_t>(std::max(got, 0)));
     np.counts[i] = std::max(got, 0);
   }
@@ -127,7 +235,7 @@ void collideInParallel(WorldImpl& im) {
   const size_t most = im.contactBuffer.size();
   np.counts.assign(n, 0);
   if (np.buffers.size() < chunks) np.buffers.resize(chunks);
-  im.pool->run(n, grain, [&](size_t c, size_t begin, size_t end, int) { collideChunk(np, c, begin, end, most); });
+  im.pool->run(n, grain, [&](size_t c, size_t begin, size_t end, int) { collideChunk(im, np, c, begin, end, most); });
   // Where each pair's contacts are: its chunk's buffer, after those of the pairs before it.
   np.first.resize(n);
   for (size_t c = 0; c < chunks; ++c) {

@@ -177,6 +177,10 @@ void createGeoms(WorldImpl& im, const Model& model) {
     dGeomSetData(g, reinterpret_cast<void*>(static_cast<intptr_t>(gi)));  // NOLINT(performance-no-int-to-ptr)
     const MaterialDef& mat = model.materials[static_cast<size_t>(gd.material)];
     im.geomInfo.push_back({mat.friction, mat.bounceness, mat.min_bounce_vel, gd.sensor, gd.static_body, gd.group});
+    if (mat.surface()) {  // a URDF link's <gazebo> surface (contacts.cpp); the others stay as they were
+      im.geomInfo.back().surface = static_cast<int>(im.surfaces.size());
+      im.surfaces.push_back(mat);
+    }
     im.geoms.push_back(g);
   }
 }

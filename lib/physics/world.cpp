@@ -213,6 +213,7 @@ void World::step(double h) {
   OdeSection ode(im.rng, &im);
   updateHingeStops(im);
   for (const auto& hook : im.beforeStep) hook(im, h);
+  im.stepSize = h;
   collide(im);
   if (im.quickstep) {
     dWorldQuickStep(im.world, h);

@@ -51,6 +51,7 @@ struct GeomInfo {
   bool sensor;          ///< creates no contact joints
   int staticBody;       ///< a static geom: the static body it belongs to (GeomDef::static_body), else -1
   int group;            ///< GeomDef::group: >= 0, no contacts within it
+  int surface = -1;     ///< WorldImpl::surfaces index: its material's Gazebo surface (MaterialDef::surface), -1: none
 };
 
 /// What a hinge keeps to read its angle as ODE does (hinge_angle.cpp): its bodies in ODE's order,
@@ -183,6 +184,8 @@ struct WorldImpl {
   Vec3 gravity{0, 0, 0};                ///< m/s^2 (imu.cpp: specific force = acceleration - gravity)
   int64_t time_ns = 0;                  ///< simulated time: the sum of the steps taken (ns)
   std::vector<dContact> contactBuffer;  ///< sized max_contacts once; reused by every collision
+  std::vector<MaterialDef> surfaces;    ///< contacts.cpp: the materials with a Gazebo surface (GeomInfo::surface)
+  double stepSize = 0;                  ///< s, the step under way (contacts.cpp: a surface's kp and kd as ERP and CFM)
   int lastContacts = 0;
   bool quickstep = true;
   /// This World's state of ODE's random generator, swapped in around every call into ODE

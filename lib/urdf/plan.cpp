@@ -1,8 +1,6 @@
 // Planning a URDF robot as rigid bodies: link frames at the zero configuration, fixed joints
 // lumped (each group's mass, centre of mass and inertia combined with rotated tensors and the
 // parallel-axis theorem), and the fixed map from URDF's Z-up robot frame to the scene's Y-up.
-#include <functional>
-
 #include "simbob/transform.h"
 #include "urdf/urdf.h"
 
@@ -81,9 +79,14 @@ UrdfPlan planUrdf(const UrdfRobot& robot, bool fixed_base) {
     children[static_cast<size_t>(jd.parent)].push_back(static_cast<int>(j));
     parent_joint[static_cast<size_t>(jd.child)] = static_cast<int>(j);
   }
-  // Group roots: the robot's root and every child of a joint that is not fixed.
+  // Group roots: the robot's root and every child of a joint that is not fixed. Parents before
+  // children, depth first in document order, with a stack of its own: a chain may be 50,000
+  // links deep (kMaxUrdfDepth).
   std::vector<int> group_root(n, -1);
-  std::function<void(int)> visit = [&](int li) {
+  std::vector<int> todo{robot.root};
+  while (!todo.empty()) {
+    const int li = todo.back();
+    todo.pop_back();
     const size_t l = static_cast<size_t>(li);
     const int pj = parent_joint[l];
     if (pj < 0) {
@@ -99,9 +102,9 @@ UrdfPlan planUrdf(const UrdfRobot& robot, bool fixed_base) {
         group_root[l] = li;
       }
     }
-    for (int cj : children[l]) visit(robot.joints[static_cast<size_t>(cj)].child);
-  };
-  visit(robot.root);
+    for (auto cj = children[l].rbegin(); cj != children[l].rend(); ++cj)
+      todo.push_back(robot.joints[static_cast<size_t>(*cj)].child);
+  }
   // Bodies in document order of their root links.
   std::vector<int> body_of_root(n, -1);
   for (size_t l = 0; l < n; ++l) {

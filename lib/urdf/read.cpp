@@ -1,15 +1,18 @@
 // Reading a URDF robot: urdfdom parses the values; pugixml reads the same text again for the line
-// of every element (urdfdom keeps none) and for what urdfdom drops without a word (unknown
-// elements and attributes, <transmission>, <gazebo>, <calibration>, <safety_controller>), which
-// become UrdfRobot::ignored, named once each.
+// of every element (urdfdom keeps none), for the <gazebo reference> tags Gazebo classic hands to
+// ODE (UrdfGazebo) and for what urdfdom drops without a word (unknown elements and attributes,
+// <transmission>, the rest of <gazebo>, <calibration>, <safety_controller>), which become
+// UrdfRobot::ignored, named once each.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <pugixml.hpp>
 #include <locale>
+#include <optional>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 
 #include "simbob/cr_math.h"
 #include "simbob/values.h"
@@ -71,11 +74,12 @@ class Reader {
     diag_.error({file_, line}, msg, kind);
   }
   void ignore(int line, const std::string& what) {
-    for (UrdfNote& n : robot_->ignored)
-      if (n.text == what) {
-        ++n.count;
-        return;
-      }
+    // A map, not a search of the notes: a file may hold 200,000 different unknown elements.
+    auto [it, added] = ignored_index_.emplace(what, robot_->ignored.size());
+    if (!added) {
+      ++robot_->ignored[it->second].count;
+      return;
+    }
     robot_->ignored.push_back({line, what, 1});
   }
   int urdfdomLine(const std::string& message) const;
@@ -85,6 +89,11 @@ class Reader {
   int readVisualMaterial(const pugi::xml_node& visual, const urdf::Visual& v);
   bool readJoint(const pugi::xml_node& x, const urdf::Joint& u, const std::map<std::string, int>& links);
   bool resolveFile(const std::string& name, int line, const char* what, std::string* path);
+  bool checkDepth(const pugi::xml_node& root);
+  bool readGazebo(const pugi::xml_node& g, const std::map<std::string, int>& links,
+                  const std::map<std::string, int>& joints);
+  bool gazeboNumber(const pugi::xml_node& tag, const std::string& what, double lo, bool lo_open, UrdfTag* out);
+  bool gazeboBool(const pugi::xml_node& tag, const std::string& what, bool invert, UrdfTag* out);
 
   const std::string& text_;
   std::string file_;
@@ -93,8 +102,9 @@ class Reader {
   std::vector<size_t> newlines_;
   pugi::xml_document doc_;
   std::shared_ptr<UrdfRobot> robot_ = std::make_shared<UrdfRobot>();
-  std::map<std::string, int> materials_;             // robot-level material name -> index
-  std::vector<std::pair<int, std::string>> mimics_;  // joint index, the joint it follows
+  std::map<std::string, int> materials_;                   // robot-level material name -> index
+  std::unordered_map<std::string, size_t> ignored_index_;  // note text -> UrdfRobot::ignored index
+  std::vector<std::pair<int, std::string>> mimics_;        // joint index, the joint it follows
   struct Missing {
     int line;
     std::string message;
@@ -175,6 +185,7 @@ constexpr Known kKnown[] = {
     {"robot/joint/limit", "lower upper effort velocity"},
     {"robot/joint/dynamics", "damping friction"},
     {"robot/joint/mimic", "joint multiplier offset"},
+    {"robot/gazebo", "reference"},
 };
 
 // Elements URDF defines that simbob does not model, with the reason given once.
@@ -184,7 +195,6 @@ struct Unmodelled {
 };
 constexpr Unmodelled kUnmodelled[] = {
     {"transmission", "simbob models no transmissions; RCImportURDF's Drives puts a drive on every movable joint"},
-    {"gazebo", "Gazebo's extensions are not read"},
     {"calibration", "joint positions are zero at the URDF's zero configuration"},
     {"safety_controller", "simbob has no safety controllers; the <limit> is what stops a joint"},
 };
@@ -221,6 +231,7 @@ void Reader::walk(const pugi::xml_node& n, const std::string& path) {
     if (hasWord(known->attrs, a.name()) || name.rfind("xmlns", 0) == 0) continue;
     ignore(lineOf(n), "attribute '" + quoteInput(name) + "' of <" + n.name() + "> ignored");
   }
+  if (path == "robot/gazebo") return;  // its tags: readGazebo
   int shapes = 0;
   for (pugi::xml_node c : n.children()) {
     if (c.type() != pugi::node_element) continue;
@@ -258,6 +269,199 @@ int Reader::urdfdomLine(const std::string& message) const {
     if (!best && message.find(n) != std::string::npos && n.size() > 2) best = lineOf(c);
   }
   return best ? best : lineOf(doc_.document_element());
+}
+
+// --- <gazebo>: what Gazebo classic's URDF converter (sdformat's parser_urdf.cc) hands to ODE -----
+
+/// A tag's text as Gazebo reads it: its `value` attribute, or else its text, without blanks around.
+std::string gazeboText(const pugi::xml_node& tag) {
+  std::string t = tag.attribute("value") ? tag.attribute("value").value() : tag.child_value();
+  const size_t b = t.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return "";
+  return t.substr(b, t.find_last_not_of(" \t\r\n") - b + 1);
+}
+
+bool Reader::gazeboNumber(const pugi::xml_node& tag, const std::string& what, double lo, bool lo_open, UrdfTag* out) {
+  const std::string text = gazeboText(tag);
+  const std::optional<double> v = parseNumber(text);
+  const int line = lineOf(tag);
+  if (!v) {
+    error(line, what + ": <" + tag.name() + "> '" + quoteInput(text, 80) + "' is not a number");
+    return false;
+  }
+  if (!std::isfinite(*v) || (lo_open ? !(*v > lo) : !(*v >= lo))) {
+    error(line, what + ": <" + tag.name() + "> " + formatNumber(*v) + " must be finite and " +
+                    (lo_open ? "> " : ">= ") + formatNumber(lo));
+    return false;
+  }
+  *out = {line, *v};
+  return true;
+}
+
+bool Reader::gazeboBool(const pugi::xml_node& tag, const std::string& what, bool invert, UrdfTag* out) {
+  const std::string text = gazeboText(tag);
+  bool v;
+  if (equalsIgnoreCase(text, "true") || equalsIgnoreCase(text, "yes") || text == "1") {
+    v = true;
+  } else if (equalsIgnoreCase(text, "false") || equalsIgnoreCase(text, "no") || text == "0") {
+    v = false;
+  } else {
+    error(lineOf(tag), what + ": <" + tag.name() + "> '" + quoteInput(text, 80) + "' is not true or false");
+    return false;
+  }
+  *out = {lineOf(tag), (v != invert) ? 1.0 : 0.0};
+  return true;
+}
+
+/// One <gazebo> element. With reference="LINK": the tags Gazebo classic maps onto the link's ODE
+/// surface and body (docs/urdf.md, "Surfaces"); without reference: the robot's <self_collide>;
+/// every other tag is named once as ignored.
+bool Reader::readGazebo(const pugi::xml_node& g, const std::map<std::string, int>& links,
+                        const std::map<std::string, int>& joints) {
+  const pugi::xml_attribute ref = g.attribute("reference");
+  bool ok = true;
+  auto children = [&](auto&& each) {
+    for (pugi::xml_node c : g.children())
+      if (c.type() == pugi::node_element) each(c, std::string(c.name()));
+  };
+  if (!ref) {
+    children([&](const pugi::xml_node& c, const std::string& name) {
+      if (name == "self_collide") {
+        ok = gazeboBool(c, "robot '" + robot_->name + "'", false, &robot_->self_collide) && ok;
+      } else if (name == "selfCollide") {
+        ignore(lineOf(c),
+               "<gazebo> <selfCollide> without reference ignored: Gazebo classic applies it to a link "
+               "(<gazebo reference=\"LINK\">); <self_collide> applies to every link");
+      } else if (name == "static") {
+        ignore(lineOf(c), "<gazebo> <static> ignored: FixedBase fixes the root link to the world");
+      } else if (name == "plugin") {
+        ignore(lineOf(c),
+               "<gazebo> <plugin> ignored: simbob runs no Gazebo plug-ins (RCImportURDF's Drives puts "
+               "a drive on every movable joint)");
+      } else {
+        ignore(lineOf(c), "<gazebo> <" + quoteInput(name) + "> without reference ignored: not read by simbob");
+      }
+    });
+    return ok;
+  }
+  const std::string target = ref.value();
+  auto link = links.find(target);
+  if (link == links.end()) {
+    if (joints.count(target)) {
+      children([&](const pugi::xml_node& c, const std::string& name) {
+        ignore(lineOf(c), "<gazebo> <" + quoteInput(name) +
+                              "> of a joint ignored: simbob reads no joint tags of "
+                              "Gazebo");
+      });
+    } else {
+      diag_.warning({file_, lineOf(g)}, "<gazebo reference=\"" + quoteInput(target) +
+                                            "\"> names no link or joint of the robot: its tags are ignored");
+    }
+    return true;
+  }
+  UrdfLink& l = robot_->links[static_cast<size_t>(link->second)];
+  UrdfGazebo& gz = l.gazebo;
+  const std::string what = "link '" + l.name + "'";
+  children([&](const pugi::xml_node& c, const std::string& name) {
+    if (name == "mu1") {
+      ok = gazeboNumber(c, what, 0, false, &gz.mu1) && ok;
+    } else if (name == "mu2") {
+      ok = gazeboNumber(c, what, 0, false, &gz.mu2) && ok;
+    } else if (name == "kp") {
+      ok = gazeboNumber(c, what, 0, true, &gz.kp) && ok;
+    } else if (name == "kd") {
+      ok = gazeboNumber(c, what, 0, false, &gz.kd) && ok;
+    } else if (name == "minDepth") {
+      ok = gazeboNumber(c, what, 0, false, &gz.min_depth) && ok;
+    } else if (name == "maxVel") {
+      ok = gazeboNumber(c, what, 0, false, &gz.max_vel) && ok;
+    } else if (name == "maxContacts") {
+      UrdfTag t;
+      if (!gazeboNumber(c, what, 1, false, &t)) {
+        ok = false;
+      } else if (t.value != std::floor(t.value) || t.value > 1e6) {
+        error(t.line, what + ": <maxContacts> " + formatNumber(t.value) + " must be a whole number from 1 to 1000000");
+        ok = false;
+      } else {
+        gz.max_contacts = t;
+      }
+    } else if (name == "fdir1") {
+      std::string problem;
+      const std::string text = gazeboText(c);
+      const auto v = parseNumberList(text, &problem);
+      if (!v || v->size() != 3 || !std::isfinite((*v)[0]) || !std::isfinite((*v)[1]) || !std::isfinite((*v)[2])) {
+        error(lineOf(c), what + ": <fdir1> '" + quoteInput(text, 80) + "' must be three finite numbers");
+        ok = false;
+      } else {
+        gz.fdir1_tag = {lineOf(c), 0};
+        gz.fdir1 = {(*v)[0], (*v)[1], (*v)[2]};
+      }
+    } else if (name == "selfCollide") {
+      ok = gazeboBool(c, what, false, &gz.self_collide) && ok;
+    } else if (name == "gravity") {
+      ok = gazeboBool(c, what, false, &gz.gravity) && ok;
+    } else if (name == "turnGravityOff") {
+      ok = gazeboBool(c, what, true, &gz.gravity) && ok;
+    } else if (name == "material") {
+      ignore(lineOf(c),
+             "<gazebo> <material> ignored: Gazebo's material scripts are not read (a link's colour is "
+             "its URDF <material>)");
+    } else if (name == "plugin") {
+      ignore(lineOf(c),
+             "<gazebo> <plugin> ignored: simbob runs no Gazebo plug-ins (RCImportURDF's Drives puts a "
+             "drive on every movable joint)");
+    } else if (name == "sensor") {
+      ignore(lineOf(c),
+             "<gazebo> <sensor> ignored: Gazebo's sensors are not read (simbob's sensors go on the "
+             "link's key)");
+    } else {
+      ignore(lineOf(c), "<gazebo> <" + quoteInput(name) +
+                            "> of a link ignored: not one of the surface tags simbob reads (docs/urdf.md)");
+    }
+  });
+  return ok;
+}
+
+/// Refuses a tree deeper than kMaxUrdfDepth before urdfdom sees it: urdfdom frees its tree
+/// recursively (a link's children with it). Counted without recursion over the joints' names.
+bool Reader::checkDepth(const pugi::xml_node& root) {
+  std::unordered_map<std::string, std::pair<std::string, pugi::xml_node>> parent;  // child -> parent, joint
+  for (pugi::xml_node j : root.children("joint"))
+    parent.emplace(j.child("child").attribute("link").value(),
+                   std::make_pair(std::string(j.child("parent").attribute("link").value()), j));
+  std::unordered_map<std::string, int> depth;  // link -> joints above it (known so far)
+  std::vector<const std::string*> path;
+  for (pugi::xml_node j : root.children("joint")) {  // document order: the same joint is named every time
+    auto start = parent.find(j.child("child").attribute("link").value());
+    if (depth.count(start->first)) continue;
+    path.clear();
+    const std::string* at = &start->first;
+    int base = 0;
+    while (true) {
+      auto known = depth.find(*at);
+      if (known != depth.end()) {
+        base = known->second;
+        break;
+      }
+      auto up = parent.find(*at);
+      // A root, or a loop (urdfdom refuses it; stop at the number of joints).
+      if (up == parent.end() || path.size() > parent.size()) break;
+      path.push_back(at);
+      at = &up->second.first;
+    }
+    for (size_t k = path.size(); k-- > 0;) {
+      const int d = base + static_cast<int>(path.size() - k);
+      depth[*path[k]] = d;
+      if (d > kMaxUrdfDepth) {
+        const pugi::xml_node j = parent[*path[k]].second;
+        error(lineOf(j), "joint '" + quoteInput(j.attribute("name").value()) + "': its child link is more than " +
+                             std::to_string(kMaxUrdfDepth) +
+                             " joints below the root: simbob reads URDF trees at most that deep (docs/urdf.md)");
+        return false;
+      }
+    }
+  }
+  return true;
 }
 
 bool Reader::resolveFile(const std::string& name, int line, const char* what, std::string* path) {
@@ -482,6 +686,7 @@ std::shared_ptr<const UrdfRobot> Reader::read() {
                                  : ""));
     return nullptr;
   }
+  if (!checkDepth(root)) return nullptr;
   std::string message;
   const UrdfModule* urdfdom = urdfModule(&message);
   if (!urdfdom) {
@@ -489,6 +694,18 @@ std::shared_ptr<const UrdfRobot> Reader::read() {
     return nullptr;
   }
   urdf::ModelInterfaceSharedPtr model = urdfdom->parse(text_, &message);
+  // urdfdom's links hold their children: freed from the root, a deep tree recurses once per
+  // level. Unchained first, each link is freed on its own.
+  struct Unchain {
+    urdf::ModelInterfaceSharedPtr& model;
+    ~Unchain() {
+      if (!model) return;
+      for (auto& named : model->links_) {
+        named.second->child_links.clear();
+        named.second->child_joints.clear();
+      }
+    }
+  } unchain{model};
   if (!model) {
     error(urdfdomLine(message), "not a valid URDF: " + (message.empty() ? "urdfdom refused it" : message));
     return nullptr;
@@ -541,6 +758,7 @@ std::shared_ptr<const UrdfRobot> Reader::read() {
       j.mimic = it->second;
     }
   }
+  for (pugi::xml_node g : root.children("gazebo")) ok = readGazebo(g, links, joints) && ok;
   if (model->getRoot()) robot_->root = links.count(model->getRoot()->name) ? links[model->getRoot()->name] : -1;
   std::vector<Missing> missing;
   for (const auto& [package, m] : missing_) missing.push_back(m);

@@ -51,6 +51,34 @@ struct UrdfInertial {
   Mat3 inertia{0, 0, 0, 0, 0, 0, 0, 0, 0};  ///< kg m^2 about the centre of mass, origin's axes
 };
 
+/// One value of a <gazebo> tag (<mu1>0</mu1> or <mu1 value="0"/>): line 0 when the file gives none.
+struct UrdfTag {
+  int line = 0;
+  double value = 0;
+};
+
+/// A link's <gazebo reference="LINK"> tags that Gazebo classic hands to ODE, with its meaning
+/// (docs/urdf.md, "Surfaces"): friction, contact stiffness and damping, contact tolerances, self
+/// collision and gravity. A later tag of the same name overrides an earlier one, as in Gazebo.
+struct UrdfGazebo {
+  UrdfTag mu1;           ///< friction coefficient along fdir1 (or ODE's first direction)
+  UrdfTag mu2;           ///< friction coefficient along the second direction
+  UrdfTag fdir1_tag;     ///< line of <fdir1>
+  Vec3 fdir1{0, 0, 0};   ///< first friction direction in the collision's frame (0: ODE's choice)
+  UrdfTag kp;            ///< contact stiffness, N/m
+  UrdfTag kd;            ///< contact damping, N s/m
+  UrdfTag min_depth;     ///< m of penetration without push-out
+  UrdfTag max_vel;       ///< m/s, largest push-out velocity
+  UrdfTag max_contacts;  ///< most contacts of one of its collisions with any other geom
+  UrdfTag self_collide;  ///< 1: collides with the robot's other links (0/1)
+  UrdfTag gravity;       ///< 0: gravity does not act on it (<gravity>, <turnGravityOff> inverted)
+  /// Whether any contact surface value is given (mu1 ... maxContacts).
+  bool surface() const {
+    return mu1.line || mu2.line || fdir1_tag.line || kp.line || kd.line || min_depth.line || max_vel.line ||
+           max_contacts.line;
+  }
+};
+
 struct UrdfLink {
   std::string name;
   int line = 0;
@@ -58,6 +86,7 @@ struct UrdfLink {
   UrdfInertial inertial;
   std::vector<UrdfShape> visuals;     ///< document order
   std::vector<UrdfShape> collisions;  ///< document order
+  UrdfGazebo gazebo;                  ///< its <gazebo reference> tags
 };
 
 struct UrdfJoint {
@@ -99,6 +128,7 @@ struct UrdfRobot {
   std::vector<UrdfMaterial> materials;  ///< robot-level first (document order), then inline ones
   int root = -1;                        ///< the link that is no joint's child
   std::vector<UrdfNote> ignored;        ///< elements and attributes it ignores, once each
+  UrdfTag self_collide;                 ///< robot-level <gazebo><self_collide>: every link's default
   std::vector<std::string> files;       ///< meshes and textures it names (resolved), once each
 };
 
@@ -147,6 +177,11 @@ struct UrdfPlan {
   std::vector<Transform> link_global;   ///< per link: its frame at the zero configuration, robot frame (Z up)
   std::vector<Transform> link_in_body;  ///< per link: its frame in its body's root link frame
 };
+
+/// The deepest a URDF tree may be (joints from the root to the farthest link), checked before
+/// urdfdom sees the text: urdfdom frees a tree recursively, which overflows an 8 MB stack near
+/// 120,000 levels (docs/urdf.md, docs/testing.md).
+constexpr int kMaxUrdfDepth = 50000;
 
 /// Lumps the robot's fixed joints and combines mass properties (parallel-axis theorem, rotated
 /// tensors). `fixed_base`: the root link is fixed to the world (as a root named 'world' is).

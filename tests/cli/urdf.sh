@@ -75,6 +75,21 @@ expect_eq "refusal" "$(cat "$LAST_ERR")" \
   "$DART/KR5/KR5 sixx R650.urdf:107: error: link 'bicep' of a robot fixed to the world starts 0.169 m inside the ground: a robot fixed to the world is not raised; place it with RCImportURDF's Pose in a scene (is the file's up axis +Z?)"
 expect_no_file kr5_bare.csv
 
+check "KR5 lying in a scene, as the file has it: refused by check (65) as the bare file is, naming the plane"
+# One rule for a robot fixed to the world (issue 42 point 5): it used to pass check with two
+# overlap warnings and come apart in run (exit 1).
+cat >kr5_lying.xml <<XML
+<Simulation><ComponentList><RCGround Key="Ground"/>
+  <RCImportURDF Key="kr5"><File Value="$DART/KR5/KR5 sixx R650.urdf"/></RCImportURDF>
+</ComponentList></Simulation>
+XML
+expect_status 65 "$SIMBOB" check kr5_lying.xml
+expect_match "check" "$LAST_ERR" "R650.urdf:107: error: link 'bicep' of a robot fixed to the world starts 0.169 m inside the plane of 'Ground'"
+expect_status 65 "$SIMBOB" run kr5_lying.xml --duration 1 --out kr5_lying.csv
+expect_eq "refusal" "$(cat "$LAST_ERR")" \
+  "$DART/KR5/KR5 sixx R650.urdf:107: error: link 'bicep' of a robot fixed to the world starts 0.169 m inside the plane of 'Ground': a robot fixed to the world is not raised; move it with RCImportURDF's Pose (is the file's up axis +Z?)"
+expect_no_file kr5_lying.csv
+
 check "KR5 (a space in the file name) stood up in a scene: its summary, and effort=\"0\" named at each <limit> line"
 cat >kr5_up.xml <<XML
 <Simulation><ComponentList><RCGround Key="Ground"/>
@@ -123,6 +138,32 @@ turned = 2 * math.acos(min(1.0, abs(sum(a * b for a, b in zip(q0, q1)))))
 # The drive turns at the URDF's 1 rad/s to within 50 ms of the target and settles on it by 2 s.
 assert abs(turned - 1.0) < 1e-3, turned
 PY
+check "<gazebo reference>: check says what each surface tag does at its line, and names the rest as ignored"
+cat >caster.urdf <<'EOF'
+<robot name="caster">
+  <link name="base">
+    <inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+    <collision><geometry><sphere radius="0.05"/></geometry></collision>
+  </link>
+  <gazebo reference="base">
+    <mu1>0</mu1>
+    <mu2 value="0"/>
+    <kp>1e5</kp>
+    <material>Gazebo/Grey</material>
+  </gazebo>
+  <gazebo><plugin name="diff_drive" filename="libgazebo_ros_diff_drive.so"/></gazebo>
+</robot>
+EOF
+expect_status 0 "$SIMBOB" check caster.urdf
+expect_match "mu1" "$LAST_ERR" "^caster.urdf:7: note: link 'base': <mu1> 0: friction along ODE's first direction; a contact of its collisions takes the smaller of the two geoms' values \(Gazebo classic\), not the larger$"
+expect_match "mu2" "$LAST_ERR" "^caster.urdf:8: note: link 'base': <mu2> 0: friction across it"
+expect_match "kp" "$LAST_ERR" "^caster.urdf:9: note: link 'base': <kp> 1e\\+05 N/m, <kd> 1 N s/m \(not given: SDF's default\): its contacts' ERP 0.99 and CFM 0.0099 at the 0.001 s step"
+expect_match "material" "$LAST_ERR" "^caster.urdf:10: note: <gazebo> <material> ignored"
+expect_match "plugin" "$LAST_ERR" "^caster.urdf:12: note: <gazebo> <plugin> ignored: simbob runs no Gazebo plug-ins"
+sed 's|<mu1>0</mu1>|<mu1>none</mu1>|' caster.urdf >bad_caster.urdf
+expect_status 65 "$SIMBOB" check bad_caster.urdf
+expect_match "bad value" "$LAST_ERR" "^bad_caster.urdf:7: error: link 'base': <mu1> 'none' is not a number$"
+
 check "a bare point-mass pendulum: Step by the bare-run rule (said by check, in the summary); QuickStep by --set, told what to do"
 cat >pm.urdf <<'EOF'
 <robot name="pm">

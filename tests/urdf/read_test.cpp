@@ -104,8 +104,8 @@ TEST_CASE("urdf read: what urdfdom drops is named once each, with its first line
     <calibration rising="0"/><safety_controller k_velocity="1"/></joint>
   <link name="b"><inertial><mass value="1"/><inertia ixx="1" iyx="0" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
   <transmission name="t"/>
-  <gazebo reference="a"/>
-  <gazebo reference="b"/>
+  <gazebo reference="a"><material>Gazebo/Grey</material></gazebo>
+  <gazebo reference="b"><material>Gazebo/Red</material></gazebo>
 </robot>)",
                 d);
   INFO(errorText(d));
@@ -122,7 +122,8 @@ TEST_CASE("urdf read: what urdfdom drops is named once each, with its first line
                    "joint",
                    "10 x1 <transmission> ignored: simbob models no transmissions; RCImportURDF's Drives puts a drive "
                    "on every movable joint",
-                   "11 x2 <gazebo> ignored: Gazebo's extensions are not read",
+                   "11 x2 <gazebo> <material> ignored: Gazebo's material scripts are not read (a link's colour is "
+                   "its URDF <material>)",
                });
 }
 
@@ -389,4 +390,54 @@ TEST_CASE("urdf read: an <origin rpy> becomes urdfdom's quaternion, with correct
   const simbob::Quat q = simbob::quatFromRpy(0, 0, 1.5707963267948966);
   CHECK(q[0] == Approx(std::sqrt(0.5)).epsilon(1e-15));
   CHECK(q[3] == Approx(std::sqrt(0.5)).epsilon(1e-15));
+}
+
+TEST_CASE("urdf read: a chain 40,000 links deep loads (no recursion over the tree); deeper than 50,000 is refused",
+          "[urdf]") {
+  // Issue 43 point 11: planUrdf walked the tree recursively (SIGSEGV near 40,000), and urdfdom
+  // frees its links recursively (near 120,000 on an 8 MB stack): simbob plans with a stack of
+  // its own, unchains urdfdom's links before freeing them, and refuses what is deeper than
+  // kMaxUrdfDepth before urdfdom sees it.
+  auto chain = [](int n) {
+    std::string t =
+        "<robot name=\"chain\">\n<link name=\"l0\"><inertial><mass value=\"1\"/>"
+        "<inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>\n";
+    for (int i = 1; i <= n; ++i)
+      t += "<joint name=\"j" + std::to_string(i) + "\" type=\"fixed\"><parent link=\"l" + std::to_string(i - 1) +
+           "\"/><child link=\"l" + std::to_string(i) + "\"/><origin xyz=\"0 0 0.001\"/></joint><link name=\"l" +
+           std::to_string(i) + "\"/>\n";
+    return t + "</robot>\n";
+  };
+  Diagnostics d;
+  auto r = read(chain(40000), d);
+  INFO(errorText(d));
+  REQUIRE(r);
+  REQUIRE(r->links.size() == 40001);
+  const UrdfPlan plan = planUrdf(*r, false);
+  REQUIRE(plan.bodies.size() == 1);  // every link fixed to l0
+  CHECK(plan.bodies[0].links.size() == 40001);
+  CHECK(plan.link_global[40000].p[2] == Approx(40.0));  // 40,000 steps of 1 mm up
+  Diagnostics deep;
+  CHECK(!read(chain(kMaxUrdfDepth + 1), deep));
+  CHECK(firstError(deep) == "r.urdf:" + std::to_string(kMaxUrdfDepth + 3) + ": joint 'j" +
+                                std::to_string(kMaxUrdfDepth + 1) + "': its child link is more than " +
+                                std::to_string(kMaxUrdfDepth) +
+                                " joints below the root: simbob reads URDF trees at most that deep (docs/urdf.md)");
+}
+
+TEST_CASE("urdf read: 200,000 different unknown elements are each named once, in one pass", "[urdf]") {
+  // Issue 43 point 12: the notes were searched one by one for each element (about 70 s); now by
+  // a map. The elements are named once each, in the file's order.
+  std::string t = "<robot name=\"wide\"><link name=\"a\"/>\n";
+  for (int i = 0; i < 200000; ++i) t += "<x" + std::to_string(i) + "/><x" + std::to_string(i) + "/>\n";
+  t += "</robot>\n";
+  Diagnostics d;
+  auto r = read(t, d);
+  INFO(errorText(d));
+  REQUIRE(r);
+  REQUIRE(r->ignored.size() == 200000);
+  CHECK(r->ignored[0].text == "<x0> ignored: not an element of URDF inside <robot>");
+  CHECK(r->ignored[0].count == 2);
+  CHECK(r->ignored[199999].line == 200001);
+  CHECK(r->ignored[199999].text == "<x199999> ignored: not an element of URDF inside <robot>");
 }

@@ -490,3 +490,55 @@ TEST_CASE("urdf import: the links of one robot do not collide with each other un
     CHECK((sim->world().lastContactCount() > 0) == self);
   }
 }
+
+TEST_CASE("urdf import: a robot fixed to the world with a moving link in the ground is refused in a scene as bare",
+          "[urdf]") {
+  // Issue 42 point 5: one rule for a bare .urdf and a scene's RCImportURDF. The upper arm hangs
+  // 0.4 m into the ground (its box from z = -0.4 to 0.1): ODE would tear the joint apart.
+  TempDir dir;
+  const std::string urdf = dir.write("arm.urdf", R"(<robot name="arm">
+  <link name="world"/>
+  <joint name="fix" type="fixed"><parent link="world"/><child link="base"/></joint>
+  <link name="base"/>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/><origin xyz="0 0 0.1"/><axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
+  <link name="upper"><inertial><mass value="1"/><inertia ixx="0.02" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.001"/></inertial>
+    <collision><origin xyz="0 0 -0.25"/><geometry><box size="0.05 0.05 0.5"/></geometry></collision></link>
+</robot>)");
+  const std::string tail = " (is the file's up axis +Z?)";
+  {
+    Model m;
+    Diagnostics d;
+    CHECK(!compileFile(urdf, &m, d));
+    CHECK(firstError(d) == urdf +
+                               ":6: link 'upper' of a robot fixed to the world starts 0.4 m inside the ground: a robot "
+                               "fixed to the world is not raised; place it with RCImportURDF's Pose in a scene" +
+                               tail);
+    CHECK(d.errors().size() == 1);
+  }
+  // In a scene, the ground written before or after the robot: the same refusal, naming the plane.
+  for (bool ground_first : {true, false}) {
+    CAPTURE(ground_first);
+    const std::string ground = R"(<RCGround Key="Floor"/>)";
+    const std::string import = R"(<RCImportURDF Key="arm"><File Value="arm.urdf"/></RCImportURDF>)";
+    const std::string scene =
+        dir.write("arm.xml", "<Simulation><ComponentList>" + (ground_first ? ground + import : import + ground) +
+                                 "</ComponentList></Simulation>");
+    Model m;
+    Diagnostics d;
+    CHECK(!compileFile(scene, &m, d));
+    CHECK(firstError(d) == urdf +
+                               ":6: link 'upper' of a robot fixed to the world starts 0.4 m inside the plane of "
+                               "'Floor': a robot fixed to the world is not raised; move it with RCImportURDF's Pose" +
+                               tail);
+    CHECK(d.errors().size() == 1);
+  }
+  // Stood 0.5 m up with its Pose, it loads.
+  const std::string up = dir.write("up.xml", R"(<Simulation><ComponentList><RCGround Key="Floor"/>
+  <RCImportURDF Key="arm"><File Value="arm.urdf"/>
+    <Pose><RCGlobalCoordinates><Pose Value="0 0.5 0 0 0 0"/></RCGlobalCoordinates></Pose></RCImportURDF>
+</ComponentList></Simulation>)");
+  Model m;
+  Diagnostics d;
+  INFO(errorText(d));
+  CHECK(compileFile(up, &m, d));
+}

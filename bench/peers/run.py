@@ -145,27 +145,65 @@ def machine():
 
 
 def callgrind_shares(exe, args, work, label):
-    """simbob's instructions in its steps: inside libode, and the rest by object and function."""
+    """simbob's instructions in its steps (Runner::step: what each step does after the world was
+    built, controllers and drives included), split into ODE's and simbob's own. By object file:
+    libode is ODE; the program is simbob (its callbacks from ODE included); a shared library's
+    function (libc's memset, libm's) counts for whoever called it, in proportion to the calls'
+    cost (callgrind_annotate --tree=caller)."""
     out = os.path.join(work, f"cg.{label}")
-    subprocess.run(["valgrind", "--tool=callgrind", "--collect-atstart=no",
-                    "--toggle-collect=simbob::Runner::step*", f"--callgrind-out-file={out}", exe] + args,
-                   capture_output=True, text=True, check=True)
-    ann = subprocess.run(["callgrind_annotate", "--threshold=100", out], capture_output=True, text=True,
-                         check=True).stdout
-    total, by_obj, rows = 0, {}, []
+    subprocess.run(["valgrind", "--tool=callgrind", "--collect-atstart=no", "--toggle-collect=simbob::Runner::step*",
+                    f"--callgrind-out-file={out}", exe] + args, capture_output=True, text=True, check=True)
+    ann = subprocess.run(["callgrind_annotate", "--tree=caller", "--threshold=100", out], capture_output=True,
+                         text=True, check=True).stdout
+    line_re = re.compile(r"\s*([\d,]+)\s+\(\s*[\d.]+%\)\s+([<*])\s+(.*?)(?:\s+\((\d[\d,]*)x\))?\s*"
+                         r"(?:\[([^\[\]]+)\])?\s*$")
+    total, ode, own, rows, callers, last_obj = 0, 0, 0, [], [], {}
     for line in ann.splitlines():
-        m = re.match(r"\s*([\d,]+)\s+\(\s*[\d.]+%\)\s+(\S.*?)\s+\[(.+)\]\s*$", line)
-        if not m:
-            m2 = re.match(r"\s*([\d,]+)\s+\(100\.0%\)\s+PROGRAM TOTALS", line) or re.match(
-                r"\s*([\d,]+)\s+PROGRAM TOTALS", line)
-            if m2:
-                total = int(m2[1].replace(",", ""))
+        m2 = re.match(r"\s*([\d,]+)\s+(?:\(100\.0%\)\s+)?PROGRAM TOTALS", line)
+        if m2:
+            total = int(m2[1].replace(",", ""))
             continue
-        ir = int(m[1].replace(",", ""))
-        obj = os.path.basename(m[3])
-        by_obj[obj] = by_obj.get(obj, 0) + ir
-        rows.append((ir, m[2], obj))
-    return total, by_obj, rows
+        m = line_re.match(line)
+        if not m:
+            if not line.strip():
+                callers = []
+            continue
+        ir, kind, fn, obj = int(m[1].replace(",", "")), m[2], m[3], m[5]
+        if obj:
+            last_obj[fn] = os.path.basename(obj)
+        obj = last_obj.get(fn, "?")
+        if kind == "<":
+            callers.append((ir, obj))
+            continue
+        if obj.startswith("libode"):
+            ode += ir
+        elif not obj.startswith("lib"):
+            own += ir
+            rows.append((ir, fn, obj))
+        else:  # a shared library's function: split by its callers
+            c_ode = sum(c for c, o in callers if o.startswith("libode"))
+            c_all = sum(c for c, o in callers) or 1
+            ode += ir * c_ode / c_all
+            own += ir * (1 - c_ode / c_all)
+            if c_ode < c_all:
+                rows.append((ir * (1 - c_ode / c_all), fn, obj))
+        callers = []
+    inc = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--threshold=100", out], capture_output=True,
+                         text=True, check=True).stdout
+    entries = {}
+    for line in inc.splitlines():
+        m = re.match(r"\s*([\d,]+)\s+\(\s*[\d.]+%\)\s+\?\?\?:(dWorldStep|dWorldQuickStep|dSpaceCollide2|dSpaceCollide|dCollide)"
+                     r"\s", line)
+        if m:
+            entries[m[2]] = entries.get(m[2], 0) + int(m[1].replace(",", ""))
+    return total, ode, own, rows, entries
+
+
+GROUPS = [("hinge angles (crAtan2, hingeAngle, joint totals)",
+           r"crAtan2|twoProduct|\badd\(|\bDD\b|hingeAngle|wrappedJointState|updateJointTotals|__remainder|lround"),
+          ("broad phase (HashSpacePairs, mayTouch, near callback)", r"HashSpacePairs|meets<|mayTouch|near|collide"),
+          ("run checks (firstBadBody, jointSeparation)", r"firstBadBody|jointSeparation|firstBrokenJoint"),
+          ("drives, controllers, clock", r"Actuator|actuator|Schedule|Runner|Party|Clock|serve|Servo|drive")]
 
 
 def main():
@@ -258,19 +296,25 @@ def main():
 
     if args.profile:
         p("")
-        p("callgrind: simbob's instructions while stepping (Simulation::step), 2,000 steps, by object:")
+        p("callgrind: instructions of 2,000 steps after the world was built (Runner::step), ODE's and simbob's own")
+        p("(libc/libm functions counted for their callers):")
         for name in ("kr5_passive", "kr5_driven"):
             if name not in cases:
                 continue
-            total, by_obj, rows = callgrind_shares(simbob_exe, [cases[name][0], "2000", "--loads", "1"], work, name)
-            ode = sum(v for k, v in by_obj.items() if k.startswith("libode"))
-            p(f"  {name}: {total:,} instructions; in libode {ode / total:.1%}, outside {1 - ode / total:.1%}")
-            for obj, v in sorted(by_obj.items(), key=lambda kv: -kv[1])[:6]:
-                p(f"    {obj:32s} {v / total:6.1%}")
-            p("    largest functions outside libode:")
-            for ir, fn, obj in sorted((r for r in rows if not r[2].startswith("libode")), reverse=True)[:12]:
-                p(f"      {ir / total:6.2%}  {fn[:90]}  [{obj}]")
-
+            total, ode, own, rows, entries = callgrind_shares(simbob_exe, [cases[name][0], "2000", "--loads", "1"],
+                                                              work, name)
+            p(f"  {name}: {total:,} instructions ({total / 2000:,.0f} a step); ODE {ode / total:.1%}, "
+              f"simbob's own {own / total:.1%}")
+            p("    ODE's entry points, inclusive: " + ", ".join(f"{k} {v / total:.1%}" for k, v in entries.items()))
+            left = list(rows)
+            for title, pat in GROUPS:
+                hit = [r for r in left if re.search(pat, r[1])]
+                left = [r for r in left if r not in hit]
+                p(f"    {title:55s} {sum(r[0] for r in hit) / total:6.2%}")
+            p(f"    {'the rest':55s} {sum(r[0] for r in left) / total:6.2%}")
+            p("    simbob's largest (exclusive):")
+            for ir, fn, obj in sorted(rows, reverse=True)[:14]:
+                p(f"      {ir / total:6.2%}  {re.sub(r'^.*?:', '', fn)[:100]}")
     p("")
     p("raw:")
     for name in cases:

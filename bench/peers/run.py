@@ -272,17 +272,21 @@ def main():
       f"{args.steps} steps of 1 ms per run; load = median of {args.loads} loads in a process")
     p("process CPU time (medians); steps/CPU-s = steps / CPU seconds of the steps alone")
     p("")
-    p(f"{'robot':12s} {'simbob load ms':>14s} {'MuJoCo load ms':>14s} {'load ratio':>10s} "
+    p("load ms: the first load in a process (what a run pays), then the median of the process's loads")
+    p(f"{'robot':12s} {'simbob load ms':>16s} {'MuJoCo load ms':>16s} {'ratio':>11s} "
       f"{'simbob st/CPU-s':>15s} {'MuJoCo st/CPU-s':>15s} {'MuJoCo/simbob':>13s}")
     summary = {}
     for name in cases:
         s, m = raw[name]["simbob"], raw[name]["mujoco"]
         sl = statistics.median(x["load_cpu_s"] for x in s) * 1e3
         ml = statistics.median(x["load_cpu_s"] for x in m) * 1e3
+        sf = statistics.median(x["load_first_cpu_s"] for x in s) * 1e3
+        mf = statistics.median(x["load_first_cpu_s"] for x in m) * 1e3
         ss = statistics.median(x["steps"] / x["step_cpu_s"] for x in s)
         ms = statistics.median(x["steps"] / x["step_cpu_s"] for x in m)
         summary[name] = (sl, ml, ss, ms)
-        p(f"{name:12s} {sl:14.3f} {ml:14.3f} {sl / ml:10.2f} {ss:15.0f} {ms:15.0f} {ms / ss:13.2f}")
+        p(f"{name:12s} {sf:7.2f} / {sl:6.2f} {mf:7.2f} / {ml:6.2f} {sf / mf:5.2f} / {sl / ml:4.2f} {ss:15.0f} "
+          f"{ms:15.0f} {ms / ss:13.2f}")
     p("")
     p("joint angles at the end (rad), first run of each engine:")
     for name in cases:

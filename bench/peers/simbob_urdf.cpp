@@ -90,9 +90,10 @@ int main(int argc, char** argv) {
   const simbob::Model& model = sim->model();
   std::printf(
       "{\"engine\": \"simbob\", \"file\": \"%s\", \"nbody\": %zu, \"njnt\": %zu, \"load_cpu_s\": %.6g, "
+      "\"load_first_cpu_s\": %.6g, "
       "\"load_wall_s\": %.6g, \"steps\": %llu, \"step_cpu_s\": %.6g, \"step_wall_s\": %.6g, \"contacts\": %ld, "
       "\"time\": %.6g, \"finite\": %s, \"qpos\": {",
-      file.c_str(), model.bodies.size(), model.joints.size(), median(load_cpu), median(load_wall),
+      file.c_str(), model.bodies.size(), model.joints.size(), median(load_cpu), load_cpu.front(), median(load_wall),
       static_cast<unsigned long long>(sim->steps()), step_cpu, step_wall, contacts, sim->time(), ok ? "true" : "false");
   for (size_t j = 0; j < model.joints.size(); ++j) {
     const double q = sim->world().joint(static_cast<int>(j)).position;

@@ -157,7 +157,7 @@ def callgrind_shares(exe, args, work, label):
                          text=True, check=True).stdout
     line_re = re.compile(r"\s*([\d,]+)\s+\(\s*[\d.]+%\)\s+([<*])\s+(.*?)(?:\s+\((\d[\d,]*)x\))?\s*"
                          r"(?:\[([^\[\]]+)\])?\s*$")
-    total, ode, own, rows, callers, last_obj = 0, 0, 0, [], [], {}
+    total, ode, own, rows, callers, last_obj, ode_rows = 0, 0, 0, [], [], {}, []
     for line in ann.splitlines():
         m2 = re.match(r"\s*([\d,]+)\s+(?:\(100\.0%\)\s+)?PROGRAM TOTALS", line)
         if m2:
@@ -177,6 +177,7 @@ def callgrind_shares(exe, args, work, label):
             continue
         if obj.startswith("libode"):
             ode += ir
+            ode_rows.append((ir, fn))
         elif not obj.startswith("lib"):
             own += ir
             rows.append((ir, fn, obj))
@@ -196,7 +197,7 @@ def callgrind_shares(exe, args, work, label):
                      r"\s", line)
         if m:
             entries[m[2]] = entries.get(m[2], 0) + int(m[1].replace(",", ""))
-    return total, ode, own, rows, entries
+    return total, ode, own, rows, entries, ode_rows
 
 
 GROUPS = [("hinge angles (crAtan2, hingeAngle, joint totals)",
@@ -305,7 +306,7 @@ def main():
         for name in ("kr5_passive", "kr5_driven"):
             if name not in cases:
                 continue
-            total, ode, own, rows, entries = callgrind_shares(simbob_exe, [cases[name][0], "2000", "--loads", "1"],
+            total, ode, own, rows, entries, ode_rows = callgrind_shares(simbob_exe, [cases[name][0], "2000", "--loads", "1"],
                                                               work, name)
             p(f"  {name}: {total:,} instructions ({total / 2000:,.0f} a step); ODE {ode / total:.1%}, "
               f"simbob's own {own / total:.1%}")
@@ -316,6 +317,8 @@ def main():
                 left = [r for r in left if r not in hit]
                 p(f"    {title:55s} {sum(r[0] for r in hit) / total:6.2%}")
             p(f"    {'the rest':55s} {sum(r[0] for r in left) / total:6.2%}")
+            p("    ODE's largest (exclusive): " + ", ".join(
+                f"{re.sub(r'^[?]+:', '', fn).split('(')[0]} {ir / total:.1%}" for ir, fn in sorted(ode_rows, reverse=True)[:4]))
             p("    simbob's largest (exclusive):")
             for ir, fn, obj in sorted(rows, reverse=True)[:14]:
                 p(f"      {ir / total:6.2%}  {re.sub(r'^.*?:', '', fn)[:100]}")

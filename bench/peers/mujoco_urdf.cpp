@@ -209,9 +209,9 @@ int main(int argc, char** argv) {
   std::printf(
       "{\"engine\": \"mujoco\", \"version\": %d, \"file\": \"%s\", \"nbody\": %d, \"njnt\": %d, \"ngeom\": %d, "
       "\"load_cpu_s\": %.6g, \"load_first_cpu_s\": %.6g, \"load_wall_s\": %.6g, \"steps\": %ld, \"step_cpu_s\": %.6g, "
-      "\"step_wall_s\": %.6g, \"contacts\": %ld, \"time\": %.6g, \"finite\": %s, \"qpos\": {",
+      "\"step_wall_s\": %.6g, \"contacts\": %ld, \"unstable\": %d, \"time\": %.6g, \"finite\": %s, \"qpos\": {",
       mj_version(), file, m->nbody, m->njnt, m->ngeom, median(load_cpu), load_cpu.front(), median(load_wall), steps,
-      step_cpu, step_wall, contacts, d->time, finite ? "true" : "false");
+      step_cpu, step_wall, contacts, d->warning[mjWARN_BADQACC].number, d->time, finite ? "true" : "false");
   for (int j = 0; j < m->njnt; ++j)
     std::printf("%s\"%s\": %.6f", j ? ", " : "", mj_id2name(m, mjOBJ_JOINT, j), d->qpos[m->jnt_qposadr[j]]);
   std::printf("}, \"solver\": \"%s\", \"iterations\": %d, \"integrator\": %d}\n",

@@ -8,7 +8,8 @@ Usage: /usr/bin/python3 bench/peers/run.py [--build build] [-r 5] [--steps 10000
 The robots (written to a temporary folder; see bench/README.md, "Peers"):
   pendulum     one link (1 kg, a 5 cm sphere 0.5 m from a continuous hinge), starting horizontal
   chain10      10 links (0.2 m boxes, 0.5 kg) on continuous hinges about alternating axes (each
-               joint frame turned 0.3 rad about the chain), starting straight out, folding in 3-D
+               joint frame turned 0.3 rad about the chain, damping 0.02 N m s/rad), starting
+               straight out, folding in 3-D
   kr5_passive  dart-doc's KR5 sixx R650 (/usr/share/doc/dart/data/urdf/KR5), base 2 m above the
                ground and upright, no drives: it falls onto its joint stops
   kr5_driven   the same URDF with a position drive on each of its 6 joints (simbob: an
@@ -71,6 +72,12 @@ def pendulum_urdf(meshdir):
             '</link>\n</robot>\n')
 
 
+# The chain's joints are damped a little (N m s/rad; simbob applies -damping * velocity each step,
+# MuJoCo implicitly in its Euler step): undamped, the free end whips up until MuJoCo's Euler
+# step blows up ("Nan, Inf or huge value in QACC", and MuJoCo silently resets the state) at 8 s.
+CHAIN_DAMPING = 0.02
+
+
 def chain_urdf(meshdir, n=10):
     length, side, mass = 0.2, 0.04, 0.5
     ia = mass * (2 * side ** 2) / 12  # about the long axis
@@ -82,7 +89,8 @@ def chain_urdf(meshdir, n=10):
         # each joint frame turned 0.3 rad about the chain: the z hinges feel gravity too (3-D)
         origin = "0 0 0" if k == 0 else f"{length} 0 0"
         out.append(f'<joint name="j{k}" type="continuous"><parent link="{parent}"/><child link="l{k}"/>'
-                   f'<origin xyz="{origin}" rpy="{0 if k == 0 else 0.3} 0 0"/><axis xyz="{axis}"/></joint>\n')
+                   f'<origin xyz="{origin}" rpy="{0 if k == 0 else 0.3} 0 0"/><axis xyz="{axis}"/>'
+                   f'<dynamics damping="{CHAIN_DAMPING}"/></joint>\n')
         out.append(f'<link name="l{k}">' + inertial(mass, f"{length / 2} 0 0", ia, ib, ib) +
                    f'<collision><origin xyz="{length / 2} 0 0" rpy="0 0 0"/><geometry><box size="{length * 0.9} '
                    f'{side} {side}"/></geometry></collision></link>\n')
@@ -127,8 +135,9 @@ def kr5_driven_scene(urdf):
 """
 
 
-def run_json(cmd):
-    out = subprocess.run(cmd, capture_output=True, text=True)
+def run_json(cmd, cwd):
+    # In the work folder: MuJoCo writes its warnings to MUJOCO_LOG.TXT in the current folder.
+    out = subprocess.run(cmd, capture_output=True, text=True, cwd=cwd)
     if out.returncode != 0:
         sys.exit(f"peers: {' '.join(cmd)} failed ({out.returncode}):\n{out.stderr}{out.stdout}")
     return json.loads(out.stdout.strip().splitlines()[-1])
@@ -218,8 +227,8 @@ def main():
     ap.add_argument("--only", default="", help="comma-separated robots (default all)")
     args = ap.parse_args()
 
-    simbob_exe = os.path.join(args.build, "bench", "peers_simbob")
-    mujoco_exe = os.path.join(args.build, "bench", "peers_mujoco")
+    simbob_exe = os.path.abspath(os.path.join(args.build, "bench", "peers_simbob"))
+    mujoco_exe = os.path.abspath(os.path.join(args.build, "bench", "peers_mujoco"))
     if not os.access(simbob_exe, os.X_OK):
         sys.exit(f"peers: {simbob_exe} missing: build first (bash scripts/build.sh)")
     if not os.access(mujoco_exe, os.X_OK):
@@ -262,7 +271,7 @@ def main():
             order = ["simbob", "mujoco"] if r % 2 == 0 else ["mujoco", "simbob"]
             for eng in order:
                 cmd = [simbob_exe, sfile] + common if eng == "simbob" else [mujoco_exe, mfile] + common + margs
-                raw[name][eng].append(run_json(cmd))
+                raw[name][eng].append(run_json(cmd, work))
     load1 = open("/proc/loadavg").read().split()[:3]
 
     lines = []
@@ -288,6 +297,11 @@ def main():
         summary[name] = (sl, ml, ss, ms)
         p(f"{name:12s} {sf:7.2f} / {sl:6.2f} {mf:7.2f} / {ml:6.2f} {sf / mf:5.2f} / {sl / ml:4.2f} {ss:15.0f} "
           f"{ms:15.0f} {ms / ss:13.2f}")
+    for name in cases:
+        bad = sum(x.get("unstable", 0) for x in raw[name]["mujoco"])
+        if bad:
+            p(f"WARNING: {name}: MuJoCo's step went unstable {bad} times (it resets the state and goes on): "
+              "its figure is not of the same motion")
     p("")
     p("joint angles at the end (rad), first run of each engine:")
     for name in cases:

@@ -15,6 +15,8 @@ The robots (written to a temporary folder; see bench/README.md, "Peers"):
   kr5_driven   the same URDF with a position drive on each of its 6 joints (simbob: an
                RCImportURDF scene with Drives position, MaxForce 500, Smooth 0.05 and command
                schedules; MuJoCo: the same velocity law as a torque each step, mujoco_urdf.cpp)
+  kr5_drv_step the same driven scene with SceneSettings Solver Step (what simbob chooses for a
+               bare URDF run of the KR5); MuJoCo's side is kr5_driven's again
 
 Every process loads its robot K times (the median is the load) and then steps it STEPS times at
 1 ms; both programs read their own process CPU time (CLOCK_PROCESS_CPUTIME_ID), so the load of a
@@ -113,12 +115,12 @@ def kr5_urdf():
     return text
 
 
-def kr5_driven_scene(urdf):
+def kr5_driven_scene(urdf, solver=""):
     schedules = "\n".join(
         f'      <RCCommandSchedule Key="S{k}"><Target Ref="Bot.kr5.{j}"/><Commands Value="0 0 {t} {q}"/>'
         f'</RCCommandSchedule>' for k, (j, t, q) in enumerate(KR5_COMMANDS))
     return f"""<Simulation>
-  <SceneSettings><MaxTimeStep Value="0.001"/></SceneSettings>
+  <SceneSettings><MaxTimeStep Value="0.001"/>{solver}</SceneSettings>
   <ComponentList>
     <RCGround Key="Ground"/>
     <RCRobot Key="Bot">
@@ -247,6 +249,8 @@ def main():
         open(files[name], "w").write(text)
     driven_xml = os.path.join(work, "kr5_driven.xml")
     open(driven_xml, "w").write(kr5_driven_scene(files["kr5"]))
+    driven_step_xml = os.path.join(work, "kr5_driven_step.xml")
+    open(driven_step_xml, "w").write(kr5_driven_scene(files["kr5"], '<Solver Value="Step"/>'))
     drive_args = ["--smooth", str(SMOOTH), "--maxforce", str(MAXFORCE)]
     for j, v in KR5_JOINTS.items():
         drive_args += ["--drive", j, str(v)]
@@ -257,6 +261,8 @@ def main():
         "chain10": (files["chain10"], files["chain10"], ["--floor"]),
         "kr5_passive": (files["kr5"], files["kr5"], ["--floor"]),
         "kr5_driven": (driven_xml, files["kr5"], ["--floor"] + drive_args),
+        # the same scene with the solver a bare URDF run of the KR5 gets (simbob's side only differs)
+        "kr5_drv_step": (driven_step_xml, files["kr5"], ["--floor"] + drive_args),
     }
     if args.only:
         cases = {k: v for k, v in cases.items() if k in args.only.split(",")}

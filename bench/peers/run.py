@@ -22,7 +22,8 @@ Every process loads its robot K times (the median is the load) and then steps it
 1 ms; both programs read their own process CPU time (CLOCK_PROCESS_CPUTIME_ID), so the load of a
 shared machine moves the figures less than it moves wall time. Runs alternate between the engines.
 The table and the raw JSON lines go to stdout and to bench/results/<date>-<machine>-peers.txt.
---profile adds callgrind's count of simbob's instructions inside and outside ODE on the KR5.
+--profile adds callgrind's count of simbob's instructions inside and outside ODE on the KR5,
+and the same split by time from perf's cpu-clock samples where perf can sample.
 
 Exit 69 when build/bench/peers_mujoco is missing (libmujoco-dev not installed); 1 when a run fails.
 """
@@ -211,8 +212,40 @@ def callgrind_shares(exe, args, work, label):
     return total, ode, own, rows, entries, ode_rows
 
 
+def perf_shares(exe, args, work, label):
+    """The same split by time: perf's cpu-clock samples of a whole run (its load, about 1 % of it,
+    included), by shared object: libode is ODE; the program, libm and libstdc++ count as simbob's
+    (libm's calls are simbob's); libc (memset/memcpy, mostly ODE's, 0.3-1.5 %), the kernel and
+    the load's libraries (qhull, assimp, the dynamic loader) are left out. None if perf cannot
+    sample here."""
+    if not shutil.which("perf"):
+        return None
+    data = os.path.join(work, f"perf.{label}")
+    rec = subprocess.run(["perf", "record", "-q", "-e", "cpu-clock", "-F", "10000", "-o", data, exe] + args,
+                         capture_output=True, text=True)
+    if rec.returncode != 0:
+        return None
+    rep = subprocess.run(["perf", "report", "-i", data, "--sort", "dso,sym", "--stdio"], capture_output=True,
+                         text=True).stdout
+    ode = own = 0.0
+    syms = []
+    for line in rep.splitlines():
+        m = re.match(r"\s*([\d.]+)%\s+(\S+)\s+\[.\]\s+(.*)$", line)
+        if not m:
+            continue
+        share, dso, sym = float(m[1]), m[2], m[3].strip()
+        if dso.startswith("libode"):
+            ode += share
+        elif dso == os.path.basename(exe) or dso.startswith(("libm.", "libstdc++")):
+            own += share
+            syms.append((share, sym))
+    if ode + own == 0:
+        return None
+    return ode, own, syms
+
+
 GROUPS = [("hinge angles (crAtan2, hingeAngle, joint totals)",
-           r"crAtan2|twoProduct|\badd\(|\bDD\b|hingeAngle|wrappedJointState|updateJointTotals|__remainder|lround"),
+           r"crAtan2|twoProduct|\badd\(|::add\b|\bDD\b|hingeAngle|wrappedJointState|updateJointTotals|__remainder|lround"),
           ("broad phase (HashSpacePairs, mayTouch, near callback)", r"HashSpacePairs|meets<|mayTouch|near|collide"),
           ("run checks (firstBadBody, jointSeparation)", r"firstBadBody|jointSeparation|firstBrokenJoint"),
           ("drives, controllers, clock", r"Actuator|actuator|Schedule|Runner|Party|Clock|serve|Servo|drive")]
@@ -339,6 +372,12 @@ def main():
             p(f"    {'the rest':55s} {sum(r[0] for r in left) / total:6.2%}")
             p("    ODE's largest (exclusive): " + ", ".join(
                 f"{re.sub(r'^[?]+:', '', fn).split('(')[0]} {ir / total:.1%}" for ir, fn in sorted(ode_rows, reverse=True)[:4]))
+            pf = perf_shares(simbob_exe, [cases[name][0], "100000", "--loads", "1"], work, name)
+            if pf:
+                ode_t, own_t, syms = pf
+                hinge = sum(x for x, sym in syms if re.search(GROUPS[0][1], sym))
+                p(f"    by time (perf cpu-clock, 100,000 steps): ODE {ode_t / (ode_t + own_t):.1%}, simbob's own "
+                  f"{own_t / (ode_t + own_t):.1%}, of which hinge angles {hinge / (ode_t + own_t):.1%}")
             p("    simbob's largest (exclusive):")
             for ir, fn, obj in sorted(rows, reverse=True)[:14]:
                 p(f"      {ir / total:6.2%}  {re.sub(r'^.*?:', '', fn)[:100]}")

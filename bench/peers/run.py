@@ -319,6 +319,7 @@ def main():
       f"{platform.platform()}")
     p(f"load average before {' '.join(load0)}, after {' '.join(load1)}; {args.r} runs each, alternating; "
       f"{args.steps} steps of 1 ms per run; load = median of {args.loads} loads in a process")
+    p(f"simbob: {simbob_exe}; MuJoCo: {mujoco_exe} (libmujoco {raw[next(iter(cases))]['mujoco'][0]['version']})")
     p("process CPU time (medians); steps/CPU-s = steps / CPU seconds of the steps alone")
     p("")
     p("load ms: the first load in a process (what a run pays), then the median of the process's loads")

@@ -258,7 +258,8 @@ def main():
     ap.add_argument("--steps", type=int, default=10000, help="steps of 1 ms per run (default 10000)")
     ap.add_argument("--loads", type=int, default=5, help="loads per run, median taken (default 5)")
     ap.add_argument("--results", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "results"))
-    ap.add_argument("--profile", action="store_true", help="simbob's own share of a KR5 step: callgrind (instructions), perf (time)")
+    ap.add_argument("--profile", action="store_true",
+                    help="simbob's own share of a KR5 step: callgrind (instructions), perf (time)")
     ap.add_argument("--only", default="", help="comma-separated robots (default all)")
     args = ap.parse_args()
 

@@ -205,8 +205,8 @@ def callgrind_shares(exe, args, work, label):
                          text=True, check=True).stdout
     entries = {}
     for line in inc.splitlines():
-        m = re.match(r"\s*([\d,]+)\s+\(\s*[\d.]+%\)\s+\?\?\?:(dWorldStep|dWorldQuickStep|dSpaceCollide2|dSpaceCollide|dCollide)"
-                     r"\s", line)
+        m = re.match(r"\s*([\d,]+)\s+\(\s*[\d.]+%\)\s+\?\?\?:"
+                     r"(dWorldStep|dWorldQuickStep|dSpaceCollide2|dSpaceCollide|dCollide)\s", line)
         if m:
             entries[m[2]] = entries.get(m[2], 0) + int(m[1].replace(",", ""))
     return total, ode, own, rows, entries, ode_rows
@@ -245,7 +245,8 @@ def perf_shares(exe, args, work, label):
 
 
 GROUPS = [("hinge angles (crAtan2, hingeAngle, joint totals)",
-           r"crAtan2|twoProduct|\badd\(|::add\b|\bDD\b|hingeAngle|wrappedJointState|updateJointTotals|__remainder|lround"),
+           r"crAtan2|twoProduct|\badd\(|::add\b|\bDD\b|hingeAngle|wrappedJointState|updateJointTotals"
+           r"|__remainder|lround"),
           ("broad phase (HashSpacePairs, mayTouch, near callback)", r"HashSpacePairs|meets<|mayTouch|near|collide"),
           ("run checks (firstBadBody, jointSeparation)", r"firstBadBody|jointSeparation|firstBrokenJoint"),
           ("drives, controllers, clock", r"Actuator|actuator|Schedule|Runner|Party|Clock|serve|Servo|drive")]
@@ -361,8 +362,8 @@ def main():
         for name in ("kr5_passive", "kr5_driven"):
             if name not in cases:
                 continue
-            total, ode, own, rows, entries, ode_rows = callgrind_shares(simbob_exe, [cases[name][0], "2000", "--loads", "1"],
-                                                              work, name)
+            total, ode, own, rows, entries, ode_rows = callgrind_shares(
+                simbob_exe, [cases[name][0], "2000", "--loads", "1"], work, name)
             p(f"  {name}: {total:,} instructions ({total / 2000:,.0f} a step); ODE {ode / total:.1%}, "
               f"simbob's own {own / total:.1%}")
             p("    ODE's entry points, inclusive: " + ", ".join(f"{k} {v / total:.1%}" for k, v in entries.items()))
@@ -372,8 +373,9 @@ def main():
                 left = [r for r in left if r not in hit]
                 p(f"    {title:55s} {sum(r[0] for r in hit) / total:6.2%}")
             p(f"    {'the rest':55s} {sum(r[0] for r in left) / total:6.2%}")
-            p("    ODE's largest (exclusive): " + ", ".join(
-                f"{re.sub(r'^[?]+:', '', fn).split('(')[0]} {ir / total:.1%}" for ir, fn in sorted(ode_rows, reverse=True)[:4]))
+            top = sorted(ode_rows, reverse=True)[:4]
+            p("    ODE's largest (exclusive): " +
+              ", ".join(f"{re.sub(r'^[?]+:', '', fn).split('(')[0]} {ir / total:.1%}" for ir, fn in top))
             pf = perf_shares(simbob_exe, [cases[name][0], "100000", "--loads", "1"], work, name)
             if pf:
                 ode_t, own_t, syms = pf

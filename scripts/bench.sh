@@ -5,9 +5,10 @@
 #
 # Usage: scripts/bench.sh [--quick]
 #   --quick   about a minute (shorter runs, fewer repetitions) instead of about 5-10 minutes
-# Builds with scripts/build.sh, installs what the measurements need (apt: libmujoco-samples for
-# mujoco-testspeed, time for GNU time), prints a table of medians and saves it in
-# bench/results/<date>-<machine>.csv (every single run in ...-runs.csv beside it).
+# Installs what the measurements need (apt: libmujoco-samples for mujoco-testspeed,
+# libmujoco-dev for bench/peers, time for GNU time), builds with scripts/build.sh, prints a
+# table of medians and saves it in bench/results/<date>-<machine>.csv (every single run in
+# ...-runs.csv beside it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -15,17 +16,16 @@ quick=()
 for arg in "$@"; do
   case "$arg" in
     --quick) quick=(--quick) ;;
-    -h|--help) sed -n '2,10p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bench.sh: unknown option '$arg' (try --help)" >&2; exit 64 ;;
   esac
 done
 
-bash scripts/build.sh
-[ -x build/bench/bare_ode ] || { echo "bench.sh: build/bench/bare_ode was not built (SIMBOB_BENCH off?)" >&2; exit 1; }
-
-# What only the benchmark needs, from Debian's packages.
+# What only the benchmark needs, from Debian's packages (before the build: bench/peers's
+# peers_mujoco is built only where libmujoco-dev is installed).
 need=()
 command -v mujoco-testspeed >/dev/null || need+=(libmujoco-samples)
+[ -f /usr/include/mujoco/mujoco.h ] || need+=(libmujoco-dev)
 [ -x /usr/bin/time ] || need+=(time)
 command -v python3 >/dev/null || need+=(python3)
 if [ ${#need[@]} -gt 0 ]; then
@@ -37,6 +37,8 @@ if [ ${#need[@]} -gt 0 ]; then
     echo "bench.sh: could not install ${need[*]}" >&2
   fi
 fi
+bash scripts/build.sh
+[ -x build/bench/bare_ode ] || { echo "bench.sh: build/bench/bare_ode was not built (SIMBOB_BENCH off?)" >&2; exit 1; }
 [ -x /usr/bin/time ] || { echo "bench.sh: /usr/bin/time (package 'time') is needed" >&2; exit 1; }
 mujoco=()
 if command -v mujoco-testspeed >/dev/null; then

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <filesystem>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "cli.h"
 #include "commands.h"
 #include "simbob/tool/comparison.h"
+#include "simbob/tool/test_report.h"
 
 namespace simbob::cli::batch {
 
@@ -47,6 +49,15 @@ int assignOutputs(const BatchArgs& a, const Common& common, std::vector<Job>* jo
 // CI reports (batch_ci.cpp, docs/ci.md).
 /// 0, or 64 after reporting: --bless without --golden.
 int checkCiOptions(const BatchArgs& a);
+
+/// OUT.json: the summary beside a job's trajectory.
+std::string summaryPath(const Job& j);
+/// The logs of the controllers a job's run started (OUT.controller.log[.KEY]), sorted.
+std::vector<std::string> controllerLogs(const Job& j);
+/// A case's folder name in --artifacts DIR, safe and unique among `taken` (batch_artifacts.cpp).
+std::string caseFolder(const std::string& name, std::set<std::string>* taken);
+/// DIR/FOLDER/ of one case: what a reader needs to see why it is what it is. 0, or an exit status.
+int caseArtifacts(const Job& j, const BatchArgs& a, const Common& common, const std::string& folder, TestCaseReport* c);
 /// --junit, --summary-md and --artifacts once every job has finished: 0, or the exit status of
 /// the first report that could not be written (reported; the others are still written).
 int writeCiOutputs(const std::vector<Job>& jobs, const BatchArgs& a, const Common& common, double wall);

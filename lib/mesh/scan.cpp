@@ -231,20 +231,15 @@ struct Expansion {
   int state = 0;  // 0 not seen, 1 being expanded, 2 done
 };
 
-std::string scanCollada(const std::string& bytes, size_t max_triangles, std::string* up_axis) {
-  pugi::xml_document doc;
-  const pugi::xml_parse_result parsed = doc.load_buffer(bytes.data(), bytes.size());
-  if (!parsed) return atLine(lineAt(bytes, parsed.offset), std::string("not XML: ") + parsed.description());
-  const pugi::xml_node root = doc.document_element();
-  if (std::string_view(root.name()) != "COLLADA")
-    return "is not a COLLADA file (its root element is <" + std::string(root.name()).substr(0, 40) + ">)";
-  *up_axis = std::string(root.child("asset").child_value("up_axis"));
-  while (!up_axis->empty() && isSpace(up_axis->back())) up_axis->pop_back();
-  while (!up_axis->empty() && isSpace(up_axis->front())) up_axis->erase(0, 1);
-
-  // One pass over every element, without recursion: depth, ids, and the numbers of float arrays.
+/// The elements a COLLADA file's instancing refers to, by id, and its scenes' root nodes.
+struct ColladaIndex {
   std::unordered_map<std::string, pugi::xml_node> nodes, geometries, controllers;
   std::vector<pugi::xml_node> roots;
+};
+
+/// One pass over every element, without recursion: depth, ids, and the numbers of float arrays.
+/// "" or what is wrong, at its line.
+std::string indexCollada(const std::string& bytes, const pugi::xml_node& root, ColladaIndex* ix) {
   size_t depth = 2;  // of x; the root is 1
   for (pugi::xml_node x = root.first_child(); x && x != root;) {
     if (x.type() == pugi::node_element) {
@@ -254,12 +249,12 @@ std::string scanCollada(const std::string& bytes, size_t max_triangles, std::str
                       "elements nested more than the limit of " + count(kMaxMeshXmlDepth) + " deep");
       const char* id = x.attribute("id").value();
       if (name == "node") {
-        if (*id) nodes.emplace(id, x);
-        if (std::string_view(x.parent().name()) == "visual_scene") roots.push_back(x);
+        if (*id) ix->nodes.emplace(id, x);
+        if (std::string_view(x.parent().name()) == "visual_scene") ix->roots.push_back(x);
       } else if (name == "geometry" && *id) {
-        geometries.emplace(id, x);
+        ix->geometries.emplace(id, x);
       } else if (name == "controller" && *id) {
-        controllers.emplace(id, x);
+        ix->controllers.emplace(id, x);
       } else if (name == "float_array") {
         std::string problem;
         eachToken(x.child_value(),
@@ -278,6 +273,27 @@ std::string scanCollada(const std::string& bytes, size_t max_triangles, std::str
     }
     if (x != root) x = x.next_sibling();
   }
+
+  return "";
+}
+
+std::string scanCollada(const std::string& bytes, size_t max_triangles, std::string* up_axis) {
+  pugi::xml_document doc;
+  const pugi::xml_parse_result parsed = doc.load_buffer(bytes.data(), bytes.size());
+  if (!parsed) return atLine(lineAt(bytes, parsed.offset), std::string("not XML: ") + parsed.description());
+  const pugi::xml_node root = doc.document_element();
+  if (std::string_view(root.name()) != "COLLADA")
+    return "is not a COLLADA file (its root element is <" + std::string(root.name()).substr(0, 40) + ">)";
+  *up_axis = std::string(root.child("asset").child_value("up_axis"));
+  while (!up_axis->empty() && isSpace(up_axis->back())) up_axis->pop_back();
+  while (!up_axis->empty() && isSpace(up_axis->front())) up_axis->erase(0, 1);
+
+  ColladaIndex ix;
+  if (std::string problem = indexCollada(bytes, root, &ix); !problem.empty()) return problem;
+  const auto& nodes = ix.nodes;
+  const auto& geometries = ix.geometries;
+  const auto& controllers = ix.controllers;
+  const auto& roots = ix.roots;
 
   std::unordered_map<std::string, uint64_t> geometry_triangles;
   std::string problem;

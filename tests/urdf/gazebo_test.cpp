@@ -15,15 +15,6 @@ namespace {
 
 constexpr double kG = 9.81;
 
-std::unique_ptr<Simulation> simulate(const Model& m) {
-  Diagnostics d;
-  SimulationOptions o;
-  auto sim = Simulation::fromModel(m, o, d);
-  INFO(errorText(d));
-  REQUIRE(sim);
-  return sim;
-}
-
 const char* kInertia = R"(<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>)";
 
 /// A scene with a ground plane and the sphere of ball.urdf with its centre at height `z`.

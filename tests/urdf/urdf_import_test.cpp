@@ -16,26 +16,6 @@ namespace {
 
 constexpr double kG = 9.81;
 
-/// Complete elliptic integral of the first kind K(k) by the arithmetic-geometric mean.
-double ellipticK(double k) {
-  double a = 1, b = std::sqrt(1 - k * k);
-  for (int i = 0; i < 30; ++i) {
-    const double an = (a + b) / 2;
-    b = std::sqrt(a * b);
-    a = an;
-  }
-  return kPi / (2 * a);
-}
-
-std::unique_ptr<Simulation> simulate(const Model& m) {
-  Diagnostics d;
-  SimulationOptions o;
-  auto sim = Simulation::fromModel(m, o, d);
-  INFO(errorText(d));
-  REQUIRE(sim);
-  return sim;
-}
-
 }  // namespace
 
 TEST_CASE("urdf import: a pendulum with its mass away from the link origin swings with the elliptic period", "[urdf]") {
@@ -66,20 +46,11 @@ TEST_CASE("urdf import: a pendulum with its mass away from the link origin swing
   const double w0 = std::sqrt(m * kG * L / (Ic + m * L * L));
   const double expected = 4 * ellipticK(std::sin(theta0 / 2)) / w0;
   // The mass hangs straight down at q = theta0 (turning about +Y carries URDF x into -z): it
-  // passes there twice a period, at its fastest.
-  std::vector<double> crossings;
-  double last = -theta0, worst_pivot = 0;
-  for (int step = 0; step < 8000; ++step) {
-    sim->step();
-    const double q = sim->world().joint(j).position - theta0;
-    const BodyState s = sim->world().body(0);
-    // The row is the link frame: it stays at the pivot while the mass swings.
-    worst_pivot = std::max(worst_pivot, std::hypot(s.pose.p[0], s.pose.p[1] - 2, s.pose.p[2]));
-    if (last * q < 0) crossings.push_back(sim->time() - 0.001 * q / (q - last));
-    last = q;
-  }
-  REQUIRE(crossings.size() >= 6);
-  const double period = 2 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+  // passes there twice a period, at its fastest. The row is the link frame: it stays at the pivot
+  // while the mass swings.
+  const Swing sw = swing(*sim, j, theta0, 0, {0, 2, 0}, 8000);
+  REQUIRE(sw.crossings >= 6);
+  const double period = sw.period, worst_pivot = sw.worst_pivot;
   INFO("period " << period << " s, expected " << expected << " s");
   // Semi-implicit Euler at 1 ms shifts the period by O(h w0) of it; 0.5 % is generous for that.
   CHECK(std::fabs(period - expected) / expected < 0.005);

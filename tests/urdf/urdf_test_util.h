@@ -4,7 +4,10 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <filesystem>
+#include <memory>
+#include <vector>
 #include <string>
 
 #include "scene/scene_helpers.h"
@@ -56,6 +59,54 @@ inline int jointIndex(const Model& m, const std::string& key) {
     if (m.joints[i].key == key) return static_cast<int>(i);
   FAIL("no joint '" << key << "'");
   return -1;
+}
+
+/// A Simulation of `m` with the default options (the test fails when it cannot be made).
+inline std::unique_ptr<Simulation> simulate(const Model& m) {
+  Diagnostics d;
+  auto sim = Simulation::fromModel(m, SimulationOptions{}, d);
+  INFO(errorText(d));
+  REQUIRE(sim);
+  return sim;
+}
+
+/// Complete elliptic integral of the first kind K(k) by the arithmetic-geometric mean: a
+/// pendulum released at theta0 swings with the period 4 K(sin(theta0 / 2)) / w0.
+inline double ellipticK(double k) {
+  double a = 1, b = std::sqrt(1 - k * k);
+  for (int i = 0; i < 30; ++i) {
+    const double an = (a + b) / 2;
+    b = std::sqrt(a * b);
+    a = an;
+  }
+  return 3.14159265358979323846 / (2 * a);
+}
+
+/// What `steps` steps of a swinging pendulum showed: its period, from the times its joint's
+/// position passes `bottom` (twice a period, interpolated within the step), and the farthest
+/// body `body`'s frame strayed from `pivot` (the joint's constraint error).
+struct Swing {
+  double period = 0;
+  size_t crossings = 0;
+  double worst_pivot = 0;
+};
+inline Swing swing(Simulation& sim, int joint, double bottom, int body, const Vec3& pivot, int steps,
+                   double dt = 0.001) {
+  std::vector<double> times;
+  Swing s;
+  double last = sim.world().joint(joint).position - bottom;
+  for (int step = 0; step < steps; ++step) {
+    sim.step();
+    const double q = sim.world().joint(joint).position - bottom;
+    const BodyState b = sim.world().body(body);
+    s.worst_pivot =
+        std::max(s.worst_pivot, std::hypot(b.pose.p[0] - pivot[0], b.pose.p[1] - pivot[1], b.pose.p[2] - pivot[2]));
+    if (last * q < 0) times.push_back(sim.time() - dt * q / (q - last));
+    last = q;
+  }
+  s.crossings = times.size();
+  if (times.size() >= 2) s.period = 2 * (times.back() - times.front()) / static_cast<double>(times.size() - 1);
+  return s;
 }
 
 /// The first error's "file:line: message", or "" (for exact-message checks).

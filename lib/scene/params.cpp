@@ -5,12 +5,13 @@
 
 #include "simbob/error.h"
 #include "simbob/registry.h"
+#include "scene/limits.h"
 
 namespace simbob {
 
 namespace {
 
-constexpr double kMaxMagnitude = 1e9;  // m, kg, m/s, ...: far beyond any robot scene
+constexpr double kMaxMagnitude = kMaxValueMagnitude;  // scene/limits.h
 
 // The largest finite absolute number inside a value (infinities are checked by the parser).
 double largestFinite(const Value& v) {

@@ -17,6 +17,7 @@
 #include "simbob/cr_math.h"
 #include "simbob/values.h"
 #include "simbob/tool/platform.h"
+#include "scene/limits.h"
 #include "urdf/paths.h"
 #include "urdf/urdf.h"
 #include "urdf/urdf_module.h"
@@ -94,6 +95,8 @@ class Reader {
                   const std::map<std::string, int>& joints);
   bool gazeboNumber(const pugi::xml_node& tag, const std::string& what, double lo, bool lo_open, UrdfTag* out);
   bool gazeboBool(const pugi::xml_node& tag, const std::string& what, bool invert, UrdfTag* out);
+  bool number(int line, const std::string& what, double v, bool non_negative = false);
+  bool checkValues();
 
   const std::string& text_;
   std::string file_;
@@ -294,6 +297,7 @@ bool Reader::gazeboNumber(const pugi::xml_node& tag, const std::string& what, do
                     (lo_open ? "> " : ">= ") + formatNumber(lo));
     return false;
   }
+  if (!number(line, what + ": <" + tag.name() + ">", *v)) return false;
   *out = {line, *v};
   return true;
 }
@@ -759,6 +763,7 @@ std::shared_ptr<const UrdfRobot> Reader::read() {
     }
   }
   for (pugi::xml_node g : root.children("gazebo")) ok = readGazebo(g, links, joints) && ok;
+  ok = checkValues() && ok;
   if (model->getRoot()) robot_->root = links.count(model->getRoot()->name) ? links[model->getRoot()->name] : -1;
   std::vector<Missing> missing;
   for (const auto& [package, m] : missing_) missing.push_back(m);
@@ -768,6 +773,78 @@ std::shared_ptr<const UrdfRobot> Reader::read() {
           ErrorKind::MissingInput);
   if (!ok || !missing.empty()) return nullptr;
   return robot_;
+}
+
+// A URDF number passes the checks a scene file's parameter gets (lib/scene/params.cpp): finite,
+// within kMaxValueMagnitude, and >= 0 where a negative value has no meaning. Past them, ODE's
+// inertia and contact math overflow (a mass of 1e200 ends in an ODE assertion).
+bool Reader::number(int line, const std::string& what, double v, bool non_negative) {
+  if (!std::isfinite(v)) {
+    error(line, what + " " + formatNumber(v) + " must be finite");
+    return false;
+  }
+  if (std::fabs(v) > kMaxValueMagnitude) {
+    error(line, what + " " + formatNumber(v) + " is beyond the supported magnitude " + formatNumber(kMaxValueMagnitude) +
+                    " (the limit of every number of a scene)");
+    return false;
+  }
+  if (non_negative && v < 0) {
+    error(line, what + " " + formatNumber(v) + " must be >= 0");
+    return false;
+  }
+  return true;
+}
+
+// Every number urdfdom read, through number(): each problem said at its element's line.
+bool Reader::checkValues() {
+  bool ok = true;
+  // One message for an element: its first number that fails.
+  auto all = [&](int line, const std::string& what, auto const& values, bool non_negative = false) {
+    for (double v : values)
+      if (!number(line, what, v, non_negative)) {
+        ok = false;
+        return;
+      }
+  };
+  auto position = [&](int line, const std::string& what, const Transform& t) { all(line, what + ": <origin> xyz", t.p); };
+  auto shapes = [&](const std::string& link, const std::vector<UrdfShape>& list, const char* kind) {
+    for (const UrdfShape& sh : list) {
+      const std::string what = "link '" + quoteInput(link) + "': <" + kind + ">";
+      position(sh.line, what, sh.origin);
+      all(sh.shape_line, what + " size", sh.size, true);
+      if (sh.kind == UrdfShape::Mesh) all(sh.shape_line, what + " <mesh> scale", sh.scale);
+    }
+  };
+  for (const UrdfLink& l : robot_->links) {
+    const std::string what = "link '" + quoteInput(l.name) + "'";
+    if (l.has_inertial) {
+      const UrdfInertial& i = l.inertial;
+      position(i.line, what + ": <inertial>", i.origin);
+      ok = number(i.mass_line, what + ": <mass>", i.mass) && ok;
+      all(i.inertia_line, what + ": <inertia>", i.inertia);
+    }
+    shapes(l.name, l.visuals, "visual");
+    shapes(l.name, l.collisions, "collision");
+  }
+  for (const UrdfJoint& j : robot_->joints) {
+    const std::string what = "joint '" + quoteInput(j.name) + "'";
+    position(j.line, what, j.origin);
+    if (j.has_limit) {
+      ok = number(j.limit_line, what + ": <limit> lower", j.lower) && ok;
+      ok = number(j.limit_line, what + ": <limit> upper", j.upper) && ok;
+      ok = number(j.limit_line, what + ": <limit> effort", j.effort, true) && ok;
+      ok = number(j.limit_line, what + ": <limit> velocity", j.velocity, true) && ok;
+    }
+    if (j.dynamics_line) {
+      ok = number(j.dynamics_line, what + ": <dynamics> damping", j.damping, true) && ok;
+      ok = number(j.dynamics_line, what + ": <dynamics> friction", j.friction, true) && ok;
+    }
+    if (j.mimic_line) {
+      ok = number(j.mimic_line, what + ": <mimic> multiplier", j.multiplier) && ok;
+      ok = number(j.mimic_line, what + ": <mimic> offset", j.offset) && ok;
+    }
+  }
+  return ok;
 }
 
 }  // namespace

@@ -190,6 +190,17 @@ expect_status 1 "$SIMBOB" run pm.urdf --duration 3 --out pm_quick.csv -q --set S
 expect_match "what to do" "$LAST_ERR" \
   "^pm.urdf:3: error: joint 'pm.hinge' came apart at t=.*; likely cause: body 'pm.bob' .*give the link a realistic <inertia> \(pm.urdf:8\) or step with Solver Step \(--set SceneSettings.Solver=Step\)$"
 
+check "a URDF number beyond a scene's limit is refused (65) at its line, as the same number in a scene file"
+sed 's|<mass value="1"/>|<mass value="1e200"/>|' pm.urdf >heavy.urdf
+expect_status 65 "$SIMBOB" run heavy.urdf --duration 0.1 --out heavy.csv -q
+expect_match "URDF: the limit" "$LAST_ERR" \
+  "^heavy.urdf:7: error: link 'bob': <mass> 1e\+200 is beyond the supported magnitude 1e\+09 \(the limit of every number of a scene\)$"
+[ ! -e heavy.csv ] || fail "a refused URDF wrote heavy.csv"
+sed '34s|<Mass Value="1"/>|<Mass Value="1e200"/>|' "$SCENES/bounce.xml" >heavy.xml
+expect_status 65 "$SIMBOB" check heavy.xml
+expect_match "scene: the same limit" "$LAST_ERR" \
+  "^heavy.xml:34: error: RCInertiaByGeom 'Dull.Inertia': parameter 'Mass': 1e\+200 is beyond the supported magnitude 1e\+09$"
+
 # scenes/kr5.xml (position drives holding and reaching) and scenes/drchubo.xml (dropped with
 # passive joints) are golden scenes: tests/cli/scenes.sh checks their motion, golden_regression
 # and golden_hwcaps their bytes.

@@ -441,3 +441,62 @@ TEST_CASE("urdf read: 200,000 different unknown elements are each named once, in
   CHECK(r->ignored[199999].line == 200001);
   CHECK(r->ignored[199999].text == "<x199999> ignored: not an element of URDF inside <robot>");
 }
+
+TEST_CASE("urdf read: every number passes the checks a scene file's parameters get (magnitude 1e9, signs)",
+          "[urdf]") {
+  // Round five (issue 43): a mass of 1e200 reached ODE and ended in its assertion (exit 70).
+  // A scene file refuses any number beyond kMaxValueMagnitude; a URDF now refuses the same.
+  auto errors = [](const std::string& link_body, const std::string& joint_body, const std::string& extra = "") {
+    Diagnostics d;
+    const std::string text = "<robot name=\"x\">\n<link name=\"world\"/>\n<link name=\"arm\">\n" + link_body +
+                             "\n</link>\n<joint name=\"j\" type=\"revolute\"><parent link=\"world\"/>"
+                             "<child link=\"arm\"/>\n" +
+                             joint_body + "\n</joint>\n" + extra + "\n</robot>";
+    auto r = readUrdf(text, "r.urdf", {}, d);
+    CHECK(!r);
+    std::vector<std::string> out;
+    for (const Error& e : d.errors()) out.push_back(e.str());
+    return out;
+  };
+  const std::string inertial =
+      "<inertial><mass value=\"1\"/><inertia ixx=\"1\" iyy=\"1\" izz=\"1\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial>";
+  const std::string limit = "<limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>";
+  CHECK(errors("<inertial><mass value=\"1e200\"/><inertia ixx=\"1e200\" iyy=\"1\" izz=\"1\" ixy=\"0\" ixz=\"0\" "
+               "iyz=\"0\"/></inertial>",
+               limit) ==
+        std::vector<std::string>{
+            "r.urdf:4: link 'arm': <mass> 1e+200 is beyond the supported magnitude 1e+09 (the limit of every number "
+            "of a scene)",
+            "r.urdf:4: link 'arm': <inertia> 1e+200 is beyond the supported magnitude 1e+09 (the limit of every "
+            "number of a scene)"});
+  CHECK(errors(inertial + "<collision><origin xyz=\"0 2e9 0\"/><geometry><box size=\"0.1 1e10 0.1\"/></geometry>"
+                          "</collision>",
+               limit) ==
+        std::vector<std::string>{"r.urdf:4: link 'arm': <collision>: <origin> xyz 2e+09 is beyond the supported "
+                                 "magnitude 1e+09 (the limit of every number of a scene)",
+                                 "r.urdf:4: link 'arm': <collision> size 1e+10 is beyond the supported magnitude "
+                                 "1e+09 (the limit of every number of a scene)"});
+  CHECK(errors(inertial,
+               "<limit lower=\"-1e16\" upper=\"1\" effort=\"-1\" velocity=\"1e300\"/>\n<dynamics damping=\"-0.5\" "
+               "friction=\"1e12\"/>") ==
+        std::vector<std::string>{
+            "r.urdf:7: joint 'j': <limit> lower -1e+16 is beyond the supported magnitude 1e+09 (the limit of every "
+            "number of a scene)",
+            "r.urdf:7: joint 'j': <limit> effort -1 must be >= 0",
+            "r.urdf:7: joint 'j': <limit> velocity 1e+300 is beyond the supported magnitude 1e+09 (the limit of "
+            "every number of a scene)",
+            "r.urdf:8: joint 'j': <dynamics> damping -0.5 must be >= 0",
+            "r.urdf:8: joint 'j': <dynamics> friction 1e+12 is beyond the supported magnitude 1e+09 (the limit of "
+            "every number of a scene)"});
+  CHECK(errors(inertial, limit, "<gazebo reference=\"arm\"><kp>1e13</kp></gazebo>") ==
+        std::vector<std::string>{"r.urdf:9: link 'arm': <kp> 1e+13 is beyond the supported magnitude 1e+09 (the "
+                                 "limit of every number of a scene)"});
+  // The limit itself is accepted, as in a scene file.
+  Diagnostics d;
+  CHECK(readUrdf("<robot name=\"x\">\n<link name=\"world\"/>\n<link name=\"arm\"><inertial><mass value=\"1e9\"/>"
+                 "<inertia ixx=\"1e9\" iyy=\"1e9\" izz=\"1e9\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial></link>\n"
+                 "<joint name=\"j\" type=\"revolute\"><parent link=\"world\"/><child link=\"arm\"/>"
+                 "<limit lower=\"-1e9\" upper=\"1e9\" effort=\"1e9\" velocity=\"1e9\"/></joint>\n</robot>",
+                 "r.urdf", {}, d));
+  CHECK(d.errors().empty());
+}

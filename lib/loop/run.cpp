@@ -151,6 +151,10 @@ bool Runner::advance() {
     return false;
   }
   world_->step(toSeconds(clock_.step()));
+  if (const Error* e = world_->failure(); e && e->kind == ErrorKind::Internal) {  // ODE failed inside the step
+    stop(RunStatus::Failed, *e);
+    return false;
+  }
   clock_.advance();
   ++res_.steps;
   const int bad = world_->firstBadBody(opts_.runaway_limit);

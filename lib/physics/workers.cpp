@@ -29,7 +29,15 @@ void WorkerPool::drain(int worker) {
   for (;;) {
     const size_t c = next_.fetch_add(1, std::memory_order_relaxed);
     if (c >= chunks_) return;
-    (*job_)(c, c * n_ / chunks_, (c + 1) * n_ / chunks_, worker);
+    try {
+      (*job_)(c, c * n_ / chunks_, (c + 1) * n_ / chunks_, worker);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!error_ || c < error_chunk_) {
+        error_ = std::current_exception();
+        error_chunk_ = c;
+      }
+    }
     finished_.fetch_add(1, std::memory_order_acq_rel);
   }
 }
@@ -57,6 +65,11 @@ void WorkerPool::run(size_t n, size_t grain, const Job& job) {
   // of the next one with this one's bounds).
   done_.wait(lock, [&] { return finished_.load(std::memory_order_acquire) == chunks_ && active_ == 0; });
   job_ = nullptr;
+  if (error_) {
+    std::exception_ptr e = error_;
+    error_ = nullptr;
+    std::rethrow_exception(e);
+  }
 }
 
 void WorkerPool::work(int worker) {

@@ -13,6 +13,7 @@
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <mutex>
 #include <thread>
@@ -39,7 +40,9 @@ class WorkerPool {
   size_t chunks(size_t n, size_t grain) const;
   /// Runs `job` on every chunk of [0, n) and returns when all are done; one chunk runs on the
   /// caller alone, waking nobody. Chunks go to whichever thread is free, so which worker does a
-  /// chunk varies; chunk bounds depend only on n, grain and size(). Not reentrant.
+  /// chunk varies; chunk bounds depend only on n, grain and size(). Not reentrant. A chunk that
+  /// throws (ODE's error, world.cpp) does not end its thread: the exception of the lowest such
+  /// chunk is thrown again here once every chunk is done.
   void run(size_t n, size_t grain, const Job& job);
 
  private:
@@ -57,6 +60,8 @@ class WorkerPool {
   uint64_t generation_ = 0;          ///< bumped by run(): a worker wakes for each new job
   int active_ = 0;                   ///< workers inside drain(): run() waits for them to leave
   bool quit_ = false;
+  std::exception_ptr error_;  ///< the exception of the lowest chunk that threw (under mutex_)
+  size_t error_chunk_ = 0;
 };
 
 }  // namespace simbob

@@ -11,6 +11,7 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "simbob/values.h"
 #include "world_impl.h"
 
 namespace simbob {
@@ -39,12 +40,22 @@ std::mutex processOdeMutex;
 // its own, possibly every step, in the middle of simbob's output; and it ends the process on an
 // error (dError: exit(1)) or a failed internal check (dDebug: abort()). Here a message goes to
 // the World whose section is open (World::physicsMessages: the run reports it once), and an
-// error or failed check ends the process as simbob's internal errors do: one line and exit
-// status 70. The compile step refuses what ODE's checks refuse (a joint between a body and
-// itself, a negative mass, ...), so reaching one is a bug in simbob.
+// error or failed check is thrown (OdeFailure) out of ODE to the World::create or World::step
+// that called it, which records it as the World's failure (ErrorKind::Internal) and never steps
+// that World again: ODE's objects may be half updated. The run stops there as any failed run
+// does (exit 70, its partial outputs kept); a Python interpreter gets an InternalError and goes
+// on. Outside every World's section (a World being destroyed: a destructor cannot throw) it
+// still ends the process with one line and status 70. The compile step refuses what ODE's checks refuse (a joint between a body and itself, a
+// negative mass, numbers beyond 1e9, ...), so reaching one is a bug in simbob.
 std::atomic<WorldImpl*> sectionWorld{nullptr};  // the World whose OdeSection is open, or null
 
 constexpr int kExitInternal = 70;  // EX_SOFTWARE (README, "Exit statuses")
+
+/// ODE's error or failed check, thrown through ODE's frames (C++, built with unwind tables) to
+/// World::create or World::step.
+struct OdeFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 // ODE's text as one line: "ODE message 3: LCP internal error, s <= 0 (s=-0.0000e+00)".
 std::string odeText(const char* kind, int num, const char* msg, va_list ap) {
@@ -73,7 +84,9 @@ void onOdeMessage(int num, const char* msg, va_list ap) {
 }
 
 [[noreturn]] void odeFatal(const char* kind, int num, const char* msg, va_list ap) {
-  const std::string text = odeText(kind, num, msg, ap);
+  std::string text = odeText(kind, num, msg, ap);
+  if (sectionWorld.load(std::memory_order_acquire)) throw OdeFailure(text);
+  // Outside every World's section (none of simbob's calls into ODE is): nothing could catch it.
   std::fprintf(stderr,
                "simbob: error: internal error: %s (the scene reached a check in ODE that simbob should have "
                "refused before: please report it with the scene)\n",
@@ -81,6 +94,29 @@ void onOdeMessage(int num, const char* msg, va_list ap) {
   std::fflush(stderr);
   std::_Exit(kExitInternal);
 }
+
+// Records ODE's failure as the World's (the first failure of the World stays its failure).
+void recordOdeFailure(WorldImpl& im, const OdeFailure& e, const std::string& during) {
+  im.odeFailed = true;
+  if (im.failure.message.empty())
+    im.failure = {ErrorKind::Internal,
+                  {},
+                  std::string("internal error: ") + e.what() + " " + during +
+                      " (the scene reached a check in ODE that simbob should have refused before: please report it "
+                      "with the scene); this world is not stepped again"};
+}
+
+// Tests only (docs/testing.md, "Faults injected"): SIMBOB_TEST_ODE_FAULT_AT_STEP=N gives the
+// first moving body an angular velocity of 1e300 rad/s at the start of step N; ODE's integrator
+// then fails its own check (dNormalize4) inside the step, the path a real ODE error takes.
+uint64_t faultStepFromEnvironment() {
+  const char* v = std::getenv("SIMBOB_TEST_ODE_FAULT_AT_STEP");
+  if (!v || !*v) return 0;
+  char* end = nullptr;
+  const unsigned long long n = std::strtoull(v, &end, 10);
+  return end && *end == '\0' ? static_cast<uint64_t>(n) : 0;
+}
+
 void onOdeError(int num, const char* msg, va_list ap) { odeFatal("ODE error", num, msg, ap); }
 void onOdeDebug(int num, const char* msg, va_list ap) { odeFatal("ODE internal error", num, msg, ap); }
 
@@ -167,19 +203,35 @@ World::World() : impl_(new WorldImpl) {}
 
 World::~World() {
   unsigned long rng = impl_->rng;  // the section writes it back after impl_ is gone
-  OdeSection ode(rng, nullptr);
+  OdeSection ode(rng, nullptr);  // no World's section: an ODE error here ends the process (odeFatal)
   impl_.reset();
 }
+
+namespace {
+void buildWorld(WorldImpl& im, const Model& model, uint32_t seed, int threads);
+}  // namespace
 
 std::unique_ptr<World> World::create(const Model& model, uint32_t seed, int threads) {
   std::unique_ptr<World> w(new World());
   WorldImpl& im = *w->impl_;
-  const SolverSettings& s = model.settings;
 
   // The World's own generator starts at the seed, so QuickStep's constraint reordering is
   // reproducible (and the same as when each World was alone in its process).
   im.rng = seed;
+  im.faultStep = faultStepFromEnvironment();
   OdeSection ode(im.rng, &im);
+  try {
+    buildWorld(im, model, seed, threads);
+  } catch (const OdeFailure& e) {
+    recordOdeFailure(im, e, "while the world was built");
+  }
+  return w;
+}
+
+namespace {
+// What World::create builds, inside its ODE section.
+void buildWorld(WorldImpl& im, const Model& model, uint32_t seed, int threads) {
+  const SolverSettings& s = model.settings;
   im.world = dWorldCreate();
   dWorldSetGravity(im.world, s.gravity[0], s.gravity[1], s.gravity[2]);
   im.gravity = s.gravity;
@@ -204,31 +256,39 @@ std::unique_ptr<World> World::create(const Model& model, uint32_t seed, int thre
   createActuators(im, model);
   createSensors(im, model, seed);
   im.firstMessageInStep = false;  // a message while the World was built stays at t = 0, not at the first step's end
-  return w;
 }
+}  // namespace
 
 void World::step(double h) {
   WorldImpl& im = *impl_;
   InUse busy(im.stepping);  // before the section: a refused call must not wait for the mutex
+  if (im.odeFailed) return;  // World::failure says why
   OdeSection ode(im.rng, &im);
-  updateHingeStops(im);
-  for (const auto& hook : im.beforeStep) hook(im, h);
-  im.stepSize = h;
-  collide(im);
-  if (im.quickstep) {
-    dWorldQuickStep(im.world, h);
-  } else {
-    dWorldStep(im.world, h);
+  try {
+    ++im.stepsTaken;
+    if (im.stepsTaken == im.faultStep && !im.bodies.empty())
+      dBodySetAngularVel(im.bodies.front(), 1e300, 1e300, 1e300);
+    updateHingeStops(im);
+    for (const auto& hook : im.beforeStep) hook(im, h);
+    im.stepSize = h;
+    collide(im);
+    if (im.quickstep) {
+      dWorldQuickStep(im.world, h);
+    } else {
+      dWorldStep(im.world, h);
+    }
+    dJointGroupEmpty(im.contactGroup);
+    im.time_ns += std::llround(h * 1e9);  // the run's steps are whole nanoseconds
+    if (im.firstMessageInStep) {  // read without the lock: the narrow phase's threads are done, none writes it now
+      std::lock_guard<std::mutex> lock(im.messagesMutex);
+      im.messages.first_time = static_cast<double>(im.time_ns) * 1e-9;
+      im.firstMessageInStep = false;
+    }
+    updateJointTotals(im);
+    if (!im.sensors.empty()) updateSensors(im, h);
+  } catch (const OdeFailure& e) {
+    recordOdeFailure(im, e, "in the step to t=" + formatNumber(static_cast<double>(im.time_ns) * 1e-9 + h) + " s");
   }
-  dJointGroupEmpty(im.contactGroup);
-  im.time_ns += std::llround(h * 1e9);  // the run's steps are whole nanoseconds
-  if (im.firstMessageInStep) {  // read without the lock: the narrow phase's threads are done, none writes it now
-    std::lock_guard<std::mutex> lock(im.messagesMutex);
-    im.messages.first_time = static_cast<double>(im.time_ns) * 1e-9;
-    im.firstMessageInStep = false;
-  }
-  updateJointTotals(im);
-  if (!im.sensors.empty()) updateSensors(im, h);
 }
 
 PhysicsMessages World::physicsMessages() const {

@@ -195,8 +195,15 @@ struct WorldImpl {
   std::atomic<bool> stepping{false};
   /// The first call of World with an index out of range, in words (World::misuse).
   std::string misuse;
-  /// The first failure of a plug-in sensor or actuator (World::failure).
+  /// The first failure of a plug-in sensor or actuator, or ODE's error (World::failure).
   Error failure;
+  /// ODE reported an error or a failed internal check in this World (world.cpp, odeFatal): its
+  /// objects may be half updated, so it is never stepped again.
+  bool odeFailed = false;
+  /// Tests only: the step (1-based) at whose start ODE is made to fail (SIMBOB_TEST_ODE_FAULT_AT_STEP,
+  /// world.cpp); 0: never.
+  uint64_t faultStep = 0;
+  uint64_t stepsTaken = 0;
   /// ODE's messages while this World held the ODE section (World::physicsMessages); written by
   /// ODE's message handler, on whichever of the World's threads ODE calls it, under the lock.
   PhysicsMessages messages;

@@ -313,6 +313,31 @@ def test_a_diverging_run_raises_diverged_error_with_the_body_and_its_line():
     assert sim.running and sim.time == 0
 
 
+def test_an_ode_error_raises_internal_error_and_the_interpreter_goes_on(monkeypatch):
+    # SIMBOB_TEST_ODE_FAULT_AT_STEP (lib/physics/world.cpp, tests only) makes ODE's integrator fail
+    # its own check inside the third step: ODE's error used to end the process (exit 70).
+    monkeypatch.setenv("SIMBOB_TEST_ODE_FAULT_AT_STEP", "3")
+    sim = simbob.Simulation.from_text(ball_scene(), "ball.xml")
+    sim.step(2)
+    with pytest.raises(simbob.InternalError) as info:
+        sim.step(1)
+    e = info.value
+    assert (e.kind, e.exit_status) == ("Internal", 70)
+    assert e.message.startswith("internal error: ODE internal error 1: assertion")
+    assert "in the step to t=0.003 s" in e.message and "this world is not stepped again" in e.message
+    assert not sim.running and sim.time == pytest.approx(0.002)
+    with pytest.raises(simbob.InternalError):  # the World that hit it refuses further steps
+        sim.step()
+    # The interpreter goes on: a new world (reset) steps as any does.
+    monkeypatch.delenv("SIMBOB_TEST_ODE_FAULT_AT_STEP")
+    sim.reset(0)
+    sim.step(1000)
+    assert sim.time == 1.0
+    # Free fall as in test_free_fall: ODE's semi-implicit Euler, exactly (rounding only).
+    h, n = sim.dt, 1000
+    assert abs(sim.poses()[0, 1] - (10.0 - G * h * h * n * (n + 1) / 2)) < 1e-12
+
+
 def test_exception_classes():
     classes = {simbob.SceneError: 65, simbob.MissingInputError: 66, simbob.UsageError: 64,
                simbob.DivergedError: 1, simbob.UnavailableError: 69, simbob.OutputError: 74,

@@ -204,6 +204,16 @@ expect_status 66 "$SIMBOB" check bad_import.xml
 expect_match "message names the importing line" "$LAST_ERR" "^bad_import.xml:5: error: .*no_such_wheel.xml"
 
 # ---------------------------------------------------------------- 73: cannot create output
+check "70: an error of ODE's inside a step stops the run with one line; the partial trajectory and summary are kept"
+# SIMBOB_TEST_ODE_FAULT_AT_STEP (lib/physics/world.cpp, tests only) makes ODE's integrator fail
+# its own check inside step 50; the steps before it are the run's, sampled every 10 ms.
+expect_status 70 env SIMBOB_TEST_ODE_FAULT_AT_STEP=50 "$SIMBOB" run "$SCENES/bounce.xml" --duration 1 --out odefail.csv
+expect_match "one line" "$LAST_ERR" \
+  '^simbob: error: internal error: ODE internal error 1: assertion "!bSafeNormalize4Fault" failed in dxNormalize4\(\) .* in the step to t=0.05 s \(the scene reached a check in ODE .*\); this world is not stepped again$'
+[ ! -e odefail.csv ] || fail "a failed run wrote odefail.csv"
+expect_eq "samples kept: t = 0 ... 0.04 s for 3 bodies, and the header" "$(wc -l <odefail.partial.csv)" "16"
+/usr/bin/python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["status"] == "failed" and "ODE internal error 1" in d["error"]["message"], d' odefail.partial.json || fail "odefail.partial.json does not say why"
+
 check "73: output in a directory that does not exist"
 expect_status 73 "$SIMBOB" run "$PENDULUM" --duration 1 --out no/such/dir/out.csv
 expect_match "message names the output" "$LAST_ERR" "no/such/dir/out.csv"

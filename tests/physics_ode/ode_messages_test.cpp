@@ -1,7 +1,8 @@
 // What ODE says goes through simbob (lib/physics/world.cpp, its handlers): a message during a
 // step is the World's (World::physicsMessages), never a line of ODE's own on stderr; an error or
-// a failed check of ODE's ends the process with simbob's one line and exit status 70 instead of
-// ODE's exit(1) or abort().
+// a failed check of ODE's inside a World's step is that World's failure (it is not stepped
+// again); outside every World it ends the process with simbob's one line and exit status 70
+// instead of ODE's exit(1) or abort().
 #include <catch2/catch.hpp>
 
 #include <sys/wait.h>
@@ -9,6 +10,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <string>
 
 #include "physics/world_impl.h"
@@ -72,7 +75,7 @@ TEST_CASE("ODE's messages while stepping are the World's, not lines on stderr", 
   CHECK(q->physicsMessages().first.empty());
 }
 
-TEST_CASE("an error of ODE's ends the process with one line and status 70", "[physics][ode]") {
+TEST_CASE("an error of ODE's outside every World ends the process with one line and status 70", "[physics][ode]") {
   // In a child process: a World installs simbob's handlers, then a joint between a body and
   // itself fails ODE's own check (dUASSERT, which Debian's ODE keeps) -- what the compile step
   // never lets a scene do.
@@ -103,4 +106,42 @@ TEST_CASE("an error of ODE's ends the process with one line and status 70", "[ph
   CHECK(text.rfind("simbob: error: internal error: ODE internal error 2: can't have body1==body2 in dJointAttach()",
                    0) == 0);
   CHECK(text.find('\n') == text.size() - 1);  // one line
+}
+
+TEST_CASE("an error of ODE's inside a World's step is that World's failure: it is not stepped again, others go on",
+          "[physics][ode]") {
+  // SIMBOB_TEST_ODE_FAULT_AT_STEP (world.cpp) gives the first body an angular velocity of 1e300
+  // rad/s at the start of that step: ODE's integrator fails its own check (dNormalize4) inside
+  // dWorldQuickStep, and the exception crosses ODE's frames to World::step.
+  const simbob::Model m = simbob::test::shippedScene("pendulum");
+  const double h = m.settings.max_time_step;
+  REQUIRE(setenv("SIMBOB_TEST_ODE_FAULT_AT_STEP", "3", 1) == 0);
+  std::unique_ptr<World> w = World::create(m, 0);
+  REQUIRE(unsetenv("SIMBOB_TEST_ODE_FAULT_AT_STEP") == 0);
+  std::unique_ptr<World> other = World::create(m, 0);
+  std::string err = stderrOf([&] {
+    for (int i = 0; i < 5; ++i) {
+      w->step(h);
+      other->step(h);
+    }
+  });
+  CHECK(err == "");
+  const simbob::Error* e = w->failure();
+  REQUIRE(e);
+  CHECK(e->kind == simbob::ErrorKind::Internal);
+  CHECK(e->message.rfind("internal error: ODE internal error 1: assertion \"!bSafeNormalize4Fault\" failed", 0) == 0);
+  CHECK(e->message.find("in the step to t=0.003 s") != std::string::npos);
+  CHECK(e->message.find("this world is not stepped again") != std::string::npos);
+  // Two steps taken, the third failed (its state is ODE's half-updated one, NaN here), and the
+  // World has not moved since: the same bits.
+  const simbob::BodyState after = w->body(0);
+  w->step(h);
+  const simbob::BodyState later = w->body(0);
+  CHECK(std::memcmp(&later.pose, &after.pose, sizeof after.pose) == 0);
+  // The other World is untouched: it steps as a World alone does.
+  CHECK_FALSE(other->failure());
+  std::unique_ptr<World> alone = World::create(m, 0);
+  for (int i = 0; i < 5; ++i) alone->step(h);
+  CHECK(other->body(0).pose.p == alone->body(0).pose.p);
+  CHECK(other->body(0).pose.q == alone->body(0).pose.q);
 }

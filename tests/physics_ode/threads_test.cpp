@@ -9,6 +9,8 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <atomic>
+#include <stdexcept>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -111,5 +113,30 @@ TEST_CASE("threads: WorkerPool runs every index once, in chunks that depend on n
                                   : threads == 1 ? 1
                                                  : std::max<size_t>(1, std::min<size_t>(8 * threads, n / 4))));
     }
+  }
+}
+
+TEST_CASE("threads: a chunk that throws does not end its worker; run() throws the lowest such chunk's exception") {
+  // ODE's errors are thrown out of ODE (world.cpp) and may be thrown on a narrow-phase worker.
+  for (int threads : {1, 2, 4}) {
+    simbob::WorkerPool pool(threads);
+    for (int round = 0; round < 3; ++round) {
+      std::atomic<int> done{0};
+      try {
+        pool.run(1000, 4, [&](size_t, size_t b, size_t e, int) {
+          done.fetch_add(1);
+          for (size_t bad : {size_t(500), size_t(900)})
+            if (b <= bad && bad < e) throw std::runtime_error("index " + std::to_string(bad));
+        });
+        FAIL("run() did not throw");
+      } catch (const std::runtime_error& e) {
+        CHECK(std::string(e.what()) == "index 500");
+      }
+      if (threads > 1) CHECK(done.load() == static_cast<int>(pool.chunks(1000, 4)));
+    }
+    // The pool still works afterwards.
+    std::atomic<size_t> sum{0};
+    pool.run(100, 4, [&](size_t, size_t b, size_t e, int) { sum.fetch_add(e - b); });
+    CHECK(sum.load() == 100);
   }
 }

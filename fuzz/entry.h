@@ -9,7 +9,9 @@
 #pragma once
 
 #include <stdlib.h>
+#include <unistd.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -25,6 +27,7 @@
 #include "simbob/tool/comparison.h"
 #include "simbob/compile.h"
 #include "simbob/graph.h"
+#include "simbob/mesh.h"
 #include "simbob/registry.h"
 #include "simbob/scene_run.h"
 #include "simbob/trajectory.h"
@@ -44,7 +47,8 @@ inline const Registry& fuzzRegistry() {
 
 /// The fuzz targets; the names are the directories under fuzz/corpus/ and tests/data/fuzz/.
 inline const std::vector<std::string>& targetNames() {
-  static const std::vector<std::string> names{"scene_xml", "scene_ini", "scene_run", "values", "trajectory"};
+  static const std::vector<std::string> names{"scene_xml",  "scene_ini", "scene_run", "values",
+                                              "trajectory", "mesh",      "urdf"};
   return names;
 }
 
@@ -397,12 +401,101 @@ inline std::string runTrajectory(const uint8_t* data, size_t size) {
 
 /// The entry for a target name, or nullptr.
 using Entry = std::string (*)(const uint8_t*, size_t);
+// ------------------------------------------------------------------------------------ meshes
+
+/// A folder of this process's own for the files the file-reading targets write (the mesh reader
+/// reads a path, as a scene's RCMeshGeom names one).
+inline const std::filesystem::path& scratchFolder() {
+  static const std::filesystem::path dir = [] {
+    std::filesystem::path d =
+        std::filesystem::temp_directory_path() / ("simbob-fuzz-" + std::to_string(static_cast<long>(getpid())));
+    std::error_code ec;
+    std::filesystem::create_directories(d, ec);
+    return d;
+  }();
+  return dir;
+}
+
+inline bool writeScratch(const std::filesystem::path& p, const uint8_t* data, size_t size) {
+  std::FILE* f = std::fopen(p.c_str(), "wb");
+  if (!f) return false;
+  const bool ok = std::fwrite(data, 1, size, f) == size;
+  return std::fclose(f) == 0 && ok;
+}
+
+/// Mesh files (lib/mesh: the byte scan, then assimp, then qhull). The first byte picks the
+/// extension (.stl, .obj, .dae) and the frame (scene Y-up or URDF Z-up); the rest is the file.
+/// Loaded or refused with a message, never a crash, hang or runaway allocation; what loads keeps
+/// the documented limits: at least one triangle, indices in range, vertices finite and within
+/// kMaxMeshCoordinate, counts within kMaxMeshVertices and kMaxMeshTriangles, bounds that hold
+/// every vertex, and a hull or a reason for none.
+inline std::string runMesh(const uint8_t* data, size_t size) {
+  if (size == 0) return {};
+  static const char* const kExt[] = {".stl", ".obj", ".dae"};
+  const std::filesystem::path file = scratchFolder() / (std::string("mesh") + kExt[data[0] % 3]);
+  const UpAxis up = (data[0] / 3) % 2 ? UpAxis::Z : UpAxis::Y;
+  if (!writeScratch(file, data + 1, size - 1)) return {};  // the machine's disk, not the reader
+  const MeshLoad load = loadMesh(file.string(), Vec3{1, 1, 1}, up);
+  if (!load.ok()) {
+    if (load.error.message.empty()) return "loadMesh refused a file without a message";
+    if (load.error.kind != ErrorKind::InvalidInput)
+      return "loadMesh refused a regular file with a kind other than InvalidInput: " + load.error.message;
+    return {};
+  }
+  const MeshData& m = *load.mesh;
+  if (m.triangles.empty()) return "a loaded mesh has no triangle";
+  if (m.vertices.size() > kMaxMeshVertices || m.triangles.size() > kMaxMeshTriangles)
+    return "a loaded mesh is over the limits: " + std::to_string(m.vertices.size()) + " vertices, " +
+           std::to_string(m.triangles.size()) + " triangles";
+  for (const auto& t : m.triangles)
+    for (uint32_t i : t)
+      if (i >= m.vertices.size())
+        return "a triangle names vertex " + std::to_string(i) + " of " + std::to_string(m.vertices.size());
+  for (const Vec3& v : m.vertices)
+    for (int k = 0; k < 3; ++k) {
+      if (!std::isfinite(v[k]) || std::fabs(v[k]) > kMaxMeshCoordinate) return "a vertex beyond the limit was loaded";
+      if (v[k] < m.lo[k] || v[k] > m.hi[k]) return "a vertex lies outside the mesh's bounds";
+    }
+  if (m.hull.empty() == m.hull_problem.empty()) return "a hull and its problem disagree";
+  return {};
+}
+
+// -------------------------------------------------------------------------------------- URDF
+
+/// URDF files (lib/urdf): read as `simbob check robot.urdf` reads one, bare, over the ground.
+/// Loaded and compiled, or refused with file:line, never a crash or a hang; a robot that loads
+/// compiles to a model whose bodies are all finite.
+inline std::string runUrdf(const uint8_t* data, size_t size) {
+  const std::filesystem::path file = scratchFolder() / "robot.urdf";
+  if (!writeScratch(file, data, size)) return {};
+  Model model;
+  LoadRequest request;
+  request.path = file.string();
+  request.lint = true;  // as `simbob check` does: the checks run on what loaded
+  LoadReport report;
+  const bool ok = loadModel(request, fuzzRegistry(), &model, &report);
+  const Diagnostics& diag = report.diagnostics;
+  if (!ok) {
+    if (diag.errors().empty()) return "a URDF was refused without a message";
+    for (const Error& e : diag.errors())
+      if (e.message.find("internal error") != std::string::npos) return "a URDF met an internal error: " + e.message;
+    return {};
+  }
+  if (!diag.errors().empty()) return "a URDF loaded but reported errors";
+  for (const BodyDef& b : model.bodies)
+    for (double v : b.pose.p)
+      if (!std::isfinite(v)) return "a URDF body starts at a non-finite place";
+  return {};
+}
+
 inline Entry entryFor(std::string_view target) {
   if (target == "scene_xml") return runSceneXml;
   if (target == "scene_ini") return runSceneIni;
   if (target == "scene_run") return runSceneSteps;
   if (target == "values") return runValues;
   if (target == "trajectory") return runTrajectory;
+  if (target == "mesh") return runMesh;
+  if (target == "urdf") return runUrdf;
   return nullptr;
 }
 

@@ -1,4 +1,4 @@
-// The module side of mesh reading (mesh_module.h): assimp reads the bytes load.cpp read and
+// The assimp side of mesh reading (assimp_read.h): assimp reads the bytes load.cpp read and
 // checked, with only the importer of the format load.cpp chose (the other ~40 are dropped, so a
 // glTF or any other format is never parsed), through an IOSystem that serves those bytes and
 // nothing else (an OBJ's mtllib, a COLLADA image or any other file a mesh names is not opened).
@@ -18,7 +18,7 @@
 #include <unordered_map>
 #include <utility>
 
-#include "mesh_module.h"  // (relative: the Python module builds this file without lib/ on its path)
+#include "mesh/assimp_read.h"
 
 namespace simbob {
 
@@ -135,10 +135,8 @@ bool readMeshFile(const MeshRequest& request, MeshFile* out) {
   return true;
 }
 
-const MeshModule kModule{kMeshModuleAbi, readMeshFile};
-
 }  // namespace
 
-}  // namespace simbob
+bool readWithAssimp(const MeshRequest& request, MeshFile* out) { return readMeshFile(request, out); }
 
-extern "C" const simbob::MeshModule* simbob_mesh_module() { return &simbob::kModule; }
+}  // namespace simbob

@@ -1,7 +1,7 @@
 // Mesh files: read here (a regular file, within the size limit), checked by scan.cpp before
-// assimp sees them, handed as bytes to the module libsimbob_mesh.so (assimp_read.cpp, opened on
-// the first mesh), and the rest is done here: limits, scale, bounds, closedness, masses and the
-// convex hull. STL and OBJ carry no unit or up axis: their numbers are the caller's.
+// assimp sees them, handed as bytes to assimp (assimp_read.cpp), and the rest is done here:
+// limits, scale, bounds, closedness, masses and the convex hull. STL and OBJ carry no unit or up
+// axis: their numbers are the caller's.
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -11,13 +11,12 @@
 #include <cmath>
 #include <cstring>
 
-#include "mesh/mesh_module.h"
+#include "mesh/assimp_read.h"
 #include "mesh/scan.h"
 #include "simbob/mesh.h"
 #include "simbob/tool/platform.h"
 
 // Weak: defined only where assimp_read.cpp is linked in (the Python module); null elsewhere.
-extern "C" const simbob::MeshModule* simbob_mesh_module() __attribute__((weak));
 
 namespace simbob {
 
@@ -57,13 +56,6 @@ std::vector<Vec3> hullPoints(const ConvexHull& h) {
 }
 
 std::string count(size_t n) { return std::to_string(n); }
-
-/// The module's table, or nullptr with `why` set. A program that links assimp_read.cpp in (the
-/// Python module) has simbob_mesh_module() itself; others open libsimbob_mesh.so.
-const MeshModule* meshModule(std::string* why) {
-  return simbobModule<MeshModule>("libsimbob_mesh.so", "SIMBOB_MESH_MODULE", "simbob_mesh_module", kMeshModuleAbi,
-                                  "reading meshes needs libsimbob_mesh.so (assimp)", &simbob_mesh_module, why);
-}
 
 /// The file's bytes, or an error: MissingInput when it cannot be opened or is not a regular
 /// file (a FIFO would block, a device never end), InvalidInput over the size limit.
@@ -123,12 +115,6 @@ MeshLoad loadMesh(const std::string& path, const Vec3& scale, UpAxis up) {
     out.error = meshError(ErrorKind::InvalidInput, path, scan.problem);
     return out;
   }
-  std::string why;
-  const MeshModule* module = meshModule(&why);
-  if (!module) {
-    out.error = meshError(ErrorKind::MissingInput, path, why);
-    return out;
-  }
   MeshRequest request;
   request.data = bytes.data();
   request.size = bytes.size();
@@ -136,7 +122,7 @@ MeshLoad loadMesh(const std::string& path, const Vec3& scale, UpAxis up) {
   request.ignore_up_axis = up == UpAxis::Z;
   request.max_triangles = kMaxMeshTriangles;
   MeshFile file;
-  if (!module->read(request, &file)) {
+  if (!readWithAssimp(request, &file)) {
     out.error = meshError(ErrorKind::InvalidInput, path, "not a mesh assimp can read: " + file.error);
     return out;
   }

@@ -8,7 +8,7 @@
 #include <cstddef>
 #include <string>
 
-#include "mesh/mesh_module.h"
+#include "mesh/assimp_read.h"
 
 namespace simbob {
 

@@ -203,7 +203,7 @@ World::World() : impl_(new WorldImpl) {}
 
 World::~World() {
   unsigned long rng = impl_->rng;  // the section writes it back after impl_ is gone
-  OdeSection ode(rng, nullptr);  // no World's section: an ODE error here ends the process (odeFatal)
+  OdeSection ode(rng, nullptr);    // no World's section: an ODE error here ends the process (odeFatal)
   impl_.reset();
 }
 
@@ -261,13 +261,12 @@ void buildWorld(WorldImpl& im, const Model& model, uint32_t seed, int threads) {
 
 void World::step(double h) {
   WorldImpl& im = *impl_;
-  InUse busy(im.stepping);  // before the section: a refused call must not wait for the mutex
+  InUse busy(im.stepping);   // before the section: a refused call must not wait for the mutex
   if (im.odeFailed) return;  // World::failure says why
   OdeSection ode(im.rng, &im);
   try {
     ++im.stepsTaken;
-    if (im.stepsTaken == im.faultStep && !im.bodies.empty())
-      dBodySetAngularVel(im.bodies.front(), 1e300, 1e300, 1e300);
+    if (im.stepsTaken == im.faultStep && !im.bodies.empty()) dBodySetAngularVel(im.bodies.front(), 1e300, 1e300, 1e300);
     updateHingeStops(im);
     for (const auto& hook : im.beforeStep) hook(im, h);
     im.stepSize = h;

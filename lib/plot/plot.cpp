@@ -1,6 +1,7 @@
-#include "plot_module.h"  // (relative, as in the module's own build)
-
+// `simbob plot` and the failure plots of batch (include/simbob/tool/plot.h), drawn with cairo to
+// PNG or SVG. Linked into the program (a module opened at run time until issue 44).
 #include "simbob/tool/files.h"
+#include "simbob/tool/plot.h"
 #include "simbob/values.h"
 
 #include <cairo-svg.h>
@@ -693,8 +694,8 @@ bool selectBodies(const Trajectory& actual, const PlotOptions& options, std::vec
 
 }  // namespace
 
-bool cairoPlotTrajectory(const Trajectory& actual, const Trajectory* golden, const PlotOptions& options,
-                         const std::string& out_path, Error* err) {
+bool plotTrajectory(const Trajectory& actual, const Trajectory* golden, const PlotOptions& options,
+                    const std::string& out_path, Error* err) {
   const std::string ext = lowerExtension(out_path);
   Format format;
   if (ext == ".png") {
@@ -813,9 +814,3 @@ bool cairoPlotTrajectory(const Trajectory& actual, const Trajectory* golden, con
 }
 
 }  // namespace simbob
-
-namespace {
-const simbob::PlotModule kModule{simbob::kPlotModuleAbi, simbob::cairoPlotTrajectory};
-}  // namespace
-
-extern "C" const simbob::PlotModule* simbob_plot_module() { return &kModule; }

@@ -784,8 +784,8 @@ bool Reader::number(int line, const std::string& what, double v, bool non_negati
     return false;
   }
   if (std::fabs(v) > kMaxValueMagnitude) {
-    error(line, what + " " + formatNumber(v) + " is beyond the supported magnitude " + formatNumber(kMaxValueMagnitude) +
-                    " (the limit of every number of a scene)");
+    error(line, what + " " + formatNumber(v) + " is beyond the supported magnitude " +
+                    formatNumber(kMaxValueMagnitude) + " (the limit of every number of a scene)");
     return false;
   }
   if (non_negative && v < 0) {
@@ -806,7 +806,9 @@ bool Reader::checkValues() {
         return;
       }
   };
-  auto position = [&](int line, const std::string& what, const Transform& t) { all(line, what + ": <origin> xyz", t.p); };
+  auto position = [&](int line, const std::string& what, const Transform& t) {
+    all(line, what + ": <origin> xyz", t.p);
+  };
   auto shapes = [&](const std::string& link, const std::vector<UrdfShape>& list, const char* kind) {
     for (const UrdfShape& sh : list) {
       const std::string what = "link '" + quoteInput(link) + "': <" + kind + ">";

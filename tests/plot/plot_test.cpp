@@ -2,8 +2,8 @@
 
 #include <unistd.h>
 
-// <cairo/cairo.h>: the test links cairo itself to decode the plots (simbob opens it in
-// libsimbob_plot.so), through pkg-config, whose include directory is the parent of ours.
+// <cairo/cairo.h>: the test decodes the plots with cairo, through pkg-config, whose include
+// directory is the parent of ours.
 #include <cairo/cairo.h>
 
 #include <algorithm>

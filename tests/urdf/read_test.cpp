@@ -442,8 +442,7 @@ TEST_CASE("urdf read: 200,000 different unknown elements are each named once, in
   CHECK(r->ignored[199999].text == "<x199999> ignored: not an element of URDF inside <robot>");
 }
 
-TEST_CASE("urdf read: every number passes the checks a scene file's parameters get (magnitude 1e9, signs)",
-          "[urdf]") {
+TEST_CASE("urdf read: every number passes the checks a scene file's parameters get (magnitude 1e9, signs)", "[urdf]") {
   // Round five (issue 43): a mass of 1e200 reached ODE and ended in its assertion (exit 70).
   // A scene file refuses any number beyond kMaxValueMagnitude; a URDF now refuses the same.
   auto errors = [](const std::string& link_body, const std::string& joint_body, const std::string& extra = "") {
@@ -493,10 +492,11 @@ TEST_CASE("urdf read: every number passes the checks a scene file's parameters g
                                  "limit of every number of a scene)"});
   // The limit itself is accepted, as in a scene file.
   Diagnostics d;
-  CHECK(readUrdf("<robot name=\"x\">\n<link name=\"world\"/>\n<link name=\"arm\"><inertial><mass value=\"1e9\"/>"
-                 "<inertia ixx=\"1e9\" iyy=\"1e9\" izz=\"1e9\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial></link>\n"
-                 "<joint name=\"j\" type=\"revolute\"><parent link=\"world\"/><child link=\"arm\"/>"
-                 "<limit lower=\"-1e9\" upper=\"1e9\" effort=\"1e9\" velocity=\"1e9\"/></joint>\n</robot>",
-                 "r.urdf", {}, d));
+  CHECK(
+      readUrdf("<robot name=\"x\">\n<link name=\"world\"/>\n<link name=\"arm\"><inertial><mass value=\"1e9\"/>"
+               "<inertia ixx=\"1e9\" iyy=\"1e9\" izz=\"1e9\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial></link>\n"
+               "<joint name=\"j\" type=\"revolute\"><parent link=\"world\"/><child link=\"arm\"/>"
+               "<limit lower=\"-1e9\" upper=\"1e9\" effort=\"1e9\" velocity=\"1e9\"/></joint>\n</robot>",
+               "r.urdf", {}, d));
   CHECK(d.errors().empty());
 }

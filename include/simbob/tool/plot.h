@@ -67,8 +67,7 @@ inline PlotColor plotColor(size_t i) {
 /// (with a "did you mean" suggestion), too many bodies, a size out of range or too small for
 /// the layout, or an empty actual trajectory; ErrorKind::CannotCreate (loc.file = out_path)
 /// when the file cannot be created; ErrorKind::IoError when writing it fails;
-/// ErrorKind::Internal when cairo fails; ErrorKind::MissingInput when libsimbob_plot.so (cairo,
-/// opened on the first plot) is not there.
+/// ErrorKind::Internal when cairo fails.
 bool plotTrajectory(const Trajectory& actual, const Trajectory* golden, const PlotOptions& options,
                     const std::string& out_path, Error* err);
 

@@ -1,9 +1,7 @@
-// The assimp side of lib/mesh, built as a module of its own (libsimbob_mesh.so) and opened by
-// load.cpp the first time a mesh file is read: a run without meshes never loads assimp, whose
-// 44,000 relocations were most of the dynamic linker's work at every start (bench/README.md,
-// "Loading at the parser's pace, third round"). The module uses only inline code of simbob's
-// headers, so it needs nothing from the program that opens it. The Python module links
-// assimp_read.cpp in instead: load.cpp then finds simbob_mesh_module() already there.
+// The assimp side of lib/mesh (assimp_read.cpp): the one file that includes assimp. load.cpp
+// reads and checks a mesh file's bytes (scan.cpp), then hands them here. Linked into the program
+// (it was a module opened at run time until issue 44: it saved about 6 ms a process and cost a
+// search path and a runtime failure).
 #pragma once
 
 #include <array>
@@ -17,10 +15,10 @@
 namespace simbob {
 
 /// The mesh formats simbob reads (docs/meshes.md); load.cpp chooses one from the file's
-/// extension and contents before the module sees the file.
+/// extension and contents before assimp sees the file.
 enum class MeshFormat : uint8_t { Stl, Obj, Collada };
 
-/// What to read: the file's bytes (the module opens no file at all: an OBJ's `mtllib` or any
+/// What to read: the file's bytes (assimp opens no file at all: an OBJ's `mtllib` or any
 /// other reference a file makes finds nothing) with the one importer of `format`.
 struct MeshRequest {
   const char* data = nullptr;
@@ -42,14 +40,7 @@ struct MeshFile {
   std::vector<std::array<uint32_t, 3>> triangles;
 };
 
-/// What simbob_mesh_module() returns; `abi` is kMeshModuleAbi of the module's build.
-struct MeshModule {
-  int abi;
-  /// False when assimp cannot read the file (out->error says why).
-  bool (*read)(const MeshRequest& request, MeshFile* out);
-};
-constexpr int kMeshModuleAbi = 2;
+/// Reads the request's bytes with assimp; false when assimp cannot (out->error says why).
+bool readWithAssimp(const MeshRequest& request, MeshFile* out);
 
 }  // namespace simbob
-
-extern "C" const simbob::MeshModule* simbob_mesh_module();

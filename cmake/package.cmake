@@ -1,7 +1,7 @@
 # `cmake --install build --prefix P` and `cpack -G DEB` (docs/install.md, "Installing on cluster nodes").
 #   P/bin/simbob
-#   P/lib/simbob/libsimbob_video.so, libsimbob_mesh.so, libsimbob_plot.so, libsimbob_urdf.so   modules
-#                 opened on demand (FFmpeg, assimp, cairo, urdfdom)
+#   P/lib/simbob/libsimbob_video.so, libsimbob_mesh.so, libsimbob_plot.so   modules
+#                 opened on demand (FFmpeg, assimp, cairo)
 #   P/share/simbob/scenes/     the example scenes with the parts they import and the meshes they read
 #   P/share/simbob/scripts/simbob_client.py   the peer socket_robot.xml starts (../scripts/)
 #   P/share/simbob/python/simbob_client.py and P/share/simbob/examples/clients/: the client libraries
@@ -18,8 +18,6 @@ install(TARGETS simbob_video LIBRARY DESTINATION lib/simbob)
 install(TARGETS simbob_mesh_module LIBRARY DESTINATION lib/simbob)
 # Opened as ../lib/simbob/libsimbob_plot.so by plot, compare --plot and batch reports (cairo).
 install(TARGETS simbob_plot_module LIBRARY DESTINATION lib/simbob)
-# Opened as ../lib/simbob/libsimbob_urdf.so when a scene reads a URDF robot (urdfdom).
-install(TARGETS simbob_urdf_module LIBRARY DESTINATION lib/simbob)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes/ DESTINATION ${CMAKE_INSTALL_DATADIR}/simbob/scenes)
 install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/simbob_client.py DESTINATION ${CMAKE_INSTALL_DATADIR}/simbob/scripts)
 install(FILES ${PROJECT_SOURCE_DIR}/python/simbob_client.py DESTINATION ${CMAKE_INSTALL_DATADIR}/simbob/python)

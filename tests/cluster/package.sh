@@ -131,10 +131,10 @@ tr ',|' '\n\n' <<<"$depends" | sed 's/(.*)//; s/^ *//; s/ *$//' | sed '/^$/d' | 
 if grep -E -- '-(dev|dbg)$' "$WORK/depends"; then fail "Depends names a development package"; fi
 # The packages that own the libraries the binary needs (NEEDED entries, resolved by ldd).
 # The binary and the modules it opens on demand (libsimbob_video.so: FFmpeg, libsimbob_mesh.so:
-# assimp, libsimbob_plot.so: cairo, libsimbob_urdf.so: urdfdom) all count.
+# assimp, libsimbob_plot.so: cairo) all count.
 # And the Python module, when there is one (it links no libpython: the interpreter provides it).
 ELVES=("$SIMBOB")
-for module in video mesh plot urdf; do
+for module in video mesh plot; do
   ELVES+=("$(dirname "$SIMBOB")/libsimbob_$module.so")
   [[ -f "${ELVES[-1]}" ]] || fail "no $module module beside the binary: ${ELVES[-1]}"
 done

@@ -22,7 +22,7 @@ std::string cpuModel();
 namespace simbob {
 
 /// Opens one of simbob's own on-demand modules (libsimbob_video.so, libsimbob_mesh.so, ...): the
-/// libraries behind them (FFmpeg, assimp, cairo, urdfdom) are loaded only by a run that needs
+/// libraries behind them (FFmpeg, assimp, cairo) are loaded only by a run that needs
 /// them, so every other run starts without their relocations and memory. `env`, when set and not
 /// empty, names the file; otherwise the module is looked for beside the executable (the build
 /// tree, whose tests/ and bench/ hold links to the modules) and in ../lib/simbob (an installed

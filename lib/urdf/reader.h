@@ -62,7 +62,7 @@ class Reader {
   bool readRobot(const pugi::xml_node& root);
   bool parseMaterial(const pugi::xml_node& m, const std::string& what, MaterialValues* out);
   bool readMaterials(const pugi::xml_node& root);
-  bool readInertial(const pugi::xml_node& in, const std::string& what, UrdfInertial* out);
+  bool readInertial(const pugi::xml_node& in, const std::string& what, UrdfInertial* i);
   bool readShape(const pugi::xml_node& x, const std::string& what, UrdfShape* out);
   int readVisualMaterial(const pugi::xml_node& visual, const std::string& what, bool* ok);
   bool readLink(const pugi::xml_node& x);

@@ -239,7 +239,7 @@ bool Reader::readShape(const pugi::xml_node& x, const std::string& what, UrdfSha
 
 /// A visual's <material>, as urdfdom assigns it: the robot-level material of its name, or an
 /// earlier visual's of that name, or else its own <color>/<texture> (which later visuals naming
-/// it then get). -1: none; -2: an error (*ok false).
+/// it then get; not by an empty name). -1: none; -2: an error (*ok false).
 int Reader::readVisualMaterial(const pugi::xml_node& visual, const std::string& what, bool* ok) {
   const pugi::xml_node m = visual.child("material");
   if (!m) return -1;
@@ -249,12 +249,20 @@ int Reader::readVisualMaterial(const pugi::xml_node& visual, const std::string& 
     return -2;
   }
   const std::string name = m.attribute("name").value();
-  auto known = material_values_.find(name);
-  if (known == material_values_.end()) {
-    if (!own.has_rgba && !own.has_texture) return -1;  // urdfdom: "material undefined", no material
-    known = material_values_.emplace(name, own).first;
+  const MaterialValues* src = &own;
+  if (name.empty()) {
+    // urdfdom assigns nothing by an empty name (CAD exporters write name="" in every visual):
+    // each such visual keeps its own colour or texture.
+    if (!own.has_rgba && !own.has_texture) return -1;
+  } else {
+    auto known = material_values_.find(name);
+    if (known == material_values_.end()) {
+      if (!own.has_rgba && !own.has_texture) return -1;  // urdfdom: "material undefined", no material
+      known = material_values_.emplace(name, own).first;
+    }
+    src = &known->second;
   }
-  const MaterialValues& v = known->second;
+  const MaterialValues& v = *src;
   auto it = materials_.find(name);
   const bool inline_def = m.child("color") || m.child("texture");
   if (!inline_def && it != materials_.end()) return it->second;

@@ -323,6 +323,27 @@ TEST_CASE("urdf read: a visual's material is urdfdom's: robot-level, an earlier 
   REQUIRE(v[2].material == 2);                                               // blue again: the first visual's colour
   CHECK(r->materials[2].color == r->materials[1].color);
   CHECK(v[3].material == -1);  // defined nowhere: no material
+  // name="" (SolidWorks' exporter writes it in every visual, as dart-doc's KR5 has it): urdfdom
+  // assigns nothing by it, so each visual keeps its own colour.
+  Diagnostics e;
+  auto k = read(
+      "<robot name=\"x\"><link name=\"a\">\n"
+      "<visual><geometry><box size=\"1 1 1\"/></geometry><material name=\"\"><color rgba=\"0 0 0 1\"/>"
+      "</material></visual>\n"
+      "<visual><geometry><box size=\"1 1 1\"/></geometry><material name=\"\"><color rgba=\"1 1 1 1\"/>"
+      "</material></visual>\n"
+      "<visual><geometry><box size=\"1 1 1\"/></geometry><material name=\"\"/></visual>\n"
+      "</link></robot>",
+      e);
+  INFO(errorText(e));
+  REQUIRE(k);
+  const auto& w = k->links[0].visuals;
+  REQUIRE(w.size() == 3);
+  REQUIRE(w[0].material == 0);
+  REQUIRE(w[1].material == 1);
+  CHECK(k->materials[0].color == Rgba{0, 0, 0, 1});
+  CHECK(k->materials[1].color == Rgba{1, 1, 1, 1});
+  CHECK(w[2].material == -1);
 }
 
 TEST_CASE("urdf read: a tab or a line break written in a name is a space, as XML reads an attribute", "[urdf]") {

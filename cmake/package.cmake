@@ -1,6 +1,6 @@
 # `cmake --install build --prefix P` and `cpack -G DEB` (docs/install.md, "Installing on cluster nodes").
 #   P/bin/simbob
-#   P/lib/simbob/libsimbob_video.so, libsimbob_urdf.so   modules opened on demand (FFmpeg, urdfdom)
+#   P/lib/simbob/libsimbob_video.so   the module opened on demand (FFmpeg)
 #   P/share/simbob/scenes/     the example scenes with the parts they import and the meshes they read
 #   P/share/simbob/scripts/simbob_client.py   the peer socket_robot.xml starts (../scripts/)
 #   P/share/simbob/python/simbob_client.py and P/share/simbob/examples/clients/: the client libraries
@@ -13,8 +13,6 @@ include(GNUInstallDirs)
 install(TARGETS simbob RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 # Opened by the binary as ../lib/simbob/libsimbob_video.so when it writes a video.
 install(TARGETS simbob_video LIBRARY DESTINATION lib/simbob)
-# Opened as ../lib/simbob/libsimbob_urdf.so when a scene reads a URDF robot (urdfdom).
-install(TARGETS simbob_urdf_module LIBRARY DESTINATION lib/simbob)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes/ DESTINATION ${CMAKE_INSTALL_DATADIR}/simbob/scenes)
 install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/simbob_client.py DESTINATION ${CMAKE_INSTALL_DATADIR}/simbob/scripts)
 install(FILES ${PROJECT_SOURCE_DIR}/python/simbob_client.py DESTINATION ${CMAKE_INSTALL_DATADIR}/simbob/python)

@@ -16,7 +16,6 @@ RUN_PACKAGES=(
   libgl-dev libegl-dev libosmesa6-dev  # GL, EGL and OSMesa headers (lib/render; opened with dlopen)
   libegl-mesa0 libgl1-mesa-dri libosmesa6  # the back ends themselves: Mesa's llvmpipe without a GPU
   libjs-three           # three.js, inlined into `simbob view` pages at run time (lib/view)
-  liburdfdom-dev        # URDF robots (lib/urdf; brings liburdfdom-headers-dev, libtinyxml-dev, libconsole-bridge-dev)
   libassimp-dev libqhull-dev  # mesh files (STL, OBJ, DAE) and their convex hulls (lib/mesh)
   libmpfr-dev           # correctly rounded sin, cos and log: the same bits on every CPU (lib/compile/cr_math.cpp)
   git                   # simbob.revision: `git describe` when CMake configures (cmake/git_revision.cmake; docs/ci.md)

@@ -1,29 +1,19 @@
-// Reading a URDF robot: urdfdom parses the values; pugixml reads the same text again for the line
-// of every element (urdfdom keeps none), for the <gazebo reference> tags Gazebo classic hands to
-// ODE (UrdfGazebo) and for what urdfdom drops without a word (unknown elements and attributes,
-// <transmission>, the rest of <gazebo>, <calibration>, <safety_controller>), which become
-// UrdfRobot::ignored, named once each.
+// Reading a URDF robot with simbob's own reader on pugixml (reader.h): one XML tree gives every
+// value and the line of every element. The rules are urdfdom's, ROS's reference parser (what it
+// requires, its defaults, its number syntax); the messages are simbob's, one line each at its
+// element's line (docs/urdf.md, "How a URDF is read"). What simbob does not model (unknown
+// elements and attributes, <transmission>, the rest of <gazebo>, <calibration>,
+// <safety_controller>) becomes UrdfRobot::ignored, named once each.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
-#include <filesystem>
-#include <pugixml.hpp>
-#include <locale>
-#include <optional>
-#include <set>
-#include <sstream>
-#include <unordered_map>
 
 #include "simbob/cr_math.h"
 #include "simbob/values.h"
-#include "simbob/tool/platform.h"
 #include "scene/limits.h"
-#include "urdf/paths.h"
+#include "urdf/reader.h"
 #include "urdf/urdf.h"
-#include "urdf/urdf_module.h"
-
-// Weak: defined only where urdfdom_parse.cpp is linked in (the Python module); null elsewhere.
-extern "C" const simbob::UrdfModule* simbob_urdf_module() __attribute__((weak));
 
 namespace simbob {
 
@@ -47,620 +37,464 @@ Quat quatFromRpy(double roll, double pitch, double yaw) {
   return {w, x, y, z};
 }
 
+namespace urdfread {
+
+Reader::Reader(const std::string& text, const std::string& file, const UrdfPackages& packages, Diagnostics& diag)
+    : text_(text), file_(file), packages_(packages), diag_(diag) {
+  for (size_t i = 0; i < text.size(); ++i)
+    if (text[i] == '\n') newlines_.push_back(i);
+}
+
 namespace {
 
-/// The module's table, or nullptr with `why` set. A program that links urdfdom_parse.cpp in (the
-/// Python module) has simbob_urdf_module() itself; others open libsimbob_urdf.so.
-const UrdfModule* urdfModule(std::string* why) {
-  return simbobModule<UrdfModule>("libsimbob_urdf.so", "SIMBOB_URDF_MODULE", "simbob_urdf_module", kUrdfModuleAbi,
-                                  "reading URDF needs libsimbob_urdf.so (urdfdom)", &simbob_urdf_module, why);
+/// One field of <robot version="MAJOR.MINOR"> as urdfdom reads it (strtol, the whole text, not
+/// negative); -1 where it refuses it.
+long versionField(const std::string& s) {
+  if (s.empty()) return -1;
+  char* end = nullptr;
+  const long v = std::strtol(s.c_str(), &end, 10);
+  if (end == s.c_str() || *end != '\0' || v < 0) return -1;
+  return v;
 }
 
-class Reader {
- public:
-  Reader(const std::string& text, const std::string& file, const UrdfPackages& packages, Diagnostics& diag)
-      : text_(text), file_(file), packages_(packages), diag_(diag) {
-    for (size_t i = 0; i < text.size(); ++i)
-      if (text[i] == '\n') newlines_.push_back(i);
+const char* jointTypeName(UrdfJoint::Type t) {
+  switch (t) {
+    case UrdfJoint::Revolute:
+      return "revolute";
+    case UrdfJoint::Continuous:
+      return "continuous";
+    case UrdfJoint::Prismatic:
+      return "prismatic";
+    case UrdfJoint::Fixed:
+      return "fixed";
+    case UrdfJoint::Floating:
+      return "floating";
+    case UrdfJoint::Planar:
+      return "planar";
   }
-
-  std::shared_ptr<const UrdfRobot> read();
-
- private:
-  int lineOf(const pugi::xml_node& n) const {
-    const auto off = static_cast<size_t>(std::max<ptrdiff_t>(0, n.offset_debug()));
-    return static_cast<int>(std::upper_bound(newlines_.begin(), newlines_.end(), off) - newlines_.begin()) + 1;
-  }
-  void error(int line, const std::string& msg, ErrorKind kind = ErrorKind::InvalidInput) {
-    diag_.error({file_, line}, msg, kind);
-  }
-  void ignore(int line, const std::string& what) {
-    // A map, not a search of the notes: a file may hold 200,000 different unknown elements.
-    auto [it, added] = ignored_index_.emplace(what, robot_->ignored.size());
-    if (!added) {
-      ++robot_->ignored[it->second].count;
-      return;
-    }
-    robot_->ignored.push_back({line, what, 1});
-  }
-  int urdfdomLine(const std::string& message) const;
-  void walk(const pugi::xml_node& n, const std::string& path);
-  bool readLink(const pugi::xml_node& x, const urdf::Link& u);
-  bool readShape(const pugi::xml_node& x, const urdf::Geometry& g, const urdf::Pose& origin, UrdfShape* out);
-  int readVisualMaterial(const pugi::xml_node& visual, const urdf::Visual& v);
-  bool readJoint(const pugi::xml_node& x, const urdf::Joint& u, const std::map<std::string, int>& links);
-  bool resolveFile(const std::string& name, int line, const char* what, std::string* path);
-  bool checkDepth(const pugi::xml_node& root);
-  bool readGazebo(const pugi::xml_node& g, const std::map<std::string, int>& links,
-                  const std::map<std::string, int>& joints);
-  bool gazeboNumber(const pugi::xml_node& tag, const std::string& what, double lo, bool lo_open, UrdfTag* out);
-  bool gazeboBool(const pugi::xml_node& tag, const std::string& what, bool invert, UrdfTag* out);
-  bool number(int line, const std::string& what, double v, bool non_negative = false);
-  bool checkValues();
-
-  const std::string& text_;
-  std::string file_;
-  const UrdfPackages& packages_;
-  Diagnostics& diag_;
-  std::vector<size_t> newlines_;
-  pugi::xml_document doc_;
-  std::shared_ptr<UrdfRobot> robot_ = std::make_shared<UrdfRobot>();
-  std::map<std::string, int> materials_;                   // robot-level material name -> index
-  std::unordered_map<std::string, size_t> ignored_index_;  // note text -> UrdfRobot::ignored index
-  std::vector<std::pair<int, std::string>> mimics_;        // joint index, the joint it follows
-  struct Missing {
-    int line;
-    std::string message;
-    int count;
-  };
-  std::map<std::string, Missing> missing_;  // package:// prefix -> its first name
-};
-
-bool finite(const Transform& t) {
-  for (double v : t.p)
-    if (!std::isfinite(v)) return false;
-  for (double v : t.q)
-    if (!std::isfinite(v)) return false;
-  return true;
+  return "?";
 }
 
-// The transform of an <origin> as urdfdom parsed it into p; `element` holds the <origin> (a
-// <joint>, <visual>, <collision> or <inertial>). Its rotation is computed again from the rpy
-// text, read as urdfdom reads it (space-separated, the C locale), with quatFromRpy.
-Transform toTransform(const urdf::Pose& p, const pugi::xml_node& element) {
-  Transform t;
-  t.p = {p.position.x, p.position.y, p.position.z};
-  t.q = {p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z};
-  const pugi::xml_attribute rpy = element.child("origin").attribute("rpy");
-  if (!rpy) return t;
-  std::istringstream in(rpy.value());
-  in.imbue(std::locale::classic());
-  double v[3];
-  int n = 0;
-  std::string piece;
-  while (in >> piece) {
-    std::istringstream one(piece);
-    one.imbue(std::locale::classic());
-    if (n == 3 || !(one >> v[n])) return t;  // urdfdom refused it, or read it otherwise: keep its value
-    ++n;
-  }
-  if (n == 3) t.q = quatFromRpy(v[0], v[1], v[2]);
-  return t;
-}
+}  // namespace
 
-// The URDF elements simbob reads, with their attributes; anything else is named as ignored.
-struct Known {
-  const char* path;   // element path below <robot>, '/' separated
-  const char* attrs;  // space-separated attribute names
-};
-constexpr Known kKnown[] = {
-    {"robot", "name version"},
-    {"robot/link", "name"},
-    {"robot/link/inertial", ""},
-    {"robot/link/inertial/origin", "xyz rpy"},
-    {"robot/link/inertial/mass", "value"},
-    {"robot/link/inertial/inertia", "ixx ixy ixz iyy iyz izz"},
-    {"robot/link/visual", "name"},
-    {"robot/link/visual/origin", "xyz rpy"},
-    {"robot/link/visual/geometry", ""},
-    {"robot/link/visual/geometry/box", "size"},
-    {"robot/link/visual/geometry/sphere", "radius"},
-    {"robot/link/visual/geometry/cylinder", "radius length"},
-    {"robot/link/visual/geometry/mesh", "filename scale"},
-    {"robot/link/visual/material", "name"},
-    {"robot/link/visual/material/color", "rgba"},
-    {"robot/link/visual/material/texture", "filename"},
-    {"robot/link/collision", "name"},
-    {"robot/link/collision/origin", "xyz rpy"},
-    {"robot/link/collision/geometry", ""},
-    {"robot/link/collision/geometry/box", "size"},
-    {"robot/link/collision/geometry/sphere", "radius"},
-    {"robot/link/collision/geometry/cylinder", "radius length"},
-    {"robot/link/collision/geometry/mesh", "filename scale"},
-    {"robot/material", "name"},
-    {"robot/material/color", "rgba"},
-    {"robot/material/texture", "filename"},
-    {"robot/joint", "name type"},
-    {"robot/joint/origin", "xyz rpy"},
-    {"robot/joint/parent", "link"},
-    {"robot/joint/child", "link"},
-    {"robot/joint/axis", "xyz"},
-    {"robot/joint/limit", "lower upper effort velocity"},
-    {"robot/joint/dynamics", "damping friction"},
-    {"robot/joint/mimic", "joint multiplier offset"},
-    {"robot/gazebo", "reference"},
-};
-
-// Elements URDF defines that simbob does not model, with the reason given once.
-struct Unmodelled {
-  const char* name;
-  const char* why;
-};
-constexpr Unmodelled kUnmodelled[] = {
-    {"transmission", "simbob models no transmissions; RCImportURDF's Drives puts a drive on every movable joint"},
-    {"calibration", "joint positions are zero at the URDF's zero configuration"},
-    {"safety_controller", "simbob has no safety controllers; the <limit> is what stops a joint"},
-};
-
-bool hasWord(const char* words, const char* w) {
-  const size_t n = std::strlen(w);
-  for (const char* p = words; *p;) {
-    const char* e = std::strchr(p, ' ');
-    const size_t len = e ? static_cast<size_t>(e - p) : std::strlen(p);
-    if (len == n && std::strncmp(p, w, n) == 0) return true;
-    if (!e) break;
-    p = e + 1;
+/// <robot>: a name, and version 1.0 if it says one (urdfdom's rules).
+bool Reader::readRobot(const pugi::xml_node& root) {
+  if (!root.attribute("name")) {
+    error(robot_->line, "<robot> needs name=\"...\"");
+    return false;
   }
-  return false;
-}
-
-void Reader::walk(const pugi::xml_node& n, const std::string& path) {
-  const Known* known = nullptr;
-  for (const Known& k : kKnown)
-    if (path == k.path) known = &k;
-  if (!known) {
-    for (const Unmodelled& u : kUnmodelled)
-      if (std::strcmp(n.name(), u.name) == 0) {
-        ignore(lineOf(n), "<" + std::string(u.name) + "> ignored: " + u.why);
-        return;
-      }
-    ignore(lineOf(n),
-           "<" + quoteInput(n.name()) + "> ignored: not an element of URDF" +
-               (path.find('/') == std::string::npos ? "" : " inside <" + path.substr(0, path.rfind('/')) + ">"));
-    return;
-  }
-  for (pugi::xml_attribute a = n.first_attribute(); a; a = a.next_attribute()) {
-    const std::string name = a.name();
-    if (hasWord(known->attrs, a.name()) || name.rfind("xmlns", 0) == 0) continue;
-    ignore(lineOf(n), "attribute '" + quoteInput(name) + "' of <" + n.name() + "> ignored");
-  }
-  if (path == "robot/gazebo") return;  // its tags: readGazebo
-  int shapes = 0;
-  for (pugi::xml_node c : n.children()) {
-    if (c.type() != pugi::node_element) continue;
-    if (std::strcmp(n.name(), "geometry") == 0 && ++shapes == 2)
-      ignore(lineOf(c), "<geometry> with more than one shape: only the first is used");
-    walk(c, path + "/" + c.name());
-  }
-}
-
-int Reader::urdfdomLine(const std::string& message) const {
-  // A value urdfdom cannot read ("Unable to parse component [abc] to a double"): the element
-  // whose attribute holds it.
-  const size_t open = message.find('['), close = message.find(']', open == std::string::npos ? 0 : open);
-  if (message.find("parse") != std::string::npos && open != std::string::npos && close != std::string::npos) {
-    const std::string token = message.substr(open + 1, close - open - 1);
-    std::vector<pugi::xml_node> todo{doc_.document_element()};
-    while (!token.empty() && !todo.empty()) {
-      pugi::xml_node n = todo.back();
-      todo.pop_back();
-      for (pugi::xml_attribute a = n.first_attribute(); a; a = a.next_attribute())
-        if (std::string(a.value()).find(token) != std::string::npos) return lineOf(n);
-      for (pugi::xml_node c = n.last_child(); c; c = c.previous_sibling())
-        if (c.type() == pugi::node_element) todo.push_back(c);
+  robot_->name = root.attribute("name").value();
+  if (const pugi::xml_attribute v = root.attribute("version")) {
+    const std::string text = v.value();
+    const size_t dot = text.find('.');
+    const bool two = dot != std::string::npos && text.find('.', dot + 1) == std::string::npos;
+    if (!two || versionField(text.substr(0, dot)) != 1 || versionField(text.substr(dot + 1)) != 0) {
+      error(robot_->line, "<robot version=\"" + quoteInput(text, 40) + "\">: simbob reads URDF version 1.0 only");
+      return false;
     }
   }
-  // urdfdom names the link or joint it stopped at ("Joint [j1] ...", "link 'l' ..."): find it.
-  int best = 0;
-  for (pugi::xml_node c : doc_.document_element().children()) {
-    const char* name = c.attribute("name").value();
-    if (!*name) continue;
-    const std::string n(name);
-    if (message.find("[" + n + "]") != std::string::npos || message.find("'" + n + "'") != std::string::npos ||
-        message.find("\"" + n + "\"") != std::string::npos)
-      return lineOf(c);
-    if (!best && message.find(n) != std::string::npos && n.size() > 2) best = lineOf(c);
-  }
-  return best ? best : lineOf(doc_.document_element());
-}
-
-// --- <gazebo>: what Gazebo classic's URDF converter (sdformat's parser_urdf.cc) hands to ODE -----
-
-/// A tag's text as Gazebo reads it: its `value` attribute, or else its text, without blanks around.
-std::string gazeboText(const pugi::xml_node& tag) {
-  std::string t = tag.attribute("value") ? tag.attribute("value").value() : tag.child_value();
-  const size_t b = t.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos) return "";
-  return t.substr(b, t.find_last_not_of(" \t\r\n") - b + 1);
-}
-
-bool Reader::gazeboNumber(const pugi::xml_node& tag, const std::string& what, double lo, bool lo_open, UrdfTag* out) {
-  const std::string text = gazeboText(tag);
-  const std::optional<double> v = parseNumber(text);
-  const int line = lineOf(tag);
-  if (!v) {
-    error(line, what + ": <" + tag.name() + "> '" + quoteInput(text, 80) + "' is not a number");
-    return false;
-  }
-  if (!std::isfinite(*v) || (lo_open ? !(*v > lo) : !(*v >= lo))) {
-    error(line, what + ": <" + tag.name() + "> " + formatNumber(*v) + " must be finite and " +
-                    (lo_open ? "> " : ">= ") + formatNumber(lo));
-    return false;
-  }
-  if (!number(line, what + ": <" + tag.name() + ">", *v)) return false;
-  *out = {line, *v};
   return true;
 }
 
-bool Reader::gazeboBool(const pugi::xml_node& tag, const std::string& what, bool invert, UrdfTag* out) {
-  const std::string text = gazeboText(tag);
-  bool v;
-  if (equalsIgnoreCase(text, "true") || equalsIgnoreCase(text, "yes") || text == "1") {
-    v = true;
-  } else if (equalsIgnoreCase(text, "false") || equalsIgnoreCase(text, "no") || text == "0") {
-    v = false;
-  } else {
-    error(lineOf(tag), what + ": <" + tag.name() + "> '" + quoteInput(text, 80) + "' is not true or false");
-    return false;
+/// The <texture> and <color> of a material, robot-level or inside a visual. A <color> needs four
+/// numbers from 0 to 1, kept as urdfdom keeps them (single precision).
+bool Reader::parseMaterial(const pugi::xml_node& m, const std::string& what, MaterialValues* out) {
+  if (const pugi::xml_node t = m.child("texture"); t && t.attribute("filename")) {
+    out->texture = t.attribute("filename").value();
+    out->has_texture = true;
   }
-  *out = {lineOf(tag), (v != invert) ? 1.0 : 0.0};
+  const pugi::xml_node c = m.child("color");
+  if (!c) return true;
+  double rgba[4];
+  if (!required(c, "rgba", what) || !numbers(c, "rgba", what, 4, rgba)) return false;
+  for (int k = 0; k < 4; ++k) {
+    if (rgba[k] < 0 || rgba[k] > 1) {
+      error(lineOf(c), what + ": <color rgba=\"" + quoteInput(c.attribute("rgba").value(), 80) +
+                           "\">: " + formatNumber(rgba[k]) + " is outside [0, 1]");
+      return false;
+    }
+    out->color[static_cast<size_t>(k)] = static_cast<double>(static_cast<float>(rgba[k]));
+  }
+  out->has_rgba = true;
   return true;
 }
 
-/// One <gazebo> element. With reference="LINK": the tags Gazebo classic maps onto the link's ODE
-/// surface and body (docs/urdf.md, "Surfaces"); without reference: the robot's <self_collide>;
-/// every other tag is named once as ignored.
-bool Reader::readGazebo(const pugi::xml_node& g, const std::map<std::string, int>& links,
-                        const std::map<std::string, int>& joints) {
-  const pugi::xml_attribute ref = g.attribute("reference");
+/// The robot-level <material> elements, in document order: each name once.
+bool Reader::readMaterials(const pugi::xml_node& root) {
   bool ok = true;
-  auto children = [&](auto&& each) {
-    for (pugi::xml_node c : g.children())
-      if (c.type() == pugi::node_element) each(c, std::string(c.name()));
-  };
-  if (!ref) {
-    children([&](const pugi::xml_node& c, const std::string& name) {
-      if (name == "self_collide") {
-        ok = gazeboBool(c, "robot '" + robot_->name + "'", false, &robot_->self_collide) && ok;
-      } else if (name == "selfCollide") {
-        ignore(lineOf(c),
-               "<gazebo> <selfCollide> without reference ignored: Gazebo classic applies it to a link "
-               "(<gazebo reference=\"LINK\">); <self_collide> applies to every link");
-      } else if (name == "static") {
-        ignore(lineOf(c), "<gazebo> <static> ignored: FixedBase fixes the root link to the world");
-      } else if (name == "plugin") {
-        ignore(lineOf(c),
-               "<gazebo> <plugin> ignored: simbob runs no Gazebo plug-ins (RCImportURDF's Drives puts "
-               "a drive on every movable joint)");
-      } else {
-        ignore(lineOf(c), "<gazebo> <" + quoteInput(name) + "> without reference ignored: not read by simbob");
-      }
-    });
-    return ok;
-  }
-  const std::string target = ref.value();
-  auto link = links.find(target);
-  if (link == links.end()) {
-    if (joints.count(target)) {
-      children([&](const pugi::xml_node& c, const std::string& name) {
-        ignore(lineOf(c), "<gazebo> <" + quoteInput(name) +
-                              "> of a joint ignored: simbob reads no joint tags of "
-                              "Gazebo");
-      });
-    } else {
-      diag_.warning({file_, lineOf(g)}, "<gazebo reference=\"" + quoteInput(target) +
-                                            "\"> names no link or joint of the robot: its tags are ignored");
+  for (pugi::xml_node m : root.children("material")) {
+    if (!required(m, "name", "robot '" + quoteInput(robot_->name) + "'")) {
+      ok = false;
+      continue;
     }
-    return true;
-  }
-  UrdfLink& l = robot_->links[static_cast<size_t>(link->second)];
-  UrdfGazebo& gz = l.gazebo;
-  const std::string what = "link '" + l.name + "'";
-  children([&](const pugi::xml_node& c, const std::string& name) {
-    if (name == "mu1") {
-      ok = gazeboNumber(c, what, 0, false, &gz.mu1) && ok;
-    } else if (name == "mu2") {
-      ok = gazeboNumber(c, what, 0, false, &gz.mu2) && ok;
-    } else if (name == "kp") {
-      ok = gazeboNumber(c, what, 0, true, &gz.kp) && ok;
-    } else if (name == "kd") {
-      ok = gazeboNumber(c, what, 0, false, &gz.kd) && ok;
-    } else if (name == "minDepth") {
-      ok = gazeboNumber(c, what, 0, false, &gz.min_depth) && ok;
-    } else if (name == "maxVel") {
-      ok = gazeboNumber(c, what, 0, false, &gz.max_vel) && ok;
-    } else if (name == "maxContacts") {
-      UrdfTag t;
-      if (!gazeboNumber(c, what, 1, false, &t)) {
-        ok = false;
-      } else if (t.value != std::floor(t.value) || t.value > 1e6) {
-        error(t.line, what + ": <maxContacts> " + formatNumber(t.value) + " must be a whole number from 1 to 1000000");
-        ok = false;
-      } else {
-        gz.max_contacts = t;
-      }
-    } else if (name == "fdir1") {
-      std::string problem;
-      const std::string text = gazeboText(c);
-      const auto v = parseNumberList(text, &problem);
-      if (!v || v->size() != 3 || !std::isfinite((*v)[0]) || !std::isfinite((*v)[1]) || !std::isfinite((*v)[2])) {
-        error(lineOf(c), what + ": <fdir1> '" + quoteInput(text, 80) + "' must be three finite numbers");
-        ok = false;
-      } else {
-        gz.fdir1_tag = {lineOf(c), 0};
-        gz.fdir1 = {(*v)[0], (*v)[1], (*v)[2]};
-      }
-    } else if (name == "selfCollide") {
-      ok = gazeboBool(c, what, false, &gz.self_collide) && ok;
-    } else if (name == "gravity") {
-      ok = gazeboBool(c, what, false, &gz.gravity) && ok;
-    } else if (name == "turnGravityOff") {
-      ok = gazeboBool(c, what, true, &gz.gravity) && ok;
-    } else if (name == "material") {
-      ignore(lineOf(c),
-             "<gazebo> <material> ignored: Gazebo's material scripts are not read (a link's colour is "
-             "its URDF <material>)");
-    } else if (name == "plugin") {
-      ignore(lineOf(c),
-             "<gazebo> <plugin> ignored: simbob runs no Gazebo plug-ins (RCImportURDF's Drives puts a "
-             "drive on every movable joint)");
-    } else if (name == "sensor") {
-      ignore(lineOf(c),
-             "<gazebo> <sensor> ignored: Gazebo's sensors are not read (simbob's sensors go on the "
-             "link's key)");
-    } else {
-      ignore(lineOf(c), "<gazebo> <" + quoteInput(name) +
-                            "> of a link ignored: not one of the surface tags simbob reads (docs/urdf.md)");
+    const std::string name = m.attribute("name").value();
+    if (auto twice = materials_.find(name); twice != materials_.end()) {
+      error(lineOf(m), "material '" + quoteInput(name) + "' is defined twice (first at line " +
+                           std::to_string(robot_->materials[static_cast<size_t>(twice->second)].line) + ")");
+      ok = false;
+      continue;
     }
-  });
+    MaterialValues v;
+    if (!parseMaterial(m, "material '" + quoteInput(name) + "'", &v)) {
+      ok = false;
+      continue;
+    }
+    UrdfMaterial out;
+    out.name = name;
+    out.line = lineOf(m);
+    out.has_color = v.has_rgba;
+    out.color = v.color;
+    out.texture = v.texture;
+    if (!out.texture.empty() && !resolveFile(out.texture, lineOf(m), "texture", &out.texture_path)) ok = false;
+    materials_[name] = static_cast<int>(robot_->materials.size());
+    material_values_[name] = v;
+    robot_->materials.push_back(out);
+  }
   return ok;
 }
 
-/// Refuses a tree deeper than kMaxUrdfDepth before urdfdom sees it: urdfdom frees its tree
-/// recursively (a link's children with it). Counted without recursion over the joints' names.
-bool Reader::checkDepth(const pugi::xml_node& root) {
-  std::unordered_map<std::string, std::pair<std::string, pugi::xml_node>> parent;  // child -> parent, joint
-  for (pugi::xml_node j : root.children("joint"))
-    parent.emplace(j.child("child").attribute("link").value(),
-                   std::make_pair(std::string(j.child("parent").attribute("link").value()), j));
-  std::unordered_map<std::string, int> depth;  // link -> joints above it (known so far)
-  std::vector<const std::string*> path;
-  for (pugi::xml_node j : root.children("joint")) {  // document order: the same joint is named every time
-    auto start = parent.find(j.child("child").attribute("link").value());
-    if (depth.count(start->first)) continue;
-    path.clear();
-    const std::string* at = &start->first;
-    int base = 0;
-    while (true) {
-      auto known = depth.find(*at);
-      if (known != depth.end()) {
-        base = known->second;
-        break;
-      }
-      auto up = parent.find(*at);
-      // A root, or a loop (urdfdom refuses it; stop at the number of joints).
-      if (up == parent.end() || path.size() > parent.size()) break;
-      path.push_back(at);
-      at = &up->second.first;
-    }
-    for (size_t k = path.size(); k-- > 0;) {
-      const int d = base + static_cast<int>(path.size() - k);
-      depth[*path[k]] = d;
-      if (d > kMaxUrdfDepth) {
-        const pugi::xml_node j = parent[*path[k]].second;
-        error(lineOf(j), "joint '" + quoteInput(j.attribute("name").value()) + "': its child link is more than " +
-                             std::to_string(kMaxUrdfDepth) +
-                             " joints below the root: simbob reads URDF trees at most that deep (docs/urdf.md)");
-        return false;
-      }
-    }
+bool Reader::readInertial(const pugi::xml_node& in, const std::string& what, UrdfInertial* i) {
+  i->line = lineOf(in);
+  const std::string where = what + ": <inertial>";
+  if (!origin(in, where, &i->origin)) return false;
+  const pugi::xml_node mass = in.child("mass"), inertia = in.child("inertia");
+  if (!mass || !inertia) {
+    error(i->line, where + " needs <mass value=\"...\"> and <inertia ixx=\"...\" ...>");
+    return false;
   }
+  i->mass_line = lineOf(mass);
+  i->inertia_line = lineOf(inertia);
+  if (!required(mass, "value", what)) return false;
+  const std::optional<double> m = number(mass, "value", what);
+  if (!m) return false;
+  i->mass = *m;
+  static const char* const kNames[6] = {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"};
+  double v[6];
+  for (int k = 0; k < 6; ++k) {
+    if (!required(inertia, kNames[k], what)) return false;
+    const std::optional<double> x = number(inertia, kNames[k], what);
+    if (!x) return false;
+    v[k] = *x;
+  }
+  i->inertia = {v[0], v[1], v[2], v[1], v[3], v[4], v[2], v[4], v[5]};
   return true;
 }
 
-bool Reader::resolveFile(const std::string& name, int line, const char* what, std::string* path) {
-  std::string problem;
-  if (!resolveUrdfPath(name, file_, packages_, path, &problem)) {
-    // A package found nowhere is said once, at its first name (WAM names it 16 times).
-    const std::string package = name.substr(0, name.find('/', name.find("://") + 3));
-    auto [it, first] =
-        missing_.emplace(package, Missing{line, std::string(what) + " '" + quoteInput(name, 400) + "': " + problem, 0});
-    ++it->second.count;
-    return false;
-  }
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(*path, ec)) {
-    error(line,
-          std::string(what) + " '" + quoteInput(name, 400) + "' not found" +
-              (*path == name ? std::string() : " (looked for '" + quoteInput(*path, 400) + "')"),
-          ErrorKind::MissingInput);
-    return false;
-  }
-  if (std::find(robot_->files.begin(), robot_->files.end(), *path) == robot_->files.end())
-    robot_->files.push_back(*path);
-  return true;
-}
-
-bool Reader::readShape(const pugi::xml_node& x, const urdf::Geometry& g, const urdf::Pose& origin, UrdfShape* out) {
+/// A <visual> or <collision>: its origin and the first shape of its <geometry>.
+bool Reader::readShape(const pugi::xml_node& x, const std::string& what, UrdfShape* out) {
   out->line = lineOf(x);
-  out->origin = toTransform(origin, x);
-  if (!finite(out->origin)) {
-    error(x.child("origin") ? lineOf(x.child("origin")) : out->line, "<origin> must be finite");
+  if (!origin(x, what, &out->origin)) return false;
+  const pugi::xml_node geometry = x.child("geometry");
+  if (!geometry) {
+    error(out->line, what + " needs <geometry>");
     return false;
   }
   pugi::xml_node shape;
-  for (pugi::xml_node c : x.child("geometry").children())
+  for (pugi::xml_node c : geometry.children())
     if (c.type() == pugi::node_element) {
       shape = c;
       break;
     }
-  out->shape_line = shape ? lineOf(shape) : out->line;
-  switch (g.type) {
-    case urdf::Geometry::BOX: {
-      const auto& b = static_cast<const urdf::Box&>(g);
-      out->kind = UrdfShape::Box;
-      out->size = {b.dim.x, b.dim.y, b.dim.z};
-      break;
-    }
-    case urdf::Geometry::SPHERE:
-      out->kind = UrdfShape::Sphere;
-      out->size = {static_cast<const urdf::Sphere&>(g).radius, 0, 0};
-      break;
-    case urdf::Geometry::CYLINDER: {
-      const auto& c = static_cast<const urdf::Cylinder&>(g);
-      out->kind = UrdfShape::Cylinder;
-      out->size = {c.radius, c.length, 0};
-      break;
-    }
-    case urdf::Geometry::MESH: {
-      const auto& m = static_cast<const urdf::Mesh&>(g);
-      out->kind = UrdfShape::Mesh;
-      out->filename = m.filename;
-      out->scale = {m.scale.x, m.scale.y, m.scale.z};
-      return resolveFile(m.filename, out->shape_line, "mesh", &out->path);
-    }
+  if (!shape) {
+    error(lineOf(geometry), what + ": <geometry> holds no shape (<box>, <cylinder>, <sphere> or <mesh>)");
+    return false;
+  }
+  out->shape_line = lineOf(shape);
+  const std::string kind = shape.name();
+  if (kind == "box") {
+    out->kind = UrdfShape::Box;
+    if (!required(shape, "size", what) || !numbers(shape, "size", what, 3, out->size.data())) return false;
+  } else if (kind == "sphere") {
+    out->kind = UrdfShape::Sphere;
+    if (!required(shape, "radius", what)) return false;
+    const std::optional<double> r = number(shape, "radius", what);
+    if (!r) return false;
+    out->size = {*r, 0, 0};
+  } else if (kind == "cylinder") {
+    out->kind = UrdfShape::Cylinder;
+    if (!required(shape, "radius", what) || !required(shape, "length", what)) return false;
+    const std::optional<double> length = number(shape, "length", what);
+    const std::optional<double> r = length ? number(shape, "radius", what) : std::nullopt;
+    if (!r) return false;
+    out->size = {*r, *length, 0};
+  } else if (kind == "mesh") {
+    out->kind = UrdfShape::Mesh;
+    if (!required(shape, "filename", what)) return false;
+    out->filename = shape.attribute("filename").value();
+    out->scale = {1, 1, 1};
+    if (shape.attribute("scale") && !numbers(shape, "scale", what, 3, out->scale.data())) return false;
+    return resolveFile(out->filename, out->shape_line, "mesh", &out->path);
+  } else {
+    error(out->shape_line, what + ": <geometry> holds <" + quoteInput(kind) +
+                               ">, not a URDF shape (<box>, <cylinder>, <sphere> or <mesh>)");
+    return false;
   }
   for (double s : out->size)
     if (!std::isfinite(s) || s < 0) {
-      error(out->shape_line, "<" + std::string(shape.name()) + ">: sizes must be finite and >= 0");
+      error(out->shape_line, "<" + kind + ">: sizes must be finite and >= 0");
       return false;
     }
   return true;
 }
 
-int Reader::readVisualMaterial(const pugi::xml_node& visual, const urdf::Visual& v) {
-  pugi::xml_node m = visual.child("material");
-  if (!m || !v.material) return -1;
+/// A visual's <material>, as urdfdom assigns it: the robot-level material of its name, or an
+/// earlier visual's of that name, or else its own <color>/<texture> (which later visuals naming
+/// it then get; not by an empty name). -1: none; -2: an error (*ok false).
+int Reader::readVisualMaterial(const pugi::xml_node& visual, const std::string& what, bool* ok) {
+  const pugi::xml_node m = visual.child("material");
+  if (!m) return -1;
+  MaterialValues own;
+  if (!required(m, "name", what) || !parseMaterial(m, what + ": <material>", &own)) {
+    *ok = false;
+    return -2;
+  }
+  const std::string name = m.attribute("name").value();
+  const MaterialValues* src = &own;
+  if (name.empty()) {
+    // urdfdom assigns nothing by an empty name (CAD exporters write name="" in every visual):
+    // each such visual keeps its own colour or texture.
+    if (!own.has_rgba && !own.has_texture) return -1;
+  } else {
+    auto known = material_values_.find(name);
+    if (known == material_values_.end()) {
+      if (!own.has_rgba && !own.has_texture) return -1;  // urdfdom: "material undefined", no material
+      known = material_values_.emplace(name, own).first;
+    }
+    src = &known->second;
+  }
+  const MaterialValues& v = *src;
+  auto it = materials_.find(name);
   const bool inline_def = m.child("color") || m.child("texture");
-  auto it = materials_.find(m.attribute("name").value());
   if (!inline_def && it != materials_.end()) return it->second;
   UrdfMaterial out;
-  out.name = v.material->name;
+  out.name = name;
   out.line = lineOf(m);
   out.has_color = static_cast<bool>(m.child("color")) || it != materials_.end();
-  out.color = {v.material->color.r, v.material->color.g, v.material->color.b, v.material->color.a};
-  out.texture = v.material->texture_filename;
+  out.color = v.color;
+  out.texture = v.texture;
   if (!out.texture.empty() &&
-      !resolveFile(out.texture, lineOf(m.child("texture") ? m.child("texture") : m), "texture", &out.texture_path))
+      !resolveFile(out.texture, lineOf(m.child("texture") ? m.child("texture") : m), "texture", &out.texture_path)) {
+    *ok = false;
     return -2;
+  }
   robot_->materials.push_back(out);
   return static_cast<int>(robot_->materials.size()) - 1;
 }
 
-bool Reader::readLink(const pugi::xml_node& x, const urdf::Link& u) {
+bool Reader::readLink(const pugi::xml_node& x) {
+  if (!required(x, "name", "robot '" + quoteInput(robot_->name) + "'")) return false;
   UrdfLink l;
-  l.name = u.name;
+  l.name = x.attribute("name").value();
   l.line = lineOf(x);
-  bool ok = true;
-  if (u.inertial) {
-    pugi::xml_node in = x.child("inertial");
-    l.has_inertial = true;
-    UrdfInertial& i = l.inertial;
-    i.line = lineOf(in);
-    i.mass_line = in.child("mass") ? lineOf(in.child("mass")) : i.line;
-    i.inertia_line = in.child("inertia") ? lineOf(in.child("inertia")) : i.line;
-    i.origin = toTransform(u.inertial->origin, in);
-    if (!finite(i.origin)) {
-      error(in.child("origin") ? lineOf(in.child("origin")) : i.line, "<origin> must be finite");
-      ok = false;
-    }
-    i.mass = u.inertial->mass;
-    const urdf::Inertial& t = *u.inertial;
-    i.inertia = {t.ixx, t.ixy, t.ixz, t.ixy, t.iyy, t.iyz, t.ixz, t.iyz, t.izz};
+  const std::string what = "link '" + quoteInput(l.name) + "'";
+  if (auto twice = links_.find(l.name); twice != links_.end()) {
+    error(l.line, what + " is defined twice (first at line " +
+                      std::to_string(robot_->links[static_cast<size_t>(twice->second)].line) + ")");
+    return false;
   }
-  size_t vi = 0, ci = 0;
+  bool ok = true;
+  if (const pugi::xml_node in = x.child("inertial")) {
+    l.has_inertial = true;
+    ok = readInertial(in, what, &l.inertial);
+  }
   for (pugi::xml_node c : x.children()) {
-    if (std::strcmp(c.name(), "visual") == 0 && vi < u.visual_array.size()) {
-      const urdf::Visual& v = *u.visual_array[vi++];
-      UrdfShape s;
-      if (!v.geometry || !readShape(c, *v.geometry, v.origin, &s)) {
-        ok = false;
-        continue;
-      }
-      s.material = readVisualMaterial(c, v);
-      if (s.material == -2) ok = false;
+    const bool visual = std::strcmp(c.name(), "visual") == 0;
+    if (!visual && std::strcmp(c.name(), "collision") != 0) continue;
+    UrdfShape s;
+    const std::string where = what + ": <" + c.name() + ">";
+    if (!readShape(c, where, &s)) {
+      ok = false;
+      continue;
+    }
+    if (visual) {
+      s.material = readVisualMaterial(c, where, &ok);
+      if (s.material == -2) continue;
       l.visuals.push_back(s);
-    } else if (std::strcmp(c.name(), "collision") == 0 && ci < u.collision_array.size()) {
-      const urdf::Collision& k = *u.collision_array[ci++];
-      UrdfShape s;
-      if (!k.geometry || !readShape(c, *k.geometry, k.origin, &s)) {
-        ok = false;
-        continue;
-      }
+    } else {
       l.collisions.push_back(s);
     }
   }
+  // Named even when something in it is wrong: a joint naming it is not refused for that too.
+  links_[l.name] = static_cast<int>(robot_->links.size());
   robot_->links.push_back(std::move(l));
   return ok;
 }
 
-bool Reader::readJoint(const pugi::xml_node& x, const urdf::Joint& u, const std::map<std::string, int>& links) {
-  UrdfJoint j;
-  j.name = u.name;
-  j.line = lineOf(x);
-  switch (u.type) {
-    case urdf::Joint::REVOLUTE:
-      j.type = UrdfJoint::Revolute;
-      break;
-    case urdf::Joint::CONTINUOUS:
-      j.type = UrdfJoint::Continuous;
-      break;
-    case urdf::Joint::PRISMATIC:
-      j.type = UrdfJoint::Prismatic;
-      break;
-    case urdf::Joint::FLOATING:
-      j.type = UrdfJoint::Floating;
-      break;
-    case urdf::Joint::PLANAR:
-      j.type = UrdfJoint::Planar;
-      break;
-    case urdf::Joint::FIXED:
-      j.type = UrdfJoint::Fixed;
-      break;
-    default:
-      error(j.line, "joint '" + quoteInput(u.name) + "': unknown type");
-      return false;
+bool Reader::readJointType(const pugi::xml_node& x, const std::string& what, UrdfJoint* j) {
+  if (!required(x, "type", what)) return false;
+  static const UrdfJoint::Type kTypes[] = {UrdfJoint::Revolute, UrdfJoint::Continuous, UrdfJoint::Prismatic,
+                                           UrdfJoint::Fixed,    UrdfJoint::Floating,   UrdfJoint::Planar};
+  const std::string type = x.attribute("type").value();
+  std::vector<std::string> names;
+  for (UrdfJoint::Type t : kTypes) {
+    names.emplace_back(jointTypeName(t));
+    if (type == names.back()) {
+      j->type = t;
+      return true;
+    }
   }
-  j.parent = links.at(u.parent_link_name);
-  j.child = links.at(u.child_link_name);
-  j.origin = toTransform(u.parent_to_joint_origin_transform, x);
-  if (!finite(j.origin)) {
-    error(x.child("origin") ? lineOf(x.child("origin")) : j.line, "<origin> must be finite");
+  const std::string near = didYouMean(type, names);
+  error(j->line, what + ": unknown type '" + quoteInput(type, 40) + "'" +
+                     (near.empty() ? "" : ", did you mean '" + near + "'?") +
+                     " (revolute, continuous, prismatic, fixed, floating or planar)");
+  return false;
+}
+
+/// <axis>, <limit>, <safety_controller>, <calibration>, <mimic> and <dynamics>: urdfdom's
+/// defaults and what it requires of each.
+bool Reader::readJointParts(const pugi::xml_node& x, const std::string& what, UrdfJoint* j, std::string* leader) {
+  // The axis of a fixed or floating joint is not read (urdfdom leaves it 0 0 0).
+  j->axis = {0, 0, 0};
+  const pugi::xml_node axis = x.child("axis");
+  j->axis_line = axis ? lineOf(axis) : j->line;
+  if (j->type != UrdfJoint::Fixed && j->type != UrdfJoint::Floating) {
+    if (!axis) j->axis = {1, 0, 0};
+    if (axis && axis.attribute("xyz") && !numbers(axis, "xyz", what, 3, j->axis.data())) return false;
+  }
+  if (const pugi::xml_node limit = x.child("limit")) {
+    j->has_limit = true;
+    j->limit_line = lineOf(limit);
+    if (!numberIf(limit, "lower", what, &j->lower) || !numberIf(limit, "upper", what, &j->upper)) return false;
+    if (!required(limit, "effort", what) || !numberIf(limit, "effort", what, &j->effort)) return false;
+    if (!required(limit, "velocity", what) || !numberIf(limit, "velocity", what, &j->velocity)) return false;
+  } else if (j->type == UrdfJoint::Revolute || j->type == UrdfJoint::Prismatic) {
+    error(j->line, what + ": a " + jointTypeName(j->type) + " joint needs <limit> (lower, upper, effort, velocity)");
     return false;
   }
-  j.axis = {u.axis.x, u.axis.y, u.axis.z};
+  double unused = 0;
+  if (const pugi::xml_node safety = x.child("safety_controller")) {
+    if (!numberIf(safety, "soft_lower_limit", what, &unused) || !numberIf(safety, "soft_upper_limit", what, &unused) ||
+        !numberIf(safety, "k_position", what, &unused) || !required(safety, "k_velocity", what) ||
+        !numberIf(safety, "k_velocity", what, &unused))
+      return false;
+  }
+  if (const pugi::xml_node calibration = x.child("calibration")) {
+    if (!numberIf(calibration, "rising", what, &unused) || !numberIf(calibration, "falling", what, &unused))
+      return false;
+  }
+  if (const pugi::xml_node mimic = x.child("mimic")) {
+    j->mimic_line = lineOf(mimic);
+    if (!required(mimic, "joint", what)) return false;
+    *leader = mimic.attribute("joint").value();
+    j->multiplier = 1;
+    j->offset = 0;
+    if (!numberIf(mimic, "multiplier", what, &j->multiplier) || !numberIf(mimic, "offset", what, &j->offset))
+      return false;
+  }
+  if (const pugi::xml_node dynamics = x.child("dynamics")) {
+    j->dynamics_line = lineOf(dynamics);
+    if (!dynamics.attribute("damping") && !dynamics.attribute("friction")) {
+      error(j->dynamics_line, what + ": <dynamics> needs damping=\"...\" or friction=\"...\"");
+      return false;
+    }
+    if (!numberIf(dynamics, "damping", what, &j->damping) || !numberIf(dynamics, "friction", what, &j->friction))
+      return false;
+  }
+  return true;
+}
+
+/// A joint's <parent link> or <child link>: a link of the robot.
+bool Reader::readJointLink(const pugi::xml_node& x, const char* which, const std::string& what, int* out) {
+  const pugi::xml_node e = x.child(which);
+  if (!e || !e.attribute("link")) {
+    error(lineOf(x), what + " needs <" + which + " link=\"...\">");
+    return false;
+  }
+  auto it = links_.find(e.attribute("link").value());
+  if (it == links_.end()) {
+    error(lineOf(e), what + ": <" + which + "> names no link '" + quoteInput(e.attribute("link").value()) +
+                         "' (every link a joint names is a <link> of the robot)");
+    return false;
+  }
+  *out = it->second;
+  return true;
+}
+
+bool Reader::readJoint(const pugi::xml_node& x) {
+  if (!required(x, "name", "robot '" + quoteInput(robot_->name) + "'")) return false;
+  UrdfJoint j;
+  j.name = x.attribute("name").value();
+  j.line = lineOf(x);
+  const std::string what = "joint '" + quoteInput(j.name) + "'";
+  if (auto twice = joints_.find(j.name); twice != joints_.end()) {
+    error(j.line, what + " is defined twice (first at line " +
+                      std::to_string(robot_->joints[static_cast<size_t>(twice->second)].line) + ")");
+    return false;
+  }
+  std::string leader;
+  if (!origin(x, what, &j.origin) || !readJointType(x, what, &j) || !readJointParts(x, what, &j, &leader) ||
+      !readJointLink(x, "parent", what, &j.parent) || !readJointLink(x, "child", what, &j.child))
+    return false;
   const double n = std::sqrt(j.axis[0] * j.axis[0] + j.axis[1] * j.axis[1] + j.axis[2] * j.axis[2]);
-  j.axis_line = x.child("axis") ? lineOf(x.child("axis")) : j.line;
   const bool moves = j.type == UrdfJoint::Revolute || j.type == UrdfJoint::Continuous || j.type == UrdfJoint::Prismatic;
   if (moves && !(n > 1e-9 && std::isfinite(n))) {
-    error(j.axis_line, "joint '" + quoteInput(u.name) + "': <axis> must be a non-zero direction");
+    error(j.axis_line, what + ": <axis> must be a non-zero direction");
     return false;
   }
   if (moves && n != 1.0) j.axis = {j.axis[0] / n, j.axis[1] / n, j.axis[2] / n};
-  if (u.limits) {
-    j.has_limit = true;
-    j.limit_line = x.child("limit") ? lineOf(x.child("limit")) : j.line;
-    j.lower = u.limits->lower;
-    j.upper = u.limits->upper;
-    j.effort = u.limits->effort;
-    j.velocity = u.limits->velocity;
-  }
-  if (u.dynamics) {
-    j.dynamics_line = x.child("dynamics") ? lineOf(x.child("dynamics")) : j.line;
-    j.damping = u.dynamics->damping;
-    j.friction = u.dynamics->friction;
-  }
+  joints_[j.name] = static_cast<int>(robot_->joints.size());
+  if (j.mimic_line) mimics_.push_back({static_cast<int>(robot_->joints.size()), leader});
   robot_->joints.push_back(j);
+  return true;
+}
+
+/// The links and joints make one tree: each link the child of one joint at most, one root (the
+/// link that is no joint's child) and every link reached from it.
+bool Reader::checkTree() {
+  const size_t n = robot_->links.size();
+  std::vector<int> parent_joint(n, -1);
+  std::vector<std::vector<int>> children(n);
+  for (size_t ji = 0; ji < robot_->joints.size(); ++ji) {
+    const UrdfJoint& j = robot_->joints[ji];
+    int& pj = parent_joint[static_cast<size_t>(j.child)];
+    if (pj >= 0) {
+      const UrdfJoint& first = robot_->joints[static_cast<size_t>(pj)];
+      error(j.line, "joint '" + quoteInput(j.name) + "': link '" +
+                        quoteInput(robot_->links[static_cast<size_t>(j.child)].name) +
+                        "' is already the child of joint '" + quoteInput(first.name) + "' (line " +
+                        std::to_string(first.line) + "): in a URDF tree each link has one parent joint");
+      return false;
+    }
+    pj = static_cast<int>(ji);
+    children[static_cast<size_t>(j.parent)].push_back(j.child);
+  }
+  int root = -1;
+  for (size_t l = 0; l < n; ++l) {
+    if (parent_joint[l] >= 0) continue;
+    if (root >= 0) {
+      const UrdfLink& first = robot_->links[static_cast<size_t>(root)];
+      error(robot_->links[l].line, "link '" + quoteInput(robot_->links[l].name) + "' is a second root beside '" +
+                                       quoteInput(first.name) + "' (line " + std::to_string(first.line) +
+                                       "): no joint has it as child, and a URDF is one tree with one root link");
+      return false;
+    }
+    root = static_cast<int>(l);
+  }
+  if (root < 0) {
+    error(robot_->line, "robot '" + quoteInput(robot_->name) +
+                            "' has no root link: every link is some joint's child (its joints make a loop)");
+    return false;
+  }
+  std::vector<char> reached(n, 0);
+  std::vector<int> todo{root};
+  reached[static_cast<size_t>(root)] = 1;
+  while (!todo.empty()) {
+    const int l = todo.back();
+    todo.pop_back();
+    for (int c : children[static_cast<size_t>(l)])
+      if (!reached[static_cast<size_t>(c)]) {
+        reached[static_cast<size_t>(c)] = 1;
+        todo.push_back(c);
+      }
+  }
+  for (size_t l = 0; l < n; ++l)
+    if (!reached[l]) {
+      error(robot_->links[l].line, "link '" + quoteInput(robot_->links[l].name) + "' is not connected to the root '" +
+                                       quoteInput(robot_->links[static_cast<size_t>(root)].name) +
+                                       "': its joints make a loop");
+      return false;
+    }
+  robot_->root = root;
   return true;
 }
 
@@ -690,81 +524,34 @@ std::shared_ptr<const UrdfRobot> Reader::read() {
                                  : ""));
     return nullptr;
   }
-  if (!checkDepth(root)) return nullptr;
-  std::string message;
-  const UrdfModule* urdfdom = urdfModule(&message);
-  if (!urdfdom) {
-    error(robot_->line, message, ErrorKind::MissingInput);
-    return nullptr;
-  }
-  urdf::ModelInterfaceSharedPtr model = urdfdom->parse(text_, &message);
-  // urdfdom's links hold their children: freed from the root, a deep tree recurses once per
-  // level. Unchained first, each link is freed on its own.
-  struct Unchain {
-    urdf::ModelInterfaceSharedPtr& model;
-    ~Unchain() {
-      if (!model) return;
-      for (auto& named : model->links_) {
-        named.second->child_links.clear();
-        named.second->child_joints.clear();
-      }
-    }
-  } unchain{model};
-  if (!model) {
-    error(urdfdomLine(message), "not a valid URDF: " + (message.empty() ? "urdfdom refused it" : message));
-    return nullptr;
-  }
-  robot_->name = model->getName();
+  if (!checkDepth(root) || !readRobot(root)) return nullptr;
   walk(root, "robot");
-  for (pugi::xml_node m : root.children("material")) {
-    auto it = model->materials_.find(m.attribute("name").value());
-    if (it == model->materials_.end() || materials_.count(it->first)) continue;
-    UrdfMaterial out;
-    out.name = it->first;
-    out.line = lineOf(m);
-    out.has_color = static_cast<bool>(m.child("color"));
-    const urdf::Color& c = it->second->color;
-    out.color = {c.r, c.g, c.b, c.a};
-    out.texture = it->second->texture_filename;
-    if (!out.texture.empty() && !resolveFile(out.texture, lineOf(m), "texture", &out.texture_path)) return nullptr;
-    materials_[out.name] = static_cast<int>(robot_->materials.size());
-    robot_->materials.push_back(out);
+  // urdfdom's order: the materials, the links, the joints, then the tree.
+  bool ok = readMaterials(root);
+  for (pugi::xml_node x : root.children("link")) ok = readLink(x) && ok;
+  if (robot_->links.empty() && ok) {
+    error(robot_->line, "robot '" + quoteInput(robot_->name) + "' has no <link>");
+    return nullptr;
   }
-  std::map<std::string, int> links;
-  bool ok = true;
-  for (pugi::xml_node x : root.children("link")) {
-    urdf::LinkConstSharedPtr u = model->getLink(x.attribute("name").value());
-    if (!u || links.count(u->name)) continue;
-    links[u->name] = static_cast<int>(robot_->links.size());
-    ok = readLink(x, *u) && ok;
-  }
-  std::map<std::string, int> joints;
-  for (pugi::xml_node x : root.children("joint")) {
-    urdf::JointConstSharedPtr u = model->getJoint(x.attribute("name").value());
-    if (!u || joints.count(u->name)) continue;
-    joints[u->name] = static_cast<int>(robot_->joints.size());
-    ok = readJoint(x, *u, links) && ok;
-    if (u->mimic) {
-      UrdfJoint& j = robot_->joints.back();
-      j.mimic_line = x.child("mimic") ? lineOf(x.child("mimic")) : j.line;
-      j.multiplier = u->mimic->multiplier;
-      j.offset = u->mimic->offset;
-      mimics_.push_back({static_cast<int>(robot_->joints.size()) - 1, u->mimic->joint_name});
-    }
-  }
+  for (pugi::xml_node x : root.children("joint")) ok = readJoint(x) && ok;
+  if (!ok || !checkTree()) return finish(false);
   for (const auto& [ji, leader] : mimics_) {
-    auto it = joints.find(leader);
+    auto it = joints_.find(leader);
     UrdfJoint& j = robot_->joints[static_cast<size_t>(ji)];
-    if (it == joints.end()) {
+    if (it == joints_.end()) {
       error(j.mimic_line, "joint '" + quoteInput(j.name) + "': <mimic> names no joint '" + quoteInput(leader) + "'");
       ok = false;
     } else {
       j.mimic = it->second;
     }
   }
-  for (pugi::xml_node g : root.children("gazebo")) ok = readGazebo(g, links, joints) && ok;
+  for (pugi::xml_node g : root.children("gazebo")) ok = readGazebo(g, links_, joints_) && ok;
   ok = checkValues() && ok;
-  if (model->getRoot()) robot_->root = links.count(model->getRoot()->name) ? links[model->getRoot()->name] : -1;
+  return finish(ok);
+}
+
+/// The robot, or null after an error; a package found nowhere is said once, at its first name.
+std::shared_ptr<const UrdfRobot> Reader::finish(bool ok) {
   std::vector<Missing> missing;
   for (const auto& [package, m] : missing_) missing.push_back(m);
   std::sort(missing.begin(), missing.end(), [](const Missing& a, const Missing& b) { return a.line < b.line; });
@@ -778,7 +565,7 @@ std::shared_ptr<const UrdfRobot> Reader::read() {
 // A URDF number passes the checks a scene file's parameter gets (lib/scene/params.cpp): finite,
 // within kMaxValueMagnitude, and >= 0 where a negative value has no meaning. Past them, ODE's
 // inertia and contact math overflow (a mass of 1e200 ends in an ODE assertion).
-bool Reader::number(int line, const std::string& what, double v, bool non_negative) {
+bool Reader::range(int line, const std::string& what, double v, bool non_negative) {
   if (!std::isfinite(v)) {
     error(line, what + " " + formatNumber(v) + " must be finite");
     return false;
@@ -795,13 +582,13 @@ bool Reader::number(int line, const std::string& what, double v, bool non_negati
   return true;
 }
 
-// Every number urdfdom read, through number(): each problem said at its element's line.
+// Every number read, through range(): each problem said at its element's line.
 bool Reader::checkValues() {
   bool ok = true;
   // One message for an element: its first number that fails.
   auto all = [&](int line, const std::string& what, auto const& values, bool non_negative = false) {
     for (double v : values)
-      if (!number(line, what, v, non_negative)) {
+      if (!range(line, what, v, non_negative)) {
         ok = false;
         return;
       }
@@ -822,7 +609,7 @@ bool Reader::checkValues() {
     if (l.has_inertial) {
       const UrdfInertial& i = l.inertial;
       position(i.line, what + ": <inertial>", i.origin);
-      ok = number(i.mass_line, what + ": <mass>", i.mass) && ok;
+      ok = range(i.mass_line, what + ": <mass>", i.mass) && ok;
       all(i.inertia_line, what + ": <inertia>", i.inertia);
     }
     shapes(l.name, l.visuals, "visual");
@@ -832,28 +619,28 @@ bool Reader::checkValues() {
     const std::string what = "joint '" + quoteInput(j.name) + "'";
     position(j.line, what, j.origin);
     if (j.has_limit) {
-      ok = number(j.limit_line, what + ": <limit> lower", j.lower) && ok;
-      ok = number(j.limit_line, what + ": <limit> upper", j.upper) && ok;
-      ok = number(j.limit_line, what + ": <limit> effort", j.effort, true) && ok;
-      ok = number(j.limit_line, what + ": <limit> velocity", j.velocity, true) && ok;
+      ok = range(j.limit_line, what + ": <limit> lower", j.lower) && ok;
+      ok = range(j.limit_line, what + ": <limit> upper", j.upper) && ok;
+      ok = range(j.limit_line, what + ": <limit> effort", j.effort, true) && ok;
+      ok = range(j.limit_line, what + ": <limit> velocity", j.velocity, true) && ok;
     }
     if (j.dynamics_line) {
-      ok = number(j.dynamics_line, what + ": <dynamics> damping", j.damping, true) && ok;
-      ok = number(j.dynamics_line, what + ": <dynamics> friction", j.friction, true) && ok;
+      ok = range(j.dynamics_line, what + ": <dynamics> damping", j.damping, true) && ok;
+      ok = range(j.dynamics_line, what + ": <dynamics> friction", j.friction, true) && ok;
     }
     if (j.mimic_line) {
-      ok = number(j.mimic_line, what + ": <mimic> multiplier", j.multiplier) && ok;
-      ok = number(j.mimic_line, what + ": <mimic> offset", j.offset) && ok;
+      ok = range(j.mimic_line, what + ": <mimic> multiplier", j.multiplier) && ok;
+      ok = range(j.mimic_line, what + ": <mimic> offset", j.offset) && ok;
     }
   }
   return ok;
 }
 
-}  // namespace
+}  // namespace urdfread
 
 std::shared_ptr<const UrdfRobot> readUrdf(const std::string& text, const std::string& file,
                                           const UrdfPackages& packages, Diagnostics& diag) {
-  Reader r(text, file, packages, diag);
+  urdfread::Reader r(text, file, packages, diag);
   return r.read();
 }
 

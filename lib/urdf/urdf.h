@@ -1,5 +1,5 @@
-// The URDF import (issue 28): a URDF robot read into plain data (urdfdom for the values, pugixml
-// for the line of every element and for what urdfdom drops), and planned as the rigid bodies of
+// The URDF import (issue 28): a URDF robot read into plain data (simbob's own reader on pugixml,
+// following urdfdom's rules, every value with its line), and planned as the rigid bodies of
 // a scene (fixed joints lumped, mass properties combined, URDF's Z-up mapped onto the scene's
 // Y-up). No ODE, no GL: part of simbob_core. The loader (lib/scene/load.cpp) reads a robot when
 // it meets an RCImportURDF or a bare .urdf file; the RCImportURDF family
@@ -179,8 +179,8 @@ struct UrdfPlan {
 };
 
 /// The deepest a URDF tree may be (joints from the root to the farthest link), checked before
-/// urdfdom sees the text: urdfdom frees a tree recursively, which overflows an 8 MB stack near
-/// 120,000 levels (docs/urdf.md, docs/testing.md).
+/// anything else is read: a limit from urdfdom's days (it freed a tree recursively, which
+/// overflowed an 8 MB stack near 120,000 levels; docs/urdf.md, docs/testing.md).
 constexpr int kMaxUrdfDepth = 50000;
 
 /// Lumps the robot's fixed joints and combines mass properties (parallel-axis theorem, rotated

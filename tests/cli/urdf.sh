@@ -201,6 +201,15 @@ expect_status 65 "$SIMBOB" check heavy.xml
 expect_match "scene: the same limit" "$LAST_ERR" \
   "^heavy.xml:34: error: RCInertiaByGeom 'Dull.Inertia': parameter 'Mass': 1e\+200 is beyond the supported magnitude 1e\+09$"
 
+check "a tab written in a link's name is a space, in the link and the joint naming it (issue 43: was 'internal error', 70); urdfdom's refusals in simbob's words (65)"
+printf '<robot name="tabs">\n<link name="base"><inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>\n<link name="arm\tone"><inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>\n<joint name="j" type="continuous"><parent link="base"/><child link="arm\tone"/></joint>\n</robot>\n' >tab.urdf
+expect_status 0 "$SIMBOB" run tab.urdf --duration 0.1 --out tab.csv -q
+expect_match "the link's row" tab.csv "^0,tabs.arm one,"
+sed 's|type="continuous"|type="revolute"|' tab.urdf >nolimit.urdf
+expect_status 65 "$SIMBOB" check nolimit.urdf
+expect_lines "no limit" "$LAST_ERR" 1
+expect_match "no limit" "$LAST_ERR" "^nolimit.urdf:4: error: joint 'j': a revolute joint needs <limit> \(lower, upper, effort, velocity\)$"
+
 # scenes/kr5.xml (position drives holding and reaching) and scenes/drchubo.xml (dropped with
 # passive joints) are golden scenes: tests/cli/scenes.sh checks their motion, golden_regression
 # and golden_hwcaps their bytes.

@@ -130,11 +130,10 @@ say "Depends: $depends"
 tr ',|' '\n\n' <<<"$depends" | sed 's/(.*)//; s/^ *//; s/ *$//' | sed '/^$/d' | sort -u >"$WORK/depends"
 if grep -E -- '-(dev|dbg)$' "$WORK/depends"; then fail "Depends names a development package"; fi
 # The packages that own the libraries the binary needs (NEEDED entries, resolved by ldd).
-# The binary and the modules it opens on demand (libsimbob_video.so: FFmpeg, libsimbob_urdf.so:
-# urdfdom) all count.
+# The binary and the module it opens on demand (libsimbob_video.so: FFmpeg) all count.
 # And the Python module, when there is one (it links no libpython: the interpreter provides it).
 ELVES=("$SIMBOB")
-for module in video urdf; do
+for module in video; do
   ELVES+=("$(dirname "$SIMBOB")/libsimbob_$module.so")
   [[ -f "${ELVES[-1]}" ]] || fail "no $module module beside the binary: ${ELVES[-1]}"
 done
@@ -197,12 +196,13 @@ expect_eq "installed --version" "$(cat "$LAST_OUT")" "$version_text"
 expect_status 0 "$R/usr/bin/simbob" run "$R/usr/share/simbob/scenes/$SCENE.xml" --duration 1 --quiet --out "$WORK/deb.csv"
 expect_same_file "$WORK/deb.csv" "$WORK/reference.csv"
 expect_eq "scene in the installed run's summary" "$(json_get "$WORK/deb.json" 'j["scene"]')" "$R/usr/share/simbob/scenes/$SCENE.xml"
-check "the unpacked binary opens its modules from /usr/lib/simbob: a mesh scene, a URDF scene and a plot"
-for module in video urdf; do
+check "the unpacked binary opens its module from /usr/lib/simbob; a mesh scene, a URDF scene (its meshes) and a plot run"
+for module in video; do
   grep -qxF "/usr/lib/simbob/libsimbob_$module.so" "$WORK/contents" || fail "the package lacks libsimbob_$module.so"
 done
 expect_status 0 "$R/usr/bin/simbob" check "$R/usr/share/simbob/scenes/mesh_drop.xml"
 expect_status 0 "$R/usr/bin/simbob" check "$R/usr/share/simbob/scenes/kr5.xml"
+! grep -qF "libsimbob_urdf" "$WORK/contents" || fail "the package still holds libsimbob_urdf.so (URDF is read by simbob itself)"
 expect_status 0 "$R/usr/bin/simbob" plot "$WORK/deb.csv" --out "$WORK/deb.png"
 [[ -s "$WORK/deb.png" ]] || fail "the installed plot wrote no $WORK/deb.png"
 if [[ -n "$PYMOD" ]]; then

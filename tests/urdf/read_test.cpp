@@ -1,8 +1,7 @@
-// Reading URDF files (lib/urdf/read.cpp, paths.cpp): the values urdfdom gives with the line of
-// every element, what urdfdom drops named once each, package:// paths, and every URDF of
-// Debian's dart-doc: each loads or is refused with one line naming its file and line.
-#include <urdf_model/pose.h>
-
+// Reading URDF files (lib/urdf/read.cpp, parse.cpp, paths.cpp): the values with the line of
+// every element, urdfdom's rules with simbob's messages, what simbob ignores named once each,
+// package:// paths, and every URDF of Debian's dart-doc: each loads or is refused with one line
+// naming its file and line.
 #include <cmath>
 #include <cstdlib>
 #include <random>
@@ -92,7 +91,7 @@ TEST_CASE("urdf read: values with the line of each element", "[urdf]") {
   CHECK(r->ignored.empty());
 }
 
-TEST_CASE("urdf read: what urdfdom drops is named once each, with its first line", "[urdf]") {
+TEST_CASE("urdf read: what simbob ignores is named once each, with its first line", "[urdf]") {
   Diagnostics d;
   auto r = read(R"(<robot name="x">
   <link name="a">
@@ -142,11 +141,233 @@ TEST_CASE("urdf read: refusals name the file and the line", "[urdf]") {
         "RCImportURDF)");
   CHECK(refuse("<robot name=\"x\">\n<link name=\"a\"/>\n<joint name=\"j\" type=\"revolute\">\n"
                "<parent link=\"a\"/><child link=\"b\"/></joint>\n<link name=\"b\"/>\n</robot>") ==
-        "r.urdf:3: not a valid URDF: Joint [j] is of type REVOLUTE but it does not specify limits");
+        "r.urdf:3: joint 'j': a revolute joint needs <limit> (lower, upper, effort, velocity)");
   CHECK(
       refuse("<robot name=\"x\">\n<link name=\"a\"/>\n<joint name=\"j\" type=\"continuous\">\n"
              "<parent link=\"a\"/><child link=\"b\"/><mimic joint=\"nope\"/></joint>\n<link name=\"b\"/>\n</robot>") ==
       "r.urdf:4: joint 'j': <mimic> names no joint 'nope'");
+}
+
+TEST_CASE("urdf read: what urdfdom refuses is refused, one line at its element's line", "[urdf]") {
+  // simbob's reader follows urdfdom's rules (urdf_parser/src/{model,link,joint,pose}.cpp) with
+  // messages of its own. Each file below: a link 'a' on line 2, then `body` from line 3.
+  auto refuse = [](const std::string& body, const std::string& robot = "<robot name=\"x\">") {
+    Diagnostics d;
+    auto r = read(robot + "\n<link name=\"a\"/>\n" + body + "\n</robot>", d);
+    CHECK(!r);
+    std::vector<std::string> out;
+    for (const Error& e : d.errors()) out.push_back(e.str());
+    return out.size() == 1 ? out[0] : "(" + std::to_string(out.size()) + " errors) " + errorText(d);
+  };
+  using V = std::vector<std::pair<std::string, std::string>>;
+  const std::string link_b = "\n<link name=\"b\"/>";
+  auto joint = [&](const std::string& attrs, const std::string& inside) {
+    return "<joint name=\"j\" " + attrs + ">\n<parent link=\"a\"/><child link=\"b\"/>" + inside + "</joint>" + link_b;
+  };
+  for (const auto& [body, message] : V{
+           {"<link/>", "r.urdf:3: robot 'x': <link> needs name=\"...\""},
+           {"<link name=\"a\"/>", "r.urdf:3: link 'a' is defined twice (first at line 2)"},
+           {"<material name=\"m\"/>\n<material name=\"m\"/>",
+            "r.urdf:4: material 'm' is defined twice (first at line 3)"},
+           {"<material name=\"m\"><color rgba=\"1 0 0\"/></material>",
+            "r.urdf:3: material 'm': <color rgba=\"1 0 0\">: 4 numbers expected, found 3"},
+           {"<material name=\"m\"><color rgba=\"255 0 0 1\"/></material>",
+            "r.urdf:3: material 'm': <color rgba=\"255 0 0 1\">: 255 is outside [0, 1]"},
+           {"<link name=\"c\"><inertial><mass value=\"abc\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" "
+            "iyz=\"0\" izz=\"1\"/></inertial></link>",
+            "r.urdf:3: link 'c': <mass value=\"abc\">: not a number"},
+           {"<link name=\"c\"><inertial>\n<mass value=\"1\"/>\n</inertial></link>",
+            "r.urdf:3: link 'c': <inertial> needs <mass value=\"...\"> and <inertia ixx=\"...\" ...>"},
+           {"<link name=\"c\"><inertial><mass value=\"1\"/>\n<inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" "
+            "iyz=\"0\"/></inertial></link>",
+            "r.urdf:4: link 'c': <inertia> needs izz=\"...\""},
+           {"<link name=\"c\"><visual>\n<origin xyz=\"1 2\"/><geometry><sphere radius=\"1\"/></geometry></visual>"
+            "</link>",
+            "r.urdf:4: link 'c': <visual>: <origin xyz=\"1 2\">: 3 numbers expected, found 2"},
+           {"<link name=\"c\"><collision><geometry>\n<box size=\"1 x 3\"/></geometry></collision></link>",
+            "r.urdf:4: link 'c': <collision>: <box size=\"1 x 3\">: 'x' is not a number"},
+           {"<link name=\"c\"><collision/></link>", "r.urdf:3: link 'c': <collision> needs <geometry>"},
+           {"<link name=\"c\"><visual><geometry>\n</geometry></visual></link>",
+            "r.urdf:3: link 'c': <visual>: <geometry> holds no shape (<box>, <cylinder>, <sphere> or <mesh>)"},
+           {"<link name=\"c\"><visual><geometry>\n<capsule radius=\"1\" length=\"1\"/></geometry></visual></link>",
+            "r.urdf:4: link 'c': <visual>: <geometry> holds <capsule>, not a URDF shape (<box>, <cylinder>, "
+            "<sphere> or <mesh>)"},
+           {"<link name=\"c\"><visual><geometry><cylinder radius=\"1\"/></geometry></visual></link>",
+            "r.urdf:3: link 'c': <visual>: <cylinder> needs length=\"...\""},
+           {"<link name=\"c\"><visual><geometry><mesh scale=\"1 1 1\"/></geometry></visual></link>",
+            "r.urdf:3: link 'c': <visual>: <mesh> needs filename=\"...\""},
+           {"<link name=\"c\"><visual><geometry><sphere radius=\"1\"/></geometry>\n<material/></visual></link>",
+            "r.urdf:4: link 'c': <visual>: <material> needs name=\"...\""},
+           {joint("", ""), "r.urdf:3: joint 'j': <joint> needs type=\"...\""},
+           {joint("type=\"revolut\"", ""),
+            "r.urdf:3: joint 'j': unknown type 'revolut', did you mean 'revolute'? (revolute, continuous, prismatic, "
+            "fixed, floating or planar)"},
+           {joint("type=\"prismatic\"", ""),
+            "r.urdf:3: joint 'j': a prismatic joint needs <limit> (lower, upper, effort, velocity)"},
+           {joint("type=\"revolute\"", "\n<limit lower=\"0\" upper=\"1\" velocity=\"1\"/>"),
+            "r.urdf:5: joint 'j': <limit> needs effort=\"...\""},
+           {joint("type=\"continuous\"", "\n<axis xyz=\"0 0 1 0\"/>"),
+            "r.urdf:5: joint 'j': <axis xyz=\"0 0 1 0\">: 3 numbers expected, found 4"},
+           {joint("type=\"continuous\"", "\n<dynamics/>"),
+            "r.urdf:5: joint 'j': <dynamics> needs damping=\"...\" or friction=\"...\""},
+           {joint("type=\"continuous\"", "\n<mimic multiplier=\"2\"/>"),
+            "r.urdf:5: joint 'j': <mimic> needs joint=\"...\""},
+           {joint("type=\"continuous\"", "\n<safety_controller k_position=\"1\"/>"),
+            "r.urdf:5: joint 'j': <safety_controller> needs k_velocity=\"...\""},
+           {joint("type=\"continuous\"", "\n<calibration rising=\"up\"/>"),
+            "r.urdf:5: joint 'j': <calibration rising=\"up\">: not a number"},
+           {joint("type=\"fixed\"", "\n<origin rpy=\"0 0 1e400\"/>"),
+            "r.urdf:5: joint 'j': <origin rpy=\"0 0 1e400\">: '1e400' is not a number"},
+           {"<joint name=\"j\" type=\"fixed\"><child link=\"b\"/></joint>" + link_b,
+            "r.urdf:3: joint 'j' needs <parent link=\"...\">"},
+           {"<joint name=\"j\" type=\"fixed\"><parent link=\"a\"/>\n<child link=\"c\"/></joint>" + link_b,
+            "r.urdf:4: joint 'j': <child> names no link 'c' (every link a joint names is a <link> of the robot)"},
+           {joint("type=\"fixed\"", "") + "\n<joint name=\"j\" type=\"fixed\"><parent link=\"b\"/><child link=\"c\"/>"
+                                          "</joint><link name=\"c\"/>",
+            "r.urdf:6: joint 'j' is defined twice (first at line 3)"},
+           {link_b,
+            "r.urdf:4: link 'b' is a second root beside 'a' (line 2): no joint has it as child, and a URDF "
+            "is one tree with one root link"},
+           {joint("type=\"fixed\"", "") + "\n<joint name=\"k\" type=\"fixed\"><parent link=\"a\"/><child link=\"b\"/>"
+                                          "</joint>",
+            "r.urdf:6: joint 'k': link 'b' is already the child of joint 'j' (line 3): in a URDF tree each link has "
+            "one parent joint"},
+           {"<link name=\"b\"/><link name=\"c\"/>\n"
+            "<joint name=\"bc\" type=\"fixed\"><parent link=\"b\"/><child link=\"c\"/></joint>\n"
+            "<joint name=\"cb\" type=\"fixed\"><parent link=\"c\"/><child link=\"b\"/></joint>",
+            "r.urdf:3: link 'b' is not connected to the root 'a': its joints make a loop"},
+       }) {
+    INFO(body);
+    CHECK(refuse(body) == message);
+  }
+  CHECK(refuse("", "<robot>") == "r.urdf:1: <robot> needs name=\"...\"");
+  CHECK(refuse("", "<robot name=\"x\" version=\"2.0\">") ==
+        "r.urdf:1: <robot version=\"2.0\">: simbob reads URDF version 1.0 only");
+  CHECK(refuse("<joint name=\"l\" type=\"fixed\"><parent link=\"a\"/><child link=\"a\"/></joint>") ==
+        "r.urdf:1: robot 'x' has no root link: every link is some joint's child (its joints make a loop)");
+  Diagnostics d;
+  CHECK(!read("<robot name=\"x\">\n<material name=\"m\"/>\n</robot>", d));
+  CHECK(firstError(d) == "r.urdf:1: robot 'x' has no <link>");
+  Diagnostics v;
+  CHECK(read("<robot name=\"x\" version=\"1.0\"><link name=\"a\"/></robot>", v));
+}
+
+TEST_CASE("urdf read: numbers as urdfdom's C-locale stream reads them, and its defaults", "[urdf]") {
+  TempDir dir;
+  dir.write("m.stl", "solid a\nendsolid a\n");
+  Diagnostics ok;
+  auto robot = read(
+      "<robot name=\"x\">\n"
+      "<link name=\"a\"><inertial><origin xyz=\"+1  .5\t5.\"/><mass value=\" 1e3\"/>"
+      "<inertia ixx=\"1E-2\" ixy=\"-0\" ixz=\"1e-400\" iyy=\"+.25e+1\" iyz=\"0\" izz=\"1\"/></inertial>\n"
+      "<visual><geometry><mesh filename=\"m.stl\"/></geometry></visual></link>\n"
+      "<link name=\"b\"/><link name=\"c\"/>\n"
+      "<joint name=\"f\" type=\"fixed\"><parent link=\"a\"/><child link=\"b\"/></joint>\n"
+      "<joint name=\"r\" type=\"revolute\"><parent link=\"a\"/><child link=\"c\"/>"
+      "<limit effort=\"1\" velocity=\"2\"/><mimic joint=\"f\"/><dynamics damping=\"0.5\"/></joint>\n"
+      "</robot>",
+      ok, (dir.path() / "r.urdf").string());
+  INFO(errorText(ok));
+  REQUIRE(robot);
+  CHECK(robot->links[0].visuals[0].scale == Vec3{1, 1, 1});
+  const UrdfInertial& i = robot->links[0].inertial;
+  CHECK(i.origin.p == Vec3{1, 0.5, 5});
+  CHECK(i.origin.q == Quat{1, 0, 0, 0});
+  CHECK(i.mass == 1000);
+  CHECK(i.inertia == Mat3{0.01, 0, 0, 0, 2.5, 0, 0, 0, 1});
+  const UrdfJoint& f = robot->joints[0];
+  CHECK(f.axis == Vec3{0, 0, 0});  // a fixed joint's axis is not read (urdfdom's 0 0 0)
+  CHECK(f.origin.p == Vec3{0, 0, 0});
+  CHECK(!f.has_limit);
+  const UrdfJoint& j = robot->joints[1];
+  CHECK(j.axis == Vec3{1, 0, 0});  // no <axis>
+  CHECK(j.lower == 0);
+  CHECK(j.upper == 0);
+  CHECK(j.effort == 1);
+  CHECK(j.velocity == 2);
+  CHECK(j.mimic == 0);
+  CHECK(j.multiplier == 1);
+  CHECK(j.offset == 0);
+  CHECK(j.damping == 0.5);
+  CHECK(j.friction == 0);
+  // What the stream refuses: words, hexadecimal, a comma, a magnitude beyond the largest double.
+  for (const char* bad : {"inf", "nan", "0x10", "1,5", "1e400", "1e", "--1", "."}) {
+    Diagnostics e;
+    CHECK(!read(
+        std::string("<robot name=\"x\"><link name=\"a\"><inertial><mass value=\"") + bad +
+            "\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link></robot>",
+        e));
+    CHECK(firstError(e) == std::string("r.urdf:1: link 'a': <mass value=\"") + bad + "\">: not a number");
+  }
+}
+
+TEST_CASE("urdf read: a visual's material is urdfdom's: robot-level, an earlier visual's, or its own", "[urdf]") {
+  Diagnostics d;
+  auto r = read(
+      "<robot name=\"x\">\n<material name=\"red\"><color rgba=\"1 0 0 1\"/></material>\n"
+      "<link name=\"a\">\n"
+      "<visual><geometry><box size=\"1 1 1\"/></geometry><material name=\"red\"/></visual>\n"
+      "<visual><geometry><box size=\"1 1 1\"/></geometry><material name=\"blue\"><color rgba=\"0 0 0.1 1\"/>"
+      "</material></visual>\n"
+      "<visual><geometry><box size=\"1 1 1\"/></geometry><material name=\"blue\"/></visual>\n"
+      "<visual><geometry><box size=\"1 1 1\"/></geometry><material name=\"nowhere\"/></visual>\n"
+      "</link>\n</robot>",
+      d);
+  INFO(errorText(d));
+  REQUIRE(r);
+  const auto& v = r->links[0].visuals;
+  REQUIRE(v.size() == 4);
+  CHECK(v[0].material == 0);  // the robot-level one
+  REQUIRE(v[1].material == 1);
+  CHECK(r->materials[1].color == Rgba{0, 0, static_cast<double>(0.1f), 1});  // single precision, as urdfdom keeps it
+  REQUIRE(v[2].material == 2);                                               // blue again: the first visual's colour
+  CHECK(r->materials[2].color == r->materials[1].color);
+  CHECK(v[3].material == -1);  // defined nowhere: no material
+  // name="" (SolidWorks' exporter writes it in every visual, as dart-doc's KR5 has it): urdfdom
+  // assigns nothing by it, so each visual keeps its own colour.
+  Diagnostics e;
+  auto k = read(
+      "<robot name=\"x\"><link name=\"a\">\n"
+      "<visual><geometry><box size=\"1 1 1\"/></geometry><material name=\"\"><color rgba=\"0 0 0 1\"/>"
+      "</material></visual>\n"
+      "<visual><geometry><box size=\"1 1 1\"/></geometry><material name=\"\"><color rgba=\"1 1 1 1\"/>"
+      "</material></visual>\n"
+      "<visual><geometry><box size=\"1 1 1\"/></geometry><material name=\"\"/></visual>\n"
+      "</link></robot>",
+      e);
+  INFO(errorText(e));
+  REQUIRE(k);
+  const auto& w = k->links[0].visuals;
+  REQUIRE(w.size() == 3);
+  REQUIRE(w[0].material == 0);
+  REQUIRE(w[1].material == 1);
+  CHECK(k->materials[0].color == Rgba{0, 0, 0, 1});
+  CHECK(k->materials[1].color == Rgba{1, 1, 1, 1});
+  CHECK(w[2].material == -1);
+}
+
+TEST_CASE("urdf read: a tab or a line break written in a name is a space, as XML reads an attribute", "[urdf]") {
+  // Issue 43 item 14: urdfdom (TinyXML) kept a literal tab of a link's name while pugixml made it
+  // a space; the two readers disagreed and the import stopped with "internal error: map::at"
+  // (70). One reader now: XML's attribute-value normalization makes each tab and line break a
+  // space (docs/urdf.md, "How a URDF is read"), in the link's name and in the joint naming it.
+  const std::string text =
+      "<robot name=\"tabs\">\n<link name=\"base\"><inertial><mass value=\"1\"/>"
+      "<inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>\n"
+      "<link name=\"arm\tone\nend\"><inertial><mass value=\"1\"/>"
+      "<inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>\n"
+      "<joint name=\"j\" type=\"continuous\"><parent link=\"base\"/>"
+      "<child link=\"arm\tone\nend\"/></joint>\n</robot>\n";
+  Diagnostics d;
+  auto r = read(text, d);
+  INFO(errorText(d));
+  REQUIRE(r);
+  REQUIRE(r->links.size() == 2);
+  CHECK(r->links[1].name == "arm one end");
+  CHECK(r->joints[0].child == 1);
+  const Model m = mustCompile(text, "tabs.urdf");
+  CHECK(m.bodies.size() == 2);
+  CHECK(m.joints.size() == 1);
 }
 
 TEST_CASE("urdf read: package:// from a package.xml above, ROS_PACKAGE_PATH, then the given folders", "[urdf]") {
@@ -363,19 +584,30 @@ TEST_CASE("urdf dart-doc: KR5/ground.urdf loads", "[urdf][dart]") {
 }
 
 TEST_CASE("urdf read: an <origin rpy> becomes urdfdom's quaternion, with correctly rounded sin and cos", "[urdf]") {
-  // quatFromRpy is urdfdom's Rotation::setFromRPY term for term; only its sin and cos are
-  // correctly rounded (crSin, crCos) instead of libm's. Against urdfdom's own over random angles:
-  // every component within 4 ulps of 1 (a last-bit difference in one factor moves a product of
-  // three by about that), and equal bits for all but the few angles where libm is not correctly
-  // rounded.
+  // quatFromRpy is urdfdom's Rotation::setFromRPY and normalize (urdf_model/pose.h) term for
+  // term; only its sin and cos are correctly rounded (crSin, crCos) instead of libm's. Against
+  // that formula with libm's, as urdfdom computes it, over random angles: every component within
+  // 4 ulps of 1 (a last-bit difference in one factor moves a product of three by about that),
+  // and equal bits for all but the few angles where libm is not correctly rounded.
+  struct Libm {
+    double w, x, y, z;
+  };
+  auto urdfdom = [](double roll, double pitch, double yaw) {
+    const double phi = roll / 2.0, the = pitch / 2.0, psi = yaw / 2.0;
+    Libm q{std::cos(phi) * std::cos(the) * std::cos(psi) + std::sin(phi) * std::sin(the) * std::sin(psi),
+           std::sin(phi) * std::cos(the) * std::cos(psi) - std::cos(phi) * std::sin(the) * std::sin(psi),
+           std::cos(phi) * std::sin(the) * std::cos(psi) + std::sin(phi) * std::cos(the) * std::sin(psi),
+           std::cos(phi) * std::cos(the) * std::sin(psi) - std::sin(phi) * std::sin(the) * std::cos(psi)};
+    const double s = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
+    return Libm{q.w / s, q.x / s, q.y / s, q.z / s};
+  };
   std::mt19937_64 rng(28);
   std::uniform_real_distribution<double> a(-4.0, 4.0);
   int equal = 0;
   constexpr int kCases = 20000;
   for (int i = 0; i < kCases; ++i) {
     const double r = a(rng), p = a(rng), y = a(rng);
-    urdf::Rotation u;
-    u.setFromRPY(r, p, y);
+    const Libm u = urdfdom(r, p, y);
     const simbob::Quat q = simbob::quatFromRpy(r, p, y);
     const double theirs[4] = {u.w, u.x, u.y, u.z};
     bool same = true;
@@ -394,10 +626,9 @@ TEST_CASE("urdf read: an <origin rpy> becomes urdfdom's quaternion, with correct
 
 TEST_CASE("urdf read: a chain 40,000 links deep loads (no recursion over the tree); deeper than 50,000 is refused",
           "[urdf]") {
-  // Issue 43 point 11: planUrdf walked the tree recursively (SIGSEGV near 40,000), and urdfdom
-  // frees its links recursively (near 120,000 on an 8 MB stack): simbob plans with a stack of
-  // its own, unchains urdfdom's links before freeing them, and refuses what is deeper than
-  // kMaxUrdfDepth before urdfdom sees it.
+  // Issue 43 point 11: planUrdf walked the tree recursively (SIGSEGV near 40,000), and urdfdom,
+  // which read the values then, freed its links recursively (near 120,000 on an 8 MB stack):
+  // simbob plans with a stack of its own and refuses what is deeper than kMaxUrdfDepth.
   auto chain = [](int n) {
     std::string t =
         "<robot name=\"chain\">\n<link name=\"l0\"><inertial><mass value=\"1\"/>"

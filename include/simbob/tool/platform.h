@@ -21,8 +21,8 @@ std::string cpuModel();
 
 namespace simbob {
 
-/// Opens one of simbob's own on-demand modules (libsimbob_video.so, libsimbob_urdf.so): the
-/// libraries behind them (FFmpeg, urdfdom) are loaded only by a run that needs them. `env`, when set and not
+/// Opens one of simbob's own on-demand modules (libsimbob_video.so): the library behind it
+/// (FFmpeg) is loaded only by a run that needs it. `env`, when set and not
 /// empty, names the file; otherwise the module is looked for beside the executable (the build
 /// tree, whose tests/ and bench/ hold links to the modules) and in ../lib/simbob (an installed
 /// simbob), never in the folder above the executable. A module that any user can write, or whose

@@ -286,6 +286,10 @@ bool Reader::readLink(const pugi::xml_node& x) {
   UrdfLink l;
   l.name = x.attribute("name").value();
   l.line = lineOf(x);
+  if (l.name.empty()) {  // its key would be the robot's own (issue 43): "duplicate key 'robot'"
+    error(l.line, "robot '" + quoteInput(robot_->name) + "': a <link> with an empty name (name=\"\"): give it one");
+    return false;
+  }
   const std::string what = "link '" + quoteInput(l.name) + "'";
   if (auto twice = links_.find(l.name); twice != links_.end()) {
     error(l.line, what + " is defined twice (first at line " +
@@ -415,6 +419,10 @@ bool Reader::readJoint(const pugi::xml_node& x) {
   UrdfJoint j;
   j.name = x.attribute("name").value();
   j.line = lineOf(x);
+  if (j.name.empty()) {  // its key would be the robot's own (issue 43): "duplicate key 'robot'"
+    error(j.line, "robot '" + quoteInput(robot_->name) + "': a <joint> with an empty name (name=\"\"): give it one");
+    return false;
+  }
   const std::string what = "joint '" + quoteInput(j.name) + "'";
   if (auto twice = joints_.find(j.name); twice != joints_.end()) {
     error(j.line, what + " is defined twice (first at line " +
@@ -425,6 +433,8 @@ bool Reader::readJoint(const pugi::xml_node& x) {
   if (!origin(x, what, &j.origin) || !readJointType(x, what, &j) || !readJointParts(x, what, &j, &leader) ||
       !readJointLink(x, "parent", what, &j.parent) || !readJointLink(x, "child", what, &j.child))
     return false;
+  for (double v : j.axis)  // a direction of 1e308 overflows its length: say which number is too large
+    if (!range(j.axis_line, what + ": <axis> xyz", v)) return false;
   const double n = std::sqrt(j.axis[0] * j.axis[0] + j.axis[1] * j.axis[1] + j.axis[2] * j.axis[2]);
   const bool moves = j.type == UrdfJoint::Revolute || j.type == UrdfJoint::Continuous || j.type == UrdfJoint::Prismatic;
   if (moves && !(n > 1e-9 && std::isfinite(n))) {
@@ -545,6 +555,7 @@ std::shared_ptr<const UrdfRobot> Reader::read() {
       j.mimic = it->second;
     }
   }
+  ok = ok && mimicsAcyclic();
   for (pugi::xml_node g : root.children("gazebo")) ok = readGazebo(g, links_, joints_) && ok;
   ok = checkValues() && ok;
   return finish(ok);
@@ -565,6 +576,37 @@ std::shared_ptr<const UrdfRobot> Reader::finish(bool ok) {
 // A URDF number passes the checks a scene file's parameter gets (lib/scene/params.cpp): finite,
 // within kMaxValueMagnitude, and >= 0 where a negative value has no meaning. Past them, ODE's
 // inertia and contact math overflow (a mass of 1e200 ends in an ODE assertion).
+// A joint that mimics itself, or joints that mimic each other round a loop, have no leader to
+// follow (issue 43): refused at the <mimic> line of the first joint of the loop, naming it.
+bool Reader::mimicsAcyclic() {
+  const std::vector<UrdfJoint>& joints = robot_->joints;
+  std::vector<char> state(joints.size(), 0);  // 0 unseen, 1 on the current path, 2 done
+  for (size_t start = 0; start < joints.size(); ++start) {
+    std::vector<size_t> path;
+    size_t j = start;
+    while (state[j] == 0) {
+      state[j] = 1;
+      path.push_back(j);
+      if (joints[j].mimic < 0) break;
+      j = static_cast<size_t>(joints[j].mimic);
+    }
+    if (state[j] == 1 && joints[j].mimic >= 0) {  // back on the current path: a loop from j
+      std::string loop = "'" + quoteInput(joints[j].name) + "'";
+      for (size_t k = static_cast<size_t>(joints[j].mimic); k != j; k = static_cast<size_t>(joints[k].mimic))
+        loop += " -> '" + quoteInput(joints[k].name) + "'";
+      error(joints[j].mimic_line,
+            "joint '" + quoteInput(joints[j].name) + "': <mimic> " +
+                (joints[j].mimic == static_cast<int>(j)
+                     ? std::string("follows the joint itself")
+                     : "joints follow each other round a loop (" + loop + " -> '" + quoteInput(joints[j].name) + "')") +
+                ": a mimic joint needs a leader that moves of its own");
+      return false;
+    }
+    for (size_t k : path) state[k] = 2;
+  }
+  return true;
+}
+
 bool Reader::range(int line, const std::string& what, double v, bool non_negative) {
   if (!std::isfinite(v)) {
     error(line, what + " " + formatNumber(v) + " must be finite");

@@ -73,6 +73,7 @@ class Reader {
   bool readJoint(const pugi::xml_node& x);
   bool checkTree();
   bool range(int line, const std::string& what, double v, bool non_negative = false);
+  bool mimicsAcyclic();
   bool checkValues();
 
   const std::string& text_;

@@ -731,3 +731,46 @@ TEST_CASE("urdf read: every number passes the checks a scene file's parameters g
                "r.urdf", {}, d));
   CHECK(d.errors().empty());
 }
+
+TEST_CASE("urdf read: a joint that mimics itself, or joints that mimic each other, are refused at the <mimic>",
+          "[urdf]") {
+  // Round five (issue 43, item 16): both were accepted and run, with no leader that moves.
+  auto errors = [](const std::string& joints) {
+    Diagnostics d;
+    const std::string text =
+        "<robot name=\"x\">\n<link name=\"world\"/>\n"
+        "<link name=\"a\"><inertial><mass value=\"1\"/><inertia ixx=\"1\" iyy=\"1\" izz=\"1\" ixy=\"0\" ixz=\"0\" "
+        "iyz=\"0\"/></inertial></link>\n"
+        "<link name=\"b\"><inertial><mass value=\"1\"/><inertia ixx=\"1\" iyy=\"1\" izz=\"1\" ixy=\"0\" ixz=\"0\" "
+        "iyz=\"0\"/></inertial></link>\n" +
+        joints + "\n</robot>";
+    CHECK(!readUrdf(text, "r.urdf", {}, d));
+    std::vector<std::string> out;
+    for (const Error& e : d.errors()) out.push_back(e.str());
+    return out;
+  };
+  CHECK(errors("<joint name=\"j1\" type=\"continuous\"><parent link=\"world\"/><child link=\"a\"/>\n"
+               "<mimic joint=\"j1\"/></joint>\n"
+               "<joint name=\"j2\" type=\"continuous\"><parent link=\"a\"/><child link=\"b\"/></joint>") ==
+        std::vector<std::string>{"r.urdf:6: joint 'j1': <mimic> follows the joint itself: a mimic joint needs a "
+                                 "leader that moves of its own"});
+  CHECK(errors("<joint name=\"j1\" type=\"continuous\"><parent link=\"world\"/><child link=\"a\"/>\n"
+               "<mimic joint=\"j2\"/></joint>\n"
+               "<joint name=\"j2\" type=\"continuous\"><parent link=\"a\"/><child link=\"b\"/>\n"
+               "<mimic joint=\"j1\"/></joint>") ==
+        std::vector<std::string>{"r.urdf:6: joint 'j1': <mimic> joints follow each other round a loop ('j1' -> "
+                                 "'j2' -> 'j1'): a mimic joint needs a leader that moves of its own"});
+  CHECK(errors("<joint name=\"j1\" type=\"continuous\"><parent link=\"world\"/><child link=\"a\"/>\n"
+               "<axis xyz=\"1e308 1e308 1e308\"/></joint>\n"
+               "<joint name=\"j2\" type=\"continuous\"><parent link=\"a\"/><child link=\"b\"/></joint>") ==
+        std::vector<std::string>{"r.urdf:6: joint 'j1': <axis> xyz 1e+308 is beyond the supported magnitude 1e+09 "
+                                 "(the limit of every number of a scene)"});
+}
+
+TEST_CASE("urdf read: a link or joint with an empty name is refused at its line", "[urdf]") {
+  // Round five (issue 43): a link named "" took the robot's own key ("duplicate key 'robot'").
+  Diagnostics d;
+  CHECK(!readUrdf("<robot name=\"\">\n<link name=\"\"/>\n</robot>", "r.urdf", {}, d));
+  REQUIRE(d.errors().size() == 1);
+  CHECK(d.errors()[0].str() == "r.urdf:2: robot '': a <link> with an empty name (name=\"\"): give it one");
+}

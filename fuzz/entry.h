@@ -478,7 +478,7 @@ inline std::string runUrdf(const uint8_t* data, size_t size) {
   if (!ok) {
     if (diag.errors().empty()) return "a URDF was refused without a message";
     for (const Error& e : diag.errors())
-      if (e.message.find("internal error") != std::string::npos) return "a URDF met an internal error: " + e.message;
+      if (e.kind == ErrorKind::Internal) return "a URDF met an internal error: " + e.message;
     return {};
   }
   if (!diag.errors().empty()) return "a URDF loaded but reported errors";

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "simbob/mesh.h"
+#include "simbob/values.h"
 
 namespace simbob {
 
@@ -226,6 +227,33 @@ uint64_t meshTriangles(const pugi::xml_node& mesh, std::string* problem, const s
   return triangles;
 }
 
+// assimp sizes its arrays by what an index list or a count says: a `!` inside a <p> list (found
+// by the mesh fuzz target) or a count of 1e9 makes it ask for gigabytes. Index lists hold whole
+// numbers only.
+std::string indexListProblem(const pugi::xml_node& x) {
+  std::string problem;
+  eachToken(x.child_value(), [&](std::string_view t) {
+    const std::string_view d = !t.empty() && t[0] == '-' ? t.substr(1) : t;  // <v>'s -1: the bind shape
+    const bool digits =
+        !d.empty() && d.size() <= 10 && std::all_of(d.begin(), d.end(), [](char c) { return c >= '0' && c <= '9'; });
+    if (!digits)
+      problem = "'" + quoteInput(std::string(t), 40) + "' in <" + std::string(x.name()) + "> is not a whole number";
+    return digits;
+  });
+  return problem;
+}
+
+// A `count` no file of this size can hold (each item takes at least two bytes), or a `stride`
+// beyond any mesh's, is refused before assimp reserves room for it.
+std::string sizeProblem(const pugi::xml_node& x, size_t file_bytes) {
+  const pugi::xml_attribute c = x.attribute("count"), st = x.attribute("stride");
+  if (c && c.as_ullong() > file_bytes / 2 + 1)
+    return "<" + std::string(x.name()) + " count=\"" + quoteInput(c.value(), 40) + "\"> is more than the file holds";
+  if (st && st.as_ullong() > 64)
+    return "<" + std::string(x.name()) + " stride=\"" + quoteInput(st.value(), 40) + "\"> is over 64";
+  return {};
+}
+
 struct Expansion {
   uint64_t triangles = 0, nodes = 0, depth = 0;
   int state = 0;  // 0 not seen, 1 being expanded, 2 done
@@ -260,7 +288,12 @@ std::string indexCollada(const std::string& bytes, const pugi::xml_node& root, C
         eachToken(x.child_value(),
                   [&](std::string_view t) { return (problem = floatProblem(t, "a number of <float_array>")).empty(); });
         if (!problem.empty()) return atLine(lineAt(bytes, x.offset_debug()), problem);
+      } else if (name == "p" || name == "v" || name == "vcount" || name == "h" || name == "int_array") {
+        if (std::string problem = indexListProblem(x); !problem.empty())
+          return atLine(lineAt(bytes, x.offset_debug()), problem);
       }
+      if (std::string problem = sizeProblem(x, bytes.size()); !problem.empty())
+        return atLine(lineAt(bytes, x.offset_debug()), problem);
       if (x.first_child()) {
         x = x.first_child();
         ++depth;

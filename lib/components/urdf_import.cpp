@@ -34,24 +34,6 @@ const EnumTable kCollisionsTable{"Collisions", {{"hull", 0}, {"mesh", 1}}};
 constexpr ValueParam<bool> kAboveGround{"AboveGround"};
 constexpr ValueParam<bool> kSelfCollision{"SelfCollision"};
 
-const char* typeName(UrdfJoint::Type t) {
-  switch (t) {
-    case UrdfJoint::Revolute:
-      return "revolute";
-    case UrdfJoint::Continuous:
-      return "continuous";
-    case UrdfJoint::Prismatic:
-      return "prismatic";
-    case UrdfJoint::Fixed:
-      return "fixed";
-    case UrdfJoint::Floating:
-      return "floating";
-    case UrdfJoint::Planar:
-      return "planar";
-  }
-  return "?";
-}
-
 using ContextFixedShape = CompileContext::FixedUrdfShape;
 
 /// The lowering of one import: what it has made so far and what it says.
@@ -673,7 +655,7 @@ void Import::summarise() {
   report_.key = key_;
   report_.loc = at(robot_.line);
   std::map<std::string, int> by_type;
-  for (const UrdfJoint& j : robot_.joints) ++by_type[typeName(j.type)];
+  for (const UrdfJoint& j : robot_.joints) ++by_type[urdfJointTypeName(j.type)];
   int lumped = 0, meshes = 0, moving = 0;
   double mass = 0;
   for (const UrdfBody& b : plan_.bodies) {

@@ -37,6 +37,24 @@ Quat quatFromRpy(double roll, double pitch, double yaw) {
   return {w, x, y, z};
 }
 
+const char* urdfJointTypeName(UrdfJoint::Type t) {
+  switch (t) {
+    case UrdfJoint::Revolute:
+      return "revolute";
+    case UrdfJoint::Continuous:
+      return "continuous";
+    case UrdfJoint::Prismatic:
+      return "prismatic";
+    case UrdfJoint::Fixed:
+      return "fixed";
+    case UrdfJoint::Floating:
+      return "floating";
+    case UrdfJoint::Planar:
+      return "planar";
+  }
+  return "?";
+}
+
 namespace urdfread {
 
 Reader::Reader(const std::string& text, const std::string& file, const UrdfPackages& packages, Diagnostics& diag)
@@ -55,24 +73,6 @@ long versionField(const std::string& s) {
   const long v = std::strtol(s.c_str(), &end, 10);
   if (end == s.c_str() || *end != '\0' || v < 0) return -1;
   return v;
-}
-
-const char* jointTypeName(UrdfJoint::Type t) {
-  switch (t) {
-    case UrdfJoint::Revolute:
-      return "revolute";
-    case UrdfJoint::Continuous:
-      return "continuous";
-    case UrdfJoint::Prismatic:
-      return "prismatic";
-    case UrdfJoint::Fixed:
-      return "fixed";
-    case UrdfJoint::Floating:
-      return "floating";
-    case UrdfJoint::Planar:
-      return "planar";
-  }
-  return "?";
 }
 
 }  // namespace
@@ -331,7 +331,7 @@ bool Reader::readJointType(const pugi::xml_node& x, const std::string& what, Urd
   const std::string type = x.attribute("type").value();
   std::vector<std::string> names;
   for (UrdfJoint::Type t : kTypes) {
-    names.emplace_back(jointTypeName(t));
+    names.emplace_back(urdfJointTypeName(t));
     if (type == names.back()) {
       j->type = t;
       return true;
@@ -362,7 +362,8 @@ bool Reader::readJointParts(const pugi::xml_node& x, const std::string& what, Ur
     if (!required(limit, "effort", what) || !numberIf(limit, "effort", what, &j->effort)) return false;
     if (!required(limit, "velocity", what) || !numberIf(limit, "velocity", what, &j->velocity)) return false;
   } else if (j->type == UrdfJoint::Revolute || j->type == UrdfJoint::Prismatic) {
-    error(j->line, what + ": a " + jointTypeName(j->type) + " joint needs <limit> (lower, upper, effort, velocity)");
+    error(j->line,
+          what + ": a " + urdfJointTypeName(j->type) + " joint needs <limit> (lower, upper, effort, velocity)");
     return false;
   }
   double unused = 0;

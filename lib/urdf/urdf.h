@@ -142,6 +142,8 @@ enum class UrdfDrives : uint32_t { None, Position, Velocity, Effort };
 const char* urdfDriveType(uint32_t drives);
 /// Whether a joint gets a drive: revolute, continuous or prismatic, and not a mimic.
 bool urdfJointDriven(const UrdfJoint& j);
+/// "revolute", "continuous", ... as a URDF writes the type.
+const char* urdfJointTypeName(UrdfJoint::Type t);
 /// A URDF name as a key part: '.' (the key separator) becomes '_'.
 std::string urdfKey(const std::string& name);
 
